@@ -1,0 +1,57 @@
+#pragma once
+/// \file ellipsoid.h
+/// An ellipsoid posed in the world frame W, the value type of the static narrow phase.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace fcl_quadric {
+
+/// The solid ellipsoid E = { x in W : |S^-1 R^T (x - p)| <= 1 }, S = diag(radii), where R = R_WE
+/// is the orientation and p = p_WE the centre of its body frame E in the world frame W.
+///
+/// Thesis convention (Choi 2008 §4.1): the homogeneous matrix A of E satisfies X^T A X < 0
+/// exactly in the interior; quadricMatrix() returns it.
+///
+/// \pre radii finite and > 0; R finite, orthogonal within tolerance::kRotationOrthogonality and
+///      det R > 0; p finite. A violation throws std::invalid_argument naming the bad value.
+class Ellipsoid {
+ public:
+  Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, const Eigen::Vector3d& p_WE);
+  /// From an isometry X_WE (its linear part must be a rotation).
+  Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Isometry3d& X_WE);
+  /// A sphere of radius r centred at p_WE.
+  static Ellipsoid sphere(double r, const Eigen::Vector3d& p_WE);
+
+  const Eigen::Vector3d& radii() const { return radii_; }
+  const Eigen::Matrix3d& rotation() const { return R_; }
+  const Eigen::Vector3d& center() const { return p_; }
+
+  /// 4x4 symmetric A with X^T A X < 0 inside: A = M^-T diag(1/a^2,1/b^2,1/c^2,-1) M^-1,
+  /// M = [R p; 0 1], with M^-1 formed as [R^T, -R^T p] (rigid).
+  Eigen::Matrix4d quadricMatrix() const;
+  /// Implicit value q(x) = |S^-1 R^T (x - p)|^2 - 1 (negative inside, zero on the surface).
+  double implicit(const Eigen::Vector3d& x_W) const;
+  /// Outward unit normal of the level set of q through x (x != centre).
+  Eigen::Vector3d normalAt(const Eigen::Vector3d& x_W) const;
+  /// Support function h(n) = max_{x in E} n.x, for any n != 0 (not necessarily unit).
+  double support(const Eigen::Vector3d& n_W) const;
+  /// The point of E where the support in direction n is attained.
+  Eigen::Vector3d supportPoint(const Eigen::Vector3d& n_W) const;
+  /// Largest radius (a bound on the distance from the centre to any point of E).
+  double maxRadius() const { return radii_.maxCoeff(); }
+
+ private:
+  Eigen::Vector3d radii_;
+  Eigen::Matrix3d R_;
+  Eigen::Vector3d p_;
+};
+
+namespace detail {
+/// Throws std::invalid_argument if `R` is not a finite proper rotation within
+/// tolerance::kRotationOrthogonality. `what` names the value in the message.
+void checkRotation(const Eigen::Matrix3d& R, const char* what);
+void checkFinite(const Eigen::Vector3d& v, const char* what);
+}  // namespace detail
+
+}  // namespace fcl_quadric

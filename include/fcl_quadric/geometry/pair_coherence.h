@@ -1,0 +1,37 @@
+#pragma once
+/// \file pair_coherence.h
+/// Inter-frame coherence for one ellipsoid pair (EECD: Wang et al. 2004 §4, Choi 2008 §4.3):
+/// keep the last separating plane and test it first on the next frame.
+
+#include <cstdint>
+#include <optional>
+
+#include "fcl_quadric/geometry/ellipsoid_separation.h"
+#include "fcl_quadric/geometry/separating_plane.h"
+
+namespace fcl_quadric {
+
+/// Per-pair state. Not thread-safe: one object per pair per thread (the FCL-level pair cache of
+/// a later layer owns these). Cheap to copy.
+class PairCoherence {
+ public:
+  /// Classify (a, b), using and refreshing the candidate plane:
+  ///  1. if a candidate plane exists and planeSeparates() certifies it, report Separated;
+  ///  2. else run classifyEllipsoids(); if Separated, compute a new plane for the next frame.
+  /// The answer is always identical to classifyEllipsoids(a, b).status except that a certified
+  /// plane short-cuts the work (a plane is only trusted when it provably separates).
+  Separation query(const Ellipsoid& a, const Ellipsoid& b);
+
+  const std::optional<Plane>& candidate() const { return candidate_; }
+  void reset() { candidate_.reset(); }
+
+  std::uint64_t queries() const { return queries_; }
+  std::uint64_t planeHits() const { return plane_hits_; }
+
+ private:
+  std::optional<Plane> candidate_;
+  std::uint64_t queries_ = 0;
+  std::uint64_t plane_hits_ = 0;
+};
+
+}  // namespace fcl_quadric

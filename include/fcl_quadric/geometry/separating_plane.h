@@ -1,0 +1,57 @@
+#pragma once
+/// \file separating_plane.h
+/// Separating planes of disjoint ellipsoids (Choi 2008 Theorems 4.5, 4.6; Wang et al. 2004
+/// Theorem 2) and the plane/ellipsoid tests that inter-frame coherence relies on (§4.3).
+
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "fcl_quadric/geometry/ellipsoid.h"
+
+namespace fcl_quadric {
+
+/// The plane { x : normal . x = offset } with a unit normal. By convention the first ellipsoid of
+/// a pair lies on the negative side (normal . x < offset) and the second on the positive side.
+struct Plane {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+  double offset = 0.0;
+  double signedDistance(const Eigen::Vector3d& x) const { return normal.dot(x) - offset; }
+};
+
+/// A separating plane with the two tangent points of Theorem 4.6: P_R^A on A and P_L^B on B,
+/// both on the line V2 V3 through the eigenvectors of the two negative roots of f.
+struct SeparatingPlane {
+  Plane plane;
+  Eigen::Vector3d tangent_a = Eigen::Vector3d::Zero();  ///< P_R^A (on the surface of a)
+  Eigen::Vector3d tangent_b = Eigen::Vector3d::Zero();  ///< P_L^B (on the surface of b)
+  /// true when planeSeparates(plane, a, b) certified the plane. False only within the touching
+  /// band, where the plane is the best available (the common tangent plane at the witness).
+  bool certified = false;
+  /// true when the Theorem 4.6 construction was used; false when the fallback plane through the
+  /// pencil witness x* with normal grad q_a(x*) was used (it separates whenever psi(mu*) > 0).
+  bool from_theorem_4_6 = false;
+};
+
+/// Separating plane of disjoint ellipsoids a and b (Theorem 4.6): the eigenvectors V2, V3 of the
+/// two negative roots of f span a line that meets a in P_R^A and b in P_L^B; the returned plane is
+/// the bisector of the tangent plane of a at P_R^A and that of b at P_L^B (both contain the line
+/// V0 V1, so every positive combination separates). If the roots are too close to isolate in
+/// double (near tangency) or the plane fails certification, the plane through the pencil witness
+/// with normal grad q_a is used instead. Returns std::nullopt unless classifyEllipsoids(a, b) is
+/// Separated.
+std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipsoid& b);
+
+/// Certified test that `plane` strictly separates a (negative side) from b (positive side):
+/// support(a, n) < offset < -support(b, -n), each with a relative margin covering rounding.
+/// A plane that cannot be certified is reported as not separating (the caller then runs the
+/// full algebraic test), so a stale plane can never hide a collision.
+bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
+
+/// Gap between the plane and the ellipsoid on its positive side: min over x in E of
+/// normal.x - offset = -offset - support(-normal). > 0 when E lies strictly on the positive side
+/// (the plane does not meet E); for a unit normal it is the Euclidean distance. Negate the plane to
+/// measure the negative side.
+double planeEllipsoidGap(const Plane& plane, const Ellipsoid& e);
+
+}  // namespace fcl_quadric

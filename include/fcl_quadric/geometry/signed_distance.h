@@ -1,0 +1,37 @@
+#pragma once
+/// \file signed_distance.h
+/// Signed distance between two ellipsoids with witness points and normal.
+
+#include <Eigen/Core>
+
+#include "fcl_quadric/geometry/ellipsoid.h"
+#include "fcl_quadric/geometry/ellipsoid_separation.h"
+
+namespace fcl_quadric {
+
+struct SignedDistanceResult {
+  /// > 0: Euclidean distance; < 0: minus the penetration depth (length of the shortest translation
+  /// of b that removes the overlap); 0 within the touching band. Its sign always agrees with
+  /// `status` (the algebraic classification decides the sign).
+  double distance = 0.0;
+  Eigen::Vector3d point_a = Eigen::Vector3d::Zero();  ///< on the surface of a (world frame)
+  Eigen::Vector3d point_b = Eigen::Vector3d::Zero();  ///< on the surface of b (world frame)
+  /// Unit normal pointing from a to b: translating b by -distance * normal makes them touch.
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+  Separation status = Separation::Touching;
+  int iterations = 0;
+  bool converged = false;
+};
+
+/// Signed distance of ellipsoids a and b: the maximum over unit n of -h_a(n) - h_b(-n), h the
+/// support function (for separated pairs the Euclidean distance; for overlapping pairs minus the
+/// penetration depth). Riemannian Newton on the unit sphere with backtracking, warm-started from
+/// `warm_normal` (if non-null and non-zero), from the separating plane of Theorem 4.6 for
+/// separated pairs, and for overlapping pairs from several seeds (penetration depth can have
+/// local optima) of which the best is kept. Iterations capped at
+/// tolerance::kMaxDistanceNewtonIterations; on reaching the cap the best iterate is returned with
+/// converged = false.
+SignedDistanceResult signedDistance(const Ellipsoid& a, const Ellipsoid& b,
+                                    const Eigen::Vector3d* warm_normal = nullptr);
+
+}  // namespace fcl_quadric

@@ -1,0 +1,53 @@
+#pragma once
+/// \file tolerances.h
+/// The one place where fcl_quadric's numerical tolerances live (docs/tolerances.md explains the
+/// policy). Every constant says what it is measured against. Sign decisions are *certified*:
+/// a value is trusted only when it exceeds an a-priori error bound; otherwise the computation is
+/// repeated in double-double arithmetic, and if it is still within that (much smaller) bound the
+/// configuration is reported as touching, i.e. as contact: near tangency we err toward contact.
+
+#include <cstddef>
+
+namespace fcl_quadric {
+namespace tolerance {
+
+/// Unit roundoff of IEEE double (2^-53).
+constexpr double kUnitRoundoff = 1.1102230246251565e-16;
+
+/// Relative rounding bound used by the certificates of the static classification
+/// (ellipsoid_separation.cpp): a computed value v is trusted to have the sign of the exact one
+/// when |v| > kCertificate... * scale(v), scale(v) being the same expression evaluated on absolute
+/// values (plus the magnitude of the rounding of the transform into A's unit frame). The a-priori
+/// bound for the <= 30 rounded operations on the longest path is gamma_30 ~ 3.3e-15; 2^-40 ~ 9.1e-13
+/// leaves a safety factor > 250. Dimensionless.
+constexpr double kCertificateRelativeBoundDouble = 9.094947017729282e-13;  // 2^-40
+
+/// The same for the double-double stage (unit roundoff <= 2^-104): 2^-92 ~ 2.0e-28. A pair whose
+/// certificates fail at this level is within ~1e-27 (relative) of tangency and is reported as
+/// Touching: contact.
+constexpr double kCertificateRelativeBoundDoubleDouble = 2.0194839173657902e-28;  // 2^-92
+
+/// A rotation matrix R is accepted as rigid when ||R^T R - I||_max <= this and det R > 0.
+/// Quaternion-derived rotations are orthogonal to ~1e-16; composed transforms drift slowly.
+/// The library interprets body coordinates as S^-1 R^T (x - p): an accepted R with defect e
+/// describes the intended ellipsoid to relative accuracy ~e.
+constexpr double kRotationOrthogonality = 1e-9;
+
+/// Scene input: |q| of a pose quaternion must be within this of 1 (relative). Dimensionless.
+constexpr double kQuaternionNorm = 1e-6;
+
+/// Iteration caps (every loop in the library is bounded; the fallback on reaching a cap is
+/// documented at the loop).
+constexpr int kMaxPencilNewtonIterations = 60;   ///< safeguarded Newton for max of psi(mu)
+constexpr int kMaxRootBracketIterations = 200;   ///< safeguarded Newton/bisection for a root
+constexpr int kMaxDistanceNewtonIterations = 100;  ///< Riemannian Newton on the unit sphere
+
+/// Relative tolerance for the pencil maximiser mu* (|step| <= this * 1).
+constexpr double kPencilArgumentTolerance = 1e-15;
+
+/// Convergence of the signed-distance Newton iteration: stop when the Riemannian gradient norm
+/// is <= this times the scale (sum of the largest radii and the centre distance).
+constexpr double kDistanceGradientTolerance = 1e-14;
+
+}  // namespace tolerance
+}  // namespace fcl_quadric

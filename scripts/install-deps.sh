@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# The one list of system packages fcl_quadric needs (Debian 12). README's commands and
+# .ci/run both call this script, so a fresh machine gets exactly what a developer has.
+set -euo pipefail
+PKGS=(
+  build-essential cmake pkg-config
+  libfcl-dev libccd-dev libeigen3-dev liboctomap-dev libompl-dev
+  googletest libgtest-dev libgmock-dev libbenchmark-dev
+  nlohmann-json3-dev libcli11-dev
+  libboost-dev libgmp-dev
+)
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi
+export DEBIAN_FRONTEND=noninteractive
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  $SUDO apt-get update
+  $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
+fi

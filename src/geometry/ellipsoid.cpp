@@ -1,0 +1,88 @@
+#include "fcl_quadric/geometry/ellipsoid.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "fcl_quadric/tolerances.h"
+
+namespace fcl_quadric {
+namespace detail {
+
+void checkFinite(const Eigen::Vector3d& v, const char* what) {
+  if (!v.allFinite()) {
+    std::ostringstream os;
+    os << what << " must be finite, got [" << v[0] << ", " << v[1] << ", " << v[2] << "]";
+    throw std::invalid_argument(os.str());
+  }
+}
+
+void checkRotation(const Eigen::Matrix3d& R, const char* what) {
+  if (!R.allFinite()) {
+    std::ostringstream os;
+    os << what << " must be finite, got\n" << R;
+    throw std::invalid_argument(os.str());
+  }
+  const double defect = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (!(defect <= tolerance::kRotationOrthogonality) || !(R.determinant() > 0.0)) {
+    std::ostringstream os;
+    os << what << " is not a rotation (max |R^T R - I| = " << defect << ", det = " << R.determinant()
+       << "; tolerance " << tolerance::kRotationOrthogonality << ")";
+    throw std::invalid_argument(os.str());
+  }
+}
+
+}  // namespace detail
+
+Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, const Eigen::Vector3d& p_WE)
+    : radii_(radii), R_(R_WE), p_(p_WE) {
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(radii[i]) || !(radii[i] > 0.0)) {
+      std::ostringstream os;
+      os << "ellipsoid radius " << "abc"[i] << " must be finite and > 0, got " << radii[i];
+      throw std::invalid_argument(os.str());
+    }
+  }
+  detail::checkRotation(R_WE, "ellipsoid rotation");
+  detail::checkFinite(p_WE, "ellipsoid centre");
+}
+
+Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Isometry3d& X_WE)
+    : Ellipsoid(radii, X_WE.linear(), X_WE.translation()) {}
+
+Ellipsoid Ellipsoid::sphere(double r, const Eigen::Vector3d& p_WE) {
+  return Ellipsoid(Eigen::Vector3d::Constant(r), Eigen::Matrix3d::Identity(), p_WE);
+}
+
+Eigen::Matrix4d Ellipsoid::quadricMatrix() const {
+  // N = [S^-1 R^T, -S^-1 R^T p; 0 1]; A = N^T diag(1,1,1,-1) N.
+  Eigen::Matrix4d N = Eigen::Matrix4d::Identity();
+  const Eigen::Matrix3d SinvRt = radii_.cwiseInverse().asDiagonal() * R_.transpose();
+  N.topLeftCorner<3, 3>() = SinvRt;
+  N.topRightCorner<3, 1>() = -SinvRt * p_;
+  const Eigen::Vector4d J(1.0, 1.0, 1.0, -1.0);
+  return N.transpose() * J.asDiagonal() * N;
+}
+
+double Ellipsoid::implicit(const Eigen::Vector3d& x) const {
+  const Eigen::Vector3d u = (R_.transpose() * (x - p_)).cwiseQuotient(radii_);
+  return u.squaredNorm() - 1.0;
+}
+
+Eigen::Vector3d Ellipsoid::normalAt(const Eigen::Vector3d& x) const {
+  const Eigen::Vector3d u = (R_.transpose() * (x - p_)).cwiseQuotient(radii_.cwiseProduct(radii_));
+  return (R_ * u).normalized();
+}
+
+double Ellipsoid::support(const Eigen::Vector3d& n) const {
+  // h(n) = n.p + |S R^T n|
+  return n.dot(p_) + (R_.transpose() * n).cwiseProduct(radii_).norm();
+}
+
+Eigen::Vector3d Ellipsoid::supportPoint(const Eigen::Vector3d& n) const {
+  // argmax: p + R S^2 R^T n / |S R^T n|
+  const Eigen::Vector3d m = (R_.transpose() * n).cwiseProduct(radii_);
+  return p_ + R_ * (m.cwiseProduct(radii_) / m.norm());
+}
+
+}  // namespace fcl_quadric

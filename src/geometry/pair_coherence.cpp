@@ -1,0 +1,31 @@
+#include "fcl_quadric/geometry/pair_coherence.h"
+
+namespace fcl_quadric {
+
+Separation PairCoherence::query(const Ellipsoid& a, const Ellipsoid& b) {
+  ++queries_;
+  if (candidate_ && planeSeparates(*candidate_, a, b)) {
+    ++plane_hits_;
+    return Separation::Separated;
+  }
+  const SeparationCertificate cert = classifyEllipsoids(a, b);
+  if (cert.status == Separation::Separated) {
+    // Cheapest certified plane first: through the pencil witness with normal grad q_a (see
+    // separatingPlane()); it is exact for the current frame and avoids isolating the two roots.
+    Plane p;
+    p.normal = a.normalAt(cert.witness);
+    p.offset = p.normal.dot(cert.witness);
+    if (planeSeparates(p, a, b)) {
+      candidate_ = p;
+    } else if (auto sp = separatingPlane(a, b); sp && sp->certified) {
+      candidate_ = sp->plane;
+    } else {
+      candidate_.reset();
+    }
+  } else {
+    candidate_.reset();
+  }
+  return cert.status;
+}
+
+}  // namespace fcl_quadric

@@ -1,0 +1,123 @@
+#include "fcl_quadric/geometry/separating_plane.h"
+
+#include <cmath>
+
+#include "fcl_quadric/geometry/ellipsoid_separation.h"
+#include "fcl_quadric/tolerances.h"
+#include "geometry/pencil.h"
+
+namespace fcl_quadric {
+
+namespace {
+
+/// n.p + |S R^T n| and the magnitude of its evaluation.
+inline double supportWithScale(const Ellipsoid& e, const Eigen::Vector3d& n, double* scale) {
+  const Eigen::Vector3d m = (e.rotation().transpose() * n).cwiseProduct(e.radii());
+  const double r = m.norm();
+  *scale = n.cwiseAbs().dot(e.center().cwiseAbs()) + r;
+  return n.dot(e.center()) + r;
+}
+
+/// Plane through x with normal n (not necessarily unit), normalised.
+Plane planeThrough(const Eigen::Vector3d& n, const Eigen::Vector3d& x) {
+  Plane p;
+  p.normal = n.normalized();
+  p.offset = p.normal.dot(x);
+  return p;
+}
+
+/// The two roots of |X0 + tau D|^2 = 1 (real by construction when X0 is inside the unit ball).
+bool unitSphereChord(const Eigen::Vector3d& X0, const Eigen::Vector3d& D, double* t1, double* t2) {
+  const double a = D.squaredNorm(), b = X0.dot(D), c = X0.squaredNorm() - 1.0;
+  const double disc = b * b - a * c;
+  if (!(a > 0.0) || !(disc >= 0.0)) return false;
+  // Stable quadratic formula.
+  const double q = -(b + std::copysign(std::sqrt(disc), b));
+  double r1 = q / a, r2 = (q != 0.0) ? c / q : -r1;
+  if (r1 > r2) std::swap(r1, r2);
+  *t1 = r1;
+  *t2 = r2;
+  return true;
+}
+
+/// Theorem 4.6 construction in a's unit frame (the pencil of (a, b), a the unit ball).
+bool theorem46Plane(const Ellipsoid& a, const Ellipsoid& b, SeparatingPlane* out) {
+  const detail::Pencil<double> p = detail::makePencil<double>(a, b);
+  int iterations = 0;
+  const double mu_star = detail::maximisePsi(p, 0.5, &iterations);
+  if (!(detail::evaluateF(p, mu_star) > 0.0)) return false;  // roots not separable in double
+  // F(0) = -det K < 0, F(1) = -1 < 0: one root on each side of mu*.
+  const double mu2 = detail::rootOfF(p, 0.0, mu_star);  // eigenvector V2, inside b
+  const double mu3 = detail::rootOfF(p, mu_star, 1.0);  // eigenvector V3, inside a
+  double v2[3], v3[3];
+  detail::witness(p, mu2, v2);
+  detail::witness(p, mu3, v3);
+  const Eigen::Vector3d V2(v2[0], v2[1], v2[2]), V3(v3[0], v3[1], v3[2]);
+  const Eigen::Vector3d D = V2 - V3;
+  // Chord of a (unit ball) on the line X(tau) = V3 + tau D: P_R^A is its end towards V2.
+  double ta1, ta2;
+  if (!unitSphereChord(V3, D, &ta1, &ta2)) return false;
+  // Chord of b: |L X + t| = 1, i.e. the unit-sphere chord of Y0 + tau DY in b's unit frame.
+  Eigen::Matrix3d L;
+  Eigen::Vector3d t;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) L(i, j) = p.L[i][j];
+    t[i] = p.t[i];
+  }
+  double tb1, tb2;
+  if (!unitSphereChord(L * V3 + t, L * D, &tb1, &tb2)) return false;
+  if (!(ta2 < tb1)) return false;  // the chords must be disjoint, a's before b's
+  const Eigen::Vector3d P = V3 + ta2 * D;          // on a, unit frame
+  const Eigen::Vector3d Q = V3 + tb1 * D;          // on b, a's unit frame
+  const Eigen::Vector3d uQ = L * Q + t;            // on b, b's unit frame
+  const Eigen::Vector3d PW = detail::unitFrameToWorld(a, P);
+  const Eigen::Vector3d QW = detail::unitFrameToWorld(a, Q);
+  // World normals: grad of |S^-1 R^T (x - p)|^2 is 2 R S^-1 u.
+  const Eigen::Vector3d nA = (a.rotation() * P.cwiseQuotient(a.radii())).normalized();
+  const Eigen::Vector3d nB = (b.rotation() * uQ.cwiseQuotient(b.radii())).normalized();
+  const Eigen::Vector3d n = nA - nB;
+  const double len = n.norm();
+  if (!(len > 0.0)) return false;
+  out->plane.normal = n / len;
+  out->plane.offset = (nA.dot(PW) - nB.dot(QW)) / len;
+  out->tangent_a = PW;
+  out->tangent_b = b.center() + b.rotation() * uQ.cwiseProduct(b.radii());
+  out->from_theorem_4_6 = true;
+  return true;
+}
+
+}  // namespace
+
+double planeEllipsoidGap(const Plane& plane, const Ellipsoid& e) {
+  return -plane.offset - e.support(-plane.normal);
+}
+
+bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
+  const double tau = tolerance::kCertificateRelativeBoundDouble;
+  double sa, sb;
+  const double ha = supportWithScale(a, plane.normal, &sa);    // max of n.x over a
+  const double hb = supportWithScale(b, -plane.normal, &sb);   // max of -n.x over b
+  const double off = plane.offset, aoff = std::fabs(off);
+  return (off - ha > tau * (aoff + sa)) && (-off - hb > tau * (aoff + sb));
+}
+
+std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipsoid& b) {
+  const SeparationCertificate cert = classifyEllipsoids(a, b);
+  if (cert.status != Separation::Separated) return std::nullopt;
+  SeparatingPlane sp;
+  if (theorem46Plane(a, b, &sp) && planeSeparates(sp.plane, a, b)) {
+    sp.certified = true;
+    return sp;
+  }
+  // Fallback: the plane through the witness x* with normal grad q_a(x*). For the exact minimiser
+  // x(mu) of mu q_a + (1-mu) q_b, grad q_b(x) = -mu/(1-mu) grad q_a(x); convexity then gives
+  // grad q_a(x*).(y - x*) <= -psi < 0 on a and >= psi (1-mu)/mu > 0 on b: it separates.
+  sp = SeparatingPlane{};
+  sp.plane = planeThrough(a.normalAt(cert.witness), cert.witness);
+  sp.tangent_a = a.supportPoint(sp.plane.normal);
+  sp.tangent_b = b.supportPoint(-sp.plane.normal);
+  sp.certified = planeSeparates(sp.plane, a, b);
+  return sp;
+}
+
+}  // namespace fcl_quadric

@@ -1,0 +1,315 @@
+// Properties of the certified static classification (Choi 2008 Theorem 4.1, Remark 4.3) checked
+// against the exact rational oracle (test/support/exact_oracle.h).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <random>
+#include <stdexcept>
+
+#include "fcl_quadric/geometry/characteristic_polynomial.h"
+#include "fcl_quadric/geometry/ellipsoid_separation.h"
+#include "support/exact_oracle.h"
+#include "support/random_ellipsoids.h"
+
+namespace fcl_quadric {
+namespace {
+
+using test::exactClassify;
+
+/// The random-pair population of the foundation issue: aspect ratios down to 1:1000, centres up to
+/// 1e4 from the origin, random rotations; the second ellipsoid placed near the first so that both
+/// outcomes are common.
+std::pair<Ellipsoid, Ellipsoid> randomPair(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double scale_a = std::pow(10.0, 2.0 * u(rng) - 1.0);  // 0.1 .. 10
+  const double scale_b = scale_a * std::pow(10.0, 2.0 * u(rng) - 1.0);
+  const Eigen::Vector3d ra = test::randomRadii(rng, scale_a, 1000.0);
+  const Eigen::Vector3d rb = test::randomRadii(rng, scale_b, 1000.0);
+  const Eigen::Vector3d ca = 1e4 * u(rng) * test::randomUnitVector(rng);
+  const double reach = ra.maxCoeff() + rb.maxCoeff();
+  const Eigen::Vector3d cb = ca + reach * 0.6 * u(rng) * test::randomUnitVector(rng);
+  return {Ellipsoid(ra, test::randomRotation(rng), ca), Ellipsoid(rb, test::randomRotation(rng), cb)};
+}
+
+void checkRandomPairs(int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  int wrong = 0, separated = 0, extended = 0;
+  for (int i = 0; i < n; ++i) {
+    auto [a, b] = randomPair(rng);
+    const SeparationCertificate c = classifyEllipsoids(a, b);
+    const Separation truth = exactClassify(a, b);
+    if (c.status != truth) {
+      ++wrong;
+      if (wrong < 5)
+        ADD_FAILURE() << "pair " << i << ": library " << toString(c.status) << ", exact " << toString(truth)
+                      << ", stage " << c.precision_stage;
+    }
+    separated += truth == Separation::Separated;
+    extended += c.precision_stage > 0;
+  }
+  EXPECT_EQ(wrong, 0);
+  // Both outcomes must be well represented or the test proves little.
+  EXPECT_GT(separated, n / 5);
+  EXPECT_LT(separated, 4 * n / 5);
+  std::printf("%d pairs, %d separated, %d needed double-double\n", n, separated, extended);
+}
+
+// 5 x 20,000 = 100,000 random pairs (split so that ctest can run them in parallel).
+TEST(EllipsoidSeparation, AgreesWithExactOracleOnRandomPairs1) { checkRandomPairs(20000, 1); }
+TEST(EllipsoidSeparation, AgreesWithExactOracleOnRandomPairs2) { checkRandomPairs(20000, 2); }
+TEST(EllipsoidSeparation, AgreesWithExactOracleOnRandomPairs3) { checkRandomPairs(20000, 3); }
+TEST(EllipsoidSeparation, AgreesWithExactOracleOnRandomPairs4) { checkRandomPairs(20000, 4); }
+TEST(EllipsoidSeparation, AgreesWithExactOracleOnRandomPairs5) { checkRandomPairs(20000, 5); }
+TEST(EllipsoidSeparation, LongAgreesWithExactOracleOnAMillionPairs) {
+  for (int s = 0; s < 50; ++s) checkRandomPairs(20000, 100 + s);
+}
+
+TEST(EllipsoidSeparation, AgreesWithExactOracleOnAnchorDistribution) {
+  std::mt19937_64 rng(42);  // ANCHORS.md generator
+  int wrong = 0, collide = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const Ellipsoid a = test::anchorEllipsoid(rng);
+    const Ellipsoid b = test::anchorEllipsoid(rng);
+    const Separation truth = exactClassify(a, b);
+    wrong += classifyEllipsoids(a, b).status != truth;
+    collide += truth != Separation::Separated;
+  }
+  EXPECT_EQ(wrong, 0);
+  // ANCHORS.md: 37,387 of 100,000 overlap; the first 20,000 should show the same rate (+-3%).
+  EXPECT_NEAR(collide / double(n), 0.374, 0.03);
+}
+
+/// Near-tangent pairs: put b's centre at c_a + s d and find by bisection on s, with the exact
+/// oracle, the two adjacent doubles s_out (separate) and s_in (not separate) between which the
+/// touching offset lies; then move outward/inward by relative gaps 1e-3 .. 1e-9 and compare.
+struct NearTangentStats {
+  int cases = 0, wrong = 0, oracle_unexpected = 0;
+};
+
+NearTangentStats checkNearTangent(int configs, std::uint64_t seed, double max_aspect) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  NearTangentStats st;
+  for (int k = 0; k < configs; ++k) {
+    const Eigen::Vector3d ra = test::randomRadii(rng, std::pow(10.0, 2 * u(rng) - 1), max_aspect);
+    const Eigen::Vector3d rb = test::randomRadii(rng, std::pow(10.0, 2 * u(rng) - 1), max_aspect);
+    const Eigen::Matrix3d Ra = test::randomRotation(rng), Rb = test::randomRotation(rng);
+    const Eigen::Vector3d ca = 1e3 * u(rng) * test::randomUnitVector(rng);
+    const Eigen::Vector3d d = test::randomUnitVector(rng);
+    auto make_b = [&](double s) { return Ellipsoid(rb, Rb, ca + s * d); };
+    const Ellipsoid a(ra, Ra, ca);
+    double lo = 0.0, hi = 2.0 * (ra.maxCoeff() + rb.maxCoeff());  // lo overlaps, hi separate
+    for (int it = 0; it < 200 && std::nextafter(lo, hi) < hi; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      if (exactClassify(a, make_b(mid)) == Separation::Separated) hi = mid; else lo = mid;
+    }
+    for (double gap = 1e-3; gap >= 0.99e-9; gap /= 10.0) {
+      for (int side : {+1, -1}) {
+        const double s = side > 0 ? hi * (1.0 + gap) : lo * (1.0 - gap);
+        const Ellipsoid b = make_b(s);
+        const Separation truth = exactClassify(a, b);
+        const Separation expected = side > 0 ? Separation::Separated : Separation::Overlapping;
+        st.oracle_unexpected += truth != expected;
+        const SeparationCertificate c = classifyEllipsoids(a, b);
+        ++st.cases;
+        if (c.status != truth) {
+          ++st.wrong;
+          if (st.wrong < 5)
+            ADD_FAILURE() << "config " << k << " gap " << gap << " side " << side << ": library "
+                          << toString(c.status) << ", exact " << toString(truth);
+        }
+      }
+    }
+  }
+  return st;
+}
+
+TEST(EllipsoidSeparation, NearTangentPairsClassifiedExactlyDownToRelativeGap1e9) {
+  const NearTangentStats st = checkNearTangent(300, 7, 100.0);
+  EXPECT_EQ(st.wrong, 0);
+  EXPECT_EQ(st.oracle_unexpected, 0);  // the construction really straddles tangency
+  EXPECT_EQ(st.cases, 300 * 7 * 2);
+}
+
+TEST(EllipsoidSeparation, NearTangentElongatedPairsAspect1000) {
+  const NearTangentStats st = checkNearTangent(100, 8, 1000.0);
+  EXPECT_EQ(st.wrong, 0);
+  EXPECT_EQ(st.oracle_unexpected, 0);
+}
+
+TEST(EllipsoidSeparation, LongNearTangentTenThousandPerGap) {
+  const NearTangentStats st = checkNearTangent(10000, 9, 100.0);
+  EXPECT_EQ(st.wrong, 0);
+  EXPECT_EQ(st.oracle_unexpected, 0);
+}
+
+TEST(EllipsoidSeparation, ExactTangencyIsReportedAsTouchingWithTheContactPoint) {
+  // Theorem 4.4: the contact point is the null vector of lambda0 A - B; here it is (1,0,0).
+  const Ellipsoid a({1, 2, 3}, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
+  const Ellipsoid b({2, 1, 1}, Eigen::Matrix3d::Identity(), {3, 0, 0});
+  ASSERT_EQ(exactClassify(a, b), Separation::Touching);
+  const SeparationCertificate c = classifyEllipsoids(a, b);
+  EXPECT_EQ(c.status, Separation::Touching);
+  EXPECT_EQ(c.precision_stage, 2);
+  EXPECT_NEAR((c.witness - Eigen::Vector3d(1, 0, 0)).norm(), 0.0, 1e-7);
+  // Same for spheres at exactly the sum of the radii, in a rotated frame.
+  const Ellipsoid s1 = Ellipsoid::sphere(1.5, {1, 2, 3});
+  const Ellipsoid s2 = Ellipsoid::sphere(0.5, {1, 2, 5});
+  ASSERT_EQ(exactClassify(s1, s2), Separation::Touching);
+  const SeparationCertificate cs = classifyEllipsoids(s1, s2);
+  EXPECT_EQ(cs.status, Separation::Touching);
+  EXPECT_NEAR((cs.witness - Eigen::Vector3d(1, 2, 4.5)).norm(), 0.0, 1e-7);
+}
+
+TEST(EllipsoidSeparation, ContactPointOfNearlyTouchingPairLiesOnBothSurfaces) {
+  std::mt19937_64 rng(11);
+  for (int k = 0; k < 200; ++k) {
+    const Ellipsoid a(test::randomRadii(rng, 1.0, 10.0), test::randomRotation(rng), Eigen::Vector3d::Zero());
+    const Eigen::Vector3d rb = test::randomRadii(rng, 1.0, 10.0);
+    const Eigen::Matrix3d Rb = test::randomRotation(rng);
+    const Eigen::Vector3d d = test::randomUnitVector(rng);
+    double lo = 0, hi = 40;
+    for (int it = 0; it < 80; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (classifyEllipsoids(a, Ellipsoid(rb, Rb, mid * d)).status == Separation::Separated ? hi : lo) = mid;
+    }
+    const Ellipsoid b(rb, Rb, hi * d);
+    const SeparationCertificate c = classifyEllipsoids(a, b);
+    EXPECT_NEAR(a.implicit(c.witness), 0.0, 1e-6);
+    EXPECT_NEAR(b.implicit(c.witness), 0.0, 1e-6);
+  }
+}
+
+TEST(EllipsoidSeparation, IsSymmetricInItsArguments) {
+  std::mt19937_64 rng(21);
+  for (int i = 0; i < 20000; ++i) {
+    auto [a, b] = randomPair(rng);
+    const SeparationCertificate ab = classifyEllipsoids(a, b), ba = classifyEllipsoids(b, a);
+    ASSERT_EQ(ab.status, ba.status);
+    ASSERT_EQ(ab.witness, ba.witness);  // same computation, bit for bit
+  }
+}
+
+Ellipsoid transformed(const Ellipsoid& e, const Eigen::Matrix3d& R, const Eigen::Vector3d& t, double scale) {
+  return Ellipsoid(scale * e.radii(), R * e.rotation(), scale * (R * e.center()) + t);
+}
+
+TEST(EllipsoidSeparation, IsInvariantUnderACommonRigidMotionAndScaling) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int changed = 0;
+  for (int i = 0; i < 5000; ++i) {
+    auto [a, b] = randomPair(rng);
+    const Separation s = classifyEllipsoids(a, b).status;
+    // Power-of-two scaling is exact in floating point: the answer must not change at all.
+    for (double k : {0.125, 1024.0}) {
+      ASSERT_EQ(classifyEllipsoids(transformed(a, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), k),
+                                   transformed(b, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), k))
+                    .status,
+                s);
+    }
+    // A rigid motion (and a scaling by 1e-3) rounds the inputs; the moved pair must agree with the
+    // oracle on the moved pair, and with the original unless the oracle itself changed.
+    const Eigen::Matrix3d R = test::randomRotation(rng);
+    const Eigen::Vector3d t(1e3 * u(rng), 1e3 * u(rng), 1e3 * u(rng));
+    const Ellipsoid a2 = transformed(a, R, t, 1e-3), b2 = transformed(b, R, t, 1e-3);
+    const Separation s2 = classifyEllipsoids(a2, b2).status;
+    const Separation truth2 = exactClassify(a2, b2);
+    ASSERT_EQ(s2, truth2);
+    changed += s2 != s;
+  }
+  EXPECT_LE(changed, 1);  // only a pair within ~1e-13 of tangency could flip
+}
+
+TEST(CharacteristicPolynomial, ThesisRoutineMatchesExactCoefficients) {
+  std::mt19937_64 rng(41);
+  for (int i = 0; i < 2000; ++i) {
+    const Ellipsoid a = test::anchorEllipsoid(rng), b = test::anchorEllipsoid(rng);
+    const std::array<double, 5> c = characteristicPolynomial(a, b);
+    const auto e = test::exactCharacteristicPolynomialUnscaled(a, b);
+    double scale = 0;
+    for (int k = 0; k < 5; ++k) scale = std::max(scale, std::fabs(e[k].get_d()));
+    for (int k = 0; k < 5; ++k) ASSERT_NEAR(c[k], e[k].get_d(), 1e-11 * scale) << "coefficient " << k;
+    EXPECT_LT(c[4], 0.0);  // Remark 4.3: leading and constant terms negative
+    EXPECT_LT(c[0], 0.0);
+  }
+}
+
+TEST(CharacteristicPolynomial, AffineFormHasTheSameRootsAsTheRigidForm) {
+  std::mt19937_64 rng(43);
+  for (int i = 0; i < 500; ++i) {
+    const Ellipsoid a = test::anchorEllipsoid(rng), b = test::anchorEllipsoid(rng);
+    auto M = [](const Ellipsoid& e) {
+      Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+      m.topLeftCorner<3, 3>() = e.rotation() * e.radii().asDiagonal();
+      m.topRightCorner<3, 1>() = e.center();
+      return m;
+    };
+    const std::array<double, 5> r = characteristicPolynomial(a, b);
+    const std::array<double, 5> f = characteristicPolynomialAffine(M(a), M(b));
+    // det(lambda A - B) is scaled by det(M_A)^2 / (a b c)^2 ... compare after making both monic.
+    for (int k = 0; k < 4; ++k) ASSERT_NEAR(f[k] / f[4], r[k] / r[4], 1e-9 * (1 + std::fabs(r[k] / r[4])));
+  }
+}
+
+TEST(CharacteristicPolynomial, AffineFormRejectsSingularOrNonAffineMaps) {
+  Eigen::Matrix4d good = Eigen::Matrix4d::Identity();
+  Eigen::Matrix4d singular = good;
+  singular(2, 2) = 0.0;
+  EXPECT_THROW(characteristicPolynomialAffine(singular, good), std::invalid_argument);
+  Eigen::Matrix4d projective = good;
+  projective(3, 0) = 0.5;
+  EXPECT_THROW(characteristicPolynomialAffine(good, projective), std::invalid_argument);
+  Eigen::Matrix4d nan = good;
+  nan(0, 3) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(characteristicPolynomialAffine(nan, good), std::invalid_argument);
+}
+
+TEST(CharacteristicPolynomial, SubresultantPathAgreesWithExactOracleAwayFromTangency) {
+  // §4.5: an independent decision procedure on the same quartic. Generic (non-spherical) pairs
+  // whose certified margin |psi| is not tiny.
+  std::mt19937_64 rng(45);
+  int compared = 0, wrong = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Ellipsoid a = test::anchorEllipsoid(rng), b = test::anchorEllipsoid(rng);
+    const SeparationCertificate c = classifyEllipsoids(a, b);
+    if (std::fabs(c.psi) < 1e-6) continue;
+    ++compared;
+    wrong += classifyBySubresultants(characteristicPolynomial(a, b)) != exactClassify(a, b);
+  }
+  EXPECT_GT(compared, 19000);
+  EXPECT_EQ(wrong, 0);
+}
+
+TEST(Ellipsoid, RejectsBadInputNamingTheValue) {
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d o = Eigen::Vector3d::Zero();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  auto message = [](auto&& f) {
+    try {
+      f();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no exception");
+  };
+  EXPECT_NE(message([&] { Ellipsoid({1, 0, 1}, I, o); }).find("radius b"), std::string::npos);
+  EXPECT_NE(message([&] { Ellipsoid({1, 1, -2}, I, o); }).find("-2"), std::string::npos);
+  EXPECT_NE(message([&] { Ellipsoid({nan, 1, 1}, I, o); }).find("nan"), std::string::npos);
+  EXPECT_NE(message([&] { Ellipsoid({1, inf, 1}, I, o); }).find("inf"), std::string::npos);
+  EXPECT_NE(message([&] { Ellipsoid({1, 1, 1}, I, {0, nan, 0}); }).find("centre"), std::string::npos);
+  Eigen::Matrix3d shear = I;
+  shear(0, 1) = 1e-6;
+  EXPECT_NE(message([&] { Ellipsoid({1, 1, 1}, shear, o); }).find("not a rotation"), std::string::npos);
+  EXPECT_NE(message([&] { Ellipsoid({1, 1, 1}, -I, o); }).find("not a rotation"), std::string::npos);
+  Eigen::Matrix3d nanR = I;
+  nanR(2, 2) = nan;
+  EXPECT_NE(message([&] { Ellipsoid({1, 1, 1}, nanR, o); }).find("rotation"), std::string::npos);
+  EXPECT_THROW(Ellipsoid::sphere(0.0, o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace fcl_quadric

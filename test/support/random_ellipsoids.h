@@ -1,0 +1,45 @@
+#pragma once
+// Seeded generators of ellipsoid pairs shared by the tests (std::mt19937_64, fixed seeds).
+#include <cmath>
+#include <random>
+
+#include <Eigen/Geometry>
+
+#include "fcl_quadric/geometry/ellipsoid.h"
+
+namespace fcl_quadric {
+namespace test {
+
+inline Eigen::Matrix3d randomRotation(std::mt19937_64& rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::Quaterniond q(n(rng), n(rng), n(rng), n(rng));
+  q.normalize();
+  return q.toRotationMatrix();
+}
+
+/// Radii with aspect ratio down to 1:max_aspect: log-uniform in [scale/max_aspect, scale].
+inline Eigen::Vector3d randomRadii(std::mt19937_64& rng, double scale, double max_aspect) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Eigen::Vector3d r;
+  for (int i = 0; i < 3; ++i) r[i] = scale * std::pow(max_aspect, -u(rng));
+  return r;
+}
+
+inline Eigen::Vector3d randomUnitVector(std::mt19937_64& rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::Vector3d v(n(rng), n(rng), n(rng));
+  return v.normalized();
+}
+
+/// The ANCHORS.md generator: radii 3x U(0.5,3), centre 3x U(-3,3), quaternion from 4x N(0,1).
+inline Ellipsoid anchorEllipsoid(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> ur(0.5, 3.0), uc(-3.0, 3.0);
+  Eigen::Vector3d r;
+  for (int i = 0; i < 3; ++i) r[i] = ur(rng);
+  Eigen::Vector3d c;
+  for (int i = 0; i < 3; ++i) c[i] = uc(rng);
+  return Ellipsoid(r, randomRotation(rng), c);
+}
+
+}  // namespace test
+}  // namespace fcl_quadric
