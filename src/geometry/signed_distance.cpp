@@ -76,21 +76,26 @@ LocalMax ascend(const Objective& obj, Eigen::Vector3d n, double scale) {
     // Trust the step only up to a quarter turn.
     const double len = xi.norm();
     if (len > 0.5) xi *= 0.5 / len;
+    // Accept by Armijo, or - near the optimum where phi no longer resolves the increase - by a
+    // halved Riemannian gradient at a value no worse than phi up to rounding.
+    const double noise = 16.0 * tolerance::kUnitRoundoff * scale;
     bool accepted = false;
-    for (int bt = 0; bt < 40; ++bt) {
+    for (int bt = 0; bt < 40 && xi.norm() > 1e-17; ++bt, xi *= 0.5) {
       const Eigen::Vector3d cand = (n + xi[0] * e1 + xi[1] * e2).normalized();
-      const double phic = obj.value(cand);
-      if (phic >= phi + 1e-4 * g.dot(xi) || xi.norm() < 1e-17) {
-        if (phic >= phi) {
-          n = cand;
-          accepted = true;
-        }
+      Eigen::Vector3d cgrad;
+      Eigen::Matrix3d chess;
+      const double phic = obj.evaluate(cand, &cgrad, &chess);
+      const double cg = (cgrad - cgrad.dot(cand) * cand).norm();
+      if (phic >= phi + 1e-4 * g.dot(xi) || (cg <= 0.5 * g.norm() && phic >= phi - noise)) {
+        n = cand;
+        phi = phic;
+        grad = cgrad;
+        hess = chess;
+        accepted = true;
         break;
       }
-      xi *= 0.5;
     }
     if (!accepted) return {n, phi, it + 1, g.norm() <= 1e3 * gtol};
-    phi = obj.evaluate(n, &grad, &hess);
   }
   return {n, phi, tolerance::kMaxDistanceNewtonIterations, false};
 }

@@ -1,0 +1,118 @@
+// Separating planes (Choi 2008 Theorems 4.5/4.6) and inter-frame coherence (§4.3, Wang 2004 §4).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fcl_quadric/geometry/pair_coherence.h"
+#include "fcl_quadric/geometry/separating_plane.h"
+#include "support/exact_oracle.h"
+#include "support/random_ellipsoids.h"
+
+namespace fcl_quadric {
+namespace {
+
+/// Points on the surface of e from a Fibonacci lattice on the unit sphere.
+std::vector<Eigen::Vector3d> surfaceSamples(const Ellipsoid& e, int n) {
+  std::vector<Eigen::Vector3d> pts;
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), phi = golden * i;
+    const Eigen::Vector3d u(r * std::cos(phi), r * std::sin(phi), z);
+    pts.push_back(e.center() + e.rotation() * u.cwiseProduct(e.radii()));
+  }
+  return pts;
+}
+
+TEST(SeparatingPlane, SeparatesSampledSurfacesOfRandomDisjointPairs) {
+  std::mt19937_64 rng(51);
+  int planes = 0, theorem = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Ellipsoid a = test::anchorEllipsoid(rng), b = test::anchorEllipsoid(rng);
+    const auto sp = separatingPlane(a, b);
+    const bool separate = test::exactClassify(a, b) == Separation::Separated;
+    ASSERT_EQ(sp.has_value(), separate);
+    if (!sp) continue;
+    ++planes;
+    theorem += sp->from_theorem_4_6;
+    ASSERT_TRUE(sp->certified);
+    EXPECT_NEAR(sp->plane.normal.norm(), 1.0, 1e-14);
+    for (const auto& x : surfaceSamples(a, 200)) ASSERT_LT(sp->plane.signedDistance(x), 0.0);
+    for (const auto& x : surfaceSamples(b, 200)) ASSERT_GT(sp->plane.signedDistance(x), 0.0);
+    // Theorem 4.6: the tangent points lie on their surfaces and between the solids.
+    if (sp->from_theorem_4_6) {
+      EXPECT_NEAR(a.implicit(sp->tangent_a), 0.0, 1e-9);
+      EXPECT_NEAR(b.implicit(sp->tangent_b), 0.0, 1e-9);
+      EXPECT_LE(sp->plane.signedDistance(sp->tangent_a), 0.0);
+      EXPECT_GE(sp->plane.signedDistance(sp->tangent_b), 0.0);
+    }
+  }
+  EXPECT_GT(planes, 1000);
+  EXPECT_GE(theorem, planes * 99 / 100);  // the fallback is for near-tangent pairs only
+}
+
+TEST(SeparatingPlane, TheoremPlaneTangentPointsAreClosestPointsForSpheres) {
+  // §4.3: for spheres P_R^A and P_L^B are exactly the closest points.
+  const Ellipsoid a = Ellipsoid::sphere(1.0, {0, 0, 0}), b = Ellipsoid::sphere(2.0, {3, 4, 0});
+  const auto sp = separatingPlane(a, b);
+  ASSERT_TRUE(sp && sp->from_theorem_4_6);
+  EXPECT_NEAR((sp->tangent_a - Eigen::Vector3d(0.6, 0.8, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((sp->tangent_b - Eigen::Vector3d(1.8, 2.4, 0)).norm(), 0.0, 1e-12);
+}
+
+TEST(SeparatingPlane, NoPlaneCanSeparateOverlappingOrTouchingPairs) {
+  std::mt19937_64 rng(53);
+  for (int i = 0; i < 2000; ++i) {
+    const Ellipsoid a = test::anchorEllipsoid(rng), b = test::anchorEllipsoid(rng);
+    if (test::exactClassify(a, b) == Separation::Separated) continue;
+    EXPECT_FALSE(separatingPlane(a, b).has_value());
+    Plane p;
+    p.normal = test::randomUnitVector(rng);
+    for (double off = -5; off <= 5; off += 0.5) {
+      p.offset = off;
+      ASSERT_FALSE(planeSeparates(p, a, b));
+    }
+  }
+}
+
+TEST(SeparatingPlane, PlaneEllipsoidGapIsTheDistanceForUnitNormals) {
+  const Ellipsoid e({1, 2, 3}, Eigen::Matrix3d::Identity(), {0, 0, 10});
+  Plane p;
+  p.normal = Eigen::Vector3d::UnitZ();
+  p.offset = 5.0;
+  EXPECT_NEAR(planeEllipsoidGap(p, e), 2.0, 1e-15);  // lowest point z = 7
+  p.offset = 7.5;
+  EXPECT_NEAR(planeEllipsoidGap(p, e), -0.5, 1e-15);
+}
+
+/// Two ellipsoids (3,3,5) 8 apart, rotating about random axes (the separating-planes experiment).
+TEST(PairCoherence, AgreesWithTheFullTestFrameByFrameAndUsesItsPlanes) {
+  std::mt19937_64 rng(55);
+  const Eigen::Vector3d r(3, 3, 5);
+  const Eigen::Vector3d axis_a = test::randomUnitVector(rng), axis_b = test::randomUnitVector(rng);
+  PairCoherence cache;
+  int separated = 0;
+  for (int f = 0; f < 3000; ++f) {
+    const Eigen::Matrix3d Ra = Eigen::AngleAxisd(0.1 * f, axis_a).toRotationMatrix();
+    const Eigen::Matrix3d Rb = Eigen::AngleAxisd(0.1 * f, axis_b).toRotationMatrix();
+    const Ellipsoid a(r, Ra, {0, 0, 0}), b(r, Rb, {8, 0, 0});
+    const Separation s = cache.query(a, b);
+    ASSERT_EQ(s, classifyEllipsoids(a, b).status) << "frame " << f;
+    separated += s == Separation::Separated;
+  }
+  EXPECT_EQ(cache.queries(), 3000u);
+  EXPECT_GT(separated, 1000);
+  EXPECT_GT(cache.planeHits(), 0.5 * separated);  // coherence pays off at 0.1 rad/frame
+}
+
+TEST(PairCoherence, StalePlaneNeverHidesACollision) {
+  PairCoherence cache;
+  const Ellipsoid a = Ellipsoid::sphere(1.0, {0, 0, 0});
+  EXPECT_EQ(cache.query(a, Ellipsoid::sphere(1.0, {3, 0, 0})), Separation::Separated);
+  ASSERT_TRUE(cache.candidate().has_value());
+  EXPECT_EQ(cache.query(a, Ellipsoid::sphere(1.0, {1.5, 0, 0})), Separation::Overlapping);
+  EXPECT_FALSE(cache.candidate().has_value());
+  EXPECT_EQ(cache.planeHits(), 0u);
+}
+
+}  // namespace
+}  // namespace fcl_quadric
