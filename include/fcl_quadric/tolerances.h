@@ -42,8 +42,10 @@ constexpr int kMaxPencilNewtonIterations = 60;   ///< safeguarded Newton for max
 constexpr int kMaxRootBracketIterations = 200;   ///< safeguarded Newton/bisection for a root
 constexpr int kMaxDistanceNewtonIterations = 100;  ///< Riemannian Newton on the unit sphere
 
-/// Relative tolerance for the pencil maximiser mu* (|step| <= this * 1).
-constexpr double kPencilArgumentTolerance = 1e-15;
+/// The pencil maximiser's Newton iteration stops after a step of at most this size (mu in [0,1]):
+/// quadratic convergence makes the remaining error ~1e-20, and only psi(mu), flat at the maximum,
+/// matters to the certificates.
+constexpr double kPencilNewtonStep = 1e-10;
 
 /// Convergence of the signed-distance Newton iteration: stop when the Riemannian gradient norm
 /// is <= this times the scale (sum of the largest radii and the centre distance).

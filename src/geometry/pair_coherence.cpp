@@ -11,9 +11,10 @@ Separation PairCoherence::query(const Ellipsoid& a, const Ellipsoid& b) {
   const SeparationCertificate cert = classifyEllipsoids(a, b);
   if (cert.status == Separation::Separated) {
     // Cheapest certified plane first: through the pencil witness with normal grad q_a (see
-    // separatingPlane()); it is exact for the current frame and avoids isolating the two roots.
+    // separatingPlane()), or between the bounding spheres when the pre-test decided; it comes
+    // with the classification and avoids isolating the two roots of Theorem 4.6.
     Plane p;
-    p.normal = a.normalAt(cert.witness);
+    p.normal = cert.normal;
     p.offset = p.normal.dot(cert.witness);
     if (planeSeparates(p, a, b)) {
       candidate_ = p;

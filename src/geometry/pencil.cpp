@@ -47,9 +47,11 @@ void completePencil(Pencil<T>& p) {
   // Bernstein coefficients (beta_k = E_k / C(4,k), gamma_k = g_k / C(3,k)) and their forward
   // differences for the derivatives. Evaluation stays in the Bernstein basis: the power basis in mu
   // cancels catastrophically when the E_k span many orders of magnitude.
-  const T bF[5] = {p.E[0], p.E[1] / T(4.0), p.E[2] / T(6.0), p.E[3] / T(4.0), p.E[4]};
+  // (Multiplying by rounded 1/6, 1/3 is harmless: these coefficients only steer the search and
+  // the root isolation of the separating plane; the certificates never use them.)
+  const T bF[5] = {p.E[0], p.E[1] * T(0.25), p.E[2] * T(1.0 / 6.0), p.E[3] * T(0.25), p.E[4]};
   for (int k = 0; k < 5; ++k) p.bernF[k] = bF[k];
-  const T bG[4] = {p.g[0], p.g[1] / T(3.0), p.g[2] / T(3.0), p.g[3]};
+  const T bG[4] = {p.g[0], p.g[1] * T(1.0 / 3.0), p.g[2] * T(1.0 / 3.0), p.g[3]};
   for (int k = 0; k < 4; ++k) p.bernG[k] = bG[k];
 }
 
@@ -84,15 +86,16 @@ Pencil<T> makePencil(const Ellipsoid& a, const Ellipsoid& b) {
   const double dsum = std::fabs(toDouble(d[0])) + std::fabs(toDouble(d[1])) + std::fabs(toDouble(d[2]));
   for (int i = 0; i < 3; ++i) {
     const T inv_rb = T(1.0) / T(rb[i]);
+    const double inv_rbd = toDouble(inv_rb);
     for (int j = 0; j < 3; ++j) {
       T c = T(RB(0, i)) * RA[0][j] + T(RB(1, i)) * RA[1][j] + T(RB(2, i)) * RA[2][j];
       p.L[i][j] = c * T(ra[j]) * inv_rb;
       // |(R_B^T R_A)_ij| <= 1 for rotations: the absolute rounding of L_ij is a small multiple of
       // the unit roundoff times r_A,j / r_B,i, whatever the cancellation in c.
-      p.Lm[i][j] = ra[j] / rb[i];
+      p.Lm[i][j] = ra[j] * inv_rbd;
     }
     p.t[i] = (T(RB(0, i)) * d[0] + T(RB(1, i)) * d[1] + T(RB(2, i)) * d[2]) * inv_rb;
-    p.tm[i] = dsum / rb[i];
+    p.tm[i] = dsum * inv_rbd;
   }
   completePencil(p);
   return p;
@@ -186,23 +189,29 @@ WitnessValues witnessValues(const Pencil<T>& p, const T& mu, const T x[3]) {
   return w;
 }
 
+double initialMu(const Pencil<double>& p) {
+  // For two balls of radii 1 and rho the maximiser is mu* = 1/(1 + rho) (the pencil's minimiser
+  // is then the tangency point). Estimate B's size in A's unit frame from tr K = sum 1/sigma_i^2.
+  const double trK = p.K[0][0] + p.K[1][1] + p.K[2][2];
+  const double rho = std::sqrt(3.0 / trK);
+  return 1.0 / (1.0 + rho);
+}
+
 template <class T>
 T maximisePsi(const Pencil<T>& p, double mu0, int* iterations) {
-  // P(mu) = F'G - FG' has the sign of psi' (G > 0 on [0,1]); psi concave => P: + then -.
-  auto P = [&](const T& mu, T* dP) {
-    const PencilValues<T> e = evaluatePencil(p, mu);
-    if (dP) *dP = e.d2F * e.G - e.F * e.d2G;
-    return e.dF * e.G - e.F * e.dG;
-  };
-  *iterations = 0;
-  if (!(P(T(0.0), nullptr) > T(0.0))) return T(0.0);
-  if (!(P(T(1.0), nullptr) < T(0.0))) return T(1.0);
+  // P(mu) = F'G - FG' has the sign of psi' (G > 0 on [0,1]); psi is concave, so P is positive
+  // left of the maximiser and negative right of it: keep that bracket, take Newton steps inside
+  // it and bisect otherwise. Stop once a Newton step is below kPencilNewtonStep: the next error
+  // is then of the order of its square, far below what the certificates need (psi is flat at
+  // its maximum: an argument error e costs ~psi''e^2/2).
+  const double tol = std::is_same<T, double>::value ? tolerance::kPencilNewtonStep : 1e-24;
   T lo(0.0), hi(1.0), mu(mu0);
-  const double tol = std::is_same<T, double>::value ? tolerance::kPencilArgumentTolerance : 1e-31;
+  *iterations = 0;
   for (int it = 0; it < tolerance::kMaxPencilNewtonIterations; ++it) {
     *iterations = it + 1;
-    T dP;
-    const T Pv = P(mu, &dP);
+    const PencilValues<T> e = evaluatePencil(p, mu);
+    const T Pv = e.dF * e.G - e.F * e.dG;
+    const T dP = e.d2F * e.G - e.F * e.d2G;
     if (Pv > T(0.0)) lo = mu; else if (Pv < T(0.0)) hi = mu; else return mu;
     T next;
     bool newton_ok = dP < T(0.0);
@@ -213,7 +222,7 @@ T maximisePsi(const Pencil<T>& p, double mu0, int* iterations) {
     if (!newton_ok) next = (lo + hi) * T(0.5);
     const double step = std::fabs(toDouble(next - mu));
     mu = next;
-    if (step <= tol || toDouble(hi - lo) <= tol) break;
+    if ((newton_ok && step <= tol) || toDouble(hi - lo) <= tol) break;
   }
   return mu;
 }

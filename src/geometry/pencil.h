@@ -75,6 +75,9 @@ struct WitnessValues {
 template <class T>
 WitnessValues witnessValues(const Pencil<T>& p, const T& mu, const T x[3]);
 
+/// Starting guess for maximisePsi: the maximiser for two balls of the sizes of A and B.
+double initialMu(const Pencil<double>& p);
+
 /// Safeguarded Newton for the maximiser of psi on [0,1] (root of P = F'G - FG', which has the sign
 /// of psi'). Starts at mu0 in (0,1); at most tolerance::kMaxPencilNewtonIterations steps; on
 /// reaching the cap the current bracket midpoint is returned (the certificates below are valid at

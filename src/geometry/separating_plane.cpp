@@ -44,7 +44,7 @@ bool unitSphereChord(const Eigen::Vector3d& X0, const Eigen::Vector3d& D, double
 bool theorem46Plane(const Ellipsoid& a, const Ellipsoid& b, SeparatingPlane* out) {
   const detail::Pencil<double> p = detail::makePencil<double>(a, b);
   int iterations = 0;
-  const double mu_star = detail::maximisePsi(p, 0.5, &iterations);
+  const double mu_star = detail::maximisePsi(p, detail::initialMu(p), &iterations);
   if (!(detail::evaluateF(p, mu_star) > 0.0)) return false;  // roots not separable in double
   // F(0) = -det K < 0, F(1) = -1 < 0: one root on each side of mu*.
   const double mu2 = detail::rootOfF(p, 0.0, mu_star);  // eigenvector V2, inside b
@@ -113,7 +113,7 @@ std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipso
   // x(mu) of mu q_a + (1-mu) q_b, grad q_b(x) = -mu/(1-mu) grad q_a(x); convexity then gives
   // grad q_a(x*).(y - x*) <= -psi < 0 on a and >= psi (1-mu)/mu > 0 on b: it separates.
   sp = SeparatingPlane{};
-  sp.plane = planeThrough(a.normalAt(cert.witness), cert.witness);
+  sp.plane = planeThrough(cert.normal, cert.witness);
   sp.tangent_a = a.supportPoint(sp.plane.normal);
   sp.tangent_b = b.supportPoint(-sp.plane.normal);
   sp.certified = planeSeparates(sp.plane, a, b);

@@ -113,14 +113,13 @@ SignedDistanceResult signedDistance(const Ellipsoid& a, const Ellipsoid& b, cons
   obj.Gb = b.rotation() * b.radii().cwiseAbs2().asDiagonal() * b.rotation().transpose();
   const double scale = obj.d.norm() + a.maxRadius() + b.maxRadius();
 
-  // Seeds. The normal of a's level set at the pencil witness is a separating direction when the
-  // pair is separate (separating_plane.cpp), so phi > 0 there and the ascent stays in the region
+  // Seeds. The certificate's normal is a separating direction when the pair is separate
+  // (separating_plane.cpp), so phi > 0 there and the ascent stays in the region
   // where phi is concave: one start suffices. For overlapping pairs the penetration depth can have
   // several local optima: rank many directions by phi and ascend from the best three.
   std::vector<Eigen::Vector3d> seeds;
   if (warm_normal && warm_normal->squaredNorm() > 0.0 && warm_normal->allFinite()) seeds.push_back(*warm_normal);
-  const Eigen::Vector3d wn = a.normalAt(cert.witness);
-  if (wn.allFinite()) seeds.push_back(wn);
+  if (cert.normal.allFinite()) seeds.push_back(cert.normal);
   int starts = 1;
   if (cert.status != Separation::Separated) {
     starts = 3;

@@ -28,8 +28,9 @@ namespace fcl_quadric {
 constexpr double kSturmRelativeZeroThreshold = 1e-10;
 
 /// Sturm sequence p_0 = p, p_1 = p', p_{k+1} = -rem(p_{k-1}, p_k), stopping at the first
-/// remainder that is zero under kSturmRelativeZeroThreshold. Every member is scaled by a
-/// positive factor to max|coefficient| = 1, which does not change any sign.
+/// remainder that is zero under kSturmRelativeZeroThreshold. p_0 is the trimmed input, kept
+/// exact; every later member is scaled by a positive factor to max|coefficient| = 1, which
+/// does not change any sign.
 ///
 /// Each division lowers the degree by at least one, so the construction performs at most
 /// deg p divisions: the loop is bounded by the degree and needs no separate cap.
@@ -44,15 +45,22 @@ class SturmSequence {
   /// \throws std::invalid_argument if p is the zero polynomial (every point is a root).
   explicit SturmSequence(const Polynomial& p);
 
-  /// The (normalised) members p_0, ..., p_k.
+  /// The members p_0 (the trimmed input), p_1, ..., p_k (normalised).
   const std::vector<Polynomial>& polynomials() const { return sequence_; }
   /// Number of members.
   int size() const { return static_cast<int>(sequence_.size()); }
 
-  /// V(x+): sign changes of (p_0, ..., p_k) just to the right of x: a member that evaluates to
-  /// exactly zero at x contributes the sign of its first nonzero derivative at x (at most
-  /// deg p_k extra evaluations); zeros that remain are dropped. x may be +-infinity (then the
-  /// signs of the leading terms are used, see variationsAtPositiveInfinity()).
+  /// V(x+): sign changes of (p_0, ..., p_k) just to the right of x. A member whose value at x
+  /// is within its uncertainty is treated as zero and contributes the sign of its first
+  /// derivative at x that exceeds the uncertainty (at most deg p_k extra evaluations; the
+  /// constant top derivative always decides). The uncertainty is the Horner running error
+  /// bound (Polynomial::evaluateWithBound), plus, for the computed members p_1..p_k,
+  /// kSturmRelativeZeroThreshold * sum_i |c_i| |x|^i for the rounding of their coefficients.
+  /// So an exactly representable (multiple) root at x is handled as in exact arithmetic,
+  /// while a point within rounding noise of a root may be counted on either side of it (near
+  /// a zero of an intermediate member the choice does not change the count). x may be
+  /// +-infinity (then the signs of the leading terms are used, see
+  /// variationsAtPositiveInfinity()).
   /// \throws std::invalid_argument if x is NaN.
   int variationsAt(double x) const;
   /// V(+infinity): sign changes of the leading coefficients.

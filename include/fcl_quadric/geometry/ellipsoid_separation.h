@@ -28,8 +28,12 @@ struct SeparationCertificate {
   /// Witness point (world frame): inside both for Overlapping; the contact point (Theorem 4.4)
   /// for Touching; the minimax point of the pencil for Separated.
   Eigen::Vector3d witness = Eigen::Vector3d::Zero();
-  /// 0: decided in double; 1: decided in double-double; 2: undecided at double-double precision,
-  /// reported as Touching.
+  /// For Separated: a unit normal pointing from the first argument to the second such that the
+  /// plane through `witness` with this normal separates them (certify with planeSeparates()).
+  /// For the other states: the normal of the first ellipsoid's level set at the witness.
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+  /// -1: decided by the bounding / inscribed sphere pre-test; 0: decided in double; 1: decided in
+  /// double-double; 2: undecided at double-double precision, reported as Touching.
   int precision_stage = 0;
   /// Iterations of the safeguarded Newton search for the pencil maximiser.
   int iterations = 0;
