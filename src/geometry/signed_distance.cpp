@@ -6,7 +6,8 @@
 #include <limits>
 #include <vector>
 
-#include <Eigen/Dense>
+
+#include <Eigen/Eigenvalues>
 
 #include "fcl_quadric/tolerances.h"
 
@@ -33,6 +34,20 @@ struct Objective {
     return n.dot(d) - na - nb;
   }
 };
+
+/// 40 directions of a Fibonacci lattice on the unit sphere (seeds for penetration depth).
+const std::array<Eigen::Vector3d, 40>& sphereGrid() {
+  static const std::array<Eigen::Vector3d, 40> grid = [] {
+    std::array<Eigen::Vector3d, 40> g;
+    const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < 40; ++i) {
+      const double z = 1.0 - 2.0 * (i + 0.5) / 40.0, r = std::sqrt(1.0 - z * z);
+      g[i] = Eigen::Vector3d(r * std::cos(golden * i), r * std::sin(golden * i), z);
+    }
+    return g;
+  }();
+  return grid;
+}
 
 /// An orthonormal basis of the plane orthogonal to the unit vector n.
 void tangentBasis(const Eigen::Vector3d& n, Eigen::Vector3d* e1, Eigen::Vector3d* e2) {
@@ -63,16 +78,29 @@ LocalMax ascend(const Objective& obj, Eigen::Vector3d n, double scale) {
     const Eigen::Vector2d g(e1.dot(grad), e2.dot(grad));
     if (g.norm() <= gtol) return {n, phi, it, true};
     // Riemannian Hessian on the sphere: T^T hess T - (n.grad) I, and n.grad = phi (Euler).
-    Eigen::Matrix2d H;
-    H << e1.dot(hess * e1) - phi, e1.dot(hess * e2), e2.dot(hess * e1), e2.dot(hess * e2) - phi;
-    H = 0.5 * (H + H.transpose());
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(H);
-    // Make it negative definite (ascent direction), keeping curvature information.
-    Eigen::Vector2d ev = es.eigenvalues();
-    const double floor = 1e-3 * std::max(std::fabs(ev[0]), std::fabs(ev[1])) + 1e-300;
-    for (int k = 0; k < 2; ++k) ev[k] = -std::max(std::fabs(ev[k]), floor);
-    const Eigen::Matrix2d Hneg = es.eigenvectors() * ev.asDiagonal() * es.eigenvectors().transpose();
-    Eigen::Vector2d xi = -Hneg.inverse() * g;
+    const Eigen::Vector3d he1 = hess * e1, he2 = hess * e2;
+    const double h11 = e1.dot(he1) - phi, h22 = e2.dot(he2) - phi, h12 = 0.5 * (e1.dot(he2) + e2.dot(he1));
+    // Closed-form eigenvalues of the symmetric 2x2; make the matrix negative definite (ascent
+    // direction) by mirroring positive eigenvalues and flooring small ones.
+    const double hd = 0.5 * (h11 - h22);
+    const double mean = 0.5 * (h11 + h22), half = std::sqrt(hd * hd + h12 * h12);
+    double l1 = mean - half, l2 = mean + half;  // l1 <= l2
+    const double floor = 1e-3 * std::max(std::fabs(l1), std::fabs(l2)) + 1e-300;
+    Eigen::Vector2d xi;
+    if (l2 < -floor) {
+      const double det = h11 * h22 - h12 * h12;  // Newton step -H^-1 g
+      xi = Eigen::Vector2d(-(h22 * g[0] - h12 * g[1]) / det, -(-h12 * g[0] + h11 * g[1]) / det);
+    } else {
+      // eigenvector of l1: (h12, l1 - h11) or (l1 - h22, h12), whichever is better conditioned.
+      Eigen::Vector2d v1 = std::fabs(h11 - l1) > std::fabs(h22 - l1) ? Eigen::Vector2d(h12, l1 - h11)
+                                                                    : Eigen::Vector2d(l1 - h22, h12);
+      if (v1.squaredNorm() == 0.0) v1 = Eigen::Vector2d(1.0, 0.0);
+      v1.normalize();
+      const Eigen::Vector2d v2(-v1[1], v1[0]);
+      l1 = -std::max(std::fabs(l1), floor);
+      l2 = -std::max(std::fabs(l2), floor);
+      xi = -(v1 * (v1.dot(g) / l1) + v2 * (v2.dot(g) / l2));
+    }
     // Trust the step only up to a quarter turn.
     const double len = xi.norm();
     if (len > 0.5) xi *= 0.5 / len;
@@ -117,38 +145,50 @@ SignedDistanceResult signedDistance(const Ellipsoid& a, const Ellipsoid& b, cons
   // (separating_plane.cpp), so phi > 0 there and the ascent stays in the region
   // where phi is concave: one start suffices. For overlapping pairs the penetration depth can have
   // several local optima: rank many directions by phi and ascend from the best three.
-  std::vector<Eigen::Vector3d> seeds;
-  if (warm_normal && warm_normal->squaredNorm() > 0.0 && warm_normal->allFinite()) seeds.push_back(*warm_normal);
-  if (cert.normal.allFinite()) seeds.push_back(cert.normal);
+  std::array<Eigen::Vector3d, 64> seeds;
+  int nseeds = 0;
+  auto add = [&](const Eigen::Vector3d& v) { seeds[nseeds++] = v; };
+  if (warm_normal && warm_normal->squaredNorm() > 0.0 && warm_normal->allFinite()) add(*warm_normal);
+  if (cert.normal.allFinite()) add(cert.normal);
   int starts = 1;
   if (cert.status != Separation::Separated) {
     starts = 3;
-    if (obj.d.squaredNorm() > 0.0) seeds.push_back(obj.d);
+    if (obj.d.squaredNorm() > 0.0) add(obj.d);
     for (const Ellipsoid* e : {&a, &b})
       for (int k = 0; k < 3; ++k) {
-        seeds.push_back(e->rotation().col(k));
-        seeds.push_back(-e->rotation().col(k));
+        add(e->rotation().col(k));
+        add(-e->rotation().col(k));
       }
-    for (int sx = -1; sx <= 1; sx += 2)
-      for (int sy = -1; sy <= 1; sy += 2)
-        for (int sz = -1; sz <= 1; sz += 2) seeds.push_back(Eigen::Vector3d(sx, sy, sz));
+    // Principal axes of the summed shape G_a + G_b, and a uniform spherical grid.
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(obj.Ga + obj.Gb);
+    for (int k = 0; k < 3; ++k) {
+      add(es.eigenvectors().col(k));
+      add(-es.eigenvectors().col(k));
+    }
+    for (const Eigen::Vector3d& g : sphereGrid()) add(g);
   }
-  if (seeds.empty()) seeds.push_back(Eigen::Vector3d::UnitX());
-  std::vector<std::pair<double, Eigen::Vector3d>> ranked;
-  for (const auto& s : seeds) {
-    const Eigen::Vector3d n = s.normalized();
-    ranked.emplace_back(obj.value(n), n);
+  if (nseeds == 0) add(Eigen::Vector3d::UnitX());
+  // Rank the seeds by phi and ascend from the best `starts` distinct ones (selection, no sort).
+  std::array<double, 64> value;
+  for (int i = 0; i < nseeds; ++i) {
+    seeds[i].normalize();
+    value[i] = obj.value(seeds[i]);
   }
-  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
-
-  LocalMax best{ranked.front().second, -std::numeric_limits<double>::infinity(), 0, false};
-  int used = 0;
-  for (size_t i = 0; i < ranked.size() && used < starts; ++i) {
-    bool duplicate = false;
-    for (size_t j = 0; j < i; ++j) duplicate |= ranked[j].second.dot(ranked[i].second) > 1.0 - 1e-9;
-    if (duplicate) continue;
-    ++used;
-    const LocalMax m = ascend(obj, ranked[i].second, scale);
+  LocalMax best{seeds[0], -std::numeric_limits<double>::infinity(), 0, false};
+  // Starts are the best-ranked seeds that are not within ~37 degrees of an earlier start, so that
+  // they tend to lie in different basins of phi.
+  std::array<int, 8> picked{};
+  int npicked = 0;
+  for (int used = 0; used < starts; ++used) {
+    int pick = -1;
+    for (int i = 0; i < nseeds; ++i) {
+      bool near = false;
+      for (int j = 0; j < npicked && !near; ++j) near = seeds[i].dot(seeds[picked[j]]) > 0.8;
+      if (!near && (pick < 0 || value[i] > value[pick])) pick = i;
+    }
+    if (pick < 0) break;
+    picked[npicked++] = pick;
+    const LocalMax m = ascend(obj, seeds[pick], scale);
     res.iterations += m.iterations;
     if (m.phi > best.phi) best = m;
   }
