@@ -1,5 +1,7 @@
 #include "fcl_quadric/geometry/ellipsoid.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -52,6 +54,26 @@ Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Isometry3d& X_WE
 
 Ellipsoid Ellipsoid::sphere(double r, const Eigen::Vector3d& p_WE) {
   return Ellipsoid(Eigen::Vector3d::Constant(r), Eigen::Matrix3d::Identity(), p_WE);
+}
+
+Ellipsoid Ellipsoid::fromAffine(const Eigen::Matrix3d& M, const Eigen::Vector3d& p) {
+  if (!M.allFinite()) {
+    std::ostringstream os;
+    os << "affine map of an ellipsoid must be finite, got\n" << M;
+    throw std::invalid_argument(os.str());
+  }
+  detail::checkFinite(p, "ellipsoid centre");
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(M * M.transpose());
+  const Eigen::Vector3d ev = es.eigenvalues();  // ascending
+  if (!(ev[0] > 0.0) || !(ev[0] >= 1e-24 * ev[2])) {
+    std::ostringstream os;
+    os << "affine map of an ellipsoid is singular or too ill-conditioned (squared singular values " << ev[0]
+       << " .. " << ev[2] << ")";
+    throw std::invalid_argument(os.str());
+  }
+  Eigen::Matrix3d R = es.eigenvectors();
+  if (R.determinant() < 0.0) R.col(2) = -R.col(2);
+  return Ellipsoid(ev.cwiseSqrt(), R, p);
 }
 
 Eigen::Matrix4d Ellipsoid::quadricMatrix() const {

@@ -2,6 +2,7 @@
 // against the exact rational oracle (test/support/exact_oracle.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <random>
 #include <stdexcept>
@@ -281,6 +282,34 @@ TEST(CharacteristicPolynomial, SubresultantPathAgreesWithExactOracleAwayFromTang
   }
   EXPECT_GT(compared, 19000);
   EXPECT_EQ(wrong, 0);
+}
+
+TEST(Ellipsoid, FromAffineDescribesTheImageOfTheUnitBall) {
+  std::mt19937_64 rng(47);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (int i = 0; i < 500; ++i) {
+    Eigen::Matrix3d M;
+    for (int k = 0; k < 9; ++k) M.data()[k] = u(rng);
+    if (std::fabs(M.determinant()) < 1e-2) continue;
+    const Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    const Ellipsoid e = Ellipsoid::fromAffine(M, p);
+    for (int k = 0; k < 20; ++k) {
+      const Eigen::Vector3d x = M * test::randomUnitVector(rng) + p;  // on the surface
+      ASSERT_NEAR(e.implicit(x), 0.0, 1e-10);
+      ASSERT_LT(e.implicit(M * (0.999 * test::randomUnitVector(rng)) + p), 0.0);
+    }
+    // Rigid maps give back the same ellipsoid, up to the order of the axes.
+    const Ellipsoid r(test::randomRadii(rng, 1.0, 10.0), test::randomRotation(rng), p);
+    const Ellipsoid back = Ellipsoid::fromAffine(r.rotation() * r.radii().asDiagonal(), p);
+    Eigen::Vector3d s1 = r.radii(), s2 = back.radii();
+    std::sort(s1.data(), s1.data() + 3);
+    std::sort(s2.data(), s2.data() + 3);
+    ASSERT_NEAR((s1 - s2).norm(), 0.0, 1e-12);
+  }
+  Eigen::Matrix3d singular = Eigen::Matrix3d::Identity();
+  singular(1, 1) = 0.0;
+  EXPECT_THROW(Ellipsoid::fromAffine(singular, Eigen::Vector3d::Zero()), std::invalid_argument);
+  EXPECT_THROW(Ellipsoid::fromAffine(Eigen::Matrix3d::Identity(), {0, 0, std::nan("")}), std::invalid_argument);
 }
 
 TEST(Ellipsoid, RejectsBadInputNamingTheValue) {

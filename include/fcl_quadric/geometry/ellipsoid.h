@@ -22,6 +22,11 @@ class Ellipsoid {
   Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Isometry3d& X_WE);
   /// A sphere of radius r centred at p_WE.
   static Ellipsoid sphere(double r, const Eigen::Vector3d& p_WE);
+  /// The affine image { M u + p : |u| <= 1 } of the unit ball (the ellipsoids of affine motions,
+  /// thesis §4.1.2 and §5.2), converted to principal axes by the symmetric eigen-decomposition
+  /// M M^T = R S^2 R^T (relative perturbation of the solid ~1e-16 cond(M)).
+  /// \throws std::invalid_argument if M or p is not finite or M is singular (cond > 1e12).
+  static Ellipsoid fromAffine(const Eigen::Matrix3d& M, const Eigen::Vector3d& p);
 
   const Eigen::Vector3d& radii() const { return radii_; }
   const Eigen::Matrix3d& rotation() const { return R_; }
