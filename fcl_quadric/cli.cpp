@@ -1,0 +1,113 @@
+#include "fcl_quadric/cli.h"
+
+#include <cstdint>
+#include <exception>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "fcl_quadric/check_command.h"
+#include "fcl_quadric/demo_command.h"
+#include "fcl_quadric/scene.h"
+#include "fcl_quadric/version.h"
+
+namespace fcl_quadric {
+namespace cli {
+
+std::string errorLine(const std::string& message) {
+  std::string line = "fcl_quadric: error: " + message;
+  for (char& c : line) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+  }
+  while (!line.empty() && line.back() == ' ') line.pop_back();
+  return line + "\n";
+}
+
+namespace {
+
+/// A decimal integer in [0, 2^64), or nothing.
+std::optional<std::uint64_t> parseSeed(const std::string& text) {
+  if (text.empty() || text.size() > 20 || text.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
+  std::uint64_t value = 0;
+  for (char c : text) {
+    const auto digit = static_cast<std::uint64_t>(c - '0');
+    if (value > (std::numeric_limits<std::uint64_t>::max() - digit) / 10) return std::nullopt;
+    value = 10 * value + digit;
+  }
+  return value;
+}
+
+}  // namespace
+
+int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+  CLI::App app{"fcl_quadric: exact collision detection of ellipsoids (with FCL).", "fcl_quadric"};
+  app.set_version_flag("--version", std::string("fcl_quadric ") + FCL_QUADRIC_VERSION_STRING);
+  app.require_subcommand(1);
+  app.footer(
+      "Exit status: 0 success, 1 internal error, 2 bad scene or usage.\n"
+      "Run 'fcl_quadric COMMAND --help' for the options of a command.");
+
+  std::string scene_path;
+  CLI::App* check = app.add_subcommand(
+      "check", "Classify the object pairs of a JSON scene and print status, signed distance, witness "
+               "points and normal of each pair as JSON.");
+  check->add_option("SCENE", scene_path, "Scene file (JSON; see examples/README.md)")->required();
+
+  DemoOptions demo_options;
+  CLI::App* demo = app.add_subcommand(
+      "demo", "Simulate spinning ellipsoids and compare classification with and without "
+              "inter-frame coherence (PairCoherence).");
+  demo->add_option("--frames", demo_options.frames, "Frames to simulate")
+      ->check(CLI::Range(1, 100000000))
+      ->capture_default_str();
+  demo->add_option("--objects", demo_options.objects, "Number of ellipsoids")
+      ->check(CLI::Range(2, 1000))
+      ->capture_default_str();
+  // The seed is read as text: CLI11 would wrap "-1" and saturate values beyond 2^64 - 1.
+  std::string seed_text = std::to_string(demo_options.seed);
+  demo->add_option("--seed", seed_text, "Seed of the scene generator (integer in [0, 2^64))")
+      ->type_name("UINT")
+      ->check([](const std::string& s) { return parseSeed(s) ? std::string() : "must be an integer in [0, 2^64), got " + s; })
+      ->capture_default_str();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    out << app.help();
+    return kExitOk;
+  } catch (const CLI::CallForAllHelp&) {
+    out << app.help("", CLI::AppFormatMode::All);
+    return kExitOk;
+  } catch (const CLI::CallForVersion& e) {
+    out << e.what() << '\n';
+    return kExitOk;
+  } catch (const CLI::ParseError& e) {
+    err << errorLine(std::string(e.what()) + " (run 'fcl_quadric --help' for usage)");
+    return kExitBadInput;
+  }
+
+  // Each command writes to a buffer first, so that a failure leaves `out` untouched.
+  std::ostringstream result;
+  try {
+    if (check->parsed()) {
+      runCheck(scene_path, result);
+    } else if (demo->parsed()) {
+      demo_options.seed = *parseSeed(seed_text);
+      runDemo(demo_options, result);
+    }
+  } catch (const SceneError& e) {
+    err << errorLine(e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    err << errorLine(std::string("internal error: ") + e.what());
+    return kExitInternalError;
+  }
+  out << result.str();
+  out.flush();
+  return kExitOk;
+}
+
+}  // namespace cli
+}  // namespace fcl_quadric

@@ -1,0 +1,15 @@
+#include "fcl_quadric/pair_report.h"
+
+namespace fcl_quadric {
+namespace cli {
+
+const char* toString(PairMethod method) {
+  switch (method) {
+    case PairMethod::Exact: return "exact";
+    case PairMethod::Fcl: return "fcl";
+  }
+  return "unknown";
+}
+
+}  // namespace cli
+}  // namespace fcl_quadric

@@ -1,0 +1,369 @@
+#include "fcl_quadric/scene.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <initializer_list>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "fcl_quadric/tolerances.h"
+
+namespace fcl_quadric {
+namespace cli {
+
+using nlohmann::json;
+
+SceneError::SceneError(std::string pointer, std::string message)
+    : std::runtime_error(pointer.empty() ? message : pointer + ": " + message),
+      pointer_(std::move(pointer)),
+      message_(std::move(message)) {}
+
+const char* toString(ShapeType type) {
+  switch (type) {
+    case ShapeType::Ellipsoid: return "ellipsoid";
+    case ShapeType::Sphere: return "sphere";
+    case ShapeType::Box: return "box";
+  }
+  return "unknown";
+}
+
+bool isEllipsoidal(const Shape& shape) {
+  return shape.type == ShapeType::Ellipsoid || shape.type == ShapeType::Sphere;
+}
+
+Ellipsoid toEllipsoid(const SceneObject& object) {
+  if (!isEllipsoidal(object.shape)) {
+    throw std::invalid_argument("object " + object.name + " is a " + toString(object.shape.type) +
+                                ", not an ellipsoid");
+  }
+  return Ellipsoid(object.shape.dimensions, object.pose.linear(), object.pose.translation());
+}
+
+namespace {
+
+[[noreturn]] void fail(const std::string& pointer, const std::string& message) {
+  throw SceneError(pointer, message);
+}
+
+/// RFC 6901 reference token escaping: '~' -> "~0", '/' -> "~1".
+std::string escapeToken(const std::string& token) {
+  std::string out;
+  for (char c : token) {
+    if (c == '~') {
+      out += "~0";
+    } else if (c == '/') {
+      out += "~1";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string child(const std::string& pointer, const std::string& key) {
+  return pointer + "/" + escapeToken(key);
+}
+
+std::string child(const std::string& pointer, std::size_t index) {
+  return pointer + "/" + std::to_string(index);
+}
+
+/// A JSON string as a quoted, escaped literal (safe to embed in a one-line message).
+std::string jsonQuoted(const std::string& s) {
+  return json(s).dump(-1, ' ', false, json::error_handler_t::replace);  // paths need not be UTF-8
+}
+
+/// The number as written in the document where possible ("-1", "0.5"); inf/nan spelled out.
+std::string describeNumber(const json& node) {
+  if (node.is_number_float()) {
+    const double v = node.get<double>();
+    if (std::isnan(v)) return "nan";
+    if (std::isinf(v)) return v > 0.0 ? "inf" : "-inf";
+  }
+  return node.dump();
+}
+
+void requireType(const json& node, const std::string& pointer, json::value_t type, const char* expected) {
+  if (node.type() != type) fail(pointer, std::string("must be ") + expected + ", got " + node.type_name());
+}
+
+/// Any JSON number (integer or floating point; booleans are not numbers).
+void requireNumber(const json& node, const std::string& pointer) {
+  if (!node.is_number()) fail(pointer, std::string("must be a number, got ") + node.type_name());
+}
+
+/// The member `key` of `object`; fails with the member's pointer if it is missing.
+const json& requireField(const json& object, const std::string& pointer, const char* key) {
+  const auto it = object.find(key);
+  if (it == object.end()) fail(child(pointer, key), "required field is missing");
+  return *it;
+}
+
+void rejectUnknownFields(const json& object, const std::string& pointer,
+                         std::initializer_list<const char*> allowed) {
+  for (const auto& item : object.items()) {
+    bool known = false;
+    for (const char* a : allowed) known = known || item.key() == a;
+    if (!known) {
+      std::string list;
+      for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+      fail(child(pointer, item.key()), "unknown field (allowed here: " + list + ")");
+    }
+  }
+}
+
+/// A finite number.
+double readNumber(const json& node, const std::string& pointer, const char* what) {
+  requireNumber(node, pointer);
+  const double v = node.get<double>();
+  if (!std::isfinite(v)) fail(pointer, std::string(what) + " must be finite, got " + describeNumber(node));
+  return v;
+}
+
+/// A finite number > 0.
+double readPositive(const json& node, const std::string& pointer, const char* what) {
+  requireNumber(node, pointer);
+  const double v = node.get<double>();
+  if (!std::isfinite(v) || !(v > 0.0)) {
+    fail(pointer, std::string(what) + " must be finite and > 0, got " + describeNumber(node));
+  }
+  return v;
+}
+
+/// An array of exactly n elements.
+void requireArray(const json& node, const std::string& pointer, std::size_t n, const char* expected) {
+  requireType(node, pointer, json::value_t::array, expected);
+  if (node.size() != n) {
+    fail(pointer, "must have exactly " + std::to_string(n) + " elements, got " + std::to_string(node.size()));
+  }
+}
+
+Eigen::Vector3d readPositive3(const json& node, const std::string& pointer, const char* what) {
+  requireArray(node, pointer, 3, "an array of 3 numbers");
+  Eigen::Vector3d v;
+  for (std::size_t i = 0; i < 3; ++i) v[static_cast<Eigen::Index>(i)] = readPositive(node[i], child(pointer, i), what);
+  return v;
+}
+
+Shape readShape(const json& node, const std::string& pointer) {
+  requireType(node, pointer, json::value_t::object, "an object");
+  const json& type = requireField(node, pointer, "type");
+  const std::string type_pointer = child(pointer, "type");
+  requireType(type, type_pointer, json::value_t::string, "a string");
+  const std::string name = type.get<std::string>();
+  Shape shape;
+  if (name == "ellipsoid") {
+    rejectUnknownFields(node, pointer, {"type", "radii"});
+    shape.type = ShapeType::Ellipsoid;
+    shape.dimensions = readPositive3(requireField(node, pointer, "radii"), child(pointer, "radii"), "radius");
+  } else if (name == "sphere") {
+    rejectUnknownFields(node, pointer, {"type", "radius"});
+    shape.type = ShapeType::Sphere;
+    const double r = readPositive(requireField(node, pointer, "radius"), child(pointer, "radius"), "radius");
+    shape.dimensions = Eigen::Vector3d::Constant(r);
+  } else if (name == "box") {
+    rejectUnknownFields(node, pointer, {"type", "size"});
+    shape.type = ShapeType::Box;
+    shape.dimensions = readPositive3(requireField(node, pointer, "size"), child(pointer, "size"), "box size");
+  } else {
+    fail(type_pointer, "unknown shape type " + jsonQuoted(name) + " (expected \"ellipsoid\", \"sphere\" or \"box\")");
+  }
+  return shape;
+}
+
+Eigen::Isometry3d readPose(const json& node, const std::string& pointer) {
+  requireType(node, pointer, json::value_t::object, "an object");
+  rejectUnknownFields(node, pointer, {"translation", "quaternion"});
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  if (const auto it = node.find("translation"); it != node.end()) {
+    const std::string p = child(pointer, "translation");
+    requireArray(*it, p, 3, "an array of 3 numbers");
+    for (std::size_t i = 0; i < 3; ++i) {
+      pose.translation()[static_cast<Eigen::Index>(i)] = readNumber((*it)[i], child(p, i), "translation");
+    }
+  }
+  if (const auto it = node.find("quaternion"); it != node.end()) {
+    const std::string p = child(pointer, "quaternion");
+    requireArray(*it, p, 4, "an array of 4 numbers [w, x, y, z]");
+    double q[4];
+    for (std::size_t i = 0; i < 4; ++i) q[i] = readNumber((*it)[i], child(p, i), "quaternion component");
+    Eigen::Quaterniond quaternion(q[0], q[1], q[2], q[3]);
+    const double norm = quaternion.norm();
+    if (!(std::abs(norm - 1.0) <= tolerance::kQuaternionNorm)) {
+      std::ostringstream os;
+      os << "quaternion must have unit norm (relative tolerance " << tolerance::kQuaternionNorm << "), got norm "
+         << json(norm).dump();
+      fail(p, os.str());
+    }
+    quaternion.normalize();
+    pose.linear() = quaternion.toRotationMatrix();
+  }
+  return pose;
+}
+
+SceneObject readObject(const json& node, const std::string& pointer) {
+  requireType(node, pointer, json::value_t::object, "an object");
+  rejectUnknownFields(node, pointer, {"name", "shape", "pose"});
+  SceneObject object;
+  const json& name = requireField(node, pointer, "name");
+  requireType(name, child(pointer, "name"), json::value_t::string, "a string");
+  object.name = name.get<std::string>();
+  if (object.name.empty()) fail(child(pointer, "name"), "object name must not be empty");
+  object.shape = readShape(requireField(node, pointer, "shape"), child(pointer, "shape"));
+  if (const auto it = node.find("pose"); it != node.end()) object.pose = readPose(*it, child(pointer, "pose"));
+  return object;
+}
+
+/// Records where a parse stopped, so that a number overflow (JSON cannot spell inf or nan; a
+/// literal such as 1e999 is the only way to write a non-finite number) is reported at its
+/// pointer. Used only after json::parse() has failed.
+class PointerTracker : public nlohmann::json_sax<json> {
+ public:
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override {
+    frames_.push_back({false, 0, ""});
+    return true;
+  }
+  bool key(string_t& k) override {
+    frames_.back().key = k;
+    return true;
+  }
+  bool end_object() override {
+    frames_.pop_back();
+    return value();
+  }
+  bool start_array(std::size_t) override {
+    frames_.push_back({true, 0, ""});
+    return true;
+  }
+  bool end_array() override {
+    frames_.pop_back();
+    return value();
+  }
+  bool parse_error(std::size_t, const std::string& last_token, const nlohmann::detail::exception&) override {
+    for (const Frame& f : frames_) pointer_ = f.array ? child(pointer_, f.index) : child(pointer_, f.key);
+    token_ = last_token;
+    return false;
+  }
+  const std::string& pointer() const { return pointer_; }
+  const std::string& token() const { return token_; }
+
+ private:
+  struct Frame {
+    bool array;
+    std::size_t index;  ///< arrays: index of the element being parsed
+    std::string key;    ///< objects: key of the member being parsed
+  };
+  bool value() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+    return true;
+  }
+  std::vector<Frame> frames_;
+  std::string pointer_;
+  std::string token_;
+};
+
+/// nlohmann's message without its "[json.exception.xxx.nnn] " prefix.
+std::string stripExceptionPrefix(const char* what) {
+  std::string s(what);
+  const auto close = s.find("] ");
+  return close == std::string::npos ? s : s.substr(close + 2);
+}
+
+}  // namespace
+
+Scene parseScene(const json& document) {
+  const std::string root;
+  requireType(document, root, json::value_t::object, "a JSON object with an \"objects\" array");
+  rejectUnknownFields(document, root, {"objects", "pairs"});
+  const json& objects = requireField(document, root, "objects");
+  const std::string objects_pointer = child(root, "objects");
+  requireType(objects, objects_pointer, json::value_t::array, "an array");
+
+  Scene scene;
+  std::map<std::string, std::size_t> index_of;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const std::string p = child(objects_pointer, i);
+    SceneObject object = readObject(objects[i], p);
+    const auto [it, inserted] = index_of.emplace(object.name, i);
+    if (!inserted) {
+      fail(child(p, "name"), "duplicate object name " + jsonQuoted(object.name) + " (first used by " +
+                                 child(objects_pointer, it->second) + ")");
+    }
+    scene.objects.push_back(std::move(object));
+  }
+
+  const auto pairs = document.find("pairs");
+  if (pairs == document.end()) {
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+      for (std::size_t j = i + 1; j < scene.objects.size(); ++j) scene.pairs.emplace_back(i, j);
+    }
+    return scene;
+  }
+  const std::string pairs_pointer = child(root, "pairs");
+  requireType(*pairs, pairs_pointer, json::value_t::array, "an array of [name, name] pairs");
+  for (std::size_t k = 0; k < pairs->size(); ++k) {
+    const std::string p = child(pairs_pointer, k);
+    const json& pair = (*pairs)[k];
+    requireArray(pair, p, 2, "an array of two object names");
+    std::size_t idx[2];
+    for (std::size_t e = 0; e < 2; ++e) {
+      const std::string pe = child(p, e);
+      requireType(pair[e], pe, json::value_t::string, "an object name (string)");
+      const std::string name = pair[e].get<std::string>();
+      const auto it = index_of.find(name);
+      if (it == index_of.end()) fail(pe, "unknown object " + jsonQuoted(name));
+      idx[e] = it->second;
+    }
+    if (idx[0] == idx[1]) fail(p, "pair names object " + jsonQuoted(scene.objects[idx[0]].name) + " twice");
+    scene.pairs.emplace_back(idx[0], idx[1]);
+  }
+  return scene;
+}
+
+Scene parseSceneText(const std::string& text) {
+  json document;
+  try {
+    document = json::parse(text);
+  } catch (const json::parse_error& e) {
+    fail("", "malformed JSON: " + stripExceptionPrefix(e.what()));
+  } catch (const json::out_of_range&) {
+    // The only out_of_range the parser raises: a number literal overflowing double (error 406).
+    PointerTracker tracker;
+    json::sax_parse(text, &tracker);
+    fail(tracker.pointer(), "number " + tracker.token() + " is out of the range of double (values must be finite)");
+  }
+  return parseScene(document);
+}
+
+Scene readSceneFile(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) fail("", "cannot open scene file " + jsonQuoted(path) + ": " + std::strerror(errno));
+  std::string text;
+  char buffer[65536];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, file)) > 0) text.append(buffer, n);
+  const bool read_error = std::ferror(file) != 0;
+  const int read_errno = errno;
+  std::fclose(file);
+  if (read_error) fail("", "cannot read scene file " + jsonQuoted(path) + ": " + std::strerror(read_errno));
+  try {
+    return parseSceneText(text);
+  } catch (const SceneError& e) {
+    if (!e.pointer().empty()) throw;
+    fail("", path + ": " + e.message());  // name the file in whole-document errors
+  }
+}
+
+}  // namespace cli
+}  // namespace fcl_quadric

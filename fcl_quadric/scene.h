@@ -1,0 +1,95 @@
+#pragma once
+/// \file scene.h
+/// The scene model of the fcl_quadric command-line program and its JSON reader.
+///
+/// Scene JSON (every field is checked; unknown fields are rejected so that typos are caught):
+/// \code
+/// {"objects": [{"name": "A",
+///               "shape": {"type": "ellipsoid", "radii": [a, b, c]}   // semi-axes
+///                      | {"type": "sphere", "radius": r}
+///                      | {"type": "box", "size": [x, y, z]},         // full side lengths (fcl::Box)
+///               "pose": {"translation": [x, y, z], "quaternion": [w, x, y, z]}},  // optional
+///              ...],
+///  "pairs": [["A", "B"], ...]}                                        // optional
+/// \endcode
+/// `pose` and both of its fields are optional (identity). `pairs` defaults to every unordered
+/// pair in object order. A quaternion must have unit norm within tolerance::kQuaternionNorm
+/// (relative) and is then normalised.
+
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <nlohmann/json_fwd.hpp>
+
+#include "fcl_quadric/geometry/ellipsoid.h"
+
+namespace fcl_quadric {
+namespace cli {
+
+/// A scene-input problem: the JSON pointer (RFC 6901) of the offending value and a message.
+/// The pointer is empty when the problem concerns the whole file (unreadable, not JSON).
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(std::string pointer, std::string message);
+  /// JSON pointer of the bad value, e.g. "/objects/2/shape/radii/1"; "" for the whole document.
+  const std::string& pointer() const { return pointer_; }
+  /// Description of the problem without the pointer.
+  const std::string& message() const { return message_; }
+
+ private:
+  std::string pointer_;
+  std::string message_;
+};
+
+enum class ShapeType { Ellipsoid, Sphere, Box };
+
+/// "ellipsoid", "sphere" or "box" (the JSON spelling).
+const char* toString(ShapeType type);
+
+/// A primitive shape in its body frame, centred at the body origin.
+struct Shape {
+  ShapeType type = ShapeType::Ellipsoid;
+  /// Ellipsoid: semi-axes (a, b, c). Sphere: (r, r, r). Box: full side lengths, as fcl::Box.
+  Eigen::Vector3d dimensions = Eigen::Vector3d::Ones();
+};
+
+/// A named, posed shape. `pose` is X_WB: body frame to world frame, a proper rigid transform.
+struct SceneObject {
+  std::string name;
+  Shape shape;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+};
+
+/// Objects and the pairs to test (indices into `objects`, first < second not required).
+struct Scene {
+  std::vector<SceneObject> objects;
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+};
+
+/// Builds a Scene from a parsed JSON document.
+/// \throws SceneError with the pointer of the first problem found.
+Scene parseScene(const nlohmann::json& document);
+
+/// Parses JSON text and builds the Scene. Malformed JSON gives a SceneError with an empty pointer
+/// and the parse position (line, column) in the message; a number too large for a finite double
+/// gives a SceneError with the pointer of that number.
+Scene parseSceneText(const std::string& text);
+
+/// Reads and parses a scene file.
+/// \throws SceneError (empty pointer) if the file cannot be read, else as parseSceneText().
+Scene readSceneFile(const std::string& path);
+
+/// True for the shapes that are ellipsoids for the exact library (ellipsoid, sphere).
+bool isEllipsoidal(const Shape& shape);
+
+/// The library's Ellipsoid for an ellipsoid or sphere object.
+/// \pre isEllipsoidal(object.shape) (else std::invalid_argument).
+Ellipsoid toEllipsoid(const SceneObject& object);
+
+}  // namespace cli
+}  // namespace fcl_quadric
