@@ -17,140 +17,196 @@ constexpr double kUnitRoundoff = 0.5 * DBL_EPSILON;
 constexpr double kBoundInflation = 1.0 + 16.0 * kUnitRoundoff;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// --------------------------------------------------------------------------------------------
-// Bernstein coefficients with absolute error bounds: the polynomial represented exactly by the
-// caller's coefficients has, on the node's interval, Bernstein coefficients in
-// [c_i - e_i, c_i + e_i]. The caller's coefficients have e_i = 0.
-
-/// Sign classes of an interval coefficient.
-enum SignClass { kNegative = -1, kExactZero = 0, kPositive = 1, kUncertain = 2 };
-
-SignClass signClass(double c, double e) {
-  if (c > e) return kPositive;
-  if (c < -e) return kNegative;
-  if (c == 0.0 && e == 0.0) return kExactZero;
-  return kUncertain;
-}
-
 int sign(double v) { return (v > 0.0) - (v < 0.0); }
 
-enum class Descartes { kNoRoot, kOneRoot, kUndecided };
-
-/// Descartes' rule for every polynomial whose coefficients lie in the error boxes:
-///  - kNoRoot: all exact coefficients are >= 0 or all <= 0 (no root in the open interval);
-///  - kOneRoot: end coefficients have certain opposite signs and every assignment of the
-///    uncertain coefficients gives exactly one sign variation (uncertain coefficients only in
-///    the transition between the two runs);
-///  - kUndecided otherwise.
-Descartes classify(const std::vector<double>& c, const std::vector<double>& e) {
-  const std::size_t n1 = c.size();
-  bool nonneg = true;
-  bool nonpos = true;
-  for (std::size_t i = 0; i < n1; ++i) {
-    if (c[i] - e[i] < 0.0) nonneg = false;
-    if (c[i] + e[i] > 0.0) nonpos = false;
-  }
-  if (nonneg || nonpos) return Descartes::kNoRoot;
-  const SignClass s0 = signClass(c.front(), e.front());
-  const SignClass sn = signClass(c.back(), e.back());
-  if (s0 == kUncertain || sn == kUncertain || s0 == kExactZero || sn == kExactZero || s0 == sn) {
-    return Descartes::kUndecided;
-  }
-  // i2: first coefficient with certain sign sn; i1: last one with certain sign s0 before it.
-  std::size_t i2 = 0;
-  while (signClass(c[i2], e[i2]) != sn) ++i2;  // terminates: the last coefficient has sign sn
-  std::size_t i1 = 0;
-  for (std::size_t i = 0; i < i2; ++i) {
-    if (signClass(c[i], e[i]) == s0) i1 = i;
-  }
-  for (std::size_t i = 0; i < n1; ++i) {
-    const SignClass s = signClass(c[i], e[i]);
-    if (i < i1 && s != s0 && s != kExactZero) return Descartes::kUndecided;
-    if (i > i2 && s != sn && s != kExactZero) return Descartes::kUndecided;
-  }
-  return Descartes::kOneRoot;
-}
-
-/// Knuth's TwoSum: x + y = s + err exactly.
+/// Knuth's TwoSum: x + y = s + err exactly, for s = fl(x + y).
 double twoSumError(double x, double y, double s) {
   const double bv = s - x;
   const double av = s - bv;
   return (x - av) + (y - bv);
 }
 
-/// Split at the unit parameter 1/2 with exact per-operation rounding errors (TwoSum): halving
-/// is exact unless it underflows, which is detected and covered by adding DBL_TRUE_MIN.
-void splitHalf(const std::vector<double>& c, const std::vector<double>& e, std::vector<double>* left,
-               std::vector<double>* left_e, std::vector<double>* right, std::vector<double>* right_e) {
-  const std::size_t n1 = c.size();
-  std::vector<double> w(c);
-  std::vector<double> we(e);
-  left->assign(n1, 0.0);
-  left_e->assign(n1, 0.0);
-  right->assign(n1, 0.0);
-  right_e->assign(n1, 0.0);
-  (*left)[0] = w[0];
-  (*left_e)[0] = we[0];
-  (*right)[n1 - 1] = w[n1 - 1];
-  (*right_e)[n1 - 1] = we[n1 - 1];
-  for (std::size_t level = n1 - 1; level > 0; --level) {
-    for (std::size_t i = 0; i < level; ++i) {
-      const double x = 0.5 * w[i];
-      const double y = 0.5 * w[i + 1];
-      const double s = x + y;
-      double err = 0.5 * we[i] + 0.5 * we[i + 1] + std::abs(twoSumError(x, y, s));
-      if (2.0 * x != w[i] || 2.0 * y != w[i + 1]) err += DBL_TRUE_MIN;  // inexact halving (underflow)
-      w[i] = s;
-      we[i] = err * kBoundInflation;
-    }
-    (*left)[n1 - level] = w[0];
-    (*left_e)[n1 - level] = we[0];
-    (*right)[level - 1] = w[level - 1];
-    (*right_e)[level - 1] = we[level - 1];
-  }
+// --------------------------------------------------------------------------------------------
+// Certified sign decisions.
+//
+// A coefficient is known as a value c and a radius r: the exact coefficient (of the polynomial
+// represented exactly by the caller's doubles) lies in [c - r, c + r].
+
+/// Sign classes of an interval coefficient.
+enum SignClass { kNegative = -1, kExactZero = 0, kPositive = 1, kUncertain = 2 };
+
+SignClass signClass(double c, double r) {
+  if (c > r) return kPositive;
+  if (c < -r) return kNegative;
+  if (c == 0.0 && r == 0.0) return kExactZero;
+  return kUncertain;
 }
 
-/// Split at a general unit parameter s in [0, 1]; per operation the error bound grows by
-/// 4u (|w_i| + |w_{i+1}|) (two products, one sum and the rounding of 1 - s).
-void splitGeneral(const std::vector<double>& c, const std::vector<double>& e, double s, std::vector<double>* left,
-                  std::vector<double>* left_e, std::vector<double>* right, std::vector<double>* right_e) {
+bool isSign(SignClass s) { return s == kPositive || s == kNegative; }
+
+enum class Descartes { kNoRoot, kOneRoot, kUndecided };
+
+/// Descartes' rule for every polynomial whose coefficients lie in the boxes [c_i -+ r_i]:
+///  - kNoRoot: all exact coefficients are >= 0 or all <= 0 (no root in the open interval);
+///  - kOneRoot: end coefficients have certain opposite signs and every assignment of the
+///    uncertain coefficients gives exactly one sign variation (uncertain coefficients only in
+///    the transition between the two runs);
+///  - kUndecided otherwise.
+Descartes classify(const std::vector<double>& c, const std::vector<double>& r) {
   const std::size_t n1 = c.size();
-  std::vector<double> w(c);
-  std::vector<double> we(e);
-  std::vector<double> l(n1), le(n1), r(n1), re(n1);
-  const double t = 1.0 - s;
-  l[0] = w[0];
-  le[0] = we[0];
-  r[n1 - 1] = w[n1 - 1];
-  re[n1 - 1] = we[n1 - 1];
+  bool nonneg = true;
+  bool nonpos = true;
+  for (std::size_t i = 0; i < n1; ++i) {
+    if (c[i] - r[i] < 0.0) nonneg = false;
+    if (c[i] + r[i] > 0.0) nonpos = false;
+  }
+  if (nonneg || nonpos) return Descartes::kNoRoot;
+  const SignClass s0 = signClass(c.front(), r.front());
+  const SignClass sn = signClass(c.back(), r.back());
+  if (!isSign(s0) || !isSign(sn) || s0 == sn) return Descartes::kUndecided;
+  // i2: first coefficient with certain sign sn; i1: last one with certain sign s0 before it.
+  std::size_t i2 = 0;
+  while (signClass(c[i2], r[i2]) != sn) ++i2;  // terminates: the last coefficient has sign sn
+  std::size_t i1 = 0;
+  for (std::size_t i = 0; i < i2; ++i) {
+    if (signClass(c[i], r[i]) == s0) i1 = i;
+  }
+  for (std::size_t i = 0; i < n1; ++i) {
+    const SignClass s = signClass(c[i], r[i]);
+    if (i < i1 && s != s0 && s != kExactZero) return Descartes::kUndecided;
+    if (i > i2 && s != sn && s != kExactZero) return Descartes::kUndecided;
+  }
+  return Descartes::kOneRoot;
+}
+
+// --------------------------------------------------------------------------------------------
+// Sub-interval coefficients in double-double arithmetic.
+//
+// Node coefficients are unevaluated sums hi_i + lo_i (normalised by TwoSum) plus an absolute
+// error bound err_i: the exact Bernstein coefficient of the input polynomial on the node's
+// interval lies within err_i of hi_i + lo_i. Working in double-double keeps err_i at the level
+// of u^2 times the coefficient magnitudes, so sign decisions near a root are limited by the
+// root's conditioning relative to u^2 rather than u.
+
+struct Coeffs {
+  std::vector<double> hi;
+  std::vector<double> lo;
+  std::vector<double> err;
+};
+
+Coeffs exactCoeffs(const std::vector<double>& c) {
+  return Coeffs{c, std::vector<double>(c.size(), 0.0), std::vector<double>(c.size(), 0.0)};
+}
+
+/// Radii for sign decisions on the hi parts: |lo_i| + err_i (inflated).
+std::vector<double> radii(const Coeffs& k) {
+  std::vector<double> r(k.hi.size());
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = (std::abs(k.lo[i]) + k.err[i]) * kBoundInflation;
+  return r;
+}
+
+/// Split at the unit parameter 1/2: each new coefficient is (a + b) / 2 in double-double.
+/// Halving is exact unless it underflows (detected; DBL_TRUE_MIN is added to the bound); the
+/// only rounding is that of the low-order sum, bounded by 2u times its magnitude.
+void splitHalf(const Coeffs& in, Coeffs* left, Coeffs* right) {
+  const std::size_t n1 = in.hi.size();
+  Coeffs w = in;
+  Coeffs l{std::vector<double>(n1), std::vector<double>(n1), std::vector<double>(n1)};
+  Coeffs r = l;
+  auto store = [](Coeffs* dst, std::size_t j, const Coeffs& src, std::size_t i) {
+    dst->hi[j] = src.hi[i];
+    dst->lo[j] = src.lo[i];
+    dst->err[j] = src.err[i];
+  };
+  store(&l, 0, w, 0);
+  store(&r, n1 - 1, w, n1 - 1);
   for (std::size_t level = n1 - 1; level > 0; --level) {
     for (std::size_t i = 0; i < level; ++i) {
-      const double err = t * we[i] + s * we[i + 1] + 4.0 * kUnitRoundoff * (std::abs(w[i]) + std::abs(w[i + 1])) +
-                         2.0 * DBL_TRUE_MIN;
-      w[i] = t * w[i] + s * w[i + 1];
-      we[i] = err * kBoundInflation;
+      const double x = 0.5 * w.hi[i];
+      const double y = 0.5 * w.hi[i + 1];
+      const double xl = 0.5 * w.lo[i];
+      const double yl = 0.5 * w.lo[i + 1];
+      const double s = x + y;
+      const double e = twoSumError(x, y, s);
+      const double t = (xl + yl) + e;
+      const double h = s + t;
+      const double lo = twoSumError(s, t, h);
+      double err = 0.5 * w.err[i] + 0.5 * w.err[i + 1] + 2.0 * kUnitRoundoff * (std::abs(xl) + std::abs(yl) + std::abs(e));
+      if (2.0 * x != w.hi[i] || 2.0 * y != w.hi[i + 1] || 2.0 * xl != w.lo[i] || 2.0 * yl != w.lo[i + 1]) {
+        err += 2.0 * DBL_TRUE_MIN;  // inexact halving (underflow)
+      }
+      w.hi[i] = h;
+      w.lo[i] = lo;
+      w.err[i] = err * kBoundInflation;
     }
-    l[n1 - level] = w[0];
-    le[n1 - level] = we[0];
-    r[level - 1] = w[level - 1];
-    re[level - 1] = we[level - 1];
+    store(&l, n1 - level, w, 0);
+    store(&r, level - 1, w, level - 1);
   }
-  if (left != nullptr) {
-    *left = std::move(l);
-    *left_e = std::move(le);
+  *left = std::move(l);
+  *right = std::move(r);
+}
+
+/// a * (th + tl) + b * s in double-double, where 1 - s = th + tl exactly; returns the bound on
+/// the rounding committed (relative u^2-level terms, inflated generously).
+void combine(double ah, double al, double bh, double bl, double th, double tl, double s, double* h, double* l,
+             double* rounding) {
+  const double p = ah * th;
+  const double pe = std::fma(ah, th, -p);
+  const double q = bh * s;
+  const double qe = std::fma(bh, s, -q);
+  const double sum = p + q;
+  const double se = twoSumError(p, q, sum);
+  const double small = ((pe + qe) + se) + ((ah * tl + al * th) + bl * s);
+  *h = sum + small;
+  *l = twoSumError(sum, small, *h);
+  *rounding = 4.0 * kUnitRoundoff *
+                  (std::abs(pe) + std::abs(qe) + std::abs(se) + std::abs(ah * tl) + std::abs(al * th) +
+                   std::abs(bl * s)) +
+              std::abs(al * tl) + 8.0 * DBL_TRUE_MIN;
+}
+
+/// Split at a general unit parameter s in [0, 1] in double-double; either output may be null.
+void splitGeneral(const Coeffs& in, double s, Coeffs* left, Coeffs* right) {
+  const std::size_t n1 = in.hi.size();
+  const double th = 1.0 - s;
+  const double tl = twoSumError(1.0, -s, th);
+  Coeffs w = in;
+  Coeffs l{std::vector<double>(n1), std::vector<double>(n1), std::vector<double>(n1)};
+  Coeffs r = l;
+  l.hi[0] = w.hi[0];
+  l.lo[0] = w.lo[0];
+  l.err[0] = w.err[0];
+  r.hi[n1 - 1] = w.hi[n1 - 1];
+  r.lo[n1 - 1] = w.lo[n1 - 1];
+  r.err[n1 - 1] = w.err[n1 - 1];
+  for (std::size_t level = n1 - 1; level > 0; --level) {
+    for (std::size_t i = 0; i < level; ++i) {
+      double h = 0.0;
+      double lo = 0.0;
+      double rounding = 0.0;
+      combine(w.hi[i], w.lo[i], w.hi[i + 1], w.lo[i + 1], th, tl, s, &h, &lo, &rounding);
+      const double err = (std::abs(th) + std::abs(tl)) * w.err[i] + s * w.err[i + 1] + rounding;
+      w.hi[i] = h;
+      w.lo[i] = lo;
+      w.err[i] = err * kBoundInflation;
+    }
+    l.hi[n1 - level] = w.hi[0];
+    l.lo[n1 - level] = w.lo[0];
+    l.err[n1 - level] = w.err[0];
+    r.hi[level - 1] = w.hi[level - 1];
+    r.lo[level - 1] = w.lo[level - 1];
+    r.err[level - 1] = w.err[level - 1];
   }
-  if (right != nullptr) {
-    *right = std::move(r);
-    *right_e = std::move(re);
-  }
+  if (left != nullptr) *left = std::move(l);
+  if (right != nullptr) *right = std::move(r);
 }
 
 /// Upper bound on |p'| * (b - a) over [a, b] (from the derivative's Bernstein coefficients):
-/// n max_j (|c_{j+1} - c_j| + e_j + e_{j+1}).
-double derivativeTimesWidthBound(const std::vector<double>& c, const std::vector<double>& e) {
+/// n max_j (|c_{j+1} - c_j| + r_j + r_{j+1}).
+double derivativeTimesWidthBound(const std::vector<double>& c, const std::vector<double>& r) {
   const std::size_t n = c.size() - 1;
   double m = 0.0;
-  for (std::size_t j = 0; j < n; ++j) m = std::max(m, std::abs(c[j + 1] - c[j]) + e[j] + e[j + 1]);
+  for (std::size_t j = 0; j < n; ++j) m = std::max(m, std::abs(c[j + 1] - c[j]) + r[j] + r[j + 1]);
   return static_cast<double>(n) * m * kBoundInflation;
 }
 
@@ -158,17 +214,16 @@ void addToAll(std::vector<double>* e, double v) {
   for (double& x : *e) x = (x + v) * kBoundInflation;
 }
 
-/// Coefficients on the unit sub-interval [s0, s1] of the node (0 <= s0 < s1 <= 1), with error
-/// bounds that include the mislabelling of the new end points (at most 6u of the node width,
-/// times the derivative bound).
-void restrictWithError(const std::vector<double>& c, const std::vector<double>& e, double s0, double s1,
-                       std::vector<double>* out, std::vector<double>* out_e) {
-  const double label = 6.0 * kUnitRoundoff * derivativeTimesWidthBound(c, e);
-  *out = c;
-  *out_e = e;
-  if (s1 != 1.0) splitGeneral(*out, *out_e, s1, out, out_e, nullptr, nullptr);
-  if (s0 != 0.0) splitGeneral(*out, *out_e, s0 / s1, nullptr, nullptr, out, out_e);
-  addToAll(out_e, label);
+/// Coefficients on the unit sub-interval [s0, s1] of the node (0 <= s0 < s1 <= 1). The new end
+/// points are labelled by doubles within 6u of the node width of the points actually used;
+/// that mislabelling times the derivative bound is added to every error bound.
+Coeffs restrictCoeffs(const Coeffs& in, double s0, double s1) {
+  const double label = 6.0 * kUnitRoundoff * derivativeTimesWidthBound(in.hi, radii(in));
+  Coeffs out = in;
+  if (s1 != 1.0) splitGeneral(out, s1, &out, nullptr);
+  if (s0 != 0.0) splitGeneral(out, s0 / s1, nullptr, &out);
+  addToAll(&out.err, label);
+  return out;
 }
 
 /// Value and error bound at x in [lo, hi] of the node polynomial.
@@ -254,8 +309,7 @@ Certified evaluateCompensated(const std::vector<double>& c, const std::vector<do
 // --------------------------------------------------------------------------------------------
 
 struct Node {
-  std::vector<double> c;
-  std::vector<double> e;
+  Coeffs k;
   double lo;
   double hi;
   int depth;
@@ -263,27 +317,33 @@ struct Node {
   RootKind kind;
   /// bezierClip(): an ancestor (or this node) was certified to hold exactly one root in its
   /// open interval, so this node holds it iff its end values have opposite signs.
-  bool one_root = false;
+  bool one_root;
 };
+
+Node pointNode(double x, RootKind kind) { return Node{Coeffs{}, x, x, 0, true, kind, false}; }
 
 struct Found {
   RootInterval interval;
-  std::vector<double> c;  ///< local coefficients on [lo, hi] (lo < hi only)
-  std::vector<double> e;  ///< their error bounds
+  std::vector<double> c;  ///< local coefficients (hi parts) on [lo, hi] (lo < hi only)
+  std::vector<double> r;  ///< their radii
 };
 
-/// Kind of an exact zero at an endpoint, from the adjacent coefficient (derivative sign).
+/// Kind of an exact zero at an endpoint of the input interval, from the adjacent (exact)
+/// coefficient, whose sign is that of the derivative there.
 RootKind endpointKind(double adjacent) { return adjacent != 0.0 ? RootKind::Single : RootKind::Unresolved; }
 
 /// Kind of an exact zero at an interior split point: both one-sided derivative estimates must
 /// have certain, equal signs.
-RootKind splitPointKind(const std::vector<double>& l, const std::vector<double>& le, const std::vector<double>& r,
-                        const std::vector<double>& re) {
-  const SignClass from_right = signClass(r[1], re[1]);                     // ~ n (r1 - r0) / w, r0 == 0
-  const SignClass from_left = signClass(-l[l.size() - 2], le[l.size() - 2]);  // ~ n (l_n - l_{n-1}) / w
-  const bool ok = (from_right == kPositive || from_right == kNegative) && from_right == from_left;
-  return ok ? RootKind::Single : RootKind::Unresolved;
+RootKind splitPointKind(const Coeffs& l, const Coeffs& r) {
+  const std::vector<double> lr = radii(l);
+  const std::vector<double> rr = radii(r);
+  const std::size_t n = l.hi.size() - 1;
+  const SignClass from_right = signClass(r.hi[1], rr[1]);        // ~ n (r1 - r0) / w, r0 == 0
+  const SignClass from_left = signClass(-l.hi[n - 1], lr[n - 1]);  // ~ n (l_n - l_{n-1}) / w, l_n == 0
+  return (isSign(from_right) && from_right == from_left) ? RootKind::Single : RootKind::Unresolved;
 }
+
+bool exactZero(const Coeffs& k, std::size_t i) { return k.hi[i] == 0.0 && k.lo[i] == 0.0 && k.err[i] == 0.0; }
 
 void checkWidth(const char* where, const char* what, double w, bool allow_zero) {
   if (!std::isfinite(w) || w < 0.0 || (!allow_zero && w == 0.0)) {
@@ -293,54 +353,44 @@ void checkWidth(const char* where, const char* what, double w, bool allow_zero) 
   }
 }
 
-/// Midpoint of [lo, hi] and the exact rounding error of its computation (m_exact = m + err).
-std::pair<double, double> midpoint(double lo, double hi) {
-  const double x = 0.5 * lo;
-  const double y = 0.5 * hi;
+/// Splits a node at its midpoint. The children's bounds include the mislabelling of the
+/// midpoint when 0.5 lo + 0.5 hi is not exact (never on dyadic grids such as [0,1]).
+void splitNodeHalf(const Node& node, Node* left, Node* right) {
+  const double x = 0.5 * node.lo;
+  const double y = 0.5 * node.hi;
   const double m = x + y;
-  return {m, twoSumError(x, y, m)};
-}
-
-/// Splits a node at its midpoint; returns the midpoint. Children's bounds include the
-/// mislabelling of the midpoint when it is not exactly representable.
-double splitNodeHalf(const Node& node, Node* left, Node* right) {
-  const std::pair<double, double> mid = midpoint(node.lo, node.hi);
-  splitHalf(node.c, node.e, &left->c, &left->e, &right->c, &right->e);
-  if (mid.second != 0.0) {
-    // |m - m_exact| |p'| <= |err| * bound(|p'| w) / w, with w bounded below by (hi - lo)(1 - 2u).
+  const double m_error = twoSumError(x, y, m);  // exact midpoint = m + m_error
+  splitHalf(node.k, &left->k, &right->k);
+  if (m_error != 0.0) {
+    // |m - m_exact| |p'| <= |m_error| * bound(|p'| w) / w, with w bounded below.
     const double w = (node.hi - node.lo) * (1.0 - 2.0 * kUnitRoundoff);
-    const double label = std::abs(mid.second) * derivativeTimesWidthBound(node.c, node.e) / w * kBoundInflation;
-    addToAll(&left->e, label);
-    addToAll(&right->e, label);
+    const double label = std::abs(m_error) * derivativeTimesWidthBound(node.k.hi, radii(node.k)) / w * kBoundInflation;
+    addToAll(&left->k.err, label);
+    addToAll(&right->k.err, label);
   }
   left->lo = node.lo;
-  left->hi = mid.first;
-  right->lo = mid.first;
+  left->hi = m;
+  right->lo = m;
   right->hi = node.hi;
   left->depth = right->depth = node.depth + 1;
   left->is_point = right->is_point = false;
   left->kind = right->kind = RootKind::Single;
   left->one_root = right->one_root = node.one_root;
-  return mid.first;
 }
 
-/// Descartes / VCA isolation; shared by isolateRoots() and firstRoot(). Produces intervals in
-/// left-to-right order (depth first, left child first); stops after the first when
-/// `first_only`.
-std::vector<Found> isolate(const BernsteinPolynomial& p, double min_width, bool first_only) {
+/// Descartes / VCA isolation in the unit parameter s of [a, b] (so that every subdivision point
+/// is an exact dyadic rational); shared by isolateRoots() and firstRoot(). Produces intervals
+/// in s, left to right (depth first, left child first); stops after the first when
+/// `first_only`. p must not be identically zero.
+std::vector<Found> isolateUnit(const BernsteinPolynomial& p, double min_width, bool first_only) {
   std::vector<Found> out;
   const std::vector<double>& c0 = p.coefficients();
   const std::size_t n = c0.size() - 1;
-  const std::vector<double> zero_e(c0.size(), 0.0);
-  if (p.isZero()) {
-    out.push_back({{p.lower(), p.upper(), RootKind::Unresolved}, c0, zero_e});
-    return out;
-  }
   std::vector<Node> stack;
   // LIFO: push the right end first so that the output comes out sorted.
-  if (c0[n] == 0.0) stack.push_back({{}, {}, p.upper(), p.upper(), 0, true, endpointKind(c0[n - 1])});
-  stack.push_back({c0, zero_e, p.lower(), p.upper(), 0, false, RootKind::Single});
-  if (c0[0] == 0.0) stack.push_back({{}, {}, p.lower(), p.lower(), 0, true, endpointKind(c0[1])});
+  if (c0[n] == 0.0) stack.push_back(pointNode(1.0, endpointKind(c0[n - 1])));
+  stack.push_back(Node{exactCoeffs(c0), 0.0, 1.0, 0, false, RootKind::Single, false});
+  if (c0[0] == 0.0) stack.push_back(pointNode(0.0, endpointKind(c0[1])));
 
   int nodes = 0;
   while (!stack.empty()) {
@@ -351,11 +401,12 @@ std::vector<Found> isolate(const BernsteinPolynomial& p, double min_width, bool 
       if (first_only) return out;
       continue;
     }
-    const Descartes d = classify(node.c, node.e);
+    std::vector<double> r = radii(node.k);
+    const Descartes d = classify(node.k.hi, r);
     if (d == Descartes::kNoRoot) continue;  // endpoint zeros are reported as points
     ++nodes;
     if (d == Descartes::kOneRoot) {
-      out.push_back({{node.lo, node.hi, RootKind::Single}, std::move(node.c), std::move(node.e)});
+      out.push_back({{node.lo, node.hi, RootKind::Single}, std::move(node.k.hi), std::move(r)});
       if (first_only) return out;
       continue;
     }
@@ -364,36 +415,37 @@ std::vector<Found> isolate(const BernsteinPolynomial& p, double min_width, bool 
     // report conservatively.
     if (nodes > kMaxIsolationNodes || node.hi - node.lo <= min_width || node.depth >= kMaxIsolationDepth ||
         !(node.lo < m && m < node.hi)) {
-      out.push_back({{node.lo, node.hi, RootKind::Unresolved}, std::move(node.c), std::move(node.e)});
+      out.push_back({{node.lo, node.hi, RootKind::Unresolved}, std::move(node.k.hi), std::move(r)});
       if (first_only) return out;
       continue;
     }
     Node left;
     Node right;
     splitNodeHalf(node, &left, &right);
-    const bool zero_at_m = left.c.back() == 0.0 && left.e.back() == 0.0;
-    const RootKind mid_kind = zero_at_m ? splitPointKind(left.c, left.e, right.c, right.e) : RootKind::Single;
+    const bool zero_at_m = exactZero(left.k, n);
+    const RootKind mid_kind = zero_at_m ? splitPointKind(left.k, right.k) : RootKind::Single;
     stack.push_back(std::move(right));
-    if (zero_at_m) stack.push_back({{}, {}, left.hi, left.hi, 0, true, mid_kind});
+    if (zero_at_m) stack.push_back(pointNode(left.hi, mid_kind));
     stack.push_back(std::move(left));
   }
   return out;
 }
 
 /// [smin, smax]: the intersection with the axis of the convex hull of the points
-/// (i/n, c_i - e_i) and (i/n, c_i + e_i), which contains the control polygon of every
-/// polynomial within the error bounds. Returns false when it is empty.
-bool hullAxisIntersection(const std::vector<double>& c, const std::vector<double>& e, double* smin, double* smax) {
+/// (i/n, c_i - r_i) and (i/n, c_i + r_i), which contains the control polygon of every
+/// polynomial within the radii. Returns false when it is empty.
+bool hullAxisIntersection(const std::vector<double>& c, const std::vector<double>& rad, double* smin,
+                          double* smax) {
   const std::size_t n = c.size() - 1;
   const double inv_n = 1.0 / static_cast<double>(n);
   std::vector<double> xs;
   std::vector<double> ys;
   for (std::size_t i = 0; i <= n; ++i) {
     xs.push_back(static_cast<double>(i) * inv_n);
-    ys.push_back(c[i] - e[i]);
-    if (e[i] != 0.0) {
+    ys.push_back(c[i] - rad[i]);
+    if (rad[i] != 0.0) {
       xs.push_back(static_cast<double>(i) * inv_n);
-      ys.push_back(c[i] + e[i]);
+      ys.push_back(c[i] + rad[i]);
     }
   }
   double lo = kInfinity;
@@ -417,6 +469,37 @@ bool hullAxisIntersection(const std::vector<double>& c, const std::vector<double
   *smin = std::max(lo, 0.0);
   *smax = std::min(hi, 1.0);
   return true;
+}
+
+/// Encloses t = a + s (b - a): returns doubles down <= t_exact <= up (equal when the mapping is
+/// exact, e.g. always for [a, b] = [0, 1]). The rounding of each operation is computed exactly
+/// (TwoSum, FMA) and the result is widened outward by it plus one ulp.
+std::pair<double, double> mapToT(double s, double a, double b) {
+  if (s == 0.0) return {a, a};
+  if (s == 1.0) return {b, b};
+  const double w = b - a;
+  const double ew = twoSumError(b, -a, w);
+  const double prod = s * w;
+  const double ep = std::fma(s, w, -prod);
+  const double t = a + prod;
+  const double et = twoSumError(a, prod, t);
+  // t_exact = t + et + ep + s ew
+  const double err = std::abs(et) + std::abs(ep) + std::abs(s * ew) * (1.0 + 4.0 * kUnitRoundoff);
+  if (err == 0.0) return {t, t};
+  const double pad = err * kBoundInflation;
+  return {std::max(a, std::nextafter(t - pad, -kInfinity)), std::min(b, std::nextafter(t + pad, kInfinity))};
+}
+
+RootInterval mapToT(const RootInterval& r, double a, double b) {
+  return {mapToT(r.lo, a, b).first, mapToT(r.hi, a, b).second, r.kind};
+}
+
+/// A width in t converted to the unit parameter so that mapped intervals (widened by
+/// mapToT()) stay within `width` whenever width >= 2 slack, slack being the widening.
+double unitWidth(double width, double a, double b) {
+  const double slack = 8.0 * kUnitRoundoff * (std::abs(a) + std::abs(b)) + 4.0 * DBL_TRUE_MIN;
+  const double wt = std::max(width - slack, 0.5 * width);
+  return wt / (b - a) * (1.0 - 8.0 * kUnitRoundoff);
 }
 
 bool lessInterval(const RootInterval& x, const RootInterval& y) {
@@ -532,10 +615,11 @@ int descartesBound(const BernsteinPolynomial& p) { return p.signVariations(); }
 
 std::vector<RootInterval> isolateRoots(const BernsteinPolynomial& p, double min_width) {
   checkWidth("isolateRoots", "min_width", min_width, true);
-  std::vector<Found> found = isolate(p, min_width, false);
+  if (p.isZero()) return {RootInterval{p.lower(), p.upper(), RootKind::Unresolved}};
+  const std::vector<Found> found = isolateUnit(p, unitWidth(min_width, p.lower(), p.upper()), false);
   std::vector<RootInterval> out;
   out.reserve(found.size());
-  for (const Found& f : found) out.push_back(f.interval);
+  for (const Found& f : found) out.push_back(mapToT(f.interval, p.lower(), p.upper()));
   return out;
 }
 
@@ -543,25 +627,27 @@ std::vector<RootInterval> bezierClip(const BernsteinPolynomial& p, double tol) {
   checkWidth("bezierClip", "tol", tol, false);
   std::vector<RootInterval> out;
   const std::vector<double>& c0 = p.coefficients();
-  const std::vector<double> zero_e(c0.size(), 0.0);
+  const std::vector<double> zero_r(c0.size(), 0.0);
   const std::size_t n = c0.size() - 1;
   if (p.isZero()) {
     out.push_back({p.lower(), p.upper(), RootKind::Unresolved});
     return out;
   }
-  if (c0[0] == 0.0) out.push_back({p.lower(), p.lower(), endpointKind(c0[1])});
-  if (c0[n] == 0.0) out.push_back({p.upper(), p.upper(), endpointKind(c0[n - 1])});
-  // Certified sign of the input polynomial at x (compensated evaluation).
-  auto signAt = [&](double x) { return signClass(evaluateCompensated(c0, zero_e, p.lower(), p.upper(), x)); };
-  auto isSign = [](SignClass sc) { return sc == kPositive || sc == kNegative; };
+  if (c0[0] == 0.0) out.push_back({0.0, 0.0, endpointKind(c0[1])});
+  if (c0[n] == 0.0) out.push_back({1.0, 1.0, endpointKind(c0[n - 1])});
+  // Certified sign of the input polynomial at the unit parameter x (compensated evaluation;
+  // exact parameter, so no position error).
+  auto signAt = [&](double x) { return signClass(evaluateCompensated(c0, zero_r, 0.0, 1.0, x)); };
+  const double tol_unit = unitWidth(tol, p.lower(), p.upper());
 
   std::vector<Node> stack;
-  stack.push_back({c0, zero_e, p.lower(), p.upper(), 0, false, RootKind::Single});
+  stack.push_back(Node{exactCoeffs(c0), 0.0, 1.0, 0, false, RootKind::Single, false});
   int iterations = 0;
   while (!stack.empty()) {
     Node node = std::move(stack.back());
     stack.pop_back();
-    const Descartes d = classify(node.c, node.e);
+    const std::vector<double> r = radii(node.k);
+    const Descartes d = classify(node.k.hi, r);
     if (d == Descartes::kNoRoot) continue;
     node.one_root = node.one_root || d == Descartes::kOneRoot;
     const double w = node.hi - node.lo;
@@ -569,7 +655,7 @@ std::vector<RootInterval> bezierClip(const BernsteinPolynomial& p, double tol) {
       out.push_back({node.lo, node.hi, RootKind::Unresolved});
       continue;
     }
-    if (w <= tol) {
+    if (w <= tol_unit) {
       bool single = d == Descartes::kOneRoot;
       if (!single && node.one_root) {
         const SignClass sl = signAt(node.lo);
@@ -581,17 +667,17 @@ std::vector<RootInterval> bezierClip(const BernsteinPolynomial& p, double tol) {
     }
     double smin = 0.0;
     double smax = 1.0;
-    if (!hullAxisIntersection(node.c, node.e, &smin, &smax)) continue;  // excluded by kNoRoot already
+    if (!hullAxisIntersection(node.k.hi, r, &smin, &smax)) continue;  // excluded by kNoRoot already
     smin = std::max(0.0, smin - kBezierClipRelativeMargin);
     smax = std::min(1.0, smax + kBezierClipRelativeMargin);
     // Clip to [new_lo, new_hi] (widened by one ulp on each clipped side); a clip narrower than
-    // tol is widened to ~tol around its centre so that its end values stay certifiable.
+    // tol / 2 is widened to tol / 2 around its centre so that its end values stay certifiable.
     double new_lo = smin > 0.0 ? std::max(node.lo, std::nextafter(node.lo + smin * w, -kInfinity)) : node.lo;
     double new_hi = smax < 1.0 ? std::min(node.hi, std::nextafter(node.lo + smax * w, kInfinity)) : node.hi;
-    if (new_hi - new_lo < 0.5 * tol) {
+    if (new_hi - new_lo < 0.5 * tol_unit) {
       const double centre = 0.5 * new_lo + 0.5 * new_hi;
-      new_lo = std::max(node.lo, centre - 0.25 * tol);
-      new_hi = std::min(node.hi, centre + 0.25 * tol);
+      new_lo = std::max(node.lo, centre - 0.25 * tol_unit);
+      new_hi = std::min(node.hi, centre + 0.25 * tol_unit);
     }
     const bool progress = new_lo < new_hi && (new_lo > node.lo || new_hi < node.hi);
     if (smax - smin > kBezierClipSplitFraction || !progress) {
@@ -603,8 +689,8 @@ std::vector<RootInterval> bezierClip(const BernsteinPolynomial& p, double tol) {
       Node left;
       Node right;
       splitNodeHalf(node, &left, &right);
-      if (left.c.back() == 0.0 && left.e.back() == 0.0) {
-        out.push_back({m, m, splitPointKind(left.c, left.e, right.c, right.e)});
+      if (exactZero(left.k, n)) {
+        out.push_back({m, m, splitPointKind(left.k, right.k)});
         if (node.one_root) continue;  // the only root of this node is at m
       }
       if (node.one_root) {
@@ -626,26 +712,21 @@ std::vector<RootInterval> bezierClip(const BernsteinPolynomial& p, double tol) {
       stack.push_back(std::move(left));
       continue;
     }
-    Node clipped;
-    restrictWithError(node.c, node.e, (new_lo - node.lo) / w, (new_hi - node.lo) / w, &clipped.c, &clipped.e);
-    clipped.lo = new_lo;
-    clipped.hi = new_hi;
-    clipped.depth = node.depth + 1;
-    clipped.is_point = false;
-    clipped.kind = RootKind::Single;
-    clipped.one_root = node.one_root;
+    Node clipped{restrictCoeffs(node.k, (new_lo - node.lo) / w, (new_hi - node.lo) / w), new_lo, new_hi,
+                 node.depth + 1, false, RootKind::Single, node.one_root};
     stack.push_back(std::move(clipped));
   }
+  for (RootInterval& ri : out) ri = mapToT(ri, p.lower(), p.upper());
   std::sort(out.begin(), out.end(), lessInterval);
   // Remove duplicate point roots (the same point reached from two sides).
   std::vector<RootInterval> unique;
   unique.reserve(out.size());
-  for (const RootInterval& r : out) {
-    if (!unique.empty() && r.lo == r.hi && unique.back().lo == r.lo && unique.back().hi == r.hi) {
-      if (r.kind == RootKind::Unresolved) unique.back().kind = RootKind::Unresolved;
+  for (const RootInterval& ri : out) {
+    if (!unique.empty() && ri.lo == ri.hi && unique.back().lo == ri.lo && unique.back().hi == ri.hi) {
+      if (ri.kind == RootKind::Unresolved) unique.back().kind = RootKind::Unresolved;
       continue;
     }
-    unique.push_back(r);
+    unique.push_back(ri);
   }
   return unique;
 }
@@ -682,23 +763,31 @@ double refineRoot(const BernsteinPolynomial& p, double lo, double hi, double tol
 std::optional<double> firstRoot(const BernsteinPolynomial& p, double tol) {
   checkWidth("firstRoot", "tol", tol, false);
   if (p.isZero()) return p.lower();
-  const std::vector<Found> found = isolate(p, tol, true);
+  const double a = p.lower();
+  const double b = p.upper();
+  const double tol_unit = unitWidth(tol, a, b);
+  const std::vector<Found> found = isolateUnit(p, tol_unit, true);
   if (found.empty()) return std::nullopt;
   const Found& f = found.front();
-  if (f.interval.lo == f.interval.hi || f.interval.kind == RootKind::Unresolved) return f.interval.lo;
-  // Single: exactly one root in (lo, hi). Refine on the input coefficients (exact, so the
-  // compensated evaluation certifies signs very close to the root) when their values at lo and
-  // hi have certified opposite signs; otherwise on the local coefficients, whose end values
-  // are certified by construction.
-  const std::vector<double>& c0 = p.coefficients();
-  const std::vector<double> zero_e(c0.size(), 0.0);
-  const SignClass sl = signClass(evaluateCompensated(c0, zero_e, p.lower(), p.upper(), f.interval.lo));
-  const SignClass sh = signClass(evaluateCompensated(c0, zero_e, p.lower(), p.upper(), f.interval.hi));
-  if ((sl == kPositive && sh == kNegative) || (sl == kNegative && sh == kPositive)) {
-    return refineNode(c0, zero_e, p.lower(), p.upper(), f.interval.lo, f.interval.hi, static_cast<int>(sl), tol).lo;
+  if (f.interval.lo == f.interval.hi || f.interval.kind == RootKind::Unresolved) {
+    return mapToT(f.interval.lo, a, b).first;
   }
-  const int slo = sign(f.c.front());
-  return refineNode(f.c, f.e, f.interval.lo, f.interval.hi, f.interval.lo, f.interval.hi, slo, tol).lo;
+  // Single: exactly one root in (lo, hi). Refine on the input coefficients (exact, and the unit
+  // parameters are exact, so the compensated evaluation certifies signs very close to the root)
+  // when their values at lo and hi have certified opposite signs; otherwise on the local
+  // coefficients, whose end values are certified by construction.
+  const std::vector<double>& c0 = p.coefficients();
+  const std::vector<double> zero_r(c0.size(), 0.0);
+  const SignClass sl = signClass(evaluateCompensated(c0, zero_r, 0.0, 1.0, f.interval.lo));
+  const SignClass sh = signClass(evaluateCompensated(c0, zero_r, 0.0, 1.0, f.interval.hi));
+  RootInterval bracket;
+  if (isSign(sl) && isSign(sh) && sl != sh) {
+    bracket = refineNode(c0, zero_r, 0.0, 1.0, f.interval.lo, f.interval.hi, static_cast<int>(sl), tol_unit);
+  } else {
+    bracket = refineNode(f.c, f.r, f.interval.lo, f.interval.hi, f.interval.lo, f.interval.hi, sign(f.c.front()),
+                         tol_unit);
+  }
+  return mapToT(bracket.lo, a, b).first;
 }
 
 }  // namespace fcl_quadric

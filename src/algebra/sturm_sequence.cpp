@@ -52,25 +52,37 @@ int countChanges(const std::vector<int>& signs) {
 }  // namespace
 
 SturmSequence::SturmSequence(const Polynomial& p) {
+  constexpr double u = 1.1102230246251565e-16;  // unit roundoff
   const Polynomial p0 = p.trimmed();
   if (p0.isZero()) {
     throw std::invalid_argument("SturmSequence: the zero polynomial has infinitely many roots");
   }
   sequence_.push_back(p0);  // kept exact: its sign decisions use only the evaluation error
+  noise_.push_back(0.0);
   if (p0.degree() == 0) return;
   sequence_.push_back(normalised(sequence_.back().derivative().trimmed()));
+  noise_.push_back(4.0 * u);  // integer multiples and one normalisation
   // Each iteration lowers the degree by at least one: at most deg p - 1 further members.
   while (sequence_.back().degree() > 0) {
-    const Polynomial& dividend = sequence_[sequence_.size() - 2];
-    const Polynomial& divisor = sequence_.back();
+    const std::size_t k = sequence_.size() - 1;
+    const Polynomial& dividend = sequence_[k - 1];
+    const Polynomial& divisor = sequence_[k];
     const PolynomialDivision qr = divide(dividend, divisor);
-    const double scale = std::max(dividend.maxAbsCoefficient(), qr.quotient.maxAbsCoefficient() * divisor.maxAbsCoefficient());
-    const double threshold = kSturmRelativeZeroThreshold * scale;
+    const double scale =
+        std::max(dividend.maxAbsCoefficient(), qr.quotient.maxAbsCoefficient() * divisor.maxAbsCoefficient());
+    // Estimated rounding noise of the remainder, relative to scale: inherited relative errors of
+    // both operands plus the rounding of the long division.
+    const double noise = noise_[k - 1] + noise_[k] + 4.0 * static_cast<double>(dividend.degree() + 1) * u;
+    const double threshold = std::max(kSturmRelativeZeroThreshold, kSturmNoiseSafetyFactor * noise) * scale;
     std::vector<double> r = qr.remainder.coefficients();
     while (!r.empty() && std::abs(r.back()) <= threshold) r.pop_back();
     if (r.empty()) break;  // remainder is zero: the last member is gcd(p, p')
     for (double& v : r) v = -v;
-    sequence_.push_back(normalised(Polynomial(std::move(r))));
+    Polynomial next = Polynomial(std::move(r));
+    // Normalising a remainder of relative size rho amplifies its relative noise by 1 / rho.
+    const double rho = next.maxAbsCoefficient() / scale;
+    sequence_.push_back(normalised(next));
+    noise_.push_back(noise / rho + 2.0 * u);
   }
 }
 
@@ -97,9 +109,9 @@ int SturmSequence::variationsAt(double x) const {
   std::vector<int> s;
   s.reserve(sequence_.size());
   for (std::size_t k = 0; k < sequence_.size(); ++k) {
-    // p_0 is the caller's polynomial (exact coefficients); later members carry the rounding of
-    // the construction, bounded in relative terms by the zero threshold.
-    s.push_back(rightLimitSign(sequence_[k], x, k == 0 ? 0.0 : kSturmRelativeZeroThreshold));
+    // p_0 is the caller's polynomial (exact coefficients, zero noise); later members carry the
+    // estimated rounding noise of the construction.
+    s.push_back(rightLimitSign(sequence_[k], x, kSturmValueNoiseFactor * noise_[k]));
   }
   return countChanges(s);
 }

@@ -76,6 +76,7 @@ std::array<double, 5> characteristicPolynomialAffine(const Eigen::Matrix4d& M_A,
     p.t[i] = N(i, 3);
   }
   detail::completePencil(p);
+  detail::computePencilCoefficients(p);
   // f(-nu) = sum E_k nu^k  =>  f(lambda) = sum (-1)^k E_k lambda^k.
   return {p.E[0], -p.E[1], p.E[2], -p.E[3], p.E[4]};
 }

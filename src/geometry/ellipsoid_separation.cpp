@@ -29,11 +29,15 @@ namespace {
 template <class T>
 bool certify(const detail::Pencil<T>& p, const T& mu, double tau, SeparationCertificate* out, T x[3]) {
   detail::witness(p, mu, x);
-  const detail::WitnessValues w = detail::witnessValues(p, mu, x);
+  detail::WitnessValues w = detail::witnessValues(p, mu, x);
   const double mud = toDouble(mu);
   out->mu = mud;
   out->psi = w.Q;
-  if (mud > 0.0) {
+  const bool maybe_separated = mud > 0.0 && w.Q > 0.0;
+  const bool maybe_overlapping = w.qa < 0.0 && w.qb < 0.0;
+  if (!maybe_separated && !maybe_overlapping) return false;
+  detail::witnessScales(p, mud, x, &w);
+  if (maybe_separated) {
     const double rn = std::sqrt(w.residual2) + tau * std::sqrt(w.residual_scale2);
     const double lower = w.Q - tau * w.scale_Q - rn * rn / mud;
     if (lower > 0.0) {
@@ -41,7 +45,7 @@ bool certify(const detail::Pencil<T>& p, const T& mu, double tau, SeparationCert
       return true;
     }
   }
-  if (w.qa < -tau * w.scale_a && w.qb < -tau * w.scale_b) {
+  if (maybe_overlapping && w.qa < -tau * w.scale_a && w.qb < -tau * w.scale_b) {
     out->status = Separation::Overlapping;
     return true;
   }
@@ -89,15 +93,25 @@ SeparationCertificate classifyEllipsoids(const Ellipsoid& a, const Ellipsoid& b)
   }
 
   // Stage 0: double.
-  const detail::Pencil<double> p = detail::makePencil<double>(A, B);
+  detail::Pencil<double> p = detail::makePencil<double>(A, B);
   // Most pairs are far from tangency: try the certificates at the starting guess first and run
   // the Newton search for the maximiser only when they do not decide.
   double mu = detail::initialMu(p);
   double x[3];
   bool decided = certify<double>(p, mu, tolerance::kCertificateRelativeBoundDouble, &cert, x);
   if (!decided) {
-    mu = detail::maximisePsi(p, mu, &cert.iterations);
+    // Newton towards the maximiser, stopping at the first iterate where a certificate can succeed;
+    // if it still does not (near tangency), converge fully and try once more.
+    detail::computePencilCoefficients(p);
+    int iterations = 0;
+    mu = detail::maximisePsi(p, mu, &iterations, /*stop_when_promising=*/true);
+    cert.iterations = iterations;
     decided = certify<double>(p, mu, tolerance::kCertificateRelativeBoundDouble, &cert, x);
+    if (!decided) {
+      mu = detail::maximisePsi(p, mu, &iterations);
+      cert.iterations += iterations;
+      decided = certify<double>(p, mu, tolerance::kCertificateRelativeBoundDouble, &cert, x);
+    }
   }
   if (decided) {
     cert.precision_stage = 0;
@@ -110,7 +124,8 @@ SeparationCertificate classifyEllipsoids(const Ellipsoid& a, const Ellipsoid& b)
   }
 
   // Stage 1: double-double, polishing the maximiser from the double estimate.
-  const detail::Pencil<DoubleDouble> pd = detail::makePencil<DoubleDouble>(A, B);
+  detail::Pencil<DoubleDouble> pd = detail::makePencil<DoubleDouble>(A, B);
+  detail::computePencilCoefficients(pd);
   int it_dd = 0;
   const DoubleDouble mud = detail::maximisePsi(pd, mu, &it_dd);
   cert.iterations += it_dd;

@@ -20,6 +20,10 @@ void completePencil(Pencil<T>& p) {
     p.v[j] = p.L[0][j] * p.t[0] + p.L[1][j] * p.t[1] + p.L[2][j] * p.t[2];
   }
   p.s = p.t[0] * p.t[0] + p.t[1] * p.t[1] + p.t[2] * p.t[2] - T(1.0);
+}
+
+template <class T>
+void computePencilCoefficients(Pencil<T>& p) {
   const auto& K = p.K;
   const auto& L = p.L;
   const T trK = K[0][0] + K[1][1] + K[2][2];
@@ -83,19 +87,17 @@ Pencil<T> makePencil(const Ellipsoid& a, const Ellipsoid& b) {
   }
   T d[3];
   for (int k = 0; k < 3; ++k) d[k] = T(a.center()[k]) - T(b.center()[k]);
-  const double dsum = std::fabs(toDouble(d[0])) + std::fabs(toDouble(d[1])) + std::fabs(toDouble(d[2]));
+  p.dsum = std::fabs(toDouble(d[0])) + std::fabs(toDouble(d[1])) + std::fabs(toDouble(d[2]));
   for (int i = 0; i < 3; ++i) {
     const T inv_rb = T(1.0) / T(rb[i]);
     const double inv_rbd = toDouble(inv_rb);
     for (int j = 0; j < 3; ++j) {
       T c = T(RB(0, i)) * RA[0][j] + T(RB(1, i)) * RA[1][j] + T(RB(2, i)) * RA[2][j];
       p.L[i][j] = c * T(ra[j]) * inv_rb;
-      // |(R_B^T R_A)_ij| <= 1 for rotations: the absolute rounding of L_ij is a small multiple of
-      // the unit roundoff times r_A,j / r_B,i, whatever the cancellation in c.
-      p.Lm[i][j] = ra[j] * inv_rbd;
     }
     p.t[i] = (T(RB(0, i)) * d[0] + T(RB(1, i)) * d[1] + T(RB(2, i)) * d[2]) * inv_rb;
-    p.tm[i] = dsum * inv_rbd;
+    p.inv_rb[i] = inv_rbd;
+    p.ra[i] = ra[i];
   }
   completePencil(p);
   return p;
@@ -153,40 +155,48 @@ void witness(const Pencil<T>& p, const T& mu, T x[3]) {
 template <class T>
 WitnessValues witnessValues(const Pencil<T>& p, const T& mu, const T x[3]) {
   WitnessValues w;
-  const double mud = toDouble(mu), rd = 1.0 - mud;
-  double ax[3];
-  for (int i = 0; i < 3; ++i) ax[i] = std::fabs(toDouble(x[i]));
   const T qa = x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - T(1.0);
-  w.scale_a = ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2] + 1.0;
   T y[3];
-  double ay[3];
   T qb = T(-1.0);
-  w.scale_b = 1.0;
   for (int i = 0; i < 3; ++i) {
     y[i] = p.L[i][0] * x[0] + p.L[i][1] * x[1] + p.L[i][2] * x[2] + p.t[i];
     qb = qb + y[i] * y[i];
-    ay[i] = std::fabs(toDouble(p.t[i])) + p.tm[i];
-    for (int j = 0; j < 3; ++j) ay[i] += (std::fabs(toDouble(p.L[i][j])) + p.Lm[i][j]) * ax[j];
-    w.scale_b += ay[i] * ay[i];
   }
   w.qa = toDouble(qa);
   w.qb = toDouble(qb);
   // Q(x) = mu q_A + (1-mu) q_B and r = grad Q / 2 = mu x + (1-mu) L^T y.
   const T r1 = T(1.0) - mu;
   w.Q = toDouble(mu * qa + r1 * qb);
-  w.scale_Q = mud * w.scale_a + rd * w.scale_b;
   w.residual2 = 0.0;
-  w.residual_scale2 = 0.0;
   for (int j = 0; j < 3; ++j) {
-    const T rj = mu * x[j] + r1 * (p.L[0][j] * y[0] + p.L[1][j] * y[1] + p.L[2][j] * y[2]);
-    const double mag = mud * ax[j] + rd * ((std::fabs(toDouble(p.L[0][j])) + p.Lm[0][j]) * ay[0] +
-                                           (std::fabs(toDouble(p.L[1][j])) + p.Lm[1][j]) * ay[1] +
-                                           (std::fabs(toDouble(p.L[2][j])) + p.Lm[2][j]) * ay[2]);
-    const double rjd = std::fabs(toDouble(rj));
-    w.residual2 += rjd * rjd;
-    w.residual_scale2 += mag * mag;
+    const double rj = toDouble(mu * x[j] + r1 * (p.L[0][j] * y[0] + p.L[1][j] * y[1] + p.L[2][j] * y[2]));
+    w.residual2 += rj * rj;
   }
   return w;
+}
+
+template <class T>
+void witnessScales(const Pencil<T>& p, double mu, const T x[3], WitnessValues* w) {
+  // Entrywise magnitudes: |L_ij| and its rounding are both <= r_A,j / r_B,i (|(R_B^T R_A)_ij| <= 1),
+  // |t_i| and its rounding <= |p_A - p_B|_1 / r_B,i; we use twice those.
+  double ax[3];
+  for (int i = 0; i < 3; ++i) ax[i] = std::fabs(toDouble(x[i]));
+  w->scale_a = ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2] + 1.0;
+  const double h = 2.0 * (p.ra[0] * ax[0] + p.ra[1] * ax[1] + p.ra[2] * ax[2] + p.dsum);
+  double ay[3], s_ay = 0.0;
+  w->scale_b = 1.0;
+  for (int i = 0; i < 3; ++i) {
+    ay[i] = h * p.inv_rb[i];  // >= |L_i. x| + |t_i| plus their rounding
+    w->scale_b += ay[i] * ay[i];
+    s_ay += ay[i] * p.inv_rb[i];
+  }
+  const double rd = 1.0 - mu;
+  w->scale_Q = mu * w->scale_a + rd * w->scale_b;
+  w->residual_scale2 = 0.0;
+  for (int j = 0; j < 3; ++j) {
+    const double mag = mu * ax[j] + rd * 2.0 * p.ra[j] * s_ay;
+    w->residual_scale2 += mag * mag;
+  }
 }
 
 double initialMu(const Pencil<double>& p) {
@@ -198,7 +208,7 @@ double initialMu(const Pencil<double>& p) {
 }
 
 template <class T>
-T maximisePsi(const Pencil<T>& p, double mu0, int* iterations) {
+T maximisePsi(const Pencil<T>& p, double mu0, int* iterations, bool stop_when_promising) {
   // P(mu) = F'G - FG' has the sign of psi' (G > 0 on [0,1]); psi is concave, so P is positive
   // left of the maximiser and negative right of it: keep that bracket, take Newton steps inside
   // it and bisect otherwise. Stop once a Newton step is below kPencilNewtonStep: the next error
@@ -212,6 +222,13 @@ T maximisePsi(const Pencil<T>& p, double mu0, int* iterations) {
     const PencilValues<T> e = evaluatePencil(p, mu);
     const T Pv = e.dF * e.G - e.F * e.dG;
     const T dP = e.d2F * e.G - e.F * e.d2G;
+    if (stop_when_promising && it > 0) {
+      // psi = F/G and psi' = P/G^2 give q_A = psi + (1-mu) psi' and q_B = psi - mu psi' at the
+      // witness x(mu) (envelope theorem): stop as soon as a certificate can succeed here.
+      const double F = toDouble(e.F), G = toDouble(e.G), psi = F / G, dpsi = toDouble(Pv) / (G * G);
+      const double m = toDouble(mu);
+      if (F > 0.0 || (psi + (1.0 - m) * dpsi < 0.0 && psi - m * dpsi < 0.0)) return mu;
+    }
     if (Pv > T(0.0)) lo = mu; else if (Pv < T(0.0)) hi = mu; else return mu;
     T next;
     bool newton_ok = dP < T(0.0);
@@ -264,11 +281,13 @@ bool swapForCanonicalOrder(const Ellipsoid& a, const Ellipsoid& b) {
 #define FCL_QUADRIC_INSTANTIATE_PENCIL(T)                                                        \
   template Pencil<T> makePencil<T>(const Ellipsoid&, const Ellipsoid&);                          \
   template void completePencil<T>(Pencil<T>&);                                                   \
+  template void computePencilCoefficients<T>(Pencil<T>&);                                        \
   template PencilValues<T> evaluatePencil<T>(const Pencil<T>&, const T&);                        \
   template T evaluateF<T>(const Pencil<T>&, const T&);                                           \
   template void witness<T>(const Pencil<T>&, const T&, T*);                                      \
   template WitnessValues witnessValues<T>(const Pencil<T>&, const T&, const T*);                 \
-  template T maximisePsi<T>(const Pencil<T>&, double, int*);
+  template void witnessScales<T>(const Pencil<T>&, double, const T*, WitnessValues*);            \
+  template T maximisePsi<T>(const Pencil<T>&, double, int*, bool);
 
 FCL_QUADRIC_INSTANTIATE_PENCIL(double)
 FCL_QUADRIC_INSTANTIATE_PENCIL(DoubleDouble)

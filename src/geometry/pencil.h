@@ -35,16 +35,24 @@ struct Pencil {
   T g[4];     // scaled Bernstein coefficients of G
   T bernF[5];    // Bernstein coefficients of F (degree 4)
   T bernG[4];    // Bernstein coefficients of G (degree 3)
-  double Lm[3][3];  // r_A,j / r_B,i: scale of the absolute rounding error of L_ij
-  double tm[3];     // |p_A - p_B|_1 / r_B,i: scale of the absolute rounding error of t_i
+  double ra[3];      // radii of A
+  double inv_rb[3];  // 1 / radii of B
+  double dsum;       // |p_A - p_B|_1: with ra, inv_rb the magnitude scales of L and t
 };
 
+/// L, t, K, v, s (not the coefficients: see computePencilCoefficients).
 template <class T>
 Pencil<T> makePencil(const Ellipsoid& a, const Ellipsoid& b);
 
-/// Fill K, v, s, E, g, bernF, bernG and m from p.L and p.t (shared with the affine entry point).
+/// Fill K, v and s from p.L and p.t (shared with the affine entry point).
 template <class T>
 void completePencil(Pencil<T>& p);
+
+/// Fill E, g and the Bernstein coefficients of F and G (needed by maximisePsi, evaluatePencil,
+/// evaluateF and rootOfF; the certificates need only L, t, K, v). Kept separate because most
+/// pairs are decided at the starting guess, before any of these are needed.
+template <class T>
+void computePencilCoefficients(Pencil<T>& p);
 
 template <class T>
 struct PencilValues {
@@ -74,6 +82,10 @@ struct WitnessValues {
 };
 template <class T>
 WitnessValues witnessValues(const Pencil<T>& p, const T& mu, const T x[3]);
+/// The scales (absolute-value evaluations) of the values above; computed only when a
+/// certificate's sign pattern makes them worth computing.
+template <class T>
+void witnessScales(const Pencil<T>& p, double mu, const T x[3], WitnessValues* w);
 
 /// Starting guess for maximisePsi: the maximiser for two balls of the sizes of A and B.
 double initialMu(const Pencil<double>& p);
@@ -82,8 +94,10 @@ double initialMu(const Pencil<double>& p);
 /// of psi'). Starts at mu0 in (0,1); at most tolerance::kMaxPencilNewtonIterations steps; on
 /// reaching the cap the current bracket midpoint is returned (the certificates below are valid at
 /// any mu, so a poor maximiser can only send the decision to the next precision stage).
+/// With stop_when_promising, it returns the first iterate after mu0 at which a certificate can
+/// succeed (F > 0, or both q_A and q_B negative at the witness).
 template <class T>
-T maximisePsi(const Pencil<T>& p, double mu0, int* iterations);
+T maximisePsi(const Pencil<T>& p, double mu0, int* iterations, bool stop_when_promising = false);
 
 /// A root of F in [lo, hi] where F(lo) and F(hi) have opposite signs (safeguarded Newton with a
 /// bisection bracket, capped at tolerance::kMaxRootBracketIterations).

@@ -42,7 +42,8 @@ bool unitSphereChord(const Eigen::Vector3d& X0, const Eigen::Vector3d& D, double
 
 /// Theorem 4.6 construction in a's unit frame (the pencil of (a, b), a the unit ball).
 bool theorem46Plane(const Ellipsoid& a, const Ellipsoid& b, SeparatingPlane* out) {
-  const detail::Pencil<double> p = detail::makePencil<double>(a, b);
+  detail::Pencil<double> p = detail::makePencil<double>(a, b);
+  detail::computePencilCoefficients(p);
   int iterations = 0;
   const double mu_star = detail::maximisePsi(p, detail::initialMu(p), &iterations);
   if (!(detail::evaluateF(p, mu_star) > 0.0)) return false;  // roots not separable in double
