@@ -54,20 +54,6 @@ void deCasteljauSplit(const std::vector<double>& c, double s, std::vector<double
   if (right != nullptr) *right = std::move(rgt);
 }
 
-std::vector<double> restrictUnit(const std::vector<double>& c, double sc, double sd) {
-  std::vector<double> out(c);
-  if (sd != 0.0) {
-    // Left part on [0, sd], then right part at sc / sd of it.
-    if (sd != 1.0) deCasteljauSplit(out, sd, &out, nullptr);
-    if (sc != 0.0) deCasteljauSplit(out, sc / sd, nullptr, &out);
-  } else {
-    // sd == 0 < ... impossible for sc < sd unless sc < 0: right part on [sc, 1] first.
-    deCasteljauSplit(out, sc, nullptr, &out);
-    deCasteljauSplit(out, (sd - sc) / (1.0 - sc), &out, nullptr);
-  }
-  return out;
-}
-
 std::vector<double> powerToBernsteinUnit(const std::vector<double>& q, int n) {
   std::vector<double> c(static_cast<std::size_t>(n) + 1, 0.0);
   const int m = static_cast<int>(q.size()) - 1;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -130,8 +131,12 @@ double Polynomial::evaluateWithBound(double x, double* abs_error_bound) const {
     mu = ax * mu + std::abs(y);
   }
   if (abs_error_bound != nullptr) {
-    const double first_order = kUnitRoundoff * std::max(2.0 * mu - std::abs(y), 0.0);
-    *abs_error_bound = first_order * (1.0 + 4.0 * static_cast<double>(n + 2) * kUnitRoundoff);
+    if (!std::isfinite(mu)) {  // overflow: no meaningful bound
+      *abs_error_bound = std::numeric_limits<double>::infinity();
+    } else {
+      const double first_order = kUnitRoundoff * std::max(2.0 * mu - std::abs(y), 0.0);
+      *abs_error_bound = first_order * (1.0 + 4.0 * static_cast<double>(n + 2) * kUnitRoundoff);
+    }
   }
   return y;
 }

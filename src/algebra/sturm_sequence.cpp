@@ -9,8 +9,14 @@
 namespace fcl_quadric {
 namespace {
 
-/// p scaled to max|coefficient| = 1 (p nonzero).
-Polynomial normalised(const Polynomial& p) { return p * (1.0 / p.maxAbsCoefficient()); }
+/// p scaled to max|coefficient| = 1 (p nonzero); divides coefficient-wise so that a tiny
+/// maximum cannot overflow a reciprocal.
+Polynomial normalised(const Polynomial& p) {
+  const double m = p.maxAbsCoefficient();
+  std::vector<double> c = p.coefficients();
+  for (double& v : c) v /= m;
+  return Polynomial(std::move(c));
+}
 
 int sign(double v) { return (v > 0.0) - (v < 0.0); }
 
@@ -29,13 +35,14 @@ double absoluteSum(const Polynomial& q, double x) {
 /// deg q differentiations; the constant top derivative is decisive).
 int rightLimitSign(const Polynomial& q, double x, double relative_tol) {
   Polynomial d = q;
-  for (;;) {
+  const int n = q.degree();
+  for (int k = 0; k < n; ++k, d = d.derivative()) {
     double bound = 0.0;
     const double v = d.evaluateWithBound(x, &bound);
     if (relative_tol > 0.0) bound += relative_tol * absoluteSum(d, x);
-    if (std::abs(v) > bound || d.degree() == 0) return sign(v);
-    d = d.derivative();
+    if (std::abs(v) > bound) return sign(v);
   }
+  return sign(d.leadingCoefficient());  // the n-th derivative: a nonzero constant
 }
 
 int countChanges(const std::vector<int>& signs) {
@@ -62,8 +69,8 @@ SturmSequence::SturmSequence(const Polynomial& p) {
   if (p0.degree() == 0) return;
   sequence_.push_back(normalised(sequence_.back().derivative().trimmed()));
   noise_.push_back(4.0 * u);  // integer multiples and one normalisation
-  // Each iteration lowers the degree by at least one: at most deg p - 1 further members.
-  while (sequence_.back().degree() > 0) {
+  // Each step lowers the degree by at least one, so deg p - 1 steps always suffice.
+  for (int step = 0; step + 1 < p0.degree() && sequence_.back().degree() > 0; ++step) {
     const std::size_t k = sequence_.size() - 1;
     const Polynomial& dividend = sequence_[k - 1];
     const Polynomial& divisor = sequence_[k];

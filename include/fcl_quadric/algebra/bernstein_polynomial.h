@@ -148,10 +148,6 @@ double deCasteljauEvaluate(const std::vector<double>& c, double s);
 void deCasteljauSplit(const std::vector<double>& c, double s, std::vector<double>* left,
                       std::vector<double>* right);
 
-/// Coefficients on the unit-parameter sub-interval [sc, sd] (sc < sd) of the Bernstein
-/// coefficients `c` on [0, 1]. Exact pass-through when sc == 0 and sd == 1.
-std::vector<double> restrictUnit(const std::vector<double>& c, double sc, double sd);
-
 /// Power coefficients q_k (in s) -> Bernstein coefficients on [0,1] of degree n >= deg q.
 std::vector<double> powerToBernsteinUnit(const std::vector<double>& q, int n);
 

@@ -85,7 +85,8 @@ class Polynomial {
   /// |returned - p(x)| <= *abs_error_bound, where p(x) is the exact value for the stored double
   /// coefficients and double x. Higham's bound is first order in the unit roundoff u; we inflate
   /// it by the factor (1 + 4 (n + 2) u) so that it also covers the rounding committed while
-  /// accumulating the bound. It assumes no underflow (subnormal intermediate results).
+  /// accumulating the bound. It assumes no underflow (subnormal intermediate results); if the
+  /// evaluation overflows, the bound is +infinity.
   /// \param abs_error_bound output, may be nullptr (then only the value is computed).
   /// \throws std::invalid_argument if x is not finite.
   double evaluateWithBound(double x, double* abs_error_bound) const;

@@ -43,7 +43,7 @@ constexpr double kSturmValueNoiseFactor = 4.0;
 constexpr double kSturmRelativeZeroThreshold = 1e-13;
 
 /// Sturm sequence p_0 = p, p_1 = p', p_{k+1} = -rem(p_{k-1}, p_k), stopping at the first
-/// remainder that is zero under kSturmRelativeZeroThreshold. p_0 is the trimmed input, kept
+/// remainder that is zero in the sense of kSturmNoiseSafetyFactor. p_0 is the trimmed input, kept
 /// exact; every later member is scaled by a positive factor to max|coefficient| = 1, which
 /// does not change any sign.
 ///
