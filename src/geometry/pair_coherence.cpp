@@ -10,12 +10,10 @@ Separation PairCoherence::query(const Ellipsoid& a, const Ellipsoid& b) {
   }
   const SeparationCertificate cert = classifyEllipsoids(a, b);
   if (cert.status == Separation::Separated) {
-    // Cheapest certified plane first: through the pencil witness with normal grad q_a (see
-    // separatingPlane()), or between the bounding spheres when the pre-test decided; it comes
-    // with the classification and avoids isolating the two roots of Theorem 4.6.
-    Plane p;
-    p.normal = cert.normal;
-    p.offset = p.normal.dot(cert.witness);
+    // Cheapest plane first: the certificate's normal placed midway between the solids
+    // (planeWithNormal() proves it separates); it comes with the classification and avoids
+    // isolating the two roots of Theorem 4.6, which remains the fallback.
+    const Plane p = planeWithNormal(cert.normal, a, b);
     if (planeSeparates(p, a, b)) {
       candidate_ = p;
     } else if (auto sp = separatingPlane(a, b); sp && sp->certified) {

@@ -18,14 +18,6 @@ inline double supportWithScale(const Ellipsoid& e, const Eigen::Vector3d& n, dou
   return n.dot(e.center()) + r;
 }
 
-/// Plane through x with normal n (not necessarily unit), normalised.
-Plane planeThrough(const Eigen::Vector3d& n, const Eigen::Vector3d& x) {
-  Plane p;
-  p.normal = n.normalized();
-  p.offset = p.normal.dot(x);
-  return p;
-}
-
 /// The two roots of |X0 + tau D|^2 = 1 (real by construction when X0 is inside the unit ball).
 bool unitSphereChord(const Eigen::Vector3d& X0, const Eigen::Vector3d& D, double* t1, double* t2) {
   const double a = D.squaredNorm(), b = X0.dot(D), c = X0.squaredNorm() - 1.0;
@@ -93,6 +85,13 @@ double planeEllipsoidGap(const Plane& plane, const Ellipsoid& e) {
   return -plane.offset - e.support(-plane.normal);
 }
 
+Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellipsoid& b) {
+  Plane p;
+  p.normal = n.normalized();
+  p.offset = 0.5 * (a.support(p.normal) - b.support(-p.normal));
+  return p;
+}
+
 bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   double sa, sb;
@@ -110,11 +109,9 @@ std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipso
     sp.certified = true;
     return sp;
   }
-  // Fallback: the plane through the witness x* with normal grad q_a(x*). For the exact minimiser
-  // x(mu) of mu q_a + (1-mu) q_b, grad q_b(x) = -mu/(1-mu) grad q_a(x); convexity then gives
-  // grad q_a(x*).(y - x*) <= -psi < 0 on a and >= psi (1-mu)/mu > 0 on b: it separates.
+  // Fallback (near tangency): the certificate's normal, placed midway (planeWithNormal()).
   sp = SeparatingPlane{};
-  sp.plane = planeThrough(cert.normal, cert.witness);
+  sp.plane = planeWithNormal(cert.normal, a, b);
   sp.tangent_a = a.supportPoint(sp.plane.normal);
   sp.tangent_b = b.supportPoint(-sp.plane.normal);
   sp.certified = planeSeparates(sp.plane, a, b);

@@ -50,6 +50,25 @@ TEST(SeparatingPlane, SeparatesSampledSurfacesOfRandomDisjointPairs) {
   EXPECT_GE(theorem, planes * 99 / 100);  // the fallback is for near-tangent pairs only
 }
 
+TEST(SeparatingPlane, CertificateNormalAlwaysGivesASeparatingPlane) {
+  // planeWithNormal(): psi(mu) > 0 at the certificate makes the supports along its normal disjoint.
+  std::mt19937_64 rng(57);
+  int checked = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Ellipsoid a = test::anchorEllipsoid(rng), b = test::anchorEllipsoid(rng);
+    const SeparationCertificate c = classifyEllipsoids(a, b);
+    if (c.status != Separation::Separated) continue;
+    ++checked;
+    const Plane p = planeWithNormal(c.normal, a, b);
+    ASSERT_TRUE(planeSeparates(p, a, b)) << "pair " << i << " stage " << c.precision_stage;
+    if (i % 20 == 0) {
+      for (const auto& x : surfaceSamples(a, 100)) ASSERT_LT(p.signedDistance(x), 0.0);
+      for (const auto& x : surfaceSamples(b, 100)) ASSERT_GT(p.signedDistance(x), 0.0);
+    }
+  }
+  EXPECT_GT(checked, 10000);
+}
+
 TEST(SeparatingPlane, TheoremPlaneTangentPointsAreClosestPointsForSpheres) {
   // §4.3: for spheres P_R^A and P_L^B are exactly the closest points.
   const Ellipsoid a = Ellipsoid::sphere(1.0, {0, 0, 0}), b = Ellipsoid::sphere(2.0, {3, 4, 0});

@@ -28,8 +28,8 @@ struct SeparationCertificate {
   /// Witness point (world frame): inside both for Overlapping; the contact point (Theorem 4.4)
   /// for Touching; the minimax point of the pencil for Separated.
   Eigen::Vector3d witness = Eigen::Vector3d::Zero();
-  /// For Separated: a unit normal pointing from the first argument to the second such that the
-  /// plane through `witness` with this normal separates them (certify with planeSeparates()).
+  /// For Separated: a unit normal n pointing from the first argument to the second such that
+  /// h_a(n) < -h_b(-n), i.e. some plane with this normal separates them (planeWithNormal()).
   /// For the other states: the normal of the first ellipsoid's level set at the witness.
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
   /// -1: decided by the bounding / inscribed sphere pre-test; 0: decided in double; 1: decided in

@@ -28,8 +28,8 @@ struct SeparatingPlane {
   /// true when planeSeparates(plane, a, b) certified the plane. False only within the touching
   /// band, where the plane is the best available (the common tangent plane at the witness).
   bool certified = false;
-  /// true when the Theorem 4.6 construction was used; false when the fallback plane through the
-  /// pencil witness x* with normal grad q_a(x*) was used (it separates whenever psi(mu*) > 0).
+  /// true when the Theorem 4.6 construction was used; false when the fallback plane with the
+  /// certificate's normal grad q_a(x(mu)) was used (see planeWithNormal()).
   bool from_theorem_4_6 = false;
 };
 
@@ -37,10 +37,18 @@ struct SeparatingPlane {
 /// two negative roots of f span a line that meets a in P_R^A and b in P_L^B; the returned plane is
 /// the bisector of the tangent plane of a at P_R^A and that of b at P_L^B (both contain the line
 /// V0 V1, so every positive combination separates). If the roots are too close to isolate in
-/// double (near tangency) or the plane fails certification, the plane through the pencil witness
-/// with normal grad q_a is used instead. Returns std::nullopt unless classifyEllipsoids(a, b) is
+/// double (near tangency) or the plane fails certification, planeWithNormal() with the
+/// classification's normal is used instead. Returns std::nullopt unless classifyEllipsoids(a, b) is
 /// Separated.
 std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipsoid& b);
+
+/// The plane with unit normal n (pointing from a to b) placed midway between the two solids:
+/// offset = (h_a(n) - h_b(-n)) / 2. It separates iff h_a(n) < -h_b(-n). With n the normal of a
+/// SeparationCertificate of a separate pair it always does: for the pencil minimiser x = x(mu),
+/// grad q_b(x) = -mu/(1-mu) grad q_a(x), and convexity puts a in {n.(y-x) <= -q_a(x)/|grad q_a|}
+/// and b in {n.(y-x) >= (1-mu)/mu q_b(x)/|grad q_a|}; these are disjoint iff
+/// mu q_a(x) + (1-mu) q_b(x) = psi(mu) > 0, which is what the certificate proved.
+Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellipsoid& b);
 
 /// Certified test that `plane` strictly separates a (negative side) from b (positive side):
 /// support(a, n) < offset < -support(b, -n), each with a relative margin covering rounding.
