@@ -33,6 +33,13 @@ constexpr double kCertificateRelativeBoundDoubleDouble = 2.0194839173657902e-28;
 /// describes the intended ellipsoid to relative accuracy ~e.
 constexpr double kRotationOrthogonality = 1e-9;
 
+/// Accepted range of radii and of centre coordinates (absolute, in the user's length unit): keeps
+/// squares and the products formed by the pencil finite. Outside it the constructor throws.
+/// Pairs whose sizes differ by more than ~1e25 can overflow the pencil's determinants; the
+/// classifier then cannot certify and answers Touching (conservative).
+constexpr double kMinRadius = 1e-100;
+constexpr double kMaxLength = 1e100;
+
 /// Scene input: |q| of a pose quaternion must be within this of 1 (relative). Dimensionless.
 constexpr double kQuaternionNorm = 1e-6;
 

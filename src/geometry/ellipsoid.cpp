@@ -44,9 +44,22 @@ Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, 
       os << "ellipsoid radius " << "abc"[i] << " must be finite and > 0, got " << radii[i];
       throw std::invalid_argument(os.str());
     }
+    if (!(radii[i] >= tolerance::kMinRadius && radii[i] <= tolerance::kMaxLength)) {
+      std::ostringstream os;
+      os << "ellipsoid radius " << "abc"[i] << " must be in [" << tolerance::kMinRadius << ", "
+         << tolerance::kMaxLength << "], got " << radii[i];
+      throw std::invalid_argument(os.str());
+    }
   }
   detail::checkRotation(R_WE, "ellipsoid rotation");
   detail::checkFinite(p_WE, "ellipsoid centre");
+  if (!(p_WE.cwiseAbs().maxCoeff() <= tolerance::kMaxLength)) {
+    std::ostringstream os;
+    os << "ellipsoid centre coordinates must be within +-" << tolerance::kMaxLength << ", got ["
+       << p_WE.transpose() << "]";
+    throw std::invalid_argument(os.str());
+  }
+  inv_radii_ = radii_.cwiseInverse();  // after validation: radii are finite and > 0
 }
 
 Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Isometry3d& X_WE)

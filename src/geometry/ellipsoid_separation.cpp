@@ -80,6 +80,39 @@ bool sphereTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificate* o
   return false;
 }
 
+/// Centre-line pre-test along n = (p_b - p_a)/|p_b - p_a|. Separated if the supports along n are
+/// disjoint: h_a(n) + h_b(-n) < n.(p_b - p_a), with h = n.p + |S R^T n|. Overlapping if the
+/// segment between the centres is covered: rho_a + rho_b > |p_b - p_a|, where
+/// rho = 1/|S^-1 R^T n| is the distance from the centre to the surface along n (exact for the
+/// ellipsoid's definition). Every term is a sum of non-negative quantities, so a relative margin
+/// of 2^-40 covers the rounding.
+bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificate* out) {
+  const Eigen::Vector3d d = b.center() - a.center();
+  const double D = d.norm();
+  if (!(D > 0.0)) return false;
+  const Eigen::Vector3d n = d / D;
+  const Eigen::Vector3d ua = a.rotation().transpose() * n, ub = b.rotation().transpose() * n;
+  const double tau = tolerance::kCertificateRelativeBoundDouble;
+  const double ha = ua.cwiseProduct(a.radii()).norm(), hb = ub.cwiseProduct(b.radii()).norm();
+  if (ha + hb < D * (1.0 - tau)) {
+    out->status = Separation::Separated;
+    out->normal = n;
+    out->witness = a.center() + (0.5 * (D + ha - hb)) * n;
+    out->precision_stage = -1;
+    return true;
+  }
+  const double rho_a = 1.0 / ua.cwiseProduct(a.inverseRadii()).norm();
+  const double rho_b = 1.0 / ub.cwiseProduct(b.inverseRadii()).norm();
+  if (rho_a + rho_b > D * (1.0 + tau)) {
+    out->status = Separation::Overlapping;
+    out->normal = n;
+    out->witness = a.center() + (0.5 * (D - rho_b + rho_a)) * n;  // inside both
+    out->precision_stage = -1;
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 SeparationCertificate classifyEllipsoids(const Ellipsoid& a, const Ellipsoid& b) {
@@ -87,7 +120,7 @@ SeparationCertificate classifyEllipsoids(const Ellipsoid& a, const Ellipsoid& b)
   const bool swap = detail::swapForCanonicalOrder(a, b);
   const Ellipsoid& A = swap ? b : a;
   const Ellipsoid& B = swap ? a : b;
-  if (sphereTest(A, B, &cert)) {
+  if (sphereTest(A, B, &cert) || centreLineTest(A, B, &cert)) {
     if (swap) cert.normal = -cert.normal;
     return cert;
   }

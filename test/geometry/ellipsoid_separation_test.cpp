@@ -338,6 +338,9 @@ TEST(Ellipsoid, RejectsBadInputNamingTheValue) {
   nanR(2, 2) = nan;
   EXPECT_NE(message([&] { Ellipsoid({1, 1, 1}, nanR, o); }).find("rotation"), std::string::npos);
   EXPECT_THROW(Ellipsoid::sphere(0.0, o), std::invalid_argument);
+  EXPECT_NE(message([&] { Ellipsoid({1, 1e-310, 1}, I, o); }).find("1e-310"), std::string::npos);
+  EXPECT_NE(message([&] { Ellipsoid({1, 1, 1e300}, I, o); }).find("1e+300"), std::string::npos);
+  EXPECT_NE(message([&] { Ellipsoid({1, 1, 1}, I, {0, 0, 1e200}); }).find("1e+200"), std::string::npos);
 }
 
 }  // namespace

@@ -13,8 +13,10 @@ namespace fcl_quadric {
 /// Thesis convention (Choi 2008 §4.1): the homogeneous matrix A of E satisfies X^T A X < 0
 /// exactly in the interior; quadricMatrix() returns it.
 ///
-/// \pre radii finite and > 0; R finite, orthogonal within tolerance::kRotationOrthogonality and
-///      det R > 0; p finite. A violation throws std::invalid_argument naming the bad value.
+/// \pre radii finite, in [kMinRadius, kMaxLength]; R finite, orthogonal within
+///      tolerance::kRotationOrthogonality and
+///      det R > 0; p finite with coordinates within kMaxLength. A violation throws
+///      std::invalid_argument naming the bad value.
 class Ellipsoid {
  public:
   Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, const Eigen::Vector3d& p_WE);
@@ -29,6 +31,8 @@ class Ellipsoid {
   static Ellipsoid fromAffine(const Eigen::Matrix3d& M, const Eigen::Vector3d& p);
 
   const Eigen::Vector3d& radii() const { return radii_; }
+  /// 1 / radii, precomputed.
+  const Eigen::Vector3d& inverseRadii() const { return inv_radii_; }
   const Eigen::Matrix3d& rotation() const { return R_; }
   const Eigen::Vector3d& center() const { return p_; }
 
@@ -48,6 +52,7 @@ class Ellipsoid {
 
  private:
   Eigen::Vector3d radii_;
+  Eigen::Vector3d inv_radii_;
   Eigen::Matrix3d R_;
   Eigen::Vector3d p_;
 };

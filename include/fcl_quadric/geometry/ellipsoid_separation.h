@@ -32,7 +32,8 @@ struct SeparationCertificate {
   /// h_a(n) < -h_b(-n), i.e. some plane with this normal separates them (planeWithNormal()).
   /// For the other states: the normal of the first ellipsoid's level set at the witness.
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
-  /// -1: decided by the bounding / inscribed sphere pre-test; 0: decided in double; 1: decided in
+  /// -1: decided by a pre-test (bounding / inscribed spheres, or supports and radii along the
+  /// line of centres); 0: decided in double; 1: decided in
   /// double-double; 2: undecided at double-double precision, reported as Touching.
   int precision_stage = 0;
   /// Iterations of the safeguarded Newton search for the pencil maximiser.
