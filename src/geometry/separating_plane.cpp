@@ -10,14 +10,6 @@ namespace fcl_quadric {
 
 namespace {
 
-/// n.p + |S R^T n| and the magnitude of its evaluation.
-inline double supportWithScale(const Ellipsoid& e, const Eigen::Vector3d& n, double* scale) {
-  const Eigen::Vector3d m = (e.rotation().transpose() * n).cwiseProduct(e.radii());
-  const double r = m.norm();
-  *scale = n.cwiseAbs().dot(e.center().cwiseAbs()) + r;
-  return n.dot(e.center()) + r;
-}
-
 /// The two roots of |X0 + tau D|^2 = 1 (real by construction when X0 is inside the unit ball).
 bool unitSphereChord(const Eigen::Vector3d& X0, const Eigen::Vector3d& D, double* t1, double* t2) {
   const double a = D.squaredNorm(), b = X0.dot(D), c = X0.squaredNorm() - 1.0;
@@ -92,13 +84,20 @@ Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellips
   return p;
 }
 
+namespace {
+/// True when e lies strictly on the negative side of { n.x = off }: off - n.p > |S R^T n|, with a
+/// relative margin covering the rounding; compared in squares (no square root).
+inline bool strictlyBelow(const Eigen::Vector3d& n, double off, const Ellipsoid& e, double tau) {
+  const Eigen::Vector3d m = (e.rotation().transpose() * n).cwiseProduct(e.radii());
+  const double gap = off - n.dot(e.center()) - tau * (std::fabs(off) + n.cwiseAbs().dot(e.center().cwiseAbs()));
+  return gap > 0.0 && gap * gap > m.squaredNorm() * (1.0 + 4.0 * tau);
+}
+}  // namespace
+
 bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
+  // a below the plane, b above it (i.e. below the negated plane).
   const double tau = tolerance::kCertificateRelativeBoundDouble;
-  double sa, sb;
-  const double ha = supportWithScale(a, plane.normal, &sa);    // max of n.x over a
-  const double hb = supportWithScale(b, -plane.normal, &sb);   // max of -n.x over b
-  const double off = plane.offset, aoff = std::fabs(off);
-  return (off - ha > tau * (aoff + sa)) && (-off - hb > tau * (aoff + sb));
+  return strictlyBelow(plane.normal, plane.offset, a, tau) && strictlyBelow(-plane.normal, -plane.offset, b, tau);
 }
 
 std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipsoid& b) {
