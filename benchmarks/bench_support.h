@@ -1,0 +1,184 @@
+#pragma once
+/// \file bench_support.h
+/// Shared pieces of the benchmark programs: the ANCHORS.md pair generator, the `--pairs` option,
+/// per-item timing counters, and a console reporter that adds the ratio to fcl_quadric and prints
+/// a summary table at the end (docs/benchmarks.md). No FCL here (see fcl_peers.h).
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+#include <Eigen/Geometry>
+
+#include "fcl_quadric/geometry/ellipsoid.h"
+
+namespace fcl_quadric {
+namespace bench {
+
+/// Name suffix of the benchmark every other member of its group is compared with.
+constexpr const char* kOursSuffix = "/fcl_quadric";
+
+/// One ellipsoid of the ANCHORS.md generator, drawn in this order: radii 3x U(0.5, 3), centre
+/// 3x U(-3, 3), quaternion (w, x, y, z) from 4x N(0, 1), normalised. A normal distribution is
+/// created per quaternion; libstdc++ draws normals in pairs, so 4 draws leave no cached value and
+/// a long-lived distribution would give the same stream.
+inline Ellipsoid anchorEllipsoid(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u_radius(0.5, 3.0), u_centre(-3.0, 3.0);
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::Vector3d radii, p_WE;
+  for (int i = 0; i < 3; ++i) radii[i] = u_radius(rng);
+  for (int i = 0; i < 3; ++i) p_WE[i] = u_centre(rng);
+  const double w = n(rng), x = n(rng), y = n(rng), z = n(rng);
+  const Eigen::Quaterniond q = Eigen::Quaterniond(w, x, y, z).normalized();
+  return Ellipsoid(radii, q.toRotationMatrix(), p_WE);
+}
+
+/// The ANCHORS.md pair set: std::mt19937_64(42), per pair ellipsoid A then B.
+struct PairSet {
+  std::vector<Ellipsoid> a, b;
+  std::size_t size() const { return a.size(); }
+};
+
+inline PairSet anchorPairs(std::size_t n, std::uint64_t seed = 42) {
+  std::mt19937_64 rng(seed);
+  PairSet s;
+  s.a.reserve(n);
+  s.b.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    s.a.push_back(anchorEllipsoid(rng));
+    s.b.push_back(anchorEllipsoid(rng));
+  }
+  return s;
+}
+
+/// Reads `--<name> N` or `--<name>=N` from argv and removes it (before benchmark::Initialize);
+/// else the environment variable `env`; else `fallback`.
+inline std::size_t takeSizeOption(int* argc, char** argv, const char* name, const char* env,
+                                  std::size_t fallback) {
+  std::size_t value = fallback;
+  if (const char* e = std::getenv(env)) value = std::strtoull(e, nullptr, 10);
+  const std::string flag = std::string("--") + name;
+  int out = 1;
+  for (int i = 1; i < *argc; ++i) {
+    const char* arg = argv[i];
+    if (flag == arg && i + 1 < *argc) {
+      value = std::strtoull(argv[++i], nullptr, 10);
+    } else if (std::strncmp(arg, (flag + "=").c_str(), flag.size() + 1) == 0) {
+      value = std::strtoull(arg + flag.size() + 1, nullptr, 10);
+    } else {
+      argv[out++] = argv[i];
+    }
+  }
+  *argc = out;
+  argv[out] = nullptr;
+  return std::max<std::size_t>(value, 1);
+}
+
+/// Marks `items` units of work (pairs or frames) done per iteration: Google Benchmark then reports
+/// items_per_second and `counter_name` = CPU seconds per item (printed as e.g. "612n" = 612 ns).
+inline void setPerItemTime(benchmark::State& state, double items_per_iteration,
+                           const char* counter_name = "t_pair") {
+  const double items = items_per_iteration * static_cast<double>(state.iterations());
+  state.SetItemsProcessed(static_cast<std::int64_t>(items));
+  state.counters[counter_name] =
+      benchmark::Counter(items, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+/// Console reporter that (1) adds `x_ours` = (time per item) / (time per item of the group's
+/// "<group>/fcl_quadric" run) to every other member of the group, and (2) remembers every run for
+/// a summary table printed by printSummary(). Group = name up to the last '/'. With
+/// --benchmark_repetitions the summary keeps the median aggregate.
+class SummaryReporter : public benchmark::ConsoleReporter {
+ public:
+  struct Row {
+    std::string name;
+    double ns_per_item = 0.0;
+    double ratio = 0.0;  ///< 0 when there is no baseline
+  };
+
+  void ReportRuns(const std::vector<Run>& reports) override {
+    std::vector<Run> copy = reports;
+    for (Run& run : copy) {
+      // With --benchmark_repetitions the median aggregate, reported last, is the one kept.
+      const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
+      if ((run.run_type != Run::RT_Iteration && !median) || run.error_occurred) continue;
+      const auto it = run.counters.find("items_per_second");
+      if (it == run.counters.end() || !(it->second.value > 0.0)) continue;
+      const double ns = 1e9 / it->second.value;
+      const std::string name = run.run_name.str();
+      const std::string group = name.substr(0, name.rfind('/'));
+      Row row{name, ns, 0.0};
+      if (endsWith(name, kOursSuffix)) {
+        baseline_[group] = ns;
+      } else if (const auto b = baseline_.find(group); b != baseline_.end()) {
+        row.ratio = ns / b->second;
+        run.counters["x_ours"] = benchmark::Counter(row.ratio);
+      }
+      const auto same = std::find_if(rows_.begin(), rows_.end(), [&](const Row& r) { return r.name == name; });
+      if (same != rows_.end()) {
+        *same = row;
+      } else {
+        rows_.push_back(row);
+      }
+    }
+    ConsoleReporter::ReportRuns(copy);
+  }
+
+  const std::vector<Row>& rows() const { return rows_; }
+  /// Time per item of the run with this exact name, or 0 if it did not run.
+  double nsPerItem(const std::string& name) const {
+    for (const Row& r : rows_) {
+      if (r.name == name) return r.ns_per_item;
+    }
+    return 0.0;
+  }
+
+  /// Prints "name | ns per item | x fcl_quadric" for every run, in run order.
+  void printSummary(const char* title, const char* item) const {
+    std::printf("\n== %s ==\n%-52s %14s %14s\n", title, "benchmark", (std::string("ns/") + item).c_str(),
+                "x fcl_quadric");
+    for (const Row& r : rows_) {
+      if (r.ratio > 0.0) {
+        std::printf("%-52s %14.1f %14.2f\n", r.name.c_str(), r.ns_per_item, r.ratio);
+      } else {
+        std::printf("%-52s %14.1f %14s\n", r.name.c_str(), r.ns_per_item, "-");
+      }
+    }
+    std::fflush(stdout);
+  }
+
+ private:
+  static bool endsWith(const std::string& s, const char* suffix) {
+    const std::size_t n = std::strlen(suffix);
+    return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
+  }
+  std::map<std::string, double> baseline_;
+  std::vector<Row> rows_;
+};
+
+/// Median / 99th percentile / max of a sample (copied; empty sample gives zeros).
+struct Quantiles {
+  double median = 0.0, p99 = 0.0, max = 0.0;
+  std::size_t count = 0;
+};
+
+inline Quantiles quantiles(std::vector<double> v) {
+  Quantiles q;
+  q.count = v.size();
+  if (v.empty()) return q;
+  std::sort(v.begin(), v.end());
+  q.median = v[v.size() / 2];
+  q.p99 = v[std::min(v.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(v.size())))];
+  q.max = v.back();
+  return q;
+}
+
+}  // namespace bench
+}  // namespace fcl_quadric
