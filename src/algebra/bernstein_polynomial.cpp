@@ -1,5 +1,7 @@
 #include "fcl_quadric/algebra/bernstein_polynomial.h"
 
+#include "algebra/input_checks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -97,23 +99,10 @@ int signVariations(const std::vector<double>& c) {
 
 namespace {
 
-void checkCoefficients(const char* where, const std::vector<double>& c) {
-  if (c.empty()) throw std::invalid_argument(std::string(where) + ": empty coefficient vector");
-  for (std::size_t i = 0; i < c.size(); ++i) {
-    if (!std::isfinite(c[i])) {
-      std::ostringstream os;
-      os << where << ": non-finite coefficient c[" << i << "] = " << c[i];
-      throw std::invalid_argument(os.str());
-    }
-  }
-}
+using detail::checkFiniteValue;
 
-void checkFiniteValue(const char* where, const char* what, double v) {
-  if (!std::isfinite(v)) {
-    std::ostringstream os;
-    os << where << ": non-finite " << what << " (" << v << ")";
-    throw std::invalid_argument(os.str());
-  }
+void checkCoefficients(const char* where, const std::vector<double>& c) {
+  detail::checkCoefficients(where, c, /*non_empty=*/true);
 }
 
 void checkSameInterval(const char* where, double a0, double b0, double a1, double b1) {

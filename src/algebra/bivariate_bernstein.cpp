@@ -1,5 +1,7 @@
 #include "fcl_quadric/algebra/bivariate_bernstein.h"
 
+#include "algebra/input_checks.h"
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -45,13 +47,7 @@ void checkMatrix(const char* where, const Eigen::MatrixXd& M) {
   }
 }
 
-void checkFiniteValue(const char* where, const char* what, double v) {
-  if (!std::isfinite(v)) {
-    std::ostringstream os;
-    os << where << ": non-finite " << what << " (" << v << ")";
-    throw std::invalid_argument(os.str());
-  }
-}
+using detail::checkFiniteValue;
 
 void checkStrictlyInside(const char* where, double x, double lo, double hi) {
   checkFiniteValue(where, "split parameter", x);

@@ -1,5 +1,7 @@
 #include "fcl_quadric/algebra/polynomial.h"
 
+#include "algebra/input_checks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -13,24 +15,10 @@ namespace {
 
 constexpr double kUnitRoundoff = 1.1102230246251565e-16;  // 2^-53
 
-[[noreturn]] void throwNonFinite(const char* where, const char* what, double value) {
-  std::ostringstream os;
-  os << where << ": non-finite " << what << " (" << value << ")";
-  throw std::invalid_argument(os.str());
-}
-
-void checkFinite(const char* where, const char* what, double value) {
-  if (!std::isfinite(value)) throwNonFinite(where, what, value);
-}
+using detail::checkFiniteValue;
 
 void checkCoefficients(const char* where, const std::vector<double>& c) {
-  for (std::size_t i = 0; i < c.size(); ++i) {
-    if (!std::isfinite(c[i])) {
-      std::ostringstream os;
-      os << where << ": non-finite coefficient c[" << i << "] = " << c[i];
-      throw std::invalid_argument(os.str());
-    }
-  }
+  detail::checkCoefficients(where, c, /*non_empty=*/false);
 }
 
 std::size_t trimmedSize(const std::vector<double>& c) {
@@ -56,7 +44,7 @@ Polynomial::Polynomial(std::vector<double> coefficients, Unchecked) : coefficien
 }
 
 Polynomial Polynomial::constant(double value) {
-  checkFinite("Polynomial::constant", "value", value);
+  checkFiniteValue("Polynomial::constant", "value", value);
   return Polynomial(std::vector<double>(1, value), Unchecked{});
 }
 
@@ -64,15 +52,15 @@ Polynomial Polynomial::monomial(int power, double coefficient) {
   if (power < 0) {
     throw std::invalid_argument("Polynomial::monomial: negative power " + std::to_string(power));
   }
-  checkFinite("Polynomial::monomial", "coefficient", coefficient);
+  checkFiniteValue("Polynomial::monomial", "coefficient", coefficient);
   std::vector<double> c(static_cast<std::size_t>(power) + 1, 0.0);
   c.back() = coefficient;
   return Polynomial(std::move(c), Unchecked{});
 }
 
 Polynomial Polynomial::fromRoots(const std::vector<double>& roots, double leading) {
-  checkFinite("Polynomial::fromRoots", "leading coefficient", leading);
-  for (double r : roots) checkFinite("Polynomial::fromRoots", "root", r);
+  checkFiniteValue("Polynomial::fromRoots", "leading coefficient", leading);
+  for (double r : roots) checkFiniteValue("Polynomial::fromRoots", "root", r);
   // c holds prod_{k < j} (x - r_k), low -> high; multiply in place by (x - r_j).
   std::vector<double> c(1, leading);
   c.reserve(roots.size() + 1);
@@ -101,7 +89,7 @@ double Polynomial::coefficient(int i) const {
 
 void Polynomial::setCoefficient(int i, double value) {
   if (i < 0) throw std::invalid_argument("Polynomial::setCoefficient: negative index " + std::to_string(i));
-  checkFinite("Polynomial::setCoefficient", "value", value);
+  checkFiniteValue("Polynomial::setCoefficient", "value", value);
   const std::size_t k = static_cast<std::size_t>(i);
   if (k >= coefficients_.size()) coefficients_.resize(k + 1, 0.0);
   coefficients_[k] = value;
@@ -114,14 +102,14 @@ double Polynomial::maxAbsCoefficient() const {
 }
 
 double Polynomial::operator()(double x) const {
-  checkFinite("Polynomial::operator()", "argument x", x);
+  checkFiniteValue("Polynomial::operator()", "argument x", x);
   double y = coefficients_.back();
   for (std::size_t i = coefficients_.size() - 1; i-- > 0;) y = y * x + coefficients_[i];
   return y;
 }
 
 double Polynomial::evaluateWithBound(double x, double* abs_error_bound) const {
-  checkFinite("Polynomial::evaluateWithBound", "argument x", x);
+  checkFiniteValue("Polynomial::evaluateWithBound", "argument x", x);
   const std::size_t n = coefficients_.size() - 1;
   double y = coefficients_.back();
   double mu = 0.5 * std::abs(y);
@@ -156,8 +144,8 @@ Polynomial Polynomial::trimmed() const {
 }
 
 Polynomial Polynomial::composeAffine(double alpha, double beta) const {
-  checkFinite("Polynomial::composeAffine", "alpha", alpha);
-  checkFinite("Polynomial::composeAffine", "beta", beta);
+  checkFiniteValue("Polynomial::composeAffine", "alpha", alpha);
+  checkFiniteValue("Polynomial::composeAffine", "beta", beta);
   // Horner on polynomials: q <- q * (alpha t + beta) + c_i, from the leading coefficient down.
   const std::size_t n = coefficients_.size();
   std::vector<double> q(n, 0.0);
@@ -203,7 +191,7 @@ Polynomial& Polynomial::operator*=(const Polynomial& other) {
 }
 
 Polynomial& Polynomial::operator*=(double scalar) {
-  checkFinite("Polynomial::operator*", "scalar", scalar);
+  checkFiniteValue("Polynomial::operator*", "scalar", scalar);
   for (double& v : coefficients_) v *= scalar;
   return *this;
 }

@@ -14,12 +14,8 @@ namespace {
 /// Points on the surface of e from a Fibonacci lattice on the unit sphere.
 std::vector<Eigen::Vector3d> surfaceSamples(const Ellipsoid& e, int n) {
   std::vector<Eigen::Vector3d> pts;
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < n; ++i) {
-    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), phi = golden * i;
-    const Eigen::Vector3d u(r * std::cos(phi), r * std::sin(phi), z);
+  for (const Eigen::Vector3d& u : test::fibonacciSphere(n))
     pts.push_back(e.center() + e.rotation() * u.cwiseProduct(e.radii()));
-  }
   return pts;
 }
 

@@ -101,13 +101,7 @@ TEST(SignedDistance, SeparatedPairsSatisfyTheOptimalityConditions) {
 void checkPenetrationDepth(int wanted, std::uint64_t seed, double aspect) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uc(-2.0, 2.0);
-  std::vector<Eigen::Vector3d> dirs;
-  const int m = 20000;
-  const double golden = M_PI * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < m; ++i) {
-    const double z = 1.0 - 2.0 * (i + 0.5) / m, r = std::sqrt(1.0 - z * z);
-    dirs.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), z);
-  }
+  const std::vector<Eigen::Vector3d> dirs = test::fibonacciSphere(20000);
   int overlapping = 0, worse = 0;
   for (int i = 0; i < 50 * wanted && overlapping < wanted; ++i) {
     auto make = [&] {

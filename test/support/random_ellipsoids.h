@@ -2,6 +2,7 @@
 // Seeded generators of ellipsoid pairs shared by the tests (std::mt19937_64, fixed seeds).
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -29,6 +30,17 @@ inline Eigen::Vector3d randomUnitVector(std::mt19937_64& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
   Eigen::Vector3d v(n(rng), n(rng), n(rng));
   return v.normalized();
+}
+
+/// n directions of a Fibonacci lattice on the unit sphere (near-uniform, deterministic).
+inline std::vector<Eigen::Vector3d> fibonacciSphere(int n) {
+  std::vector<Eigen::Vector3d> dirs;
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z);
+    dirs.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), z);
+  }
+  return dirs;
 }
 
 /// The ANCHORS.md generator: radii 3x U(0.5,3), centre 3x U(-3,3), quaternion from 4x N(0,1).
