@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
@@ -89,15 +90,7 @@ Ellipsoid Ellipsoid::fromAffine(const Eigen::Matrix3d& M, const Eigen::Vector3d&
   return Ellipsoid(ev.cwiseSqrt(), R, p);
 }
 
-Eigen::Matrix4d Ellipsoid::quadricMatrix() const {
-  // N = [S^-1 R^T, -S^-1 R^T p; 0 1]; A = N^T diag(1,1,1,-1) N.
-  Eigen::Matrix4d N = Eigen::Matrix4d::Identity();
-  const Eigen::Matrix3d SinvRt = radii_.cwiseInverse().asDiagonal() * R_.transpose();
-  N.topLeftCorner<3, 3>() = SinvRt;
-  N.topRightCorner<3, 1>() = -SinvRt * p_;
-  const Eigen::Vector4d J(1.0, 1.0, 1.0, -1.0);
-  return N.transpose() * J.asDiagonal() * N;
-}
+Eigen::Matrix4d Ellipsoid::quadricMatrix() const { return quadric::posedEllipsoid(radii_, R_, p_); }
 
 double Ellipsoid::implicit(const Eigen::Vector3d& x) const {
   const Eigen::Vector3d u = (R_.transpose() * (x - p_)).cwiseQuotient(radii_);
