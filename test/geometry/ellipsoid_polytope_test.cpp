@@ -1,0 +1,170 @@
+// Ellipsoid vs box and triangle: compared with an independent projected-gradient minimisation in
+// long double, with exact constructions at tangency, and with sampled points.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fcl_quadric/geometry/ellipsoid_polytope.h"
+#include "support/random_ellipsoids.h"
+
+namespace fcl_quadric {
+namespace {
+
+/// Independent oracle: min over the polytope of |S^-1 R^T (y - p)|^2 by projected gradient
+/// descent in long double (convex problem; many small steps). `project` maps parameters onto the
+/// domain; `point(s)` gives the world point.
+template <class Project, class Point>
+long double oracleMin(const Ellipsoid& e, int dim, Project project, Point point) {
+  auto f = [&](const long double* s) {
+    const Eigen::Vector3d y = point(s);
+    const Eigen::Matrix<long double, 3, 1> d = (e.rotation().transpose() * (y - e.center())).cast<long double>();
+    long double v = 0;
+    for (int i = 0; i < 3; ++i) v += (d[i] / e.radii()[i]) * (d[i] / e.radii()[i]);
+    return v;
+  };
+  long double best = 1e300L;
+  // Multiple starts for safety (the problem is convex, so all should agree).
+  for (int start = 0; start < 3; ++start) {
+    long double s[3] = {0.1L * start, 0.2L * start, -0.1L * start};
+    project(s);
+    long double step = 0.1L;
+    long double fs = f(s);
+    for (int it = 0; it < 4000; ++it) {
+      long double grad[3] = {0, 0, 0};
+      for (int j = 0; j < dim; ++j) {
+        long double sp[3] = {s[0], s[1], s[2]}, sm[3] = {s[0], s[1], s[2]};
+        sp[j] += 1e-7L;
+        sm[j] -= 1e-7L;
+        grad[j] = (f(sp) - f(sm)) / 2e-7L;
+      }
+      long double t[3] = {s[0] - step * grad[0], s[1] - step * grad[1], s[2] - step * grad[2]};
+      project(t);
+      const long double ft = f(t);
+      if (ft < fs) {
+        for (int j = 0; j < 3; ++j) s[j] = t[j];
+        fs = ft;
+        step *= 1.2L;
+      } else {
+        step *= 0.5L;
+      }
+    }
+    best = std::min(best, fs);
+  }
+  return best;
+}
+
+TEST(EllipsoidBox, AgreesWithProjectedGradientOracle) {
+  std::mt19937_64 rng(101);
+  std::uniform_real_distribution<double> u(-2.0, 2.0), uh(0.05, 2.0);
+  int counts[3] = {0, 0, 0};
+  for (int i = 0; i < 600; ++i) {
+    const Ellipsoid e(test::randomRadii(rng, 1.5, 10.0), test::randomRotation(rng), {u(rng), u(rng), u(rng)});
+    const Eigen::Vector3d h(uh(rng), uh(rng), uh(rng));
+    const Eigen::Matrix3d R = test::randomRotation(rng);
+    const Eigen::Vector3d c(u(rng), u(rng), u(rng));
+    const EllipsoidPolytopeResult r = classifyEllipsoidBox(e, h, R, c);
+    ++counts[static_cast<int>(r.status)];
+    const long double oracle = oracleMin(
+        e, 3, [](long double* s) { for (int j = 0; j < 3; ++j) s[j] = std::max(-1.0L, std::min(1.0L, s[j])); },
+        [&](const long double* s) {
+          return Eigen::Vector3d(c + R * Eigen::Vector3d(h[0] * double(s[0]), h[1] * double(s[1]), h[2] * double(s[2])));
+        });
+    // The library's minimum is exact: never above the oracle's (which may stop slightly high).
+    ASSERT_LE(r.unit_distance2, double(oracle) + 1e-9 * (1 + double(oracle))) << "case " << i;
+    ASSERT_NEAR(r.unit_distance2, double(oracle), 1e-6 * (1 + double(oracle))) << "case " << i;
+    if (std::fabs(double(oracle) - 1.0) > 1e-6) {
+      ASSERT_EQ(r.status, oracle < 1 ? Separation::Overlapping : Separation::Separated) << "case " << i;
+    }
+    // The witness is a box point attaining the minimum.
+    const Eigen::Vector3d local = R.transpose() * (r.closest - c);
+    ASSERT_TRUE((local.cwiseAbs().array() <= h.array() * (1 + 1e-12) + 1e-12).all());
+    ASSERT_NEAR(e.implicit(r.closest) + 1.0, r.unit_distance2, 1e-9 * (1 + r.unit_distance2));
+  }
+  EXPECT_GT(counts[0], 100);  // separated
+  EXPECT_GT(counts[2], 100);  // overlapping
+}
+
+TEST(EllipsoidBox, TangencyConstructionsAreDecidedOnTheRightSide) {
+  const Ellipsoid e({1, 2, 3}, Eigen::Matrix3d::Identity(), {0, 0, 0});
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d h(0.5, 0.5, 0.5);
+  // Face touching at x = 1.
+  EXPECT_EQ(classifyEllipsoidBox(e, h, I, {1.5, 0, 0}).status, Separation::Touching);
+  EXPECT_EQ(classifyEllipsoidBox(e, h, I, {1.5 + 1e-9, 0, 0}).status, Separation::Separated);
+  EXPECT_EQ(classifyEllipsoidBox(e, h, I, {1.5 - 1e-9, 0, 0}).status, Separation::Overlapping);
+  // Edge touching: the box edge at z = 3 above the top of the ellipsoid, tilted 45 degrees.
+  const Eigen::Matrix3d Rz45 = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const double lift = 0.5 * std::sqrt(2.0);
+  EXPECT_EQ(classifyEllipsoidBox(e, h, Rz45, {0, 0, 3 + lift * (1 + 1e-9)}).status, Separation::Separated);
+  EXPECT_EQ(classifyEllipsoidBox(e, h, Rz45, {0, 0, 3 + lift * (1 - 1e-9)}).status, Separation::Overlapping);
+  // Box containing the ellipsoid and ellipsoid containing the box.
+  EXPECT_EQ(classifyEllipsoidBox(e, {5, 5, 5}, I, {0, 0, 0}).status, Separation::Overlapping);
+  EXPECT_EQ(classifyEllipsoidBox(e, {0.1, 0.1, 0.1}, I, {0, 0, 0}).status, Separation::Overlapping);
+  // A flat box (zero extent) is a rectangle.
+  EXPECT_EQ(classifyEllipsoidBox(e, {0.5, 0.5, 0.0}, I, {0, 0, 3.5}).status, Separation::Separated);
+  EXPECT_EQ(classifyEllipsoidBox(e, {0.5, 0.5, 0.0}, I, {0, 0, 2.5}).status, Separation::Overlapping);
+}
+
+TEST(EllipsoidTriangle, AgreesWithProjectedGradientOracle) {
+  std::mt19937_64 rng(103);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  int counts[3] = {0, 0, 0};
+  for (int i = 0; i < 600; ++i) {
+    const Ellipsoid e(test::randomRadii(rng, 1.5, 10.0), test::randomRotation(rng), {u(rng), u(rng), u(rng)});
+    const Eigen::Vector3d a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+    const EllipsoidPolytopeResult r = classifyEllipsoidTriangle(e, a, b, c);
+    ++counts[static_cast<int>(r.status)];
+    const long double oracle = oracleMin(
+        e, 2,
+        [](long double* s) {
+          // Euclidean projection onto the standard triangle {s >= 0, s0 + s1 <= 1}: the point itself
+          // if inside, else the nearest of its projections onto the three edges.
+          s[2] = 0;
+          if (s[0] >= 0 && s[1] >= 0 && s[0] + s[1] <= 1) return;
+          const long double P[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+          long double best[2] = {0, 0}, bd = 1e300L;
+          for (int k = 0; k < 3; ++k) {
+            const long double* p0 = P[k];
+            const long double* p1 = P[(k + 1) % 3];
+            const long double d0 = p1[0] - p0[0], d1 = p1[1] - p0[1];
+            long double t = ((s[0] - p0[0]) * d0 + (s[1] - p0[1]) * d1) / (d0 * d0 + d1 * d1);
+            t = std::max(0.0L, std::min(1.0L, t));
+            const long double q0 = p0[0] + t * d0, q1 = p0[1] + t * d1;
+            const long double dd = (q0 - s[0]) * (q0 - s[0]) + (q1 - s[1]) * (q1 - s[1]);
+            if (dd < bd) {
+              bd = dd;
+              best[0] = q0;
+              best[1] = q1;
+            }
+          }
+          s[0] = best[0];
+          s[1] = best[1];
+        },
+        [&](const long double* s) { return Eigen::Vector3d(a + double(s[0]) * (b - a) + double(s[1]) * (c - a)); });
+    ASSERT_LE(r.unit_distance2, double(oracle) + 1e-9 * (1 + double(oracle))) << "case " << i;
+    ASSERT_NEAR(r.unit_distance2, double(oracle), 1e-6 * (1 + double(oracle))) << "case " << i;
+    if (std::fabs(double(oracle) - 1.0) > 1e-6) {
+      ASSERT_EQ(r.status, oracle < 1 ? Separation::Overlapping : Separation::Separated) << "case " << i;
+    }
+  }
+  EXPECT_GT(counts[0], 100);
+  EXPECT_GT(counts[2], 50);
+}
+
+TEST(EllipsoidTriangle, TangencyAndDegenerateTriangles) {
+  const Ellipsoid e({1, 2, 3}, Eigen::Matrix3d::Identity(), {0, 0, 0});
+  // A triangle in the plane z = 3 containing the top point: touching; just above/below.
+  EXPECT_EQ(classifyEllipsoidTriangle(e, {-1, -1, 3}, {1, -1, 3}, {0, 1, 3}).status, Separation::Touching);
+  EXPECT_EQ(classifyEllipsoidTriangle(e, {-1, -1, 3 + 3e-9}, {1, -1, 3 + 3e-9}, {0, 1, 3 + 3e-9}).status,
+            Separation::Separated);
+  EXPECT_EQ(classifyEllipsoidTriangle(e, {-1, -1, 3 - 3e-9}, {1, -1, 3 - 3e-9}, {0, 1, 3 - 3e-9}).status,
+            Separation::Overlapping);
+  // Degenerate: a segment through the centre, and a point outside.
+  EXPECT_EQ(classifyEllipsoidTriangle(e, {-5, 0, 0}, {5, 0, 0}, {0, 0, 0}).status, Separation::Overlapping);
+  EXPECT_EQ(classifyEllipsoidTriangle(e, {2, 0, 0}, {2, 0, 0}, {2, 0, 0}).status, Separation::Separated);
+  EXPECT_THROW(classifyEllipsoidTriangle(e, {0, 0, std::nan("")}, {1, 0, 0}, {0, 1, 0}), std::invalid_argument);
+  EXPECT_THROW(classifyEllipsoidBox(e, {1, -1, 1}, Eigen::Matrix3d::Identity(), {0, 0, 0}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace fcl_quadric
