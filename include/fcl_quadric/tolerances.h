@@ -48,6 +48,7 @@ constexpr double kQuaternionNorm = 1e-6;
 constexpr int kMaxPencilNewtonIterations = 60;   ///< safeguarded Newton for max of psi(mu)
 constexpr int kMaxRootBracketIterations = 200;   ///< safeguarded Newton/bisection for a root
 constexpr int kMaxDistanceNewtonIterations = 100;  ///< Riemannian Newton on the unit sphere
+constexpr int kMaxPointEllipsoidIterations = 200;  ///< point-ellipsoid root (bisection-safeguarded)
 
 /// The pencil maximiser's Newton iteration stops after a step of at most this size (mu in [0,1]):
 /// quadratic convergence makes the remaining error ~1e-20, and only psi(mu), flat at the maximum,

@@ -7,7 +7,9 @@
 #include <stdexcept>
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 
+#include "fcl_quadric/geometry/point_ellipsoid.h"
 #include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
@@ -160,6 +162,135 @@ EllipsoidPolytopeResult classifyEllipsoidTriangle(const Ellipsoid& e, const Eige
   certify(best, verts, 3, scale, &out);
   out.closest = a + best.s[0] * (b - a) + best.s[1] * (c - a);
   return out;
+}
+
+namespace {
+
+/// Feature candidates of the max-min formulation (see the header).
+struct PolytopeData {
+  const Eigen::Vector3d* v;
+  int nv;
+  const int (*edges)[2];
+  int ne;
+  const Eigen::Vector3d* face_normals;  // outward
+  int nf;
+};
+
+double phi(const Ellipsoid& e, const PolytopeData& P, const Eigen::Vector3d& n) {
+  double m = std::numeric_limits<double>::infinity();
+  for (int j = 0; j < P.nv; ++j) m = std::min(m, n.dot(P.v[j]));
+  return m - e.support(n);
+}
+
+/// Candidate directions for the edge through v with direction u: n orthogonal to u maximising
+/// n.v - h_e(n) is the outward normal of the ellipsoid's shadow (on the plane orthogonal to u) at a
+/// critical point of the distance from the projected line; all = false keeps only the closest.
+int edgeDirections(const Ellipsoid& e, const Eigen::Vector3d& v, const Eigen::Vector3d& u, bool all,
+                   Eigen::Vector3d* out) {
+  const Eigen::Vector3d helper = std::fabs(u.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d b1 = (helper - helper.dot(u) * u).normalized(), b2 = u.cross(b1);
+  Eigen::Matrix<double, 3, 2> B;
+  B << b1, b2;
+  const Eigen::Matrix3d G = e.rotation() * e.radii().cwiseAbs2().asDiagonal() * e.rotation().transpose();
+  const Eigen::Matrix2d G2 = B.transpose() * G * B;  // shadow: support h(m) = sqrt(m^T G2 m)
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(G2);
+  const Eigen::Vector2d radii = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  if (!(radii.minCoeff() > 0.0)) return 0;
+  const Eigen::Vector2d y = es.eigenvectors().transpose() * (B.transpose() * (v - e.center()));
+  Eigen::Vector2d xs[4];
+  int n = 0;
+  if (all) {
+    n = detail::criticalPointsPrincipal<2>(radii, y, xs, 4);
+  } else {
+    detail::closestPointPrincipal<2>(radii, y, &xs[0]);
+    n = 1;
+  }
+  int k = 0;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d n2 = xs[i].cwiseQuotient(radii.cwiseAbs2());  // normal of the shadow
+    const double len = n2.norm();
+    if (len > 0.0) out[k++] = B * (es.eigenvectors() * (n2 / len));
+  }
+  return k;
+}
+
+SignedDistanceResult polytopeSignedDistance(const Ellipsoid& e, const PolytopeData& P, Separation status) {
+  Eigen::Vector3d best_n = Eigen::Vector3d::UnitX();
+  double best = -std::numeric_limits<double>::infinity();
+  auto consider = [&](const Eigen::Vector3d& n) {
+    if (!n.allFinite() || !(n.squaredNorm() > 0.0)) return;
+    const Eigen::Vector3d nn = n.normalized();
+    const double f = phi(e, P, nn);
+    if (f > best) {
+      best = f;
+      best_n = nn;
+    }
+  };
+  // Separate pairs: each feature's sub-problem is convex, its global optimum is the candidate.
+  // Otherwise (penetration depth) the optimum may be any critical point of a sub-problem.
+  const bool all = status != Separation::Separated;
+  for (int i = 0; i < P.nf; ++i) consider(-P.face_normals[i]);
+  for (int j = 0; j < P.nv; ++j) {
+    if (!all) {
+      consider(e.normalAt(closestPointOnEllipsoid(e, P.v[j]).closest));
+      continue;
+    }
+    const Eigen::Vector3d y = e.rotation().transpose() * (P.v[j] - e.center());
+    Eigen::Vector3d xs[8];
+    const int n = detail::criticalPointsPrincipal<3>(e.radii(), y, xs, 8);
+    for (int i = 0; i < n; ++i) consider(e.rotation() * xs[i].cwiseQuotient(e.radii().cwiseAbs2()));
+  }
+  for (int k = 0; k < P.ne; ++k) {
+    const Eigen::Vector3d& v = P.v[P.edges[k][0]];
+    const Eigen::Vector3d d = P.v[P.edges[k][1]] - v;
+    if (!(d.squaredNorm() > 0.0)) continue;
+    Eigen::Vector3d dirs[4];
+    const int n = edgeDirections(e, v, d.normalized(), all, dirs);
+    for (int i = 0; i < n; ++i) consider(dirs[i]);
+  }
+  SignedDistanceResult r;
+  r.status = status;
+  r.normal = best_n;
+  r.converged = true;
+  r.point_a = e.supportPoint(best_n);
+  switch (status) {
+    case Separation::Separated: r.distance = std::max(best, 0.0); break;
+    case Separation::Overlapping: r.distance = std::min(best, 0.0); break;
+    case Separation::Touching: r.distance = 0.0; break;
+  }
+  r.point_b = r.point_a + best * best_n;
+  return r;
+}
+
+}  // namespace
+
+SignedDistanceResult signedDistanceEllipsoidBox(const Ellipsoid& e, const Eigen::Vector3d& half_extents,
+                                                const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_WB) {
+  const EllipsoidPolytopeResult c = classifyEllipsoidBox(e, half_extents, R_WB, p_WB);  // validates
+  Eigen::Vector3d v[8];
+  for (int i = 0; i < 8; ++i)
+    v[i] = p_WB + R_WB * Eigen::Vector3d((i & 1) ? half_extents[0] : -half_extents[0],
+                                         (i & 2) ? half_extents[1] : -half_extents[1],
+                                         (i & 4) ? half_extents[2] : -half_extents[2]);
+  static const int edges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
+                                   {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  const Eigen::Vector3d normals[6] = {R_WB.col(0), -R_WB.col(0), R_WB.col(1), -R_WB.col(1), R_WB.col(2), -R_WB.col(2)};
+  return polytopeSignedDistance(e, {v, 8, edges, 12, normals, 6}, c.status);
+}
+
+SignedDistanceResult signedDistanceEllipsoidTriangle(const Ellipsoid& e, const Eigen::Vector3d& a,
+                                                     const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const EllipsoidPolytopeResult cl = classifyEllipsoidTriangle(e, a, b, c);  // validates
+  const Eigen::Vector3d v[3] = {a, b, c};
+  static const int edges[3][2] = {{0, 1}, {1, 2}, {2, 0}};
+  const Eigen::Vector3d nrm = (b - a).cross(c - a);
+  Eigen::Vector3d normals[2];
+  int nf = 0;
+  if (nrm.squaredNorm() > 0.0) {
+    normals[nf++] = nrm.normalized();
+    normals[nf++] = -nrm.normalized();
+  }
+  return polytopeSignedDistance(e, {v, 3, edges, 3, normals, nf}, cl.status);
 }
 
 }  // namespace fcl_quadric

@@ -166,5 +166,74 @@ TEST(EllipsoidTriangle, TangencyAndDegenerateTriangles) {
   EXPECT_THROW(classifyEllipsoidBox(e, {1, -1, 1}, Eigen::Matrix3d::Identity(), {0, 0, 0}), std::invalid_argument);
 }
 
+/// Signed distance of ellipsoid vs polytope: the dual value phi at the returned normal must be at
+/// least the maximum of phi over 20,000 sampled directions (no better direction exists), the
+/// witness points must realise it, and for separate pairs the primal (sampled polytope points'
+/// distance to the ellipsoid) must not be below it.
+template <class Make>
+void checkPolytopeDistance(std::uint64_t seed, Make make, int cases) {
+  std::mt19937_64 rng(seed);
+  const auto dirs = test::fibonacciSphere(20000);
+  int counts[3] = {0, 0, 0};
+  for (int i = 0; i < cases; ++i) {
+    std::vector<Eigen::Vector3d> verts;
+    const Ellipsoid e = test::anchorEllipsoid(rng);
+    const SignedDistanceResult d = make(rng, e, &verts);
+    ++counts[static_cast<int>(d.status)];
+    auto phi = [&](const Eigen::Vector3d& n) {
+      double m = 1e300;
+      for (const auto& v : verts) m = std::min(m, n.dot(v));
+      return m - e.support(n);
+    };
+    double sampled = -1e300;
+    for (const auto& n : dirs) sampled = std::max(sampled, phi(n));
+    if (d.status == Separation::Touching) continue;
+    ASSERT_EQ(d.distance > 0, d.status == Separation::Separated);
+    ASSERT_NEAR(phi(d.normal), d.distance, 1e-12 * (1 + std::fabs(d.distance))) << "case " << i;
+    ASSERT_GE(d.distance, sampled - 1e-12 * (1 + std::fabs(sampled))) << "case " << i << ": a better direction exists";
+    ASSERT_NEAR(e.implicit(d.point_a), 0.0, 1e-12);
+    ASSERT_NEAR((d.point_b - d.point_a).norm(), std::fabs(d.distance), 1e-12 * (1 + std::fabs(d.distance)));
+  }
+  EXPECT_GT(counts[0], cases / 10);
+  EXPECT_GT(counts[2], cases / 10);
+}
+
+TEST(EllipsoidBoxDistance, IsOptimalAgainstDirectionSampling) {
+  std::uniform_real_distribution<double> u(-3.0, 3.0), uh(0.1, 2.0);
+  checkPolytopeDistance(
+      105,
+      [&](std::mt19937_64& rng, const Ellipsoid& e, std::vector<Eigen::Vector3d>* verts) {
+        const Eigen::Vector3d h(uh(rng), uh(rng), uh(rng));
+        const Eigen::Matrix3d R = test::randomRotation(rng);
+        const Eigen::Vector3d c(u(rng), u(rng), u(rng));
+        for (int k = 0; k < 8; ++k)
+          verts->push_back(c + R * Eigen::Vector3d((k & 1) ? h[0] : -h[0], (k & 2) ? h[1] : -h[1], (k & 4) ? h[2] : -h[2]));
+        return signedDistanceEllipsoidBox(e, h, R, c);
+      },
+      600);
+}
+
+TEST(EllipsoidTriangleDistance, IsOptimalAgainstDirectionSampling) {
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  checkPolytopeDistance(
+      107,
+      [&](std::mt19937_64& rng, const Ellipsoid& e, std::vector<Eigen::Vector3d>* verts) {
+        const Eigen::Vector3d a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+        *verts = {a, b, c};
+        return signedDistanceEllipsoidTriangle(e, a, b, c);
+      },
+      600);
+}
+
+TEST(EllipsoidBoxDistance, AxisAlignedClosedForms) {
+  const Ellipsoid e({1, 2, 3}, Eigen::Matrix3d::Identity(), {0, 0, 0});
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  SignedDistanceResult d = signedDistanceEllipsoidBox(e, {0.5, 0.5, 0.5}, I, {2.5, 0, 0});  // face at x = 2
+  EXPECT_NEAR(d.distance, 1.0, 1e-14);
+  EXPECT_NEAR((d.normal - Eigen::Vector3d::UnitX()).norm(), 0.0, 1e-12);
+  d = signedDistanceEllipsoidBox(e, {0.5, 0.5, 0.5}, I, {1.25, 0, 0});  // face at x = 0.75
+  EXPECT_NEAR(d.distance, -0.25, 1e-14);
+}
+
 }  // namespace
 }  // namespace fcl_quadric

@@ -16,6 +16,7 @@
 
 #include "fcl_quadric/geometry/ellipsoid.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
+#include "fcl_quadric/geometry/signed_distance.h"
 
 namespace fcl_quadric {
 
@@ -38,5 +39,24 @@ EllipsoidPolytopeResult classifyEllipsoidBox(const Ellipsoid& e, const Eigen::Ve
 /// non-finite vertices.
 EllipsoidPolytopeResult classifyEllipsoidTriangle(const Ellipsoid& e, const Eigen::Vector3d& a,
                                                   const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+/// Signed distance between ellipsoid e (a) and the box or triangle (b): Euclidean distance when
+/// separate, minus the penetration depth when overlapping, 0 in the touching band; `normal` points
+/// from the ellipsoid to the polytope, point_a is on the ellipsoid, point_b on the polytope.
+///
+/// Method: d = max over unit n of phi(n) = min_j n.v_j - h_e(n) (v_j the vertices). The maximiser
+/// lies in the normal cone of one feature of the polytope, where phi reduces to a smooth problem
+/// solved in closed form or by a one-dimensional root: a face gives n = -(outward face normal); a
+/// vertex gives the point-ellipsoid problem (point_ellipsoid.h); an edge gives the point-ellipse
+/// problem of the edge's line projected, with the ellipsoid's shadow, onto the plane orthogonal to
+/// it. phi is evaluated exactly at every candidate direction and the best is kept, so no validity
+/// test of the cones is needed. For separate pairs every sub-problem is convex and the result is
+/// the exact distance (to rounding); penetration depth takes the best of the same candidates
+/// (tested against dense direction sampling). The sign is the certified one of
+/// classifyEllipsoidBox / classifyEllipsoidTriangle.
+SignedDistanceResult signedDistanceEllipsoidBox(const Ellipsoid& e, const Eigen::Vector3d& half_extents,
+                                                const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_WB);
+SignedDistanceResult signedDistanceEllipsoidTriangle(const Ellipsoid& e, const Eigen::Vector3d& a,
+                                                     const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
 }  // namespace fcl_quadric

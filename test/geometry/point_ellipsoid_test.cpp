@@ -1,0 +1,75 @@
+// Closest point of an ellipsoid: optimality conditions and dense surface sampling.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fcl_quadric/geometry/point_ellipsoid.h"
+#include "support/random_ellipsoids.h"
+
+namespace fcl_quadric {
+namespace {
+
+TEST(PointEllipsoid, ClosestPointIsOnTheSurfaceAlongTheNormalAndBeatsSampling) {
+  std::mt19937_64 rng(111);
+  std::uniform_real_distribution<double> u(-4.0, 4.0);
+  const auto dirs = test::fibonacciSphere(20000);
+  int inside = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Ellipsoid e(test::randomRadii(rng, 3.0, 20.0), test::randomRotation(rng), {0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)});
+    // Points from deep inside to well outside (scaled surface points).
+    const Eigen::Vector3d q = e.center() + e.rotation() * (0.4 * std::fabs(u(rng)) * test::randomUnitVector(rng)).cwiseProduct(e.radii());
+    const PointEllipsoidResult r = closestPointOnEllipsoid(e, q);
+    inside += r.signed_distance < 0;
+    ASSERT_NEAR(e.implicit(r.closest), 0.0, 1e-12);
+    ASSERT_NEAR(std::fabs(r.signed_distance), (q - r.closest).norm(), 1e-12 * (1 + std::fabs(r.signed_distance)));
+    ASSERT_EQ(r.signed_distance < 0, e.implicit(q) < 0);
+    if ((q - r.closest).norm() > 1e-9) {
+      const Eigen::Vector3d n = e.normalAt(r.closest), w = (q - r.closest).normalized();
+      ASSERT_NEAR(std::fabs(n.dot(w)), 1.0, 1e-9) << "case " << i;
+    }
+    double sampled = 1e300;
+    for (const auto& d : dirs) sampled = std::min(sampled, (e.center() + e.rotation() * d.cwiseProduct(e.radii()) - q).norm());
+    ASSERT_LE(std::fabs(r.signed_distance), sampled + 1e-12) << "case " << i;
+  }
+  EXPECT_GT(inside, 20);
+}
+
+TEST(PointEllipsoid, CriticalPointsAreStationaryAndIncludeTheClosest) {
+  std::mt19937_64 rng(113);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3d e = test::randomRadii(rng, 2.0, 5.0);
+    const Eigen::Vector3d y(1.5 * e[0] * u(rng), 1.5 * e[1] * u(rng), 1.5 * e[2] * u(rng));
+    Eigen::Vector3d xs[8];
+    const int n = detail::criticalPointsPrincipal<3>(e, y, xs, 8);
+    ASSERT_GE(n, 2);  // at least the nearest and the farthest point
+    ASSERT_LE(n, 6);
+    Eigen::Vector3d closest;
+    const double d = std::fabs(detail::closestPointPrincipal<3>(e, y, &closest));
+    double best = 1e300;
+    for (int k = 0; k < n; ++k) {
+      ASSERT_NEAR(xs[k].cwiseQuotient(e).squaredNorm(), 1.0, 1e-10);
+      const Eigen::Vector3d normal = xs[k].cwiseQuotient(e.cwiseAbs2()).normalized();
+      const Eigen::Vector3d w = y - xs[k];
+      ASSERT_LT((w - w.dot(normal) * normal).norm(), 1e-8 * (1 + w.norm())) << "not stationary";
+      best = std::min(best, w.norm());
+    }
+    ASSERT_NEAR(best, d, 1e-10 * (1 + d));
+  }
+}
+
+TEST(PointEllipsoid, DegenerateInteriorPointsOnPrincipalPlanes) {
+  const Ellipsoid e({3, 2, 1}, Eigen::Matrix3d::Identity(), {0, 0, 0});
+  // The centre: closest points are the ends of the shortest axis.
+  PointEllipsoidResult r = closestPointOnEllipsoid(e, {0, 0, 0});
+  EXPECT_NEAR(r.signed_distance, -1.0, 1e-15);
+  EXPECT_NEAR(std::fabs(r.closest.z()), 1.0, 1e-15);
+  // A point on the x axis inside, near the centre: still closest through z.
+  r = closestPointOnEllipsoid(e, {0.5, 0, 0});
+  EXPECT_NEAR(e.implicit(r.closest), 0.0, 1e-14);
+  EXPECT_LT(std::fabs(r.signed_distance), 1.0 + 1e-12);
+  EXPECT_THROW(closestPointOnEllipsoid(e, {std::nan(""), 0, 0}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace fcl_quadric
