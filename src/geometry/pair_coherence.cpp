@@ -10,17 +10,10 @@ Separation PairCoherence::query(const Ellipsoid& a, const Ellipsoid& b) {
   }
   const SeparationCertificate cert = classifyEllipsoids(a, b);
   if (cert.status == Separation::Separated) {
-    // Cheapest plane first: the certificate's normal placed midway between the solids
-    // (planeWithNormal() proves it separates); it comes with the classification and avoids
-    // isolating the two roots of Theorem 4.6, which remains the fallback.
-    const Plane p = planeWithNormal(cert.normal, a, b);
-    if (planeSeparates(p, a, b)) {
-      candidate_ = p;
-    } else if (auto sp = separatingPlane(a, b); sp && sp->certified) {
-      candidate_ = sp->plane;
-    } else {
-      candidate_.reset();
-    }
+    // Keep the certificate's normal placed midway between the solids (planeWithNormal() proves it
+    // separates them now). It is not re-certified here: every use certifies it against the poses
+    // of that frame, so a plane spoilt by rounding can only cost a miss, never a wrong answer.
+    candidate_ = planeWithNormal(cert.normal, a, b);
   } else {
     candidate_.reset();
   }
