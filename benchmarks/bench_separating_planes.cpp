@@ -16,6 +16,9 @@
 // One benchmark iteration is a whole sequence; t_frame = CPU time / frames (Table 1: 10,000 per
 // sequence; Table 2: the frames whose boxes overlap, as in the paper). Motions are built explicitly per
 // frame (FCL 0.7's InterpMotion is not used).
+// At the end the program prints the "Summary" (median CPU time per frame), "Table 1" and "Table 2"
+// blocks, each beside the paper's numbers; benchmarks/update_docs.sh copies them into
+// docs/benchmarks.md.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -211,6 +214,7 @@ constexpr int kTessellations[] = {488, 1460, 4376, 13124};
 constexpr int kPaperTable2Collisions[] = {1157, 0, 435, 971, 1111};
 constexpr double kPaperTable2Us[] = {2.12, 15.2, 23.6, 36.8, 54.3};
 constexpr int kPaperTable2PlaneHits = 8020;
+constexpr int kPaperTable2BoxFrames = 10000;
 constexpr double kPaperTable2PlainUs = 7.63;
 
 struct OrbitScene {
@@ -314,47 +318,105 @@ std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> makeBvh(const TriangleMesh& m) {
   return bvh;
 }
 
+/// Table 1 laid out like the paper's: one row per quantity, per angular speed this run's value
+/// beside the paper's.
 void printTable1(const std::vector<RotatingScene>& scenes, const SummaryReporter& r) {
   const std::size_t n_seq = scenes.front().sequences.size();
-  std::printf("\n== Table 1 (Wang et al. 2004): ellipsoids (3,3,5), centres 8 apart, %d frames per "
-              "sequence; seed %llu, and the mean [min..max] over %zu seeds %llu.. ==\n",
-              kTable1Frames, static_cast<unsigned long long>(kTable1FirstSeed), n_seq,
-              static_cast<unsigned long long>(kTable1FirstSeed));
-  std::printf("%-5s | %-26s | %-26s | %-26s | %7s %7s %7s %7s | %s\n", "omega",
-              "collisions: seed, mean", "separations: seed, mean", "plane hits: seed, mean [range]",
-              "EECD us", "plain", "FCL us", "FCL mis", "paper: collisions, plane hits, EECD us, plain us");
-  for (std::size_t i = 0; i < scenes.size(); ++i) {
-    const RotatingScene& s = scenes[i];
-    const RotatingSequence& first = s.sequences.front();
-    const CountStats col = countStats(s, [](const RotatingSequence& q) { return q.collisions; });
-    const CountStats sep = countStats(s, [](const RotatingSequence& q) { return q.separations; });
-    const CountStats hit = countStats(s, [](const RotatingSequence& q) { return q.plane_hits; });
-    const CountStats mis = countStats(s, [](const RotatingSequence& q) { return q.fcl_misses; });
-    const std::string g = s.group();
-    char c1[64], c2[64], c3[64];
-    std::snprintf(c1, sizeof c1, "%5d, %7.1f [%d..%d]", first.collisions, col.mean, col.min, col.max);
-    std::snprintf(c2, sizeof c2, "%5d, %7.1f", first.separations, sep.mean);
-    std::snprintf(c3, sizeof c3, "%5d, %7.1f [%d..%d]", first.plane_hits, hit.mean, hit.min, hit.max);
-    std::printf("%-5.1f | %-26s | %-26s | %-26s | %7.3f %7.3f %7.3f %7.1f | %d, %d, %.3f, %.3f\n", s.omega, c1, c2,
-                c3, 1e-3 * r.nsPerItem(g + "/pair_coherence"), 1e-3 * r.nsPerItem(g + "/fcl_quadric"),
-                1e-3 * r.nsPerItem(g + "/fcl_libccd"), mis.mean, kPaperCollisions[i], kPaperPlaneHits[i],
-                kPaperEecdUs[i], kPaperPlainUs[i]);
+  const unsigned long long first_seed = kTable1FirstSeed;
+  const unsigned long long last_seed = kTable1FirstSeed + n_seq - 1;
+  std::printf("\n== Table 1 (Wang et al. 2004): ellipsoids (3,3,5), centres 8 apart, %d frames per sequence, "
+              "%zu seeded sequences (%llu..%llu) per speed ==\n",
+              kTable1Frames, n_seq, first_seed, last_seed);
+  std::printf("%-52s", "");
+  for (const RotatingScene& s : scenes) std::printf(" | %17s %.1f %7s", "omega", s.omega, "paper");
+  std::printf("\n");
+  // One row: a label and, per speed, this run's value and the paper's ("-" if none).
+  const auto row = [&](const std::string& label, auto ours, auto paper) {
+    std::printf("%-52s", label.c_str());
+    for (std::size_t i = 0; i < scenes.size(); ++i) {
+      std::printf(" | %21s %7s", ours(scenes[i]).c_str(), paper(i).c_str());
+    }
+    std::printf("\n");
+  };
+  const auto none = [](std::size_t) { return std::string("-"); };
+  const auto text = [](const char* fmt, double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, fmt, v);
+    return std::string(buf);
+  };
+  const auto range = [](const CountStats& c) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.1f [%d..%d]", c.mean, c.min, c.max);
+    return std::string(buf);
+  };
+  const std::string seed = "seed " + std::to_string(first_seed);
+  const std::string mean = "mean [min..max] of " + std::to_string(n_seq) + " seeds";
+
+  const auto first = [](int RotatingSequence::*field) {
+    return [field](const RotatingScene& s) { return std::to_string(s.sequences.front().*field); };
+  };
+  const auto stats = [&range](int RotatingSequence::*field) {
+    return [field, &range](const RotatingScene& s) {
+      return range(countStats(s, [field](const RotatingSequence& q) { return q.*field; }));
+    };
+  };
+  const auto per_frame = [&](const char* peer) {
+    return [&r, peer, &text](const RotatingScene& s) { return text("%.3f", 1e-3 * r.nsPerItem(s.group() + peer)); };
+  };
+  const auto paper_int = [](const int* values) {
+    return [values](std::size_t i) { return std::to_string(values[i]); };
+  };
+  const auto paper_us = [&text](const double* values) {
+    return [values, &text](std::size_t i) { return text("%.3f", values[i]); };
+  };
+
+  row("collisions, " + seed, first(&RotatingSequence::collisions), paper_int(kPaperCollisions));
+  row("collisions, " + mean, stats(&RotatingSequence::collisions), none);
+  row("separations, " + seed, first(&RotatingSequence::separations),
+      [](std::size_t i) { return std::to_string(kTable1Frames - kPaperCollisions[i]); });
+  row("separations, " + mean, stats(&RotatingSequence::separations), none);
+  row("separations reported by the plane, " + seed, first(&RotatingSequence::plane_hits),
+      paper_int(kPaperPlaneHits));
+  row("separations reported by the plane, mean [min..max]", stats(&RotatingSequence::plane_hits), none);
+  row("EECD (PairCoherence), us/frame", per_frame("/pair_coherence"), paper_us(kPaperEecdUs));
+  row("plain classifyEllipsoids, us/frame", per_frame("/fcl_quadric"), paper_us(kPaperPlainUs));
+  row("EECD time / plain time",
+      [&](const RotatingScene& s) {
+        return text("%.2f", r.ratio(s.group() + "/pair_coherence", s.group() + "/fcl_quadric"));
+      },
+      [&](std::size_t i) { return text("%.2f", kPaperEecdUs[i] / kPaperPlainUs[i]); });
+  row("FCL libccd on fcl::Ellipsoid, us/frame", per_frame("/fcl_libccd"), none);
+  row("FCL libccd misses / false hits, mean",
+      [&](const RotatingScene& s) {
+        const CountStats mis = countStats(s, [](const RotatingSequence& q) { return q.fcl_misses; });
+        const CountStats fal = countStats(s, [](const RotatingSequence& q) { return q.fcl_false_hits; });
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.1f / %.1f", mis.mean, fal.mean);
+        return std::string(buf);
+      },
+      none);
+  std::printf("  times: CPU us per frame over all %zu x %d frames of a speed; paper: one sequence per speed, "
+              "Pentium 4 2.26 GHz\n",
+              n_seq, kTable1Frames);
+  for (const RotatingScene& s : scenes) {
     int mismatches = 0;
     for (const RotatingSequence& q : s.sequences) mismatches += q.coherence_mismatches;
     if (mismatches != 0) {
-      std::printf("  WARNING: PairCoherence disagreed with classifyEllipsoids on %d frames\n", mismatches);
+      std::printf("  WARNING: omega %.1f: PairCoherence disagreed with classifyEllipsoids on %d frames\n", s.omega,
+                  mismatches);
     }
   }
-  std::printf("  (times: CPU us per frame over all %zu sequences; FCL mis = mean frames FCL libccd missed)\n",
-              n_seq);
+  std::fflush(stdout);
 }
 
 void printTable2(const OrbitScene& s, const std::vector<OrbitPeer>& peers, const SummaryReporter& r) {
   std::printf("\n== Table 2 (Wang et al. 2004): unit sphere orbiting (4.5,4,2), radius %.2f, %d frames, "
-              "%d with overlapping boxes (paper 10,000), %d collisions (paper 1,157) ==\n",
-              kOrbitRadius, kTable2Frames, s.box_frames, s.collisions);
-  std::printf("  separations reported by the cached plane: %d of %d (paper 8,020 of 8,843)\n", s.plane_hits,
-              s.box_frames - s.collisions);
+              "%d with overlapping boxes (paper %d), %d collisions (paper %d) ==\n",
+              kOrbitRadius, kTable2Frames, s.box_frames, kPaperTable2BoxFrames, s.collisions,
+              kPaperTable2Collisions[0]);
+  std::printf("  separations reported by the cached plane: %d of %d (paper %d of %d)\n", s.plane_hits,
+              s.box_frames - s.collisions, kPaperTable2PlaneHits,
+              kPaperTable2BoxFrames - kPaperTable2Collisions[0]);
   std::printf("%-36s %9s %8s %8s %10s %12s  %s\n", "peer", "found", "misses", "false", "separated",
               "us/frame", "paper (found, us/frame)");
   for (const OrbitPeer& p : peers) {
@@ -379,6 +441,9 @@ void printTable2(const OrbitScene& s, const std::vector<OrbitPeer>& peers, const
     std::printf("%-36s %9d %8d %8d %10d %12.3f  %s\n", p.name.c_str(), p.found, p.misses, p.false_hits,
                 s.box_frames - p.found, us, paper.c_str());
   }
+  std::printf("  EECD time / plain time: %.2f (paper %.2f); us/frame: CPU time of the whole orbit (box tests "
+              "included) / box-overlap frames\n",
+              r.ratio("Table2/pair_coherence", "Table2/fcl_quadric"), kPaperTable2Us[0] / kPaperTable2PlainUs);
   std::fflush(stdout);
 }
 
@@ -391,6 +456,7 @@ int main(int argc, char** argv) {
   using namespace fcl_quadric::bench;
   const std::size_t n_sequences = takeSizeOption(&argc, argv, "table1_seeds", "FCL_QUADRIC_BENCH_TABLE1_SEEDS",
                                                  kDefaultTable1Sequences);
+  const benchmark::ConsoleReporter::OutputOptions console = consoleOutputOptions(argc, argv);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
 
@@ -456,7 +522,7 @@ int main(int argc, char** argv) {
 
   std::printf("fcl_quadric separating-plane benchmarks (Wang et al. 2004 §5)\n");
   std::fflush(stdout);
-  SummaryReporter reporter;
+  SummaryReporter reporter(console);
   benchmark::RunSpecifiedBenchmarks(&reporter);
   reporter.printSummary("Summary: CPU time per frame", "frame");
   printTable1(rotating, reporter);

@@ -14,11 +14,17 @@
 //   Static/DistanceSeparated   signedDistance | fcl::distance libccd | fcl::distance indep, on the
 //                              separated pairs where FCL indep's signed distance is >= 0 (FCL 0.7's
 //                              indep signed distance aborts on overlaps: fcl_peers.h)
-// Agreement with FCL is counted outside the timed loops and printed after the timing summary.
+// Agreement with FCL is counted outside the timed loops. At the end the program prints three
+// blocks that benchmarks/update_docs.sh copies into docs/benchmarks.md: "Summary" (median CPU time
+// per pair), "Targets" (the foundation issue's targets, judged on the measured values) and
+// "Agreement".
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
+#include <initializer_list>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -37,6 +43,13 @@ namespace {
 
 constexpr std::size_t kDefaultPairs = 100000;
 constexpr std::size_t kHotPairs = 1024;
+
+/// Targets of the foundation issue, checked in the "Targets" block.
+constexpr double kTargetClassifyNs = 40.0;        ///< (a) exact static test, ns per pair
+constexpr double kTargetSpeedupVsLibccd = 10.0;   ///< (b) boolean collide vs FCL libccd
+constexpr double kTargetCachedPlaneNs = 10.0;     ///< (c) PairCoherence::query with a valid plane
+constexpr double kTargetDistanceSpeedup = 3.0;    ///< (d) signedDistance vs fcl::distance
+constexpr double kTargetDistanceRelError = 1e-9;  ///< (e) relative error of signedDistance
 
 /// A pair set with its FCL twins (shapes and poses built once, outside the timed loops).
 struct StaticScene {
@@ -332,6 +345,88 @@ void printReport(const StaticReport& r) {
   std::fflush(stdout);
 }
 
+/// printf into a std::string.
+__attribute__((format(printf, 1, 2))) std::string strprintf(const char* fmt, ...) {
+  char buf[512];
+  va_list args;
+  va_start(args, fmt);
+  std::vsnprintf(buf, sizeof buf, fmt, args);
+  va_end(args);
+  return buf;
+}
+
+/// "1e-09" -> "1e-9".
+std::string shortExponent(std::string s) {
+  for (const char* from : {"e-0", "e+0"}) {
+    const std::size_t at = s.find(from);
+    if (at != std::string::npos) s.erase(at + 2, 1);
+  }
+  return s;
+}
+
+/// Status of a target measured by one or more values (value, meets the target): "met" by all,
+/// "not met" by any, "no data" if a value was not measured (benchmark filtered out).
+const char* targetStatus(std::initializer_list<std::pair<double, bool>> values) {
+  std::size_t met = 0;
+  for (const auto& [value, ok] : values) {
+    if (!(value > 0.0)) return "no data";
+    met += ok;
+  }
+  return met == values.size() ? "met" : "not met";
+}
+
+void printTarget(const char* status, const std::string& target, const std::string& measured) {
+  std::printf("  %-8s %s: %s\n", status, target.c_str(), measured.c_str());
+}
+
+/// The targets of the foundation issue, each judged on the measured values of this run.
+void printTargets(const SummaryReporter& r, const StaticReport& rep) {
+  std::printf("\n== Targets (foundation issue), judged on the Summary above and the self-check below ==\n");
+  if (rep.pairs != kDefaultPairs) {
+    std::printf("  NOTE: %zu pairs, not the %zu ANCHORS pairs the targets are stated for\n", rep.pairs,
+                kDefaultPairs);
+  }
+  // (a) exact static test
+  const double classify = r.nsPerItem("Static/Collide/fcl_quadric");
+  printTarget(targetStatus({{classify, classify <= kTargetClassifyNs}}),
+              strprintf("(a) exact static test <= %.0f ns/pair", kTargetClassifyNs),
+              strprintf("%.1f ns/pair (Static/Collide/fcl_quadric, %zu pairs)", classify, rep.pairs));
+  // (b) boolean collide vs FCL libccd
+  const double vs_libccd = r.ratio("Static/Collide/fcl_libccd", "Static/Collide/fcl_quadric");
+  printTarget(targetStatus({{vs_libccd, vs_libccd >= kTargetSpeedupVsLibccd}}),
+              strprintf("(b) >= %.0fx faster than FCL libccd on the same pairs", kTargetSpeedupVsLibccd),
+              strprintf("%.2fx (Static/Collide: fcl_libccd %.1f ns / fcl_quadric %.1f ns)", vs_libccd,
+                        r.nsPerItem("Static/Collide/fcl_libccd"), classify));
+  // (c) cached plane
+  const double cached = r.nsPerItem("Static/CollideSeparated/cached_plane_query");
+  const double cached_hot = r.nsPerItem("Static/CollideSeparatedHot/cached_plane_query");
+  printTarget(targetStatus({{cached, cached <= kTargetCachedPlaneNs},
+                            {cached_hot, cached_hot <= kTargetCachedPlaneNs}}),
+              strprintf("(c) cached plane <= %.0f ns", kTargetCachedPlaneNs),
+              strprintf("%.1f ns (all %zu separated pairs), %.1f ns (Hot: the first %zu, in L2)", cached,
+                        rep.separated, cached_hot, std::min(kHotPairs, rep.separated)));
+  // (d) signed distance vs fcl::distance
+  const double sep_libccd = r.ratio("Static/DistanceSeparated/fcl_libccd", "Static/DistanceSeparated/fcl_quadric");
+  const double sep_indep = r.ratio("Static/DistanceSeparated/fcl_indep", "Static/DistanceSeparated/fcl_quadric");
+  const double all_libccd = r.ratio("Static/Distance/fcl_libccd", "Static/Distance/fcl_quadric");
+  printTarget(targetStatus({{sep_libccd, sep_libccd >= kTargetDistanceSpeedup},
+                            {sep_indep, sep_indep >= kTargetDistanceSpeedup},
+                            {all_libccd, all_libccd >= kTargetDistanceSpeedup}}),
+              strprintf("(d) signed distance >= %.0fx faster than fcl::distance", kTargetDistanceSpeedup),
+              strprintf("separated pairs %.2fx vs libccd, %.2fx vs indep; all pairs %.2fx vs libccd", sep_libccd,
+                        sep_indep, all_libccd));
+  // (e) relative error of signedDistance: the certified bound on separated pairs
+  const DistanceSelfCheck& c = rep.self_check;
+  const Quantiles& q = c.certified_rel_error_separated;
+  const bool clean = c.not_converged == 0 && c.sign_mismatch == 0;
+  printTarget(q.count == 0 ? "no data" : q.max <= kTargetDistanceRelError && clean ? "met" : "not met",
+              "(e) signed distance relative error <= " + shortExponent(strprintf("%.0e", kTargetDistanceRelError)),
+              strprintf("certified bound on %zu separated pairs: max %.2e (median %.2e); %zu not converged, "
+                        "%zu sign mismatches",
+                        q.count, q.max, q.median, c.not_converged, c.sign_mismatch));
+  std::fflush(stdout);
+}
+
 }  // namespace
 }  // namespace bench
 }  // namespace fcl_quadric
@@ -341,6 +436,7 @@ int main(int argc, char** argv) {
   using namespace fcl_quadric::bench;
   const std::size_t n_pairs =
       takeSizeOption(&argc, argv, "pairs", "FCL_QUADRIC_BENCH_PAIRS", kDefaultPairs);
+  const benchmark::ConsoleReporter::OutputOptions console = consoleOutputOptions(argc, argv);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
 
@@ -439,9 +535,10 @@ int main(int argc, char** argv) {
                                  &distance_separated, fcl::GST_INDEP, &rep.distance_indep_separated);
   }
 
-  SummaryReporter reporter;
+  SummaryReporter reporter(console);
   benchmark::RunSpecifiedBenchmarks(&reporter);
   reporter.printSummary("Summary: CPU time per pair", "pair");
+  printTargets(reporter, rep);
   printReport(rep);
   benchmark::Shutdown();
   return 0;

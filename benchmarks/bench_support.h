@@ -3,6 +3,9 @@
 /// Shared pieces of the benchmark programs: the ANCHORS.md pair generator, the `--pairs` option,
 /// per-item timing counters, and a console reporter that adds the ratio to fcl_quadric and prints
 /// a summary table at the end (docs/benchmarks.md). No FCL here (see fcl_peers.h).
+///
+/// The end-of-run blocks ("== Title ==" followed by lines, ended by a blank line) are copied
+/// verbatim into docs/benchmarks.md by benchmarks/update_docs.sh: keep them free of blank lines.
 
 #include <algorithm>
 #include <cstdint>
@@ -13,6 +16,8 @@
 #include <random>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include <benchmark/benchmark.h>
 #include <Eigen/Geometry>
@@ -81,6 +86,31 @@ inline std::size_t takeSizeOption(int* argc, char** argv, const char* name, cons
   return std::max<std::size_t>(value, 1);
 }
 
+/// Console options for SummaryReporter, from `--benchmark_color` in argv (read before
+/// benchmark::Initialize, which consumes the flag). A reporter passed to RunSpecifiedBenchmarks is
+/// not configured by Google Benchmark, so without this the flag would be ignored and saved outputs
+/// would carry colour escapes. Like Google Benchmark: "auto" (the default) means colour only on a
+/// terminal. Counters are always printed as table columns.
+inline benchmark::ConsoleReporter::OutputOptions consoleOutputOptions(int argc, char** argv) {
+  std::string color = "auto";
+  const std::string flag = "--benchmark_color";
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == flag) {
+      color = "true";
+    } else if (arg.compare(0, flag.size() + 1, flag + "=") == 0) {
+      color = arg.substr(flag.size() + 1);
+    }
+  }
+  bool use_color = false;
+  if (color == "auto") {
+    use_color = isatty(STDOUT_FILENO) != 0;
+  } else {
+    use_color = color == "true" || color == "yes" || color == "1" || color == "on";
+  }
+  return use_color ? benchmark::ConsoleReporter::OO_ColorTabular : benchmark::ConsoleReporter::OO_Tabular;
+}
+
 /// Marks `items` units of work (pairs or frames) done per iteration: Google Benchmark then reports
 /// items_per_second and `counter_name` = CPU seconds per item (printed as e.g. "612n" = 612 ns).
 inline void setPerItemTime(benchmark::State& state, double items_per_iteration,
@@ -101,11 +131,22 @@ class SummaryReporter : public benchmark::ConsoleReporter {
     std::string name;
     double ns_per_item = 0.0;
     double ratio = 0.0;  ///< 0 when there is no baseline
+    double cv = -1.0;    ///< coefficient of variation of CPU time over repetitions; < 0: none
   };
+
+  explicit SummaryReporter(OutputOptions options) : ConsoleReporter(options) {}
 
   void ReportRuns(const std::vector<Run>& reports) override {
     std::vector<Run> copy = reports;
     for (Run& run : copy) {
+      if (run.run_type == Run::RT_Aggregate && run.aggregate_name == "cv" && !run.error_occurred) {
+        // Google Benchmark stores the coefficient of variation (a fraction) in the time fields.
+        const std::string name = run.run_name.str();
+        for (Row& r : rows_) {
+          if (r.name == name) r.cv = run.cpu_accumulated_time;
+        }
+        continue;
+      }
       // With --benchmark_repetitions the median aggregate, reported last, is the one kept.
       const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
       if ((run.run_type != Run::RT_Iteration && !median) || run.error_occurred) continue;
@@ -114,7 +155,7 @@ class SummaryReporter : public benchmark::ConsoleReporter {
       const double ns = 1e9 / it->second.value;
       const std::string name = run.run_name.str();
       const std::string group = name.substr(0, name.rfind('/'));
-      Row row{name, ns, 0.0};
+      Row row{name, ns, 0.0, -1.0};
       if (endsWith(name, kOursSuffix)) {
         baseline_[group] = ns;
       } else if (const auto b = baseline_.find(group); b != baseline_.end()) {
@@ -140,16 +181,26 @@ class SummaryReporter : public benchmark::ConsoleReporter {
     return 0.0;
   }
 
-  /// Prints "name | ns per item | x fcl_quadric" for every run, in run order.
+  /// Ratio of the times per item of two runs (numerator / denominator), or 0 if either is missing.
+  double ratio(const std::string& numerator, const std::string& denominator) const {
+    const double n = nsPerItem(numerator), d = nsPerItem(denominator);
+    return n > 0.0 && d > 0.0 ? n / d : 0.0;
+  }
+
+  /// Prints "name | ns per item | x fcl_quadric | CV" for every run, in run order.
   void printSummary(const char* title, const char* item) const {
-    std::printf("\n== %s ==\n%-52s %14s %14s\n", title, "benchmark", (std::string("ns/") + item).c_str(),
-                "x fcl_quadric");
+    bool any_cv = false;
+    for (const Row& r : rows_) any_cv = any_cv || r.cv >= 0.0;
+    std::printf("\n== %s (%s) ==\n", title,
+                any_cv ? "median of the repetitions; CV = coefficient of variation over them"
+                       : "one run, no repetitions");
+    std::printf("%-52s %14s %14s %8s\n", "benchmark", (std::string("ns/") + item).c_str(), "x fcl_quadric",
+                "CV");
     for (const Row& r : rows_) {
-      if (r.ratio > 0.0) {
-        std::printf("%-52s %14.1f %14.2f\n", r.name.c_str(), r.ns_per_item, r.ratio);
-      } else {
-        std::printf("%-52s %14.1f %14s\n", r.name.c_str(), r.ns_per_item, "-");
-      }
+      char ratio_text[32] = "-", cv_text[32] = "-";
+      if (r.ratio > 0.0) std::snprintf(ratio_text, sizeof ratio_text, "%.2f", r.ratio);
+      if (r.cv >= 0.0) std::snprintf(cv_text, sizeof cv_text, "%.1f %%", 100.0 * r.cv);
+      std::printf("%-52s %14.1f %14s %8s\n", r.name.c_str(), r.ns_per_item, ratio_text, cv_text);
     }
     std::fflush(stdout);
   }

@@ -1,0 +1,129 @@
+#!/usr/bin/env bash
+# Regenerates every measured number of docs/benchmarks.md from one real run.
+#
+# Runs benchmarks/run_benchmarks.sh BUILD_DIR into benchmarks/results/TAG/ (the folder is replaced
+# when the run succeeds), then replaces everything between the marker lines
+#   <!-- BEGIN GENERATED: NAME -->
+#   <!-- END GENERATED: NAME -->
+# of docs/benchmarks.md with block NAME of the run's output in a ```text fence. Blocks:
+#   run-info          results/TAG/run_info.txt, whole
+#   static-summary    bench_static.txt, "== Summary: ..."   (up to the next blank line)
+#   static-targets    bench_static.txt, "== Targets ..."
+#   static-agreement  bench_static.txt, "== Agreement ..."
+#   planes-summary    bench_separating_planes.txt, "== Summary: ..."
+#   table1            bench_separating_planes.txt, "== Table 1 ..."
+#   table2            bench_separating_planes.txt, "== Table 2 ..."
+# Fails, leaving the document untouched, if a block is missing from the output, or a marker is
+# missing, duplicated, unknown or unbalanced in the document.
+#
+# Usage: benchmarks/update_docs.sh BUILD_DIR
+# Env:   TAG (default xeon-2core-vm): the machine, i.e. the results folder name.
+#        DOC (default docs/benchmarks.md of this checkout): the document to rewrite.
+#        SKIP_RUN=1: no run; regenerate the document from the results already in the folder.
+#        MIN_TIME, REPS, PAIRS, TABLE1_SEEDS: passed on to run_benchmarks.sh (smoke runs).
+set -euo pipefail
+die() {
+  echo "update_docs.sh: $*" >&2
+  exit 1
+}
+[[ $# -eq 1 ]] || {
+  echo "usage: $0 BUILD_DIR" >&2
+  exit 2
+}
+src=$(cd "$(dirname "$0")/.." && pwd)
+build=$1
+tag=${TAG:-xeon-2core-vm}
+doc=${DOC:-${src}/docs/benchmarks.md}
+[[ "${tag}" =~ ^[A-Za-z0-9][A-Za-z0-9._-]*$ ]] || die "bad TAG '${tag}' (letters, digits, . _ -)"
+[[ -f "${doc}" ]] || die "no document ${doc}"
+results=${src}/benchmarks/results/${tag}
+
+work=$(mktemp -d)
+staging=""
+cleanup() {
+  rm -rf "${work}"
+  [[ -z "${staging}" ]] || rm -rf "${staging}"
+}
+trap cleanup EXIT
+
+if [[ "${SKIP_RUN:-0}" != 1 ]]; then
+  # Run into a staging folder next to the results, and replace the old results only on success.
+  mkdir -p "${src}/benchmarks/results"
+  staging=$(mktemp -d "${src}/benchmarks/results/.${tag}.run.XXXXXX")
+  "${src}/benchmarks/run_benchmarks.sh" "${build}" "${staging}" || die "benchmark run failed"
+  rm -rf "${results}"
+  mv "${staging}" "${results}"
+  staging=""
+  chmod 755 "${results}"
+fi
+[[ -d "${results}" ]] || die "no results in ${results}"
+
+# block NAME FILE HEADER: the lines from the one line starting with HEADER to the next blank line.
+block() {
+  local name=$1 file=${results}/$2 header=$3
+  [[ -f "${file}" ]] || die "block ${name}: no ${file}"
+  awk -v header="${header}" '
+    { gsub(/\033\[[0-9;]*m/, "") }  # colour escapes, should there be any
+    index($0, header) == 1 { found++; inside = 1 }
+    inside && /^[[:space:]]*$/ { inside = 0 }
+    inside { print }
+    END { exit found == 1 ? 0 : 1 }' "${file}" >"${work}/${name}.txt" ||
+    die "block ${name}: expected exactly one line starting with '${header}' in ${file}"
+}
+names=(run-info static-summary static-targets static-agreement planes-summary table1 table2)
+[[ -s "${results}/run_info.txt" ]] || die "block run-info: no ${results}/run_info.txt"
+sed 's/\x1b\[[0-9;]*m//g' "${results}/run_info.txt" >"${work}/run-info.txt"
+block static-summary bench_static.txt "== Summary:"
+block static-targets bench_static.txt "== Targets"
+block static-agreement bench_static.txt "== Agreement"
+block planes-summary bench_separating_planes.txt "== Summary:"
+block table1 bench_separating_planes.txt "== Table 1"
+block table2 bench_separating_planes.txt "== Table 2"
+
+awk -v dir="${work}" -v names="${names[*]}" '
+  function fail(message) {
+    printf "update_docs.sh: %s:%d: %s\n", FILENAME, FNR, message > "/dev/stderr"
+    failed = 1
+    exit 1
+  }
+  BEGIN {
+    n = split(names, list, " ")
+    for (i = 1; i <= n; i++) wanted[list[i]] = 1
+    fence = "```"
+  }
+  /^<!-- BEGIN GENERATED: [A-Za-z0-9_-]+ -->$/ {
+    if (open != "") fail("BEGIN of " $4 " inside block " open)
+    if (!($4 in wanted)) fail("unknown block " $4)
+    if ($4 in seen) fail("second BEGIN of block " $4)
+    seen[$4] = 1
+    open = $4
+    print
+    print fence "text"
+    file = dir "/" open ".txt"
+    while ((status = (getline line < file)) > 0) print line
+    if (status < 0) fail("cannot read " file)
+    close(file)
+    print fence
+    next
+  }
+  /^<!-- END GENERATED: [A-Za-z0-9_-]+ -->$/ {
+    if (open == "") fail("END of " $4 " without BEGIN")
+    if ($4 != open) fail("END of " $4 " inside block " open)
+    open = ""
+    print
+    next
+  }
+  /^[[:space:]]*<!--[[:space:]]*(BEGIN|END)[[:space:]]+GENERATED/ { fail("malformed marker: " $0) }
+  open == "" { print }
+  END {
+    if (failed) exit 1
+    if (open != "") { printf "update_docs.sh: block %s has no END marker\n", open > "/dev/stderr"; exit 1 }
+    for (i = 1; i <= n; i++) {
+      if (!(list[i] in seen)) {
+        printf "update_docs.sh: no marker for block %s in the document\n", list[i] > "/dev/stderr"
+        exit 1
+      }
+    }
+  }' "${doc}" >"${work}/doc.md" || die "${doc} not changed"
+cat "${work}/doc.md" >"${doc}"
+echo "update_docs.sh: ${doc} regenerated from ${results}"
