@@ -1,0 +1,57 @@
+#pragma once
+/// \file distance.h
+/// fcl_quadric::distance: FCL's distance() with the exact narrow phase (QuadricSolver) and checked
+/// input, plus the broad-phase callback defaultDistanceFunction.
+///
+/// Same overloads and meaning as fcl::distance in <fcl/narrowphase/distance.h>; routed through
+/// FCL's DistanceFunctionMatrix instantiated for QuadricSolver<double> (src/fcl/distance.cpp).
+///  - result.min_distance: the distance; for colliding pairs, with
+///    request.enable_signed_distance, minus the penetration depth, otherwise -1 (FCL's
+///    "implementation defined" value, as GJKSolver_libccd).
+///  - result.nearest_points (request.enable_nearest_points): world frame, p[0] on o1, p[1] on o2.
+///    For primitive pairs they lie on the surfaces (also when penetrating, with signed distance);
+///    for BVH / OcTree operands FCL's workaround applies (both points = a contact position).
+///  - the libccd fallback gets distance_tolerance = request.distance_tolerance, as fcl::distance
+///    does for GST_LIBCCD; request.gjk_solver_type is ignored.
+///  - bad input (null object / geometry, non-finite transform) throws std::invalid_argument.
+/// Kept from FCL: pairs FCL has no function for print FCL's warning and return
+/// std::numeric_limits<S>::max() with `result` untouched.
+///
+/// Call it qualified (fcl_quadric::distance), see collision.h. Only S = double is instantiated.
+
+#include <fcl/common/types.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/distance_request.h>
+#include <fcl/narrowphase/distance_result.h>
+
+namespace fcl_quadric {
+
+/// Distance between two collision objects. \return result.min_distance as computed (as fcl::distance).
+/// \throws std::invalid_argument if o1 or o2, or its geometry, is null, or a transform is not finite.
+template <typename S>
+S distance(const fcl::CollisionObject<S>* o1, const fcl::CollisionObject<S>* o2,
+           const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result);
+
+/// Distance between geometry o1 posed at tf1 and o2 posed at tf2.
+/// \throws std::invalid_argument if o1 or o2 is null or tf1 / tf2 is not finite.
+template <typename S>
+S distance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1, const fcl::CollisionGeometry<S>* o2,
+           const fcl::Transform3<S>& tf2, const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result);
+
+/// Broad-phase callback (fcl::DistanceCallBack<S>), FCL's DefaultDistanceFunction with
+/// fcl_quadric::distance. `data` must point to an fcl::DefaultDistanceData<S>
+/// (<fcl/broadphase/default_broadphase_callbacks.h>); `dist` receives result.min_distance;
+/// evaluation stops (returns true) once dist <= 0, as in FCL.
+/// \throws std::invalid_argument if data is null (FCL's version asserts), or from distance().
+template <typename S>
+bool defaultDistanceFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<S>* o2, void* data, S& dist);
+
+extern template double distance(const fcl::CollisionObject<double>*, const fcl::CollisionObject<double>*,
+                                const fcl::DistanceRequest<double>&, fcl::DistanceResult<double>&);
+extern template double distance(const fcl::CollisionGeometry<double>*, const fcl::Transform3<double>&,
+                                const fcl::CollisionGeometry<double>*, const fcl::Transform3<double>&,
+                                const fcl::DistanceRequest<double>&, fcl::DistanceResult<double>&);
+extern template bool defaultDistanceFunction(fcl::CollisionObject<double>*, fcl::CollisionObject<double>*, void*,
+                                             double&);
+
+}  // namespace fcl_quadric
