@@ -131,8 +131,12 @@ LocalMax ascend(const Objective& obj, Eigen::Vector3d n, double scale) {
 }  // namespace
 
 SignedDistanceResult signedDistance(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d* warm_normal) {
+  return signedDistance(a, b, classifyEllipsoids(a, b), warm_normal);
+}
+
+SignedDistanceResult signedDistance(const Ellipsoid& a, const Ellipsoid& b, const SeparationCertificate& cert,
+                                    const Eigen::Vector3d* warm_normal) {
   SignedDistanceResult res;
-  const SeparationCertificate cert = classifyEllipsoids(a, b);
   res.status = cert.status;
 
   Objective obj;

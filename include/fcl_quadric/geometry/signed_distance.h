@@ -34,4 +34,10 @@ struct SignedDistanceResult {
 SignedDistanceResult signedDistance(const Ellipsoid& a, const Ellipsoid& b,
                                     const Eigen::Vector3d* warm_normal = nullptr);
 
+/// The same, reusing a classification already computed by classifyEllipsoids(a, b) (callers that
+/// classify first, such as the FCL solver, save one classification). \pre cert is
+/// classifyEllipsoids(a, b) for these a and b (in this order).
+SignedDistanceResult signedDistance(const Ellipsoid& a, const Ellipsoid& b, const SeparationCertificate& cert,
+                                    const Eigen::Vector3d* warm_normal = nullptr);
+
 }  // namespace fcl_quadric
