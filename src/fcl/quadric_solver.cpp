@@ -2,10 +2,13 @@
 // instantiates no FCL traversal or function matrix (those live in collision.cpp / distance.cpp).
 #include "fcl_quadric/fcl/quadric_solver.h"
 
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
+#include "fcl_quadric/geometry/ellipsoid_plane.h"
+#include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/geometry/signed_distance.h"
 
@@ -81,6 +84,236 @@ bool signedDistanceEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactDista
   out->p1 = d.point_a;
   out->p2 = d.point_b;
   return d.distance >= 0.0;
+}
+
+// --- Adapters of the existing ellipsoid-ellipsoid kernels -------------------------------------
+
+bool exactIntersect(const Ellipsoid& e, const Ellipsoid& other, ExactContact* contact) {
+  return intersectEllipsoids(e, other, contact);
+}
+bool exactDistance(const Ellipsoid& e, const Ellipsoid& other, ExactDistance* out) {
+  return distanceEllipsoids(e, other, out);
+}
+bool exactSignedDistance(const Ellipsoid& e, const Ellipsoid& other, ExactDistance* out) {
+  return signedDistanceEllipsoids(e, other, out);
+}
+
+// --- Conversions -------------------------------------------------------------------------------
+
+WorldPlane planeFromFcl(const Eigen::Vector3d& n, double d, bool halfspace, const Eigen::Matrix3d& R,
+                        const Eigen::Vector3d& t, const char* which) {
+  // fcl::transform(Plane / Halfspace, tf) followed by the constructor's unitNormalTest.
+  WorldPlane P;
+  P.halfspace = halfspace;
+  P.n = R * n;
+  P.d = d + P.n.dot(t);
+  const double l = P.n.norm();
+  if (!(l > 0.0) || !std::isfinite(l) || !std::isfinite(P.d)) {
+    std::ostringstream os;
+    os << "fcl_quadric::QuadricSolver: " << which << " (" << (halfspace ? "fcl::Halfspace" : "fcl::Plane")
+       << "): the normal must be finite and non-zero and the offset finite, got n = [" << n.transpose()
+       << "], d = " << d;
+    throw std::invalid_argument(os.str());
+  }
+  const double inv_l = 1.0 / l;
+  P.n *= inv_l;
+  P.d *= inv_l;
+  return P;
+}
+
+WorldBox boxFromFcl(const Eigen::Vector3d& side, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                    const char* which) {
+  try {
+    for (int i = 0; i < 3; ++i) {
+      if (!std::isfinite(side[i]) || !(side[i] >= 0.0)) {
+        std::ostringstream os;
+        os << "box side " << i << " must be finite and >= 0, got " << side[i];
+        throw std::invalid_argument(os.str());
+      }
+    }
+    fcl_quadric::detail::checkRotation(R, "box rotation");
+  } catch (const std::invalid_argument& e) {
+    rethrowNamed(which, "fcl::Box", e);
+  }
+  WorldBox b;
+  b.half = 0.5 * side;
+  b.R = R;
+  b.p = p;
+  return b;
+}
+
+WorldTriangle triangleFromFcl(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  if (!a.allFinite() || !b.allFinite() || !c.allFinite()) {
+    std::ostringstream os;
+    os << "fcl_quadric::QuadricSolver: triangle vertices must be finite, got [" << a.transpose() << "], ["
+       << b.transpose() << "], [" << c.transpose() << "]";
+    throw std::invalid_argument(os.str());
+  }
+  return WorldTriangle{a, b, c};
+}
+
+// --- Ellipsoid against a plane or a half-space -------------------------------------------------
+
+namespace {
+
+/// Everything the plane and half-space answers need, from one certified classification.
+struct PlaneCase {
+  Separation status = Separation::Touching;
+  /// Signed distance: > 0 separated, 0 in the touching band, -(penetration depth) when they
+  /// overlap. Plane: |n.p - d| - h (the nearer side); half-space: (n.p - d) - h.
+  double signed_distance = 0.0;
+  /// Unit normal pointing from the ellipsoid to the plane / half-space.
+  Eigen::Vector3d toward = Eigen::Vector3d::UnitX();
+  /// The support point of the ellipsoid in direction `toward` (nearest to, or deepest into, the
+  /// other solid) and its projection onto the plane.
+  Eigen::Vector3d q = Eigen::Vector3d::Zero();
+  Eigen::Vector3d q_on_plane = Eigen::Vector3d::Zero();
+  /// FCL's contact position (see exactIntersect below).
+  Eigen::Vector3d pos = Eigen::Vector3d::Zero();
+};
+
+PlaneCase planeCase(const Ellipsoid& e, const WorldPlane& P) {
+  const EllipsoidPlaneResult r = classifyEllipsoidPlane(e, P.n, P.d);
+  const double offset = r.centre_offset, h = r.half_width;
+  PlaneCase c;
+  double raw;
+  if (P.halfspace) {
+    // { n.x <= d }: collides iff n.p - h <= d (ellipsoidHalfspace). A Touching relation with the
+    // centre on the negative side is tangency from inside: the ellipsoid is deep in the solid.
+    c.toward = -P.n;
+    c.q = r.farthest_negative;
+    raw = offset - h;
+    if (r.relation == PlaneRelation::PositiveSide) c.status = Separation::Separated;
+    else if (r.relation == PlaneRelation::Touching && offset > 0.0) c.status = Separation::Touching;
+    else c.status = Separation::Overlapping;
+  } else {
+    // FCL's ellipsoidPlaneIntersect (plane-inl.h:153-197): the side of the centre; a centre on
+    // the plane (signed_dist == 0) takes +n.
+    const bool positive = offset > 0.0;
+    c.toward = positive ? Eigen::Vector3d(-P.n) : P.n;
+    c.q = positive ? r.farthest_negative : r.farthest_positive;
+    raw = std::fabs(offset) - h;
+    switch (r.relation) {
+      case PlaneRelation::PositiveSide:
+      case PlaneRelation::NegativeSide: c.status = Separation::Separated; break;
+      case PlaneRelation::Touching: c.status = Separation::Touching; break;
+      case PlaneRelation::Transversal: c.status = Separation::Overlapping; break;
+    }
+  }
+  c.signed_distance = c.status == Separation::Touching ? 0.0 : raw;
+  c.q_on_plane = c.q - (P.n.dot(c.q) - P.d) * P.n;
+  const double depth = -c.signed_distance;
+  if (P.halfspace) {
+    // halfspace-inl.h:200-208: on the segment from the centre to the deepest point, at the middle
+    // of the penetrating layer: p + (q - p) (1 - depth / (2h)).
+    c.pos = e.center() + (1.0 - 0.5 * depth / h) * (c.q - e.center());
+  } else {
+    // plane-inl.h:178-184: where the segment from the centre to q crosses the plane:
+    // p + (q - p) |n.p - d| / h.
+    c.pos = e.center() + (std::fabs(offset) / h) * (c.q - e.center());
+  }
+  return c;
+}
+
+}  // namespace
+
+bool exactIntersect(const Ellipsoid& e, const WorldPlane& other, ExactContact* contact) {
+  const PlaneCase c = planeCase(e, other);
+  if (c.status == Separation::Separated) return false;
+  if (contact) {
+    contact->normal = c.toward;
+    contact->pos = c.pos;
+    contact->depth = -c.signed_distance;
+  }
+  return true;
+}
+
+bool exactDistance(const Ellipsoid& e, const WorldPlane& other, ExactDistance* out) {
+  const PlaneCase c = planeCase(e, other);
+  if (c.status == Separation::Overlapping) {
+    // libccd's convention: -1; both points a point common to both solids (plane: FCL's contact
+    // position, on the plane inside the ellipsoid; half-space: the deepest point).
+    out->distance = -1.0;
+    out->p1 = out->p2 = other.halfspace ? c.q : c.pos;
+    return false;
+  }
+  out->distance = c.signed_distance;
+  out->p1 = c.q;
+  out->p2 = c.q_on_plane;
+  return true;
+}
+
+bool exactSignedDistance(const Ellipsoid& e, const WorldPlane& other, ExactDistance* out) {
+  const PlaneCase c = planeCase(e, other);
+  out->distance = c.signed_distance;
+  out->p1 = c.q;           // on the ellipsoid; the deepest point inside the other solid if they overlap
+  out->p2 = c.q_on_plane;  // on the plane; p2 - p1 = distance * (normal from the ellipsoid)
+  return c.signed_distance >= 0.0;
+}
+
+// --- Ellipsoid against a box or a triangle -----------------------------------------------------
+
+namespace {
+
+bool contactFrom(const SignedDistanceResult& d, ExactContact* contact) {
+  if (d.status == Separation::Separated) return false;
+  contact->normal = d.normal;  // from the ellipsoid to the polytope
+  contact->pos = 0.5 * (d.point_a + d.point_b);
+  contact->depth = -d.distance;  // 0 in the touching band
+  return true;
+}
+
+bool distanceFrom(const EllipsoidPolytopeResult& cert, const SignedDistanceResult* d, ExactDistance* out) {
+  if (cert.status == Separation::Overlapping) {
+    out->distance = -1.0;  // libccd's ccdGJKDist2 value
+    out->p1 = out->p2 = cert.closest;  // a polytope point strictly inside the ellipsoid
+    return false;
+  }
+  out->distance = d->distance;
+  out->p1 = d->point_a;
+  out->p2 = d->point_b;
+  return true;
+}
+
+bool signedDistanceFrom(const SignedDistanceResult& d, ExactDistance* out) {
+  out->distance = d.distance;
+  out->p1 = d.point_a;
+  out->p2 = d.point_b;
+  return d.distance >= 0.0;
+}
+
+}  // namespace
+
+bool exactIntersect(const Ellipsoid& e, const WorldBox& b, ExactContact* contact) {
+  if (!contact) return classifyEllipsoidBox(e, b.half, b.R, b.p).status != Separation::Separated;
+  return contactFrom(signedDistanceEllipsoidBox(e, b.half, b.R, b.p), contact);
+}
+
+bool exactDistance(const Ellipsoid& e, const WorldBox& b, ExactDistance* out) {
+  const EllipsoidPolytopeResult cert = classifyEllipsoidBox(e, b.half, b.R, b.p);
+  if (cert.status == Separation::Overlapping) return distanceFrom(cert, nullptr, out);
+  const SignedDistanceResult d = signedDistanceEllipsoidBox(e, b.half, b.R, b.p);
+  return distanceFrom(cert, &d, out);
+}
+
+bool exactSignedDistance(const Ellipsoid& e, const WorldBox& b, ExactDistance* out) {
+  return signedDistanceFrom(signedDistanceEllipsoidBox(e, b.half, b.R, b.p), out);
+}
+
+bool exactIntersect(const Ellipsoid& e, const WorldTriangle& t, ExactContact* contact) {
+  if (!contact) return classifyEllipsoidTriangle(e, t.a, t.b, t.c).status != Separation::Separated;
+  return contactFrom(signedDistanceEllipsoidTriangle(e, t.a, t.b, t.c), contact);
+}
+
+bool exactDistance(const Ellipsoid& e, const WorldTriangle& t, ExactDistance* out) {
+  const EllipsoidPolytopeResult cert = classifyEllipsoidTriangle(e, t.a, t.b, t.c);
+  if (cert.status == Separation::Overlapping) return distanceFrom(cert, nullptr, out);
+  const SignedDistanceResult d = signedDistanceEllipsoidTriangle(e, t.a, t.b, t.c);
+  return distanceFrom(cert, &d, out);
+}
+
+bool exactSignedDistance(const Ellipsoid& e, const WorldTriangle& t, ExactDistance* out) {
+  return signedDistanceFrom(signedDistanceEllipsoidTriangle(e, t.a, t.b, t.c), out);
 }
 
 }  // namespace detail

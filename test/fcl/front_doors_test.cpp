@@ -1,5 +1,6 @@
 // fcl_quadric::collide / distance: pairs QuadricSolver delegates give exactly stock FCL's answers
-// (shape pairs, a BVH mesh, an OcTree); bad input throws std::invalid_argument, never crashes.
+// (shape pairs, a capsule against a BVH mesh and an OcTree); bad input throws
+// std::invalid_argument, never crashes.
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -97,8 +98,8 @@ TEST(FrontDoors, DelegatedShapePairsGiveStockFclAnswers) {
                      std::make_shared<fcl::Boxd>(size(rng), size(rng), size(rng))}},
         {"capsule-sphere", {std::make_shared<fcl::Capsuled>(size(rng), size(rng)), std::make_shared<fcl::Sphered>(size(rng))}},
         {"sphere-capsule", {std::make_shared<fcl::Sphered>(size(rng)), std::make_shared<fcl::Capsuled>(size(rng), size(rng))}},
-        {"ellipsoid-box", {std::make_shared<fcl::Ellipsoidd>(size(rng), size(rng), size(rng)),
-                           std::make_shared<fcl::Boxd>(size(rng), size(rng), size(rng))}},
+        {"ellipsoid-capsule", {std::make_shared<fcl::Ellipsoidd>(size(rng), size(rng), size(rng)),
+                               std::make_shared<fcl::Capsuled>(size(rng), size(rng))}},
         {"cylinder-ellipsoid", {std::make_shared<fcl::Cylinderd>(size(rng), size(rng)),
                                 std::make_shared<fcl::Ellipsoidd>(size(rng), size(rng), size(rng))}},
         {"sphere-sphere", {std::make_shared<fcl::Sphered>(size(rng)), std::make_shared<fcl::Sphered>(size(rng))}},
@@ -127,24 +128,25 @@ std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> boxMesh(double h) {
   return mesh;
 }
 
-TEST(FrontDoors, EllipsoidAgainstBvhMeshGivesStockFclAnswers) {
-  // Mesh-shape traversal (OBBRSS): the ellipsoid-triangle tests are delegated to libccd for now.
+TEST(FrontDoors, DelegatedShapeAgainstBvhMeshGivesStockFclAnswers) {
+  // Mesh-shape traversal (OBBRSS) with a shape whose triangle tests are delegated to libccd (a
+  // capsule; ellipsoid-triangle is exact, test/fcl/octree_mesh_test.cpp).
   const test::ScopedNoFpTraps no_traps;
   std::mt19937_64 rng(6);
   const auto mesh = boxMesh(1.0);
   for (int i = 0; i < 40; ++i) {
     const fcl::CollisionObjectd m(mesh, randomPose(rng, 1.0));
-    const fcl::CollisionObjectd e(std::make_shared<fcl::Ellipsoidd>(0.9, 0.5, 0.3), randomPose(rng, 2.0));
+    const fcl::CollisionObjectd e(std::make_shared<fcl::Capsuled>(0.4, 1.2), randomPose(rng, 2.0));
     for (bool contact : {false, true}) {
       fcl::CollisionRequestd request(contact ? 100 : 1, contact);
       fcl::CollisionResultd ours, stock;
       fcl_quadric::collide(&m, &e, request, ours);
       fcl::collide(&m, &e, request, stock);
-      expectSameCollision(ours, stock, contact, "mesh-ellipsoid #" + std::to_string(i));
+      expectSameCollision(ours, stock, contact, "mesh-capsule #" + std::to_string(i));
       fcl::CollisionResultd ours_swapped, stock_swapped;
       fcl_quadric::collide(&e, &m, request, ours_swapped);
       fcl::collide(&e, &m, request, stock_swapped);
-      expectSameCollision(ours_swapped, stock_swapped, contact, "ellipsoid-mesh #" + std::to_string(i));
+      expectSameCollision(ours_swapped, stock_swapped, contact, "capsule-mesh #" + std::to_string(i));
     }
     fcl::DistanceRequestd request(true);
     fcl::DistanceResultd ours, stock;
@@ -156,8 +158,9 @@ TEST(FrontDoors, EllipsoidAgainstBvhMeshGivesStockFclAnswers) {
 }
 
 #if FCL_HAVE_OCTOMAP
-TEST(FrontDoors, EllipsoidAgainstOcTreeGivesStockFclAnswers) {
-  // OcTree-shape traversal: leaf boxes vs the ellipsoid (box-ellipsoid delegated to libccd for now).
+TEST(FrontDoors, DelegatedShapeAgainstOcTreeGivesStockFclAnswers) {
+  // OcTree-shape traversal with a shape whose leaf tests are delegated to libccd (a capsule;
+  // ellipsoid leaves are exact, test/fcl/octree_mesh_test.cpp).
   const test::ScopedNoFpTraps no_traps;
   auto tree = std::make_shared<octomap::OcTree>(0.1);
   std::mt19937_64 rng(7);
@@ -165,12 +168,12 @@ TEST(FrontDoors, EllipsoidAgainstOcTreeGivesStockFclAnswers) {
   for (int i = 0; i < 400; ++i) tree->updateNode(octomap::point3d(u(rng), u(rng), u(rng)), true);
   const fcl::CollisionObjectd octree(std::make_shared<fcl::OcTreed>(tree), fcl::Transform3d::Identity());
   for (int i = 0; i < 20; ++i) {
-    const fcl::CollisionObjectd e(std::make_shared<fcl::Ellipsoidd>(0.4, 0.25, 0.15), randomPose(rng, 1.0));
+    const fcl::CollisionObjectd e(std::make_shared<fcl::Capsuled>(0.2, 0.5), randomPose(rng, 1.0));
     fcl::CollisionRequestd request(1000, false);
     fcl::CollisionResultd ours, stock;
     fcl_quadric::collide(&octree, &e, request, ours);
     fcl::collide(&octree, &e, request, stock);
-    expectSameCollision(ours, stock, false, "octree-ellipsoid #" + std::to_string(i));
+    expectSameCollision(ours, stock, false, "octree-capsule #" + std::to_string(i));
   }
 }
 #endif

@@ -1,7 +1,8 @@
 #pragma once
 /// \file quadric_solver.h
 /// fcl_quadric::QuadricSolver<S>: a NarrowPhaseSolver for FCL 0.7 that answers ellipsoid pairs
-/// exactly (certified classification, Choi 2008 Theorem 4.1; signed distance with witness points)
+/// exactly (certified classification, Choi 2008 Theorem 4.1; signed distance with witness points),
+/// as well as ellipsoid against plane, half-space, box (OcTree leaves) and triangle (BVH meshes),
 /// and delegates every other pair, unchanged, to fcl::detail::GJKSolver_libccd<S>.
 ///
 /// It is accepted by FCL's own templated entry points
@@ -23,7 +24,10 @@
 #include <Eigen/Geometry>
 
 #include <fcl/common/types.h>
+#include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/plane.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/contact_point.h>
@@ -43,19 +47,24 @@ namespace detail {
 // ---------------------------------------------------------------------------------------------
 enum class QuadricPairKind {
   /// Delegated unchanged to fcl::detail::GJKSolver_libccd<S> (including FCL's own closed forms
-  /// such as sphere-sphere, sphere-box, box-box, ellipsoid-plane and ellipsoid-halfspace).
+  /// such as sphere-sphere, sphere-box and box-box).
   kLibccd,
   /// fcl::Ellipsoid / fcl::Sphere pairs other than sphere-sphere: both shapes are converted to
   /// fcl_quadric::Ellipsoid (a sphere is an ellipsoid with equal radii) and answered by
   /// classifyEllipsoids / signedDistance.
   kEllipsoidEllipsoid,
-  // Extension points (geometry layer functions to come in
-  // include/fcl_quadric/geometry/ellipsoid_polytope.h), both orders of each pair:
-  //   kEllipsoidPlane      fcl::Ellipsoid x fcl::Plane       (libccd today: FCL's closed form)
-  //   kEllipsoidHalfspace  fcl::Ellipsoid x fcl::Halfspace   (libccd today: FCL's closed form)
-  //   kEllipsoidBox        fcl::Ellipsoid x fcl::Box         (libccd today: MPR / GJK; OcTree leaves)
-  // and for shapeTriangleIntersect / shapeTriangleDistance (BVH meshes) QuadricTriangle below:
-  //   kEllipsoidTriangle   fcl::Ellipsoid x triangle         (libccd today)
+  /// fcl::Ellipsoid x fcl::Plane (both orders): classifyEllipsoidPlane (seed Theorem 13 /
+  /// Corollary 14) and the support function; contacts as FCL's ellipsoidPlaneIntersect.
+  kEllipsoidPlane,
+  /// fcl::Ellipsoid x fcl::Halfspace (both orders): ellipsoidHalfspace; contacts as FCL's
+  /// ellipsoidHalfspaceIntersect.
+  kEllipsoidHalfspace,
+  /// fcl::Ellipsoid x fcl::Box (both orders; OcTree leaves are (Box, Ellipsoid)):
+  /// classifyEllipsoidBox / signedDistanceEllipsoidBox.
+  kEllipsoidBox,
+  /// fcl::Ellipsoid x triangle (QuadricTriangle, BVH meshes): classifyEllipsoidTriangle /
+  /// signedDistanceEllipsoidTriangle.
+  kEllipsoidTriangle,
 };
 
 /// Pair table for shapeIntersect / shapeDistance / shapeSignedDistance. `swapped` tells a
@@ -80,11 +89,45 @@ struct QuadricPair<fcl::Sphere<S>, fcl::Ellipsoid<S>> {
   static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidEllipsoid;
   static constexpr bool swapped = false;
 };
+template <typename S>
+struct QuadricPair<fcl::Ellipsoid<S>, fcl::Plane<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidPlane;
+  static constexpr bool swapped = false;
+};
+template <typename S>
+struct QuadricPair<fcl::Plane<S>, fcl::Ellipsoid<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidPlane;
+  static constexpr bool swapped = true;
+};
+template <typename S>
+struct QuadricPair<fcl::Ellipsoid<S>, fcl::Halfspace<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidHalfspace;
+  static constexpr bool swapped = false;
+};
+template <typename S>
+struct QuadricPair<fcl::Halfspace<S>, fcl::Ellipsoid<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidHalfspace;
+  static constexpr bool swapped = true;
+};
+template <typename S>
+struct QuadricPair<fcl::Ellipsoid<S>, fcl::Box<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidBox;
+  static constexpr bool swapped = false;
+};
+template <typename S>
+struct QuadricPair<fcl::Box<S>, fcl::Ellipsoid<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidBox;
+  static constexpr bool swapped = true;
+};
 
 /// Table for the shape-triangle queries (the triangle is always the second operand).
 template <typename Shape>
 struct QuadricTriangle {
   static constexpr QuadricPairKind kind = QuadricPairKind::kLibccd;
+};
+template <typename S>
+struct QuadricTriangle<fcl::Ellipsoid<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidTriangle;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -156,25 +199,156 @@ void writeDistance(const ExactDistance& d, S* dist, fcl::Vector3<S>* p1, fcl::Ve
   if (p2) *p2 = d.p2.template cast<S>();
 }
 
+// --- Ellipsoid against a plane, a half-space, a box, a triangle (world frame) ------------------
+
+/// An fcl::Plane or fcl::Halfspace posed in the world: unit normal n and offset d (the plane
+/// n.x = d; the half-space n.x <= d). `halfspace` selects the solid.
+struct WorldPlane {
+  Eigen::Vector3d n = Eigen::Vector3d::UnitX();
+  double d = 0.0;
+  bool halfspace = false;
+};
+
+/// An fcl::Box posed in the world: { p + R s : |s_i| <= half_i }.
+struct WorldBox {
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+};
+
+/// A triangle in the world frame.
+struct WorldTriangle {
+  Eigen::Vector3d a, b, c;
+};
+
+/// FCL's transform(Plane/Halfspace, tf) (geometry/shape/plane-inl.h:153-165): n' = R n,
+/// d' = d + n'.t, then normalised as FCL's constructors do (unitNormalTest). Throws
+/// std::invalid_argument naming `which` for a zero or non-finite normal or offset.
+WorldPlane planeFromFcl(const Eigen::Vector3d& n, double d, bool halfspace, const Eigen::Matrix3d& R,
+                        const Eigen::Vector3d& t, const char* which);
+/// half = side / 2 (fcl::Box stores full side lengths). Throws std::invalid_argument naming
+/// `which` for a negative or non-finite side or a linear part that is not a rotation.
+WorldBox boxFromFcl(const Eigen::Vector3d& side, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                    const char* which);
+/// Throws std::invalid_argument for a non-finite vertex.
+WorldTriangle triangleFromFcl(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+/// The exact kernels, one overload per second operand; the first operand is always the
+/// ellipsoid. Same contracts as intersectEllipsoids / distanceEllipsoids /
+/// signedDistanceEllipsoids (normal from the ellipsoid to the other solid; p1 on the ellipsoid,
+/// p2 on the other solid), with the conventions of FCL's closed forms for planes and half-spaces
+/// (docs/fcl_integration.md section 3).
+bool exactIntersect(const Ellipsoid& e, const Ellipsoid& other, ExactContact* contact);
+bool exactIntersect(const Ellipsoid& e, const WorldPlane& other, ExactContact* contact);
+bool exactIntersect(const Ellipsoid& e, const WorldBox& other, ExactContact* contact);
+bool exactIntersect(const Ellipsoid& e, const WorldTriangle& other, ExactContact* contact);
+bool exactDistance(const Ellipsoid& e, const Ellipsoid& other, ExactDistance* out);
+bool exactDistance(const Ellipsoid& e, const WorldPlane& other, ExactDistance* out);
+bool exactDistance(const Ellipsoid& e, const WorldBox& other, ExactDistance* out);
+bool exactDistance(const Ellipsoid& e, const WorldTriangle& other, ExactDistance* out);
+bool exactSignedDistance(const Ellipsoid& e, const Ellipsoid& other, ExactDistance* out);
+bool exactSignedDistance(const Ellipsoid& e, const WorldPlane& other, ExactDistance* out);
+bool exactSignedDistance(const Ellipsoid& e, const WorldBox& other, ExactDistance* out);
+bool exactSignedDistance(const Ellipsoid& e, const WorldTriangle& other, ExactDistance* out);
+
+/// The posed FCL shape as the operand type of the exact kernels.
+template <typename S>
+Ellipsoid asExact(const fcl::Ellipsoid<S>& s, const fcl::Transform3<S>& tf, const char* which) {
+  return asEllipsoid(s, tf, which);
+}
+template <typename S>
+Ellipsoid asExact(const fcl::Sphere<S>& s, const fcl::Transform3<S>& tf, const char* which) {
+  return asEllipsoid(s, tf, which);
+}
+template <typename S>
+WorldPlane asExact(const fcl::Plane<S>& s, const fcl::Transform3<S>& tf, const char* which) {
+  return planeFromFcl(s.n.template cast<double>(), static_cast<double>(s.d), false, tf.linear().template cast<double>(),
+                      tf.translation().template cast<double>(), which);
+}
+template <typename S>
+WorldPlane asExact(const fcl::Halfspace<S>& s, const fcl::Transform3<S>& tf, const char* which) {
+  return planeFromFcl(s.n.template cast<double>(), static_cast<double>(s.d), true, tf.linear().template cast<double>(),
+                      tf.translation().template cast<double>(), which);
+}
+template <typename S>
+WorldBox asExact(const fcl::Box<S>& s, const fcl::Transform3<S>& tf, const char* which) {
+  return boxFromFcl(s.side.template cast<double>(), tf.linear().template cast<double>(),
+                    tf.translation().template cast<double>(), which);
+}
+template <typename S>
+WorldTriangle asExactTriangle(const fcl::Vector3<S>& P1, const fcl::Vector3<S>& P2, const fcl::Vector3<S>& P3) {
+  return triangleFromFcl(P1.template cast<double>(), P2.template cast<double>(), P3.template cast<double>());
+}
+template <typename S>
+WorldTriangle asExactTriangle(const fcl::Vector3<S>& P1, const fcl::Vector3<S>& P2, const fcl::Vector3<S>& P3,
+                              const fcl::Transform3<S>& tf) {
+  return triangleFromFcl((tf * P1).template cast<double>(), (tf * P2).template cast<double>(),
+                         (tf * P3).template cast<double>());
+}
+
+/// Runs the exact kernel of a non-libccd pair: Shape1/Shape2 in FCL's order; a `swapped` pair
+/// (ellipsoid second) calls the kernel with the ellipsoid first and turns its answer around
+/// (normal negated, p1 and p2 exchanged; the contact position and depth do not change, as FCL's
+/// own FCL_GJK_LIBCCD_SHAPE_SHAPE_INTERSECT_INV and flipNormal do, gjk_solver_libccd-inl.h:220-235).
+template <bool swapped, typename S, typename Shape1, typename Shape2>
+bool exactPairIntersect(const Shape1& s1, const fcl::Transform3<S>& tf1, const Shape2& s2,
+                        const fcl::Transform3<S>& tf2, ExactContact* contact) {
+  if constexpr (swapped) {
+    const bool hit = exactIntersect(asExact(s2, tf2, "o2"), asExact(s1, tf1, "o1"), contact);
+    if (hit && contact) contact->normal = -contact->normal;
+    return hit;
+  } else {
+    return exactIntersect(asExact(s1, tf1, "o1"), asExact(s2, tf2, "o2"), contact);
+  }
+}
+template <bool swapped, bool signed_distance, typename S, typename Shape1, typename Shape2>
+bool exactPairDistance(const Shape1& s1, const fcl::Transform3<S>& tf1, const Shape2& s2,
+                       const fcl::Transform3<S>& tf2, ExactDistance* out) {
+  if constexpr (swapped) {
+    const bool separated = signed_distance ? exactSignedDistance(asExact(s2, tf2, "o2"), asExact(s1, tf1, "o1"), out)
+                                           : exactDistance(asExact(s2, tf2, "o2"), asExact(s1, tf1, "o1"), out);
+    out->p1.swap(out->p2);
+    return separated;
+  } else {
+    return signed_distance ? exactSignedDistance(asExact(s1, tf1, "o1"), asExact(s2, tf2, "o2"), out)
+                           : exactDistance(asExact(s1, tf1, "o1"), asExact(s2, tf2, "o2"), out);
+  }
+}
+
+template <typename S>
+void appendContact(const ExactContact& c, std::vector<fcl::ContactPoint<S>>* contacts) {
+  contacts->emplace_back(c.normal.template cast<S>(), c.pos.template cast<S>(), static_cast<S>(c.depth));
+}
+
 }  // namespace detail
 
 /// NarrowPhaseSolver for FCL 0.7 (the interface of fcl::detail::GJKSolver_libccd<S>).
 ///
-/// Exact pairs (detail::QuadricPair): fcl::Ellipsoid-fcl::Ellipsoid, fcl::Ellipsoid-fcl::Sphere,
-/// fcl::Sphere-fcl::Ellipsoid. Results follow FCL's conventions:
+/// Exact pairs (detail::QuadricPair, both argument orders unless noted):
+///  - fcl::Ellipsoid-fcl::Ellipsoid, fcl::Ellipsoid-fcl::Sphere: classifyEllipsoids, signedDistance;
+///  - fcl::Ellipsoid-fcl::Plane, fcl::Ellipsoid-fcl::Halfspace: classifyEllipsoidPlane /
+///    ellipsoidHalfspace (seed Theorem 13 / Corollary 14) and the support function;
+///  - fcl::Ellipsoid-fcl::Box (OcTree leaves): classifyEllipsoidBox, signedDistanceEllipsoidBox;
+///  - fcl::Ellipsoid-triangle (shapeTriangleIntersect / shapeTriangleDistance, BVH meshes):
+///    classifyEllipsoidTriangle, signedDistanceEllipsoidTriangle.
+/// Results follow FCL's conventions (docs/fcl_integration.md section 3):
 ///  - shapeIntersect: true iff the solids are not separate (touching counts as collision, certified
-///    down to ~1e-27 relative gap, docs/tolerances.md). With `contacts` non-null, one ContactPoint
-///    is appended: normal (unit) from o1 to o2, penetration_depth = -signed distance (0 if
-///    touching), pos = midpoint of the two witness points of signedDistance.
-///  - shapeDistance / shapeSignedDistance: see detail::distanceEllipsoids /
-///    detail::signedDistanceEllipsoids; points p1 (on s1) and p2 (on s2) in the world frame, as
+///    down to ~1e-27 relative gap for ellipsoid pairs and 2^-40 for the others,
+///    docs/tolerances.md). With `contacts` non-null, one ContactPoint is appended with the normal
+///    (unit) from o1 to o2. Plane and half-space contacts are those of FCL's closed forms
+///    (ellipsoidPlaneIntersect / ellipsoidHalfspaceIntersect: depth, side, position); otherwise
+///    penetration_depth = -signed distance (0 if touching) and pos = the midpoint of the two
+///    witness points of the signed distance.
+///  - shapeDistance / shapeSignedDistance / shapeTriangleDistance: see detail::distanceEllipsoids
+///    / detail::signedDistanceEllipsoids; points p1 (on s1) and p2 (on s2) in the world frame, as
 ///    GJKSolver_libccd returns them in FCL 0.7.
-/// Every other pair and every shape-triangle query is delegated to the internal
+/// Every other pair and every non-ellipsoid shape-triangle query is delegated to the internal
 /// GJKSolver_libccd<S> (`libccd()`), whose tolerances and iteration limits are public.
 ///
 /// Bad input: a non-finite transform (any pair) throws std::invalid_argument naming "tf1"/"tf2";
-/// for the exact pairs a non-positive or non-finite radius, or a linear part that is not a
-/// rotation within tolerance::kRotationOrthogonality, throws std::invalid_argument naming o1/o2.
+/// for the exact pairs a non-positive or non-finite radius, a negative box side, a zero plane
+/// normal, a non-finite triangle vertex, or a linear part that is not a rotation within
+/// tolerance::kRotationOrthogonality, throws std::invalid_argument naming o1/o2.
 ///
 /// Stateless: the const members may be called concurrently from several threads.
 template <typename S_>
@@ -195,7 +369,7 @@ class QuadricSolver {
   const fcl::detail::GJKSolver_libccd<S>& libccd() const { return libccd_; }
 
   /// Collision of two shapes; see the class comment. Called by FCL's ShapeCollisionTraversalNode
-  /// and OcTreeSolver.
+  /// and OcTreeSolver (leaf Box first, shape second).
   template <typename Shape1, typename Shape2>
   bool shapeIntersect(const Shape1& s1, const fcl::Transform3<S>& tf1, const Shape2& s2,
                       const fcl::Transform3<S>& tf2,
@@ -203,29 +377,39 @@ class QuadricSolver {
     detail::checkTransform(tf1, "tf1");
     detail::checkTransform(tf2, "tf2");
     using Pair = detail::QuadricPair<Shape1, Shape2>;
-    if constexpr (Pair::kind == detail::QuadricPairKind::kEllipsoidEllipsoid) {
-      return intersectEllipsoidPair(detail::asEllipsoid(s1, tf1, "o1"), detail::asEllipsoid(s2, tf2, "o2"),
-                                    contacts);
-    } else {
-      static_assert(Pair::kind == detail::QuadricPairKind::kLibccd, "QuadricSolver::shapeIntersect: unhandled pair kind");
+    if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd) {
       return libccd_.shapeIntersect(s1, tf1, s2, tf2, contacts);
+    } else {
+      static_assert(isShapePairKind(Pair::kind), "QuadricSolver::shapeIntersect: unhandled pair kind");
+      detail::ExactContact c;
+      const bool hit = detail::exactPairIntersect<Pair::swapped>(s1, tf1, s2, tf2, contacts ? &c : nullptr);
+      if (hit && contacts) detail::appendContact(c, contacts);
+      return hit;
     }
   }
 
   /// Shape vs a triangle given in the world frame (FCL's BVH traversal with AABB-family BVs).
+  /// `normal` points from the shape to the triangle (MeshShapeCollisionTraversalNode negates it,
+  /// mesh_shape_collision_traversal_node-inl.h:102); outputs are written only on collision.
   template <typename Shape>
   bool shapeTriangleIntersect(const Shape& s, const fcl::Transform3<S>& tf, const fcl::Vector3<S>& P1,
                               const fcl::Vector3<S>& P2, const fcl::Vector3<S>& P3,
                               fcl::Vector3<S>* contact_points = nullptr, S* penetration_depth = nullptr,
                               fcl::Vector3<S>* normal = nullptr) const {
     detail::checkTransform(tf, "tf");
-    static_assert(detail::QuadricTriangle<Shape>::kind == detail::QuadricPairKind::kLibccd,
-                  "QuadricSolver::shapeTriangleIntersect: unhandled kind");
-    return libccd_.shapeTriangleIntersect(s, tf, P1, P2, P3, contact_points, penetration_depth, normal);
+    constexpr detail::QuadricPairKind kind = detail::QuadricTriangle<Shape>::kind;
+    if constexpr (kind == detail::QuadricPairKind::kLibccd) {
+      return libccd_.shapeTriangleIntersect(s, tf, P1, P2, P3, contact_points, penetration_depth, normal);
+    } else {
+      static_assert(kind == detail::QuadricPairKind::kEllipsoidTriangle,
+                    "QuadricSolver::shapeTriangleIntersect: unhandled kind");
+      return triangleIntersect(detail::asExact(s, tf, "shape"), detail::asExactTriangle(P1, P2, P3), contact_points,
+                               penetration_depth, normal);
+    }
   }
 
   /// Shape (pose tf1) vs a triangle whose vertices are in the frame tf2 (oriented BVH nodes:
-  /// OBB, RSS, kIOS, OBBRSS; OcTree-mesh).
+  /// OBB, RSS, kIOS, OBBRSS; OcTree-mesh). Outputs in the world frame, as above.
   template <typename Shape>
   bool shapeTriangleIntersect(const Shape& s, const fcl::Transform3<S>& tf1, const fcl::Vector3<S>& P1,
                               const fcl::Vector3<S>& P2, const fcl::Vector3<S>& P3,
@@ -233,13 +417,21 @@ class QuadricSolver {
                               S* penetration_depth = nullptr, fcl::Vector3<S>* normal = nullptr) const {
     detail::checkTransform(tf1, "tf1");
     detail::checkTransform(tf2, "tf2");
-    static_assert(detail::QuadricTriangle<Shape>::kind == detail::QuadricPairKind::kLibccd,
-                  "QuadricSolver::shapeTriangleIntersect: unhandled kind");
-    return libccd_.shapeTriangleIntersect(s, tf1, P1, P2, P3, tf2, contact_points, penetration_depth, normal);
+    constexpr detail::QuadricPairKind kind = detail::QuadricTriangle<Shape>::kind;
+    if constexpr (kind == detail::QuadricPairKind::kLibccd) {
+      return libccd_.shapeTriangleIntersect(s, tf1, P1, P2, P3, tf2, contact_points, penetration_depth, normal);
+    } else {
+      static_assert(kind == detail::QuadricPairKind::kEllipsoidTriangle,
+                    "QuadricSolver::shapeTriangleIntersect: unhandled kind");
+      return triangleIntersect(detail::asExact(s, tf1, "shape"), detail::asExactTriangle(P1, P2, P3, tf2),
+                               contact_points, penetration_depth, normal);
+    }
   }
 
   /// Unsigned distance (FCL's ShapeDistanceTraversalNode when !request.enable_signed_distance,
-  /// OcTreeSolver, conservative advancement). Exact pairs: detail::distanceEllipsoids.
+  /// OcTreeSolver, conservative advancement). Exact pairs: detail::exactDistance (separated or
+  /// touching: distance >= 0 and nearest points, true; overlapping: -1 and p1 = p2 = a common
+  /// point, false).
   template <typename Shape1, typename Shape2>
   bool shapeDistance(const Shape1& s1, const fcl::Transform3<S>& tf1, const Shape2& s2,
                      const fcl::Transform3<S>& tf2, S* dist = nullptr, fcl::Vector3<S>* p1 = nullptr,
@@ -247,20 +439,20 @@ class QuadricSolver {
     detail::checkTransform(tf1, "tf1");
     detail::checkTransform(tf2, "tf2");
     using Pair = detail::QuadricPair<Shape1, Shape2>;
-    if constexpr (Pair::kind == detail::QuadricPairKind::kEllipsoidEllipsoid) {
+    if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd) {
+      return libccd_.shapeDistance(s1, tf1, s2, tf2, dist, p1, p2);
+    } else {
+      static_assert(isShapePairKind(Pair::kind), "QuadricSolver::shapeDistance: unhandled pair kind");
       detail::ExactDistance d;
-      const bool separated = detail::distanceEllipsoids(detail::asEllipsoid(s1, tf1, "o1"),
-                                                        detail::asEllipsoid(s2, tf2, "o2"), &d);
+      const bool separated = detail::exactPairDistance<Pair::swapped, false>(s1, tf1, s2, tf2, &d);
       detail::writeDistance(d, dist, p1, p2);
       return separated;
-    } else {
-      static_assert(Pair::kind == detail::QuadricPairKind::kLibccd, "QuadricSolver::shapeDistance: unhandled pair kind");
-      return libccd_.shapeDistance(s1, tf1, s2, tf2, dist, p1, p2);
     }
   }
 
   /// Signed distance (ShapeDistanceTraversalNode when request.enable_signed_distance). Exact
-  /// pairs: detail::signedDistanceEllipsoids.
+  /// pairs: detail::exactSignedDistance (negative = minus the penetration depth; p1 on s1 and p2
+  /// on s2, each the deepest point inside the other when overlapping; false iff negative).
   template <typename Shape1, typename Shape2>
   bool shapeSignedDistance(const Shape1& s1, const fcl::Transform3<S>& tf1, const Shape2& s2,
                            const fcl::Transform3<S>& tf2, S* dist = nullptr, fcl::Vector3<S>* p1 = nullptr,
@@ -268,31 +460,40 @@ class QuadricSolver {
     detail::checkTransform(tf1, "tf1");
     detail::checkTransform(tf2, "tf2");
     using Pair = detail::QuadricPair<Shape1, Shape2>;
-    if constexpr (Pair::kind == detail::QuadricPairKind::kEllipsoidEllipsoid) {
+    if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd) {
+      return libccd_.shapeSignedDistance(s1, tf1, s2, tf2, dist, p1, p2);
+    } else {
+      static_assert(isShapePairKind(Pair::kind), "QuadricSolver::shapeSignedDistance: unhandled pair kind");
       detail::ExactDistance d;
-      const bool separated = detail::signedDistanceEllipsoids(detail::asEllipsoid(s1, tf1, "o1"),
-                                                              detail::asEllipsoid(s2, tf2, "o2"), &d);
+      const bool separated = detail::exactPairDistance<Pair::swapped, true>(s1, tf1, s2, tf2, &d);
       detail::writeDistance(d, dist, p1, p2);
       return separated;
-    } else {
-      static_assert(Pair::kind == detail::QuadricPairKind::kLibccd,
-                    "QuadricSolver::shapeSignedDistance: unhandled pair kind");
-      return libccd_.shapeSignedDistance(s1, tf1, s2, tf2, dist, p1, p2);
     }
   }
 
-  /// Shape vs a world-frame triangle (mesh-shape distance with AABB-family BVs).
+  /// Shape vs a world-frame triangle (mesh-shape distance with AABB-family BVs). Ellipsoids:
+  /// detail::exactDistance (libccd's GJKDistance convention: >= 0 when separate, -1 when they
+  /// overlap); p1 on the shape, p2 on the triangle, world frame.
   template <typename Shape>
   bool shapeTriangleDistance(const Shape& s, const fcl::Transform3<S>& tf, const fcl::Vector3<S>& P1,
                              const fcl::Vector3<S>& P2, const fcl::Vector3<S>& P3, S* dist = nullptr,
                              fcl::Vector3<S>* p1 = nullptr, fcl::Vector3<S>* p2 = nullptr) const {
     detail::checkTransform(tf, "tf");
-    static_assert(detail::QuadricTriangle<Shape>::kind == detail::QuadricPairKind::kLibccd,
-                  "QuadricSolver::shapeTriangleDistance: unhandled kind");
-    return libccd_.shapeTriangleDistance(s, tf, P1, P2, P3, dist, p1, p2);
+    constexpr detail::QuadricPairKind kind = detail::QuadricTriangle<Shape>::kind;
+    if constexpr (kind == detail::QuadricPairKind::kLibccd) {
+      return libccd_.shapeTriangleDistance(s, tf, P1, P2, P3, dist, p1, p2);
+    } else {
+      static_assert(kind == detail::QuadricPairKind::kEllipsoidTriangle,
+                    "QuadricSolver::shapeTriangleDistance: unhandled kind");
+      detail::ExactDistance d;
+      const bool separated = detail::exactDistance(detail::asExact(s, tf, "shape"), detail::asExactTriangle(P1, P2, P3), &d);
+      detail::writeDistance(d, dist, p1, p2);
+      return separated;
+    }
   }
 
-  /// Shape (pose tf1) vs a triangle in the frame tf2 (oriented BVH nodes, OcTree-mesh).
+  /// Shape (pose tf1) vs a triangle in the frame tf2 (oriented BVH nodes, OcTree-mesh). Points in
+  /// the world frame.
   template <typename Shape>
   bool shapeTriangleDistance(const Shape& s, const fcl::Transform3<S>& tf1, const fcl::Vector3<S>& P1,
                              const fcl::Vector3<S>& P2, const fcl::Vector3<S>& P3,
@@ -300,9 +501,18 @@ class QuadricSolver {
                              fcl::Vector3<S>* p2 = nullptr) const {
     detail::checkTransform(tf1, "tf1");
     detail::checkTransform(tf2, "tf2");
-    static_assert(detail::QuadricTriangle<Shape>::kind == detail::QuadricPairKind::kLibccd,
-                  "QuadricSolver::shapeTriangleDistance: unhandled kind");
-    return libccd_.shapeTriangleDistance(s, tf1, P1, P2, P3, tf2, dist, p1, p2);
+    constexpr detail::QuadricPairKind kind = detail::QuadricTriangle<Shape>::kind;
+    if constexpr (kind == detail::QuadricPairKind::kLibccd) {
+      return libccd_.shapeTriangleDistance(s, tf1, P1, P2, P3, tf2, dist, p1, p2);
+    } else {
+      static_assert(kind == detail::QuadricPairKind::kEllipsoidTriangle,
+                    "QuadricSolver::shapeTriangleDistance: unhandled kind");
+      detail::ExactDistance d;
+      const bool separated =
+          detail::exactDistance(detail::asExact(s, tf1, "shape"), detail::asExactTriangle(P1, P2, P3, tf2), &d);
+      detail::writeDistance(d, dist, p1, p2);
+      return separated;
+    }
   }
 
   /// GJK warm-start hooks called by FCL's ShapeShapeCollide (collision_func_matrix-inl.h).
@@ -312,12 +522,19 @@ class QuadricSolver {
   fcl::Vector3<S> getCachedGuess() const { return libccd_.getCachedGuess(); }
 
  private:
-  static bool intersectEllipsoidPair(const Ellipsoid& a, const Ellipsoid& b,
-                                     std::vector<fcl::ContactPoint<S>>* contacts) {
-    if (!contacts) return detail::intersectEllipsoids(a, b, nullptr);
+  static constexpr bool isShapePairKind(detail::QuadricPairKind k) {
+    return k == detail::QuadricPairKind::kEllipsoidEllipsoid || k == detail::QuadricPairKind::kEllipsoidPlane ||
+           k == detail::QuadricPairKind::kEllipsoidHalfspace || k == detail::QuadricPairKind::kEllipsoidBox;
+  }
+
+  static bool triangleIntersect(const Ellipsoid& e, const detail::WorldTriangle& t, fcl::Vector3<S>* contact_points,
+                                S* penetration_depth, fcl::Vector3<S>* normal) {
+    const bool want = contact_points || penetration_depth || normal;
     detail::ExactContact c;
-    if (!detail::intersectEllipsoids(a, b, &c)) return false;
-    contacts->emplace_back(c.normal.template cast<S>(), c.pos.template cast<S>(), static_cast<S>(c.depth));
+    if (!detail::exactIntersect(e, t, want ? &c : nullptr)) return false;
+    if (contact_points) *contact_points = c.pos.template cast<S>();
+    if (penetration_depth) *penetration_depth = static_cast<S>(c.depth);
+    if (normal) *normal = c.normal.template cast<S>();
     return true;
   }
 
