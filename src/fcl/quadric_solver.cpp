@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "fcl_quadric/geometry/ellipsoid_capsule.h"
 #include "fcl_quadric/geometry/ellipsoid_plane.h"
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
@@ -140,6 +141,28 @@ WorldBox boxFromFcl(const Eigen::Vector3d& side, const Eigen::Matrix3d& R, const
   b.R = R;
   b.p = p;
   return b;
+}
+
+WorldCapsule capsuleFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                            const char* which) {
+  try {
+    for (const auto& [what, v] : {std::pair<const char*, double>{"radius", radius}, {"length", length}}) {
+      if (!std::isfinite(v) || !(v >= 0.0)) {
+        std::ostringstream os;
+        os << "capsule " << what << " must be finite and >= 0, got " << v;
+        throw std::invalid_argument(os.str());
+      }
+    }
+    fcl_quadric::detail::checkRotation(R, "capsule rotation");
+  } catch (const std::invalid_argument& e) {
+    rethrowNamed(which, "fcl::Capsule", e);
+  }
+  WorldCapsule c;
+  c.radius = radius;
+  c.length = length;
+  c.R = R;
+  c.p = p;
+  return c;
 }
 
 WorldTriangle triangleFromFcl(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
@@ -298,6 +321,24 @@ bool exactDistance(const Ellipsoid& e, const WorldBox& b, ExactDistance* out) {
 
 bool exactSignedDistance(const Ellipsoid& e, const WorldBox& b, ExactDistance* out) {
   return signedDistanceFrom(signedDistanceEllipsoidBox(e, b.half, b.R, b.p), out);
+}
+
+bool exactIntersect(const Ellipsoid& e, const WorldCapsule& c, ExactContact* contact) {
+  const SignedDistanceResult d = signedDistanceEllipsoidCapsule(e, c.radius, c.length, c.R, c.p);
+  if (!contact) return d.status != Separation::Separated;
+  return contactFrom(d, contact);
+}
+
+bool exactDistance(const Ellipsoid& e, const WorldCapsule& c, ExactDistance* out) {
+  const SignedDistanceResult d = signedDistanceEllipsoidCapsule(e, c.radius, c.length, c.R, c.p);
+  if (d.status == Separation::Separated) return signedDistanceFrom(d, out);
+  out->distance = -1.0;  // libccd's convention for overlapping pairs
+  out->p1 = out->p2 = 0.5 * (d.point_a + d.point_b);
+  return false;
+}
+
+bool exactSignedDistance(const Ellipsoid& e, const WorldCapsule& c, ExactDistance* out) {
+  return signedDistanceFrom(signedDistanceEllipsoidCapsule(e, c.radius, c.length, c.R, c.p), out);
 }
 
 bool exactIntersect(const Ellipsoid& e, const WorldTriangle& t, ExactContact* contact) {

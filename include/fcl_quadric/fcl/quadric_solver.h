@@ -25,6 +25,7 @@
 
 #include <fcl/common/types.h>
 #include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/halfspace.h>
 #include <fcl/geometry/shape/plane.h>
@@ -62,6 +63,9 @@ enum class QuadricPairKind {
   /// fcl::Ellipsoid x fcl::Box (both orders; OcTree leaves are (Box, Ellipsoid)):
   /// classifyEllipsoidBox / signedDistanceEllipsoidBox.
   kEllipsoidBox,
+  /// fcl::Ellipsoid x fcl::Capsule (both orders): signedDistanceEllipsoidCapsule (the segment's
+  /// exact classification and signed distance, minus the radius).
+  kEllipsoidCapsule,
   /// fcl::Ellipsoid x triangle (QuadricTriangle, BVH meshes): classifyEllipsoidTriangle /
   /// signedDistanceEllipsoidTriangle.
   kEllipsoidTriangle,
@@ -117,6 +121,17 @@ struct QuadricPair<fcl::Ellipsoid<S>, fcl::Box<S>> {
 template <typename S>
 struct QuadricPair<fcl::Box<S>, fcl::Ellipsoid<S>> {
   static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidBox;
+  static constexpr bool swapped = true;
+};
+
+template <typename S>
+struct QuadricPair<fcl::Ellipsoid<S>, fcl::Capsule<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCapsule;
+  static constexpr bool swapped = false;
+};
+template <typename S>
+struct QuadricPair<fcl::Capsule<S>, fcl::Ellipsoid<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCapsule;
   static constexpr bool swapped = true;
 };
 
@@ -216,6 +231,14 @@ struct WorldBox {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
 };
 
+/// An fcl::Capsule posed in the world: the segment p +- R e_z L/2 swept by a ball of radius r.
+struct WorldCapsule {
+  double radius = 0.0;
+  double length = 0.0;
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+};
+
 /// A triangle in the world frame.
 struct WorldTriangle {
   Eigen::Vector3d a, b, c;
@@ -230,6 +253,9 @@ WorldPlane planeFromFcl(const Eigen::Vector3d& n, double d, bool halfspace, cons
 /// `which` for a negative or non-finite side or a linear part that is not a rotation.
 WorldBox boxFromFcl(const Eigen::Vector3d& side, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
                     const char* which);
+/// Throws std::invalid_argument naming `which` for a bad radius or length or a non-rotation.
+WorldCapsule capsuleFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                            const char* which);
 /// Throws std::invalid_argument for a non-finite vertex.
 WorldTriangle triangleFromFcl(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
@@ -242,14 +268,17 @@ bool exactIntersect(const Ellipsoid& e, const Ellipsoid& other, ExactContact* co
 bool exactIntersect(const Ellipsoid& e, const WorldPlane& other, ExactContact* contact);
 bool exactIntersect(const Ellipsoid& e, const WorldBox& other, ExactContact* contact);
 bool exactIntersect(const Ellipsoid& e, const WorldTriangle& other, ExactContact* contact);
+bool exactIntersect(const Ellipsoid& e, const WorldCapsule& other, ExactContact* contact);
 bool exactDistance(const Ellipsoid& e, const Ellipsoid& other, ExactDistance* out);
 bool exactDistance(const Ellipsoid& e, const WorldPlane& other, ExactDistance* out);
 bool exactDistance(const Ellipsoid& e, const WorldBox& other, ExactDistance* out);
 bool exactDistance(const Ellipsoid& e, const WorldTriangle& other, ExactDistance* out);
+bool exactDistance(const Ellipsoid& e, const WorldCapsule& other, ExactDistance* out);
 bool exactSignedDistance(const Ellipsoid& e, const Ellipsoid& other, ExactDistance* out);
 bool exactSignedDistance(const Ellipsoid& e, const WorldPlane& other, ExactDistance* out);
 bool exactSignedDistance(const Ellipsoid& e, const WorldBox& other, ExactDistance* out);
 bool exactSignedDistance(const Ellipsoid& e, const WorldTriangle& other, ExactDistance* out);
+bool exactSignedDistance(const Ellipsoid& e, const WorldCapsule& other, ExactDistance* out);
 
 /// The posed FCL shape as the operand type of the exact kernels.
 template <typename S>
@@ -274,6 +303,11 @@ template <typename S>
 WorldBox asExact(const fcl::Box<S>& s, const fcl::Transform3<S>& tf, const char* which) {
   return boxFromFcl(s.side.template cast<double>(), tf.linear().template cast<double>(),
                     tf.translation().template cast<double>(), which);
+}
+template <typename S>
+WorldCapsule asExact(const fcl::Capsule<S>& s, const fcl::Transform3<S>& tf, const char* which) {
+  return capsuleFromFcl(static_cast<double>(s.radius), static_cast<double>(s.lz), tf.linear().template cast<double>(),
+                        tf.translation().template cast<double>(), which);
 }
 template <typename S>
 WorldTriangle asExactTriangle(const fcl::Vector3<S>& P1, const fcl::Vector3<S>& P2, const fcl::Vector3<S>& P3) {
@@ -524,7 +558,8 @@ class QuadricSolver {
  private:
   static constexpr bool isShapePairKind(detail::QuadricPairKind k) {
     return k == detail::QuadricPairKind::kEllipsoidEllipsoid || k == detail::QuadricPairKind::kEllipsoidPlane ||
-           k == detail::QuadricPairKind::kEllipsoidHalfspace || k == detail::QuadricPairKind::kEllipsoidBox;
+           k == detail::QuadricPairKind::kEllipsoidHalfspace || k == detail::QuadricPairKind::kEllipsoidBox ||
+           k == detail::QuadricPairKind::kEllipsoidCapsule;
   }
 
   static bool triangleIntersect(const Ellipsoid& e, const detail::WorldTriangle& t, fcl::Vector3<S>* contact_points,
