@@ -4,9 +4,12 @@
 # of its outputs into docs/benchmarks.md.
 # Usage: benchmarks/run_benchmarks.sh BUILD_DIR [OUTPUT_DIR (default BUILD_DIR/results)]
 # Env: MIN_TIME (s, default 0.2), REPS (default 3), PAIRS (default 100000), TABLE1_SEEDS (default
-#      16); smaller PAIRS / TABLE1_SEEDS / MIN_TIME / REPS for smoke runs.
+#      16), FRAMES (bench_fcl_scenes, default 1000), FRAMES_1000 (its 1,000-ellipsoid sequence,
+#      default FRAMES), QUERIES (bench_fcl_scenes, default 400); smaller values for smoke runs.
+#      PROGRAMS (default "bench_static bench_separating_planes bench_fcl_scenes"): the programs to
+#      build and run, e.g. PROGRAMS=bench_fcl_scenes for that program alone.
 # A new BUILD_DIR is configured without tests and CLI. An existing one keeps its options (it may be
-# someone's working build): only the two benchmark targets are built, and it must be Release.
+# someone's working build): only the benchmark targets are built, and it must be Release.
 # The programs run from a copy of the binaries, so a rebuild of BUILD_DIR during the run cannot
 # change what is measured. OUTPUT_DIR receives run_info.txt (date, fingerprints of the measured
 # sources, machine, settings, load before and after) and, per program, its console output (.txt,
@@ -23,6 +26,24 @@ min_time=${MIN_TIME:-0.2}
 reps=${REPS:-3}
 pairs=${PAIRS:-100000}
 table1_seeds=${TABLE1_SEEDS:-16}
+frames=${FRAMES:-1000}
+frames_1000=${FRAMES_1000:-${frames}}
+queries=${QUERIES:-400}
+read -r -a programs <<<"${PROGRAMS:-bench_static bench_separating_planes bench_fcl_scenes}"
+for p in "${programs[@]}"; do
+  case "${p}" in
+    bench_static | bench_separating_planes | bench_fcl_scenes) ;;
+    *)
+      echo "$0: unknown program '${p}' in PROGRAMS" >&2
+      exit 2
+      ;;
+  esac
+done
+[[ ${#programs[@]} -gt 0 ]] || {
+  echo "$0: PROGRAMS is empty" >&2
+  exit 2
+}
+runs() { [[ " ${programs[*]} " == *" $1 "* ]]; }
 
 # The library may change under the benchmarks: record which sources were built and measured.
 lib_sources() { (cd "${src}" && find src include -type f | LC_ALL=C sort | xargs cat | sha256sum | cut -c1-16); }
@@ -43,12 +64,12 @@ if [[ -f "${build}/CMakeCache.txt" ]]; then
 else
   cmake -S "${src}" -B "${build}" -DFCL_QUADRIC_BUILD_TESTS=OFF -DFCL_QUADRIC_BUILD_CLI=OFF
 fi
-cmake --build "${build}" -j2 --target bench_static bench_separating_planes
+cmake --build "${build}" -j2 --target "${programs[@]}"
 lib_after=$(lib_sources)
 bench_after=$(bench_sources)
 bin=$(mktemp -d)
 trap 'rm -rf "${bin}"' EXIT
-cp "${build}/benchmarks/bench_static" "${build}/benchmarks/bench_separating_planes" "${bin}/"
+for p in "${programs[@]}"; do cp "${build}/benchmarks/${p}" "${bin}/"; done
 
 cache_value() { sed -n "s/^$1:[A-Z]*=//p" "${build}/CMakeCache.txt"; }
 build_type=$(cache_value CMAKE_BUILD_TYPE)
@@ -66,15 +87,25 @@ os=$(sed -n 's/^PRETTY_NAME="\(.*\)"$/\1/p' /etc/os-release 2>/dev/null || true)
   echo "machine:  ${cpu:-unknown CPU} (${mhz%.*} MHz), $(nproc) logical CPUs, ${os:-unknown OS}"
   echo "build:    CMAKE_BUILD_TYPE=${build_type:-<none>}, $("${compiler:-c++}" --version | head -1)"
   [[ "${build_type}" == "Release" ]] || echo "WARNING: not a Release build"
-  echo "settings: MIN_TIME=${min_time} REPS=${reps} PAIRS=${pairs} TABLE1_SEEDS=${table1_seeds}"
+  echo "settings: MIN_TIME=${min_time} REPS=${reps} PAIRS=${pairs} TABLE1_SEEDS=${table1_seeds}" \
+    "FRAMES=${frames} FRAMES_1000=${frames_1000} QUERIES=${queries}"
+  echo "programs: ${programs[*]}"
   echo "load before: $(uptime | sed 's/^ *//')"
 } | tee "${out}/run_info.txt"
 common=(--benchmark_min_time="${min_time}" --benchmark_repetitions="${reps}"
         --benchmark_report_aggregates_only=true --benchmark_color=false --benchmark_out_format=json)
-"${bin}/bench_static" --pairs "${pairs}" "${common[@]}" \
-  --benchmark_out="${out}/bench_static.json" 2>&1 | tee "${out}/bench_static.txt"
-"${bin}/bench_separating_planes" --table1_seeds "${table1_seeds}" "${common[@]}" \
-  --benchmark_out="${out}/bench_separating_planes.json" 2>&1 | tee "${out}/bench_separating_planes.txt"
+if runs bench_static; then
+  "${bin}/bench_static" --pairs "${pairs}" "${common[@]}" \
+    --benchmark_out="${out}/bench_static.json" 2>&1 | tee "${out}/bench_static.txt"
+fi
+if runs bench_separating_planes; then
+  "${bin}/bench_separating_planes" --table1_seeds "${table1_seeds}" "${common[@]}" \
+    --benchmark_out="${out}/bench_separating_planes.json" 2>&1 | tee "${out}/bench_separating_planes.txt"
+fi
+if runs bench_fcl_scenes; then
+  "${bin}/bench_fcl_scenes" --frames "${frames}" --frames_1000 "${frames_1000}" --queries "${queries}" "${common[@]}" \
+    --benchmark_out="${out}/bench_fcl_scenes.json" 2>&1 | tee "${out}/bench_fcl_scenes.txt"
+fi
 {
   echo "load after:  $(uptime | sed 's/^ *//')"
   echo "finished: $(date -u +%FT%TZ), $((SECONDS - start)) s in all"

@@ -13,6 +13,11 @@
 #   planes-summary    bench_separating_planes.txt, "== Summary: ..."
 #   table1            bench_separating_planes.txt, "== Table 1 ..."
 #   table2            bench_separating_planes.txt, "== Table 2 ..."
+#   fcl-scenes-run-info   results/TAG/run_info.txt, whole (the conditions of the FCL-scenes numbers,
+#                         which may come from a run of bench_fcl_scenes alone, see BLOCKS)
+#   fcl-scenes-summary    bench_fcl_scenes.txt, "== FCL scenes summary ..."
+#   fcl-scenes-results    bench_fcl_scenes.txt, "== FCL scenes: results ..."
+#   fcl-scenes-aim        bench_fcl_scenes.txt, "== FCL scenes: aim ..."
 # Fails, leaving the document untouched, if a block is missing from the output, or a marker is
 # missing, duplicated, unknown or unbalanced in the document.
 #
@@ -20,7 +25,16 @@
 # Env:   TAG (default xeon-2core-vm): the machine, i.e. the results folder name.
 #        DOC (default docs/benchmarks.md of this checkout): the document to rewrite.
 #        SKIP_RUN=1: no run; regenerate the document from the results already in the folder.
-#        MIN_TIME, REPS, PAIRS, TABLE1_SEEDS: passed on to run_benchmarks.sh (smoke runs).
+#        RESULTS: the results folder (default benchmarks/results/TAG).
+#        BLOCKS: the blocks to replace (default: all); the others are kept as they are (their
+#          markers are still checked). E.g. the FCL-scenes section alone, from a run of that
+#          program alone outside the results folder:
+#            PROGRAMS=bench_fcl_scenes benchmarks/run_benchmarks.sh BUILD_DIR /tmp/fcl-scenes
+#            SKIP_RUN=1 RESULTS=/tmp/fcl-scenes \
+#              BLOCKS="fcl-scenes-run-info fcl-scenes-summary fcl-scenes-results fcl-scenes-aim" \
+#              benchmarks/update_docs.sh BUILD_DIR
+#        MIN_TIME, REPS, PAIRS, TABLE1_SEEDS, FRAMES, FRAMES_1000, QUERIES, PROGRAMS: passed on to
+#          run_benchmarks.sh (smoke runs).
 set -euo pipefail
 die() {
   echo "update_docs.sh: $*" >&2
@@ -36,7 +50,7 @@ tag=${TAG:-xeon-2core-vm}
 doc=${DOC:-${src}/docs/benchmarks.md}
 [[ "${tag}" =~ ^[A-Za-z0-9][A-Za-z0-9._-]*$ ]] || die "bad TAG '${tag}' (letters, digits, . _ -)"
 [[ -f "${doc}" ]] || die "no document ${doc}"
-results=${src}/benchmarks/results/${tag}
+results=${RESULTS:-${src}/benchmarks/results/${tag}}
 
 work=$(mktemp -d)
 staging=""
@@ -70,17 +84,30 @@ block() {
     END { exit found == 1 ? 0 : 1 }' "${file}" >"${work}/${name}.txt" ||
     die "block ${name}: expected exactly one line starting with '${header}' in ${file}"
 }
-names=(run-info static-summary static-targets static-agreement planes-summary table1 table2)
-[[ -s "${results}/run_info.txt" ]] || die "block run-info: no ${results}/run_info.txt"
-sed 's/\x1b\[[0-9;]*m//g' "${results}/run_info.txt" >"${work}/run-info.txt"
-block static-summary bench_static.txt "== Summary:"
-block static-targets bench_static.txt "== Targets"
-block static-agreement bench_static.txt "== Agreement"
-block planes-summary bench_separating_planes.txt "== Summary:"
-block table1 bench_separating_planes.txt "== Table 1"
-block table2 bench_separating_planes.txt "== Table 2"
+names=(run-info static-summary static-targets static-agreement planes-summary table1 table2
+       fcl-scenes-run-info fcl-scenes-summary fcl-scenes-results fcl-scenes-aim)
+read -r -a replace <<<"${BLOCKS:-${names[*]}}"
+for b in "${replace[@]}"; do
+  [[ " ${names[*]} " == *" ${b} "* ]] || die "unknown block '${b}' in BLOCKS"
+done
+wanted() { [[ " ${replace[*]} " == *" $1 "* ]]; }
+run_info() {
+  [[ -s "${results}/run_info.txt" ]] || die "block $1: no ${results}/run_info.txt"
+  sed 's/\x1b\[[0-9;]*m//g' "${results}/run_info.txt" >"${work}/$1.txt"
+}
+if wanted run-info; then run_info run-info; fi
+if wanted static-summary; then block static-summary bench_static.txt "== Summary:"; fi
+if wanted static-targets; then block static-targets bench_static.txt "== Targets"; fi
+if wanted static-agreement; then block static-agreement bench_static.txt "== Agreement"; fi
+if wanted planes-summary; then block planes-summary bench_separating_planes.txt "== Summary:"; fi
+if wanted table1; then block table1 bench_separating_planes.txt "== Table 1"; fi
+if wanted table2; then block table2 bench_separating_planes.txt "== Table 2"; fi
+if wanted fcl-scenes-run-info; then run_info fcl-scenes-run-info; fi
+if wanted fcl-scenes-summary; then block fcl-scenes-summary bench_fcl_scenes.txt "== FCL scenes summary"; fi
+if wanted fcl-scenes-results; then block fcl-scenes-results bench_fcl_scenes.txt "== FCL scenes: results"; fi
+if wanted fcl-scenes-aim; then block fcl-scenes-aim bench_fcl_scenes.txt "== FCL scenes: aim"; fi
 
-awk -v dir="${work}" -v names="${names[*]}" '
+awk -v dir="${work}" -v names="${names[*]}" -v replace="${replace[*]}" '
   function fail(message) {
     printf "update_docs.sh: %s:%d: %s\n", FILENAME, FNR, message > "/dev/stderr"
     failed = 1
@@ -88,16 +115,20 @@ awk -v dir="${work}" -v names="${names[*]}" '
   }
   BEGIN {
     n = split(names, list, " ")
-    for (i = 1; i <= n; i++) wanted[list[i]] = 1
+    for (i = 1; i <= n; i++) known[list[i]] = 1
+    m = split(replace, chosen, " ")
+    for (i = 1; i <= m; i++) wanted[chosen[i]] = 1
     fence = "```"
   }
   /^<!-- BEGIN GENERATED: [A-Za-z0-9_-]+ -->$/ {
     if (open != "") fail("BEGIN of " $4 " inside block " open)
-    if (!($4 in wanted)) fail("unknown block " $4)
+    if (!($4 in known)) fail("unknown block " $4)
     if ($4 in seen) fail("second BEGIN of block " $4)
     seen[$4] = 1
     open = $4
     print
+    keep = !($4 in wanted)  # a block not being replaced keeps its text
+    if (keep) next
     print fence "text"
     file = dir "/" open ".txt"
     while ((status = (getline line < file)) > 0) print line
@@ -114,7 +145,7 @@ awk -v dir="${work}" -v names="${names[*]}" '
     next
   }
   /^[[:space:]]*<!--[[:space:]]*(BEGIN|END)[[:space:]]+GENERATED/ { fail("malformed marker: " $0) }
-  open == "" { print }
+  open == "" || keep { print }
   END {
     if (failed) exit 1
     if (open != "") { printf "update_docs.sh: block %s has no END marker\n", open > "/dev/stderr"; exit 1 }
