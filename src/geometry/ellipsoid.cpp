@@ -21,6 +21,7 @@ void checkFinite(const Eigen::Vector3d& v, const char* what) {
 }
 
 void checkRotation(const Eigen::Matrix3d& R, const char* what) {
+  if (R == Eigen::Matrix3d::Identity()) return;  // common (OcTree leaves, unrotated shapes) and exact
   if (!R.allFinite()) {
     std::ostringstream os;
     os << what << " must be finite, got\n" << R;

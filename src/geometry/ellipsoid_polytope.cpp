@@ -91,6 +91,7 @@ EllipsoidPolytopeResult classifyEllipsoidBox(const Ellipsoid& e, const Eigen::Ve
   const Eigen::Matrix3d SinvRt = e.inverseRadii().asDiagonal() * e.rotation().transpose();
   const Eigen::Vector3d g = SinvRt * (p_WB - e.center());
   const Eigen::Matrix3d G = SinvRt * R_WB * half_extents.asDiagonal();
+  EllipsoidPolytopeResult out;
   Candidate best;
   // Enumerate the 27 faces of the cube (each coordinate free, -1 or +1).
   for (int code = 0; code < 27; ++code) {
@@ -112,7 +113,6 @@ EllipsoidPolytopeResult classifyEllipsoidBox(const Ellipsoid& e, const Eigen::Ve
     const double v = u.squaredNorm();
     if (v < best.value) best = {v, u, sf};
   }
-  EllipsoidPolytopeResult out;
   Eigen::Vector3d verts[8];
   for (int i = 0; i < 8; ++i)
     verts[i] = g + G * Eigen::Vector3d((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
@@ -120,6 +120,31 @@ EllipsoidPolytopeResult classifyEllipsoidBox(const Ellipsoid& e, const Eigen::Ve
   certify(best, verts, 8, scale, &out);
   out.closest = p_WB + R_WB * half_extents.cwiseProduct(best.s);
   return out;
+}
+
+Separation ellipsoidBoxStatus(const Ellipsoid& e, const Eigen::Vector3d& half_extents, const Eigen::Matrix3d& R_WB,
+                              const Eigen::Vector3d& p_WB) {
+  // Cheap certificates first (most OcTree leaves are far away or deep inside): the box centre
+  // strictly inside the unit ball (overlap), or every vertex beyond the plane u.n = 1, n = g/|g|
+  // (separation; the lowest vertex along n is at n.g - sum_j |n.G_j|). They are the full test's
+  // own certificates applied to particular points/planes; otherwise run the full test.
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(half_extents[i]) || !(half_extents[i] >= 0.0)) return classifyEllipsoidBox(e, half_extents, R_WB, p_WB).status;  // throws
+  const Eigen::Matrix3d SinvRt = e.inverseRadii().asDiagonal() * e.rotation().transpose();
+  const Eigen::Vector3d g = SinvRt * (p_WB - e.center());
+  const Eigen::Matrix3d G = SinvRt * R_WB * half_extents.asDiagonal();
+  if (g.allFinite() && G.allFinite()) {
+    const double tau = tolerance::kCertificateRelativeBoundDouble;
+    const double scale = g.cwiseAbs().sum() + G.cwiseAbs().sum();
+    const double g2 = g.squaredNorm();
+    if (g2 < 1.0 - tau * (1.0 + scale * scale)) return Separation::Overlapping;
+    const double glen = std::sqrt(g2);
+    if (glen > 0.0) {
+      const double lowest = glen - (G.transpose() * (g / glen)).cwiseAbs().sum();
+      if (lowest > 1.0 + tau * (1.0 + scale)) return Separation::Separated;
+    }
+  }
+  return classifyEllipsoidBox(e, half_extents, R_WB, p_WB).status;  // validates R_WB, p_WB
 }
 
 EllipsoidPolytopeResult classifyEllipsoidTriangle(const Ellipsoid& e, const Eigen::Vector3d& a,

@@ -75,6 +75,7 @@ TEST(EllipsoidBox, AgreesWithProjectedGradientOracle) {
     if (std::fabs(double(oracle) - 1.0) > 1e-6) {
       ASSERT_EQ(r.status, oracle < 1 ? Separation::Overlapping : Separation::Separated) << "case " << i;
     }
+    ASSERT_EQ(ellipsoidBoxStatus(e, h, R, c), r.status) << "case " << i;  // the fast path agrees
     // The witness is a box point attaining the minimum.
     const Eigen::Vector3d local = R.transpose() * (r.closest - c);
     ASSERT_TRUE((local.cwiseAbs().array() <= h.array() * (1 + 1e-12) + 1e-12).all());

@@ -34,6 +34,12 @@ struct EllipsoidPolytopeResult {
 EllipsoidPolytopeResult classifyEllipsoidBox(const Ellipsoid& e, const Eigen::Vector3d& half_extents,
                                              const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_WB);
 
+/// The status of classifyEllipsoidBox only, with two cheap certificates tried first (the box
+/// centre inside the ellipsoid; all vertices beyond the tangent plane orthogonal to the centre
+/// line in the unit frame): the fast path for OcTree leaves. Same answer, same exceptions.
+Separation ellipsoidBoxStatus(const Ellipsoid& e, const Eigen::Vector3d& half_extents, const Eigen::Matrix3d& R_WB,
+                              const Eigen::Vector3d& p_WB);
+
 /// Ellipsoid e against the (closed, solid 2D) triangle abc. Degenerate triangles (collinear or
 /// coincident vertices) are handled as segments / points. \throws std::invalid_argument for
 /// non-finite vertices.
