@@ -28,28 +28,11 @@ namespace {
 
 Ellipsoid ellipsoidFromFcl(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, const Eigen::Vector3d& p_WE,
                            const char* which) {
-  // FCL's OcTree and BVH traversals call the solver once per leaf/triangle with the same shape and
-  // pose: remember the last validated conversion of this thread (a pure function of its inputs,
-  // compared by value, so the memo can never change an answer).
-  struct Memo {
-    bool valid = false;
-    Eigen::Vector3d radii, p;
-    Eigen::Matrix3d R;
-    Ellipsoid e = Ellipsoid::sphere(1.0, Eigen::Vector3d::Zero());
-  };
-  thread_local Memo memo;
-  if (memo.valid && memo.radii == radii && memo.p == p_WE && memo.R == R_WE) return memo.e;
   try {
-    memo.e = Ellipsoid(radii, R_WE, p_WE);
+    return Ellipsoid(radii, R_WE, p_WE);
   } catch (const std::invalid_argument& e) {
-    memo.valid = false;
     rethrowNamed(which, "fcl::Ellipsoid", e);
   }
-  memo.radii = radii;
-  memo.R = R_WE;
-  memo.p = p_WE;
-  memo.valid = true;
-  return memo.e;
 }
 
 Ellipsoid sphereFromFcl(double radius, const Eigen::Vector3d& p_WS, const char* which) {

@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -22,18 +23,27 @@ void checkFinite(const Eigen::Vector3d& v, const char* what) {
 
 void checkRotation(const Eigen::Matrix3d& R, const char* what) {
   if (R == Eigen::Matrix3d::Identity()) return;  // common (OcTree leaves, unrotated shapes) and exact
-  if (!R.allFinite()) {
-    std::ostringstream os;
-    os << what << " must be finite, got\n" << R;
-    throw std::invalid_argument(os.str());
+  // Hand-written: this runs for every posed shape of every query. Columns c0, c1, c2: the six
+  // entries of R^T R - I and det R = c0 . (c1 x c2). std::isfinite raises no FP exception.
+  bool finite = true;
+  for (int i = 0; i < 9; ++i) finite &= std::isfinite(R.data()[i]);
+  if (finite) {
+    const Eigen::Vector3d c0 = R.col(0), c1 = R.col(1), c2 = R.col(2);
+    const double tol = tolerance::kRotationOrthogonality;
+    const double defect = std::max({std::fabs(c0.squaredNorm() - 1.0), std::fabs(c1.squaredNorm() - 1.0),
+                                    std::fabs(c2.squaredNorm() - 1.0), std::fabs(c0.dot(c1)), std::fabs(c0.dot(c2)),
+                                    std::fabs(c1.dot(c2))});
+    if (defect <= tol && c0.dot(c1.cross(c2)) > 0.0) return;
   }
-  const double defect = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  if (!(defect <= tolerance::kRotationOrthogonality) || !(R.determinant() > 0.0)) {
-    std::ostringstream os;
+  std::ostringstream os;
+  if (!finite) {
+    os << what << " must be finite, got\n" << R;
+  } else {
+    const double defect = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
     os << what << " is not a rotation (max |R^T R - I| = " << defect << ", det = " << R.determinant()
        << "; tolerance " << tolerance::kRotationOrthogonality << ")";
-    throw std::invalid_argument(os.str());
   }
+  throw std::invalid_argument(os.str());
 }
 
 }  // namespace detail
