@@ -1,6 +1,7 @@
 #include "fcl_quadric/check_command.h"
 
 #include "fcl_quadric/fcl_fallback.h"
+#include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "fcl_quadric/geometry/signed_distance.h"
 
 namespace fcl_quadric {
@@ -26,9 +27,29 @@ PairReport exactPairReport(const Ellipsoid& a, const Ellipsoid& b) {
   return report;
 }
 
+PairReport exactBoxReport(const Ellipsoid& e, const SceneObject& box, bool box_first) {
+  const Eigen::Vector3d half = 0.5 * box.shape.dimensions;  // the scene stores full side lengths
+  const Eigen::Matrix3d R = box.pose.linear();
+  const Eigen::Vector3d p = box.pose.translation();
+  const Separation status = classifyEllipsoidBox(e, half, R, p).status;
+  const SignedDistanceResult d = signedDistanceEllipsoidBox(e, half, R, p);  // normal from e to the box
+  PairReport report;
+  report.method = PairMethod::Exact;
+  report.status = status;
+  report.collide = status != Separation::Separated;
+  report.signed_distance = d.distance;
+  report.point_a = box_first ? d.point_b : d.point_a;
+  report.point_b = box_first ? d.point_a : d.point_b;
+  report.normal = box_first ? Eigen::Vector3d(-d.normal) : d.normal;
+  return report;
+}
+
 PairReport evaluatePair(const SceneObject& a, const SceneObject& b) {
-  if (isEllipsoidal(a.shape) && isEllipsoidal(b.shape)) return exactPairReport(toEllipsoid(a), toEllipsoid(b));
-  return fclPairReport(a, b);
+  const bool ea = isEllipsoidal(a.shape), eb = isEllipsoidal(b.shape);
+  if (ea && eb) return exactPairReport(toEllipsoid(a), toEllipsoid(b));
+  if (ea) return exactBoxReport(toEllipsoid(a), b, /*box_first=*/false);
+  if (eb) return exactBoxReport(toEllipsoid(b), a, /*box_first=*/true);
+  return fclPairReport(a, b);  // box-box
 }
 
 nlohmann::ordered_json checkScene(const Scene& scene) {

@@ -17,7 +17,13 @@ namespace cli {
 /// and normal from signedDistance(). `method` is PairMethod::Exact.
 PairReport exactPairReport(const Ellipsoid& a, const Ellipsoid& b);
 
-/// The report for two scene objects: exact for ellipsoid/sphere pairs, FCL for pairs with a box.
+/// Exact report for an ellipsoid (or sphere) and a box object: status from classifyEllipsoidBox(),
+/// distance, witness points and normal from signedDistanceEllipsoidBox(), turned around when the
+/// box is the first object of the pair (`box_first`). `method` is PairMethod::Exact.
+PairReport exactBoxReport(const Ellipsoid& e, const SceneObject& box, bool box_first);
+
+/// The report for two scene objects: exact for every pair with an ellipsoid or sphere, FCL
+/// (libccd) for box-box pairs.
 PairReport evaluatePair(const SceneObject& a, const SceneObject& b);
 
 /// The JSON document printed by `check`:

@@ -149,3 +149,46 @@ TEST(Demo, RejectsDegenerateOptions) {
 }  // namespace
 }  // namespace cli
 }  // namespace fcl_quadric
+
+namespace fcl_quadric {
+namespace cli {
+namespace {
+
+TEST(Check, EllipsoidBoxPairsAreExactInBothOrders) {
+  // A box of side 1 whose face is at x = 1.5 + gap, an ellipsoid of radii (1.5, 1, 1) at the
+  // origin: separate, touching and overlapping according to the gap, in either order.
+  SceneObject e;
+  e.name = "E";
+  e.shape.type = ShapeType::Ellipsoid;
+  e.shape.dimensions = Eigen::Vector3d(1.5, 1.0, 1.0);
+  e.pose = Eigen::Isometry3d::Identity();
+  for (const double gap : {0.25, 0.0, -0.25}) {
+    SceneObject box;
+    box.name = "B";
+    box.shape.type = ShapeType::Box;
+    box.shape.dimensions = Eigen::Vector3d(1.0, 1.0, 1.0);
+    box.pose = Eigen::Isometry3d::Identity();
+    box.pose.translation() = Eigen::Vector3d(2.0 + gap, 0.0, 0.0);
+    const PairReport eb = evaluatePair(e, box), be = evaluatePair(box, e);
+    const Separation expected = gap > 0 ? Separation::Separated : (gap < 0 ? Separation::Overlapping : Separation::Touching);
+    EXPECT_EQ(eb.status, expected) << gap;
+    EXPECT_EQ(be.status, expected) << gap;
+    EXPECT_EQ(eb.method, PairMethod::Exact);
+    EXPECT_NEAR(eb.signed_distance, expected == Separation::Touching ? 0.0 : gap, 1e-14);
+    EXPECT_NEAR(be.signed_distance, eb.signed_distance, 0.0);
+    EXPECT_NEAR((eb.normal - Eigen::Vector3d::UnitX()).norm(), 0.0, 1e-12);  // from E to the box
+    EXPECT_NEAR((be.normal + Eigen::Vector3d::UnitX()).norm(), 0.0, 1e-12);  // from the box to E
+    EXPECT_EQ(eb.point_a, be.point_b);
+    EXPECT_EQ(eb.point_b, be.point_a);
+  }
+  // Box-box stays with FCL.
+  SceneObject b1, b2;
+  b1.shape.type = b2.shape.type = ShapeType::Box;
+  b1.pose = b2.pose = Eigen::Isometry3d::Identity();
+  b2.pose.translation() = Eigen::Vector3d(3.0, 0, 0);
+  EXPECT_EQ(evaluatePair(b1, b2).method, PairMethod::Fcl);
+}
+
+}  // namespace
+}  // namespace cli
+}  // namespace fcl_quadric
