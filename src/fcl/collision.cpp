@@ -37,10 +37,7 @@ template <typename S>
 std::size_t collide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
                     const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2,
                     const fcl::CollisionRequest<S>& request, fcl::CollisionResult<S>& result) {
-  detail::checkGeometry(o1, "fcl_quadric::collide", "o1");
-  detail::checkGeometry(o2, "fcl_quadric::collide", "o2");
-  detail::checkPose(tf1, "fcl_quadric::collide", "tf1");
-  detail::checkPose(tf2, "fcl_quadric::collide", "tf2");
+  detail::checkPosedPair(o1, tf1, o2, tf2, "fcl_quadric::collide");
   QuadricSolver<S> solver;
   solver.libccd().collision_tolerance = request.gjk_tolerance;
   // Dispatch point for fcl_quadric's own shape types (a later issue): they are not in FCL's

@@ -117,10 +117,7 @@ namespace fcl_quadric {
 template <typename S>
 S distance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1, const fcl::CollisionGeometry<S>* o2,
            const fcl::Transform3<S>& tf2, const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
-  detail::checkGeometry(o1, "fcl_quadric::distance", "o1");
-  detail::checkGeometry(o2, "fcl_quadric::distance", "o2");
-  detail::checkPose(tf1, "fcl_quadric::distance", "tf1");
-  detail::checkPose(tf2, "fcl_quadric::distance", "tf2");
+  detail::checkPosedPair(o1, tf1, o2, tf2, "fcl_quadric::distance");
   QuadricSolver<S> solver;
   solver.libccd().distance_tolerance = request.distance_tolerance;
   // Dispatch point for fcl_quadric's own shape types (a later issue), as in collide().

@@ -30,6 +30,16 @@ void checkPose(const fcl::Transform3<S>& tf, const char* where, const char* whic
       }
 }
 
+/// The argument checks of the (geometry, pose) front doors, in the order o1, o2, tf1, tf2.
+template <typename S>
+void checkPosedPair(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1,
+                    const fcl::CollisionGeometry<S>* o2, const fcl::Transform3<S>& tf2, const char* where) {
+  checkGeometry(o1, where, "o1");
+  checkGeometry(o2, where, "o2");
+  checkPose(tf1, where, "tf1");
+  checkPose(tf2, where, "tf2");
+}
+
 template <typename S>
 void checkObject(const fcl::CollisionObject<S>* o, const char* where, const char* which) {
   if (o == nullptr) throw std::invalid_argument(std::string(where) + ": " + which + " is a null collision object");
