@@ -59,5 +59,32 @@ constexpr double kPencilNewtonStep = 1e-10;
 /// is <= this times the scale (sum of the largest radii and the centre distance).
 constexpr double kDistanceGradientTolerance = 1e-14;
 
+
+// --- Continuous collision of ellipsoids (thesis ch.5; docs/algorithms.md section 8) ----------
+
+/// Touching band of the CCD state function (thesis §5.3.1): at time t the pair is "touching" when
+/// |max_u F(u, t)| <= this times max_i |c_i(t)|, c_i(t) the Bernstein coefficients in u of F(., t)
+/// (their extremes are det A(t) and det B(t)). A state within the band counts as contact: the
+/// solver errs toward reporting a collision. Near an external contact max_u F behaves like the
+/// relative gap, so gaps down to roughly this size are told apart from contact.
+constexpr double kCcdTouchingRelative = 1.0 / 1099511627776.0;  // 2^-40 ~ 9.1e-13
+
+/// Width to which Bezier-shoot roots (firstRoot) are refined: contact times are reported as the
+/// lower end of a certified bracket of this width (never later than the root).
+constexpr double kCcdTimeTolerance = 1.0 / 1099511627776.0;  // 2^-40 ~ 9.1e-13
+
+/// Candidate intervals narrower than this are not subdivided further; when such an interval
+/// cannot be certified separate it is reported as colliding (thesis Remark 5.4: conservative).
+constexpr double kCcdMinIntervalWidth = 1.0 / 1073741824.0;  // 2^-30 ~ 9.3e-10
+
+/// Work cap of one CCD solve: state evaluations plus Bezier shoots. When it is reached every
+/// interval not yet certified separate is reported as colliding and the result is flagged
+/// unresolved (conservative fallback).
+constexpr int kCcdMaxWork = 20000;
+
+/// Depth of the u-slab subdivision of the overlap certificate (F <= 0 or F_t of one sign on each
+/// slab; docs/algorithms.md section 8).
+constexpr int kCcdMaxSlabDepth = 6;
+
 }  // namespace tolerance
 }  // namespace fcl_quadric

@@ -1,0 +1,128 @@
+#pragma once
+/// \file motion_matrix.h
+/// Rational rigid and affine motions in homogeneous coordinates (Choi 2008, thesis §5.1).
+///
+/// A motion is a 4x4 matrix M(t) of polynomials in t in [0, 1], mapping body coordinates to world
+/// coordinates: X_world ~ M(t) X_body, with last row [0, 0, 0, w(t)] and w(t) != 0 on [0, 1].
+/// The upper-left 3x3 block L(t) is non-singular on [0, 1] (rigid: L = w R with R a rotation).
+///
+/// A quadric X^T Q X <= 0 carried by the motion is X^T Q(t) X <= 0 with
+/// Q(t) = M(t)^{-T} Q M(t)^{-1}. M(t)^{-1} is rational; the class keeps a polynomial matrix
+/// N(t) = c(t) M(t)^{-1} with a scalar polynomial c(t) that has no root in [0, 1], so that
+/// N(t)^T Q N(t) = c(t)^2 Q(t). The factor c(t)^2 > 0 changes neither the sign of X^T Q(t) X nor the
+/// root pattern of det(lambda A(t) - B(t)) in lambda up to a positive rescaling of lambda
+/// (lambda -> lambda c_B^2 / c_A^2), so every separation condition of the thesis (Theorem 4.1,
+/// Theorem 5.1) holds for the polynomial matrices unchanged. This avoids all divisions.
+///
+/// Degrees (thesis §5.1): from two poses, the rotation interpolates the quaternions linearly,
+/// which is rational of degree 2; the translation is linear. For that motion
+/// M = [[R~(t), E(t) p(t)], [0, E(t)]] (R~ the unnormalised quaternion rotation, E = |q(t)|^2) and
+/// N = [[R~^T, -R~^T p(t)], [0, E(t)]], so N M = E^2 I: columns of N have degrees (2, 2, 2, 3) and
+/// the CCD function of two such motions has degree at most 2 (2+2+2+3) = 18 in t. A general
+/// affine motion uses N = [[w adj L, -adj(L) v], [0, det L]] (N M = w det(L) I).
+///
+/// Part of the continuous-collision layer: standard library and Eigen only.
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "fcl_quadric/algebra/polynomial.h"
+#include "fcl_quadric/algebra/polynomial_matrix.h"
+
+namespace fcl_quadric {
+
+/// A rational motion M(t), t in [0, 1], with its polynomial inverse N(t) (see the file comment).
+class MotionMatrix {
+ public:
+  /// The identity motion.
+  MotionMatrix();
+
+  /// The constant pose x -> R x + p. \throws std::invalid_argument for a non-rotation R
+  /// (orthogonality error above 1e-9 or det < 0) or a non-finite entry.
+  static MotionMatrix constant(const Eigen::Matrix3d& R, const Eigen::Vector3d& p);
+
+  /// The rigid motion between two poses (thesis §5.4.1): translation (1-t) p0 + t p1, rotation by
+  /// the linear interpolation q(t) = (1-t) q0 + t q1 of unit quaternions, with q1 negated if
+  /// needed so that q0 . q1 >= 0 (the shorter arc; then |q(t)|^2 >= 1/2 on [0, 1]). Rational of
+  /// degree 2 in the rotation: the rotation angle does not grow uniformly in t (it is not slerp),
+  /// but the motion is the exact rational motion used by the solver.
+  /// \throws std::invalid_argument for a non-rotation or a non-finite entry, naming it.
+  static MotionMatrix fromPoses(const Eigen::Matrix3d& R0, const Eigen::Vector3d& p0, const Eigen::Matrix3d& R1,
+                                const Eigen::Vector3d& p1);
+  static MotionMatrix fromPoses(const Eigen::Isometry3d& X0, const Eigen::Isometry3d& X1);
+
+  /// A motion given by its polynomial matrix (power basis in t, t in [0, 1]). Validated:
+  /// entries (3,0), (3,1), (3,2) must be the zero polynomial; w(t) = M(3,3) and det L(t) must
+  /// have no root in [0, 1] (certified by Bernstein root isolation; a root that cannot be
+  /// excluded counts as a root). \throws std::invalid_argument naming the failed condition and
+  /// where in [0, 1] it fails.
+  static MotionMatrix fromPolynomialMatrix(const PolynomialMatrix4& M);
+
+  /// M(t) (homogeneous, not normalised).
+  const PolynomialMatrix4& matrix() const { return M_; }
+  /// N(t) = c(t) M(t)^{-1} with c(t) != 0 on [0, 1].
+  const PolynomialMatrix4& inverse() const { return N_; }
+  /// True for motions built by constant() or fromPoses() (rigid by construction).
+  bool isRigid() const { return rigid_; }
+  /// Largest degree of the entries of M.
+  int degree() const { return M_.maxDegree(); }
+
+  /// The affine map at time t: M(t) / w(t), last row [0, 0, 0, 1]. \throws std::invalid_argument
+  /// if t is not finite.
+  Eigen::Matrix4d evaluate(double t) const;
+
+  /// The same motion on the sub-interval [t0, t1] of its parameter, reparametrised to [0, 1]:
+  /// the result at s is this motion at t0 + (t1 - t0) s. \throws std::invalid_argument unless
+  /// 0 <= t0 < t1 <= 1.
+  MotionMatrix restricted(double t0, double t1) const;
+
+ private:
+  MotionMatrix(PolynomialMatrix4 M, PolynomialMatrix4 N, bool rigid);
+  PolynomialMatrix4 M_;
+  PolynomialMatrix4 N_;
+  bool rigid_ = true;
+};
+
+/// Q(t) up to the positive factor c(t)^2: N(t)^T Q N(t), symmetrised. Q is the body-frame quadric
+/// matrix (interior X^T Q X < 0). \throws std::invalid_argument if Q is not finite.
+PolynomialMatrix4 movingQuadric(const Eigen::Matrix4d& Q_body, const MotionMatrix& motion);
+
+/// A piecewise rational motion over [0, 1]: motion k is used on [breaks[k], breaks[k+1]] and is
+/// parametrised over its own [0, 1] (so piece k at local s is the motion at
+/// breaks[k] + (breaks[k+1] - breaks[k]) s). Built from keyframes: consecutive poses are joined by
+/// MotionMatrix::fromPoses. Continuity at the breaks is the caller's business for explicit
+/// pieces; fromKeyframes is continuous by construction.
+class PiecewiseMotion {
+ public:
+  /// A single piece over [0, 1].
+  explicit PiecewiseMotion(MotionMatrix motion = MotionMatrix());
+  /// \throws std::invalid_argument unless breaks start at 0, end at 1, increase strictly and
+  /// number pieces.size() + 1.
+  PiecewiseMotion(std::vector<double> breaks, std::vector<MotionMatrix> pieces);
+  /// Keyframe poses at strictly increasing times from 0 to 1 (at least two), joined by
+  /// MotionMatrix::fromPoses. \throws std::invalid_argument naming the bad time or pose.
+  static PiecewiseMotion fromKeyframes(const std::vector<double>& times, const std::vector<Eigen::Isometry3d>& poses);
+
+  const std::vector<double>& breaks() const { return breaks_; }
+  const std::vector<MotionMatrix>& pieces() const { return pieces_; }
+  bool isRigid() const;
+  /// The affine map at global time t in [0, 1].
+  Eigen::Matrix4d evaluate(double t) const;
+  /// The motion on [t0, t1] inside one piece, reparametrised to [0, 1].
+  /// \throws std::invalid_argument if [t0, t1] is not inside a single piece.
+  MotionMatrix restricted(double t0, double t1) const;
+
+ private:
+  std::vector<double> breaks_;
+  std::vector<MotionMatrix> pieces_;
+};
+
+namespace detail {
+/// Throws std::invalid_argument("<what> vanishes ...") unless p has no root in [0, 1], certified
+/// by the Bernstein form (all coefficients of one strict sign, or isolateRoots finds nothing).
+void checkNoRootOnUnitInterval(const Polynomial& p, const char* what);
+}  // namespace detail
+
+}  // namespace fcl_quadric

@@ -1,0 +1,514 @@
+#include "fcl_quadric/continuous/ellipsoid_ccd.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/LU>
+
+#include "fcl_quadric/algebra/bernstein_polynomial.h"
+#include "fcl_quadric/algebra/bivariate_bernstein.h"
+#include "fcl_quadric/algebra/root_isolation.h"
+#include "fcl_quadric/continuous/ccd_function.h"
+#include "fcl_quadric/geometry/separating_plane.h"
+#include "fcl_quadric/tolerances.h"
+
+namespace fcl_quadric {
+
+Ellipsoid ellipsoidAt(const MovingEllipsoid& m, double t) {
+  const Eigen::Matrix4d T = m.motion.evaluate(t);
+  const Eigen::Matrix3d L = T.topLeftCorner<3, 3>();
+  const Ellipsoid& e = m.body;
+  return Ellipsoid::fromAffine(L * e.rotation() * e.radii().asDiagonal(), L * e.center() + T.block<3, 1>(0, 3));
+}
+
+namespace {
+
+using Vec4P = std::array<Polynomial, 4>;
+
+Vec4P times(const PolynomialMatrix4& M, const Eigen::Vector4d& v) {  // M(t) v
+  Vec4P r;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      if (v[j] != 0.0) r[i] += M(i, j) * v[j];
+  return r;
+}
+
+Vec4P transposeTimes(const PolynomialMatrix4& M, const Vec4P& v) {  // M(t)^T v(t)
+  Vec4P r;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) r[i] += M(j, i) * v[j];
+  return r;
+}
+
+// Certified sign of a polynomial on [0, 1] from its Bernstein coefficients, with a relative margin
+// for the rounding of the coefficients: +1 if all > margin, -1 if all < -margin, 0 otherwise.
+int certifiedSign(const Polynomial& p) {
+  const BernsteinPolynomial b = BernsteinPolynomial::fromPower(p.trimmed(), 0.0, 1.0);
+  double scale = 0.0;
+  for (double c : b.coefficients()) scale = std::max(scale, std::abs(c));
+  const double margin = 1e-10 * scale;
+  if (b.minCoefficient() > margin) return 1;
+  if (b.maxCoefficient() < -margin) return -1;
+  return 0;
+}
+
+// Thesis §5.4.1 bounding-sphere cull for rigid motions: |c_a(t) - c_b(t)|^2 > (r_a + r_b)^2 on
+// [0, 1], multiplied through by the squared homogeneous weights.
+bool sphereCull(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEllipsoid& b, const MotionMatrix& mb) {
+  const Vec4P ca = times(ma.matrix(), a.body.center().homogeneous());
+  const Vec4P cb = times(mb.matrix(), b.body.center().homogeneous());
+  const double r = a.body.radii().maxCoeff() + b.body.radii().maxCoeff();
+  Polynomial g;
+  for (int i = 0; i < 3; ++i) {
+    const Polynomial d = cb[3] * ca[i] - ca[3] * cb[i];
+    g += d * d;
+  }
+  const Polynomial w = ca[3] * cb[3];
+  g -= w * w * (r * r);
+  return certifiedSign(g) > 0;
+}
+
+// Thesis §5.4.1 separating-plane cull: the plane separating a(0) and b(0) moves with b; a never
+// reaches it iff q(t)^T Q_a^{-1} q(t) < 0 on [0, 1], q the plane in a's body frame.
+bool planeCull(const MovingEllipsoid& a, const MotionMatrix& ma, const MotionMatrix& mb,
+               const Plane& plane) {
+  const Eigen::Vector4d pi_world(plane.normal.x(), plane.normal.y(), plane.normal.z(), -plane.offset);
+  const Eigen::Vector4d pi_body_b = mb.matrix().evaluate(0.0).transpose() * pi_world;
+  Vec4P pi_t;  // N_b(t)^T pi_body_b
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      if (pi_body_b[j] != 0.0) pi_t[i] += mb.inverse()(j, i) * pi_body_b[j];
+  const Vec4P q = transposeTimes(ma.matrix(), pi_t);
+  const Eigen::Matrix4d dual = a.body.quadricMatrix().inverse();
+  Polynomial g;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) g += q[i] * q[j] * dual(i, j);
+  return certifiedSign(g) < 0;
+}
+
+// Symmetrised and balanced: divided by |det Q(1/2)|^(1/4), so that det A and det B are both
+// about -1 in mid-motion. A positive factor changes no sign decision, but balancing keeps the
+// negative roots of det(lambda A - B) near lambda = -1, i.e. the maximiser of u -> F(u, t) away
+// from u = 0 and u = 1 where F = u^4 f(lambda) is flattened by the factor u^4.
+PolynomialMatrix4 balanced(const PolynomialMatrix4& Q) {
+  const double det = std::abs(Q.evaluate(0.5).determinant());
+  double scale = std::pow(det, 0.25);
+  if (!(scale > 0.0) || !std::isfinite(scale)) {
+    scale = 0.0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) scale = std::max(scale, Q(i, j).maxAbsCoefficient());
+  }
+  PolynomialMatrix4 R;
+  for (int i = 0; i < 4; ++i) {
+    R(i, i) = Q(i, i) * (1.0 / scale);
+    for (int j = i + 1; j < 4; ++j) {
+      R(i, j) = (Q(i, j) + Q(j, i)) * (0.5 / scale);
+      R(j, i) = R(i, j);
+    }
+  }
+  return R;
+}
+
+PolynomialMatrix4 scaledQuadric(const Eigen::Matrix4d& Q_body, const PolynomialMatrix4& N, const Eigen::Matrix4d& S) {
+  const PolynomialMatrix4 NS = N * PolynomialMatrix4(S);
+  return balanced(NS.transpose() * (PolynomialMatrix4(Q_body) * NS));
+}
+
+// Thesis §5.2: the affine interpolant of b's state relative to a, in a's body frame.
+PolynomialMatrix4 affineInterpolant(const Eigen::Matrix3d B0, const Eigen::Vector3d& c0, const Eigen::Matrix3d& B1,
+                                    const Eigen::Vector3d& c1, const Eigen::Matrix4d& S) {
+  // In scaled coordinates y = S^{-1} x (S = [[L I, c_ref], [0, 1]]): shape L^2 B, centre (c - c_ref) / L.
+  const double L = S(0, 0);
+  const Eigen::Vector3d cref = S.block<3, 1>(0, 3);
+  PolynomialMatrix4 Bt;
+  Polynomial c[3];
+  for (int i = 0; i < 3; ++i) {
+    c[i] = Polynomial{(c0[i] - cref[i]) / L, (c1[i] - c0[i]) / L};
+    for (int j = 0; j < 3; ++j) Bt(i, j) = Polynomial{L * L * B0(i, j), L * L * (B1(i, j) - B0(i, j))};
+  }
+  PolynomialMatrix4 Q;
+  Polynomial Bc[3];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      Q(i, j) = Bt(i, j);
+      Bc[i] += Bt(i, j) * c[j];
+    }
+  }
+  Polynomial cBc;
+  for (int i = 0; i < 3; ++i) {
+    Q(i, 3) = -Bc[i];
+    Q(3, i) = -Bc[i];
+    cBc += c[i] * Bc[i];
+  }
+  Q(3, 3) = cBc - Polynomial{1.0};
+  return Q;
+}
+
+struct State {
+  int sign = 0;        // +1 separate, 0 touching (within the band), -1 overlapping
+  double u = 0.5;      // maximiser of u -> F(u, t)
+  double value = 0.0;  // max_u F(u, t)
+  double band = 0.0;   // touching band at t
+};
+
+enum class ChainEnd { Reached, Contact, Stalled };
+
+class IntervalSolver {
+ public:
+  IntervalSolver(const BivariateBernstein& F, EllipsoidCcdResult* result) : F_(F), result_(result) {}
+
+  struct Piece {
+    double begin, end;
+    bool closed_begin, closed_end;  // the end point itself is certified separate
+  };
+  std::vector<Piece> separation;
+
+  State state(double t) {
+    ++result_->work;
+    const BernsteinPolynomial p = F_.atT(t);
+    State s;
+    double scale = 0.0;
+    int best = 0;
+    for (int i = 0; i <= p.degree(); ++i) {
+      scale = std::max(scale, std::abs(p.coefficients()[i]));
+      if (p.coefficients()[i] > p.coefficients()[best]) best = i;
+    }
+    s.band = tolerance::kCcdTouchingRelative * scale;
+    s.u = static_cast<double>(best) / p.degree();
+    if (p.maxCoefficient() < -s.band) {  // convex hull: F(., t) < 0, overlapping
+      s.sign = -1;
+      s.value = p.maxCoefficient();
+      s.u = std::clamp(s.u, 0.05, 0.95);
+      return s;
+    }
+    // max over [0, 1]: the ends (det A, det B < 0) and the critical points of the quartic.
+    s.value = std::max(p.evaluate(0.0), p.evaluate(1.0));
+    s.u = p.evaluate(0.0) > p.evaluate(1.0) ? 0.0 : 1.0;
+    const BernsteinPolynomial dp = p.derivative();
+    if (!dp.isZero()) {
+      for (const RootInterval& r : isolateRoots(dp, 1e-6)) {
+        double u = 0.5 * (r.lo + r.hi);
+        if (r.kind == RootKind::Single && r.lo < r.hi) u = refineRoot(dp, r.lo, r.hi, 1e-15);
+        const double v = p.evaluate(u);
+        if (v > s.value) {
+          s.value = v;
+          s.u = u;
+        }
+      }
+    }
+    s.sign = s.value > s.band ? 1 : (s.value < -s.band ? -1 : 0);
+    return s;
+  }
+
+  // Repeated Bezier shoots from t1 (separate) toward t2 (thesis §5.3.1 BezierShoot, §5.3.3):
+  // each shoot certifies F(u^, t) > 0 on [t_k, t_{k+1}) for u^ the maximiser at t_k.
+  ChainEnd chain(double t1, State s1, double t2, bool rightward, double* end, State* s_end) {
+    double t = t1;
+    State s = s1;
+    while (true) {
+      if (result_->work >= tolerance::kCcdMaxWork) {
+        result_->unresolved = true;
+        *end = t;
+        *s_end = s;
+        return ChainEnd::Stalled;
+      }
+      ++result_->work;
+      const BernsteinPolynomial g = F_.atU(s.u);
+      const double lo = rightward ? t : t2, hi = rightward ? t2 : t;
+      BernsteinPolynomial gr = (lo == g.lower() && hi == g.upper()) ? g : g.restrict(lo, hi);
+      if (!rightward) {
+        std::vector<double> rev(gr.coefficients().rbegin(), gr.coefficients().rend());
+        gr = BernsteinPolynomial(std::move(rev), 0.0, 1.0);
+      }
+      const std::optional<double> root = firstRoot(gr, rightward ? tolerance::kCcdTimeTolerance
+                                                                  : tolerance::kCcdTimeTolerance / (hi - lo));
+      double next;
+      if (!root) {
+        next = t2;
+      } else if (rightward) {
+        next = *root;
+      } else {
+        next = hi - *root * (hi - lo);
+      }
+      if (!root) {
+        *end = t2;
+        *s_end = s;
+        return ChainEnd::Reached;
+      }
+      const bool progressed = rightward ? next > t : next < t;
+      if (!progressed) {  // cannot certify past t: treat t as contact (conservative)
+        result_->near_tangent = true;
+        *end = t;
+        *s_end = s;
+        s_end->sign = 0;
+        return ChainEnd::Stalled;
+      }
+      t = next;
+      s = state(t);
+      // A shoot needs F(u^, t) above the touching band at its start: below it the sign of F is
+      // not trusted (coefficient rounding), so entering the band ends the chain with a contact at
+      // the current instant, which precedes the exact contact by at most band / |dF/dt|.
+      if (s.sign <= 0) {
+        if (s.value > 0.0) result_->near_tangent = true;
+        *end = t;
+        *s_end = s;
+        return ChainEnd::Contact;
+      }
+    }
+  }
+
+  // Candidate overlap interval with max_u F <= band at both ends: certified colliding throughout
+  // when on every u-slab either F <= band (convex hull) or F_t has one strict sign (then F is
+  // monotone in t on each vertical line and cannot exceed its end values; no loop of the zero
+  // set, thesis §5.3.1).
+  bool overlapCertified(double t1, double t2, double band) {
+    const BivariateBernstein G = F_.restrict(0.0, 1.0, t1, t2);
+    return slabCertified(G, 0.0, 1.0, band, 0);
+  }
+
+  bool slabCertified(const BivariateBernstein& G, double ua, double ub, double band, int depth) {
+    const BivariateBernstein S = (ua == G.uLower() && ub == G.uUpper()) ? G : G.restrict(ua, ub, G.tLower(), G.tUpper());
+    if (S.maxCoefficient() <= band) return true;
+    const BivariateBernstein St = S.derivativeT();
+    if (St.minCoefficient() > 0.0 || St.maxCoefficient() < 0.0) return true;
+    if (depth >= tolerance::kCcdMaxSlabDepth) return false;
+    const double um = 0.5 * (ua + ub);
+    return slabCertified(G, ua, um, band, depth + 1) && slabCertified(G, um, ub, band, depth + 1);
+  }
+
+  void process(double t1, State s1, double t2, State s2) {
+    if (result_->work >= tolerance::kCcdMaxWork) {
+      result_->unresolved = true;
+      return;  // left uncertified: reported colliding
+    }
+    if (s1.sign > 0) {
+      double x;
+      State sx;
+      const ChainEnd e = chain(t1, s1, t2, true, &x, &sx);
+      if (x > t1) separation.push_back({t1, x, true, e == ChainEnd::Reached && s2.sign > 0});
+      if (e == ChainEnd::Reached) return;
+      if (sx.sign > 0) sx.sign = 0;  // stalled: treated as contact
+      if (e == ChainEnd::Stalled && result_->unresolved) return;
+      process(x, sx, t2, s2);
+      return;
+    }
+    if (s2.sign > 0) {
+      double y;
+      State sy;
+      const ChainEnd e = chain(t2, s2, t1, false, &y, &sy);
+      if (y < t2) separation.push_back({y, t2, e == ChainEnd::Reached && s1.sign > 0, true});
+      if (e == ChainEnd::Reached) return;
+      if (sy.sign > 0) sy.sign = 0;
+      if (e == ChainEnd::Stalled && result_->unresolved) return;
+      process(t1, s1, y, sy);
+      return;
+    }
+    if (t2 - t1 <= tolerance::kCcdMinIntervalWidth) {  // Remark 5.4: reported colliding
+      if (s1.sign == 0 || s2.sign == 0) result_->near_tangent = true;
+      return;
+    }
+    if (overlapCertified(t1, t2, std::max(s1.band, s2.band))) return;
+    const double m = 0.5 * (t1 + t2);
+    const State sm = state(m);
+    process(t1, s1, m, sm);
+    process(m, sm, t2, s2);
+  }
+
+ private:
+  const BivariateBernstein& F_;
+  EllipsoidCcdResult* result_;
+};
+
+// Collision intervals: the complement in [0, tmax] of the certified separation pieces.
+void assemble(std::vector<IntervalSolver::Piece> pieces, double tmax, EllipsoidCcdResult* r) {
+  std::sort(pieces.begin(), pieces.end(), [](const auto& x, const auto& y) { return x.begin < y.begin; });
+  std::vector<IntervalSolver::Piece> merged;
+  for (const auto& p : pieces) {
+    if (!merged.empty() && (p.begin < merged.back().end ||
+                            (p.begin == merged.back().end && (merged.back().closed_end || p.closed_begin)))) {
+      if (p.end > merged.back().end) {
+        merged.back().end = p.end;
+        merged.back().closed_end = p.closed_end;
+      } else if (p.end == merged.back().end) {
+        merged.back().closed_end = merged.back().closed_end || p.closed_end;
+      }
+      continue;
+    }
+    merged.push_back(p);
+  }
+  double cursor = 0.0;
+  bool cursor_covered = false;  // is `cursor` itself certified separate?
+  for (const auto& p : merged) {
+    r->separation_intervals.push_back({p.begin, p.end});
+    const bool gap = p.begin > cursor || (!cursor_covered && !p.closed_begin);
+    if (gap) r->collision_intervals.push_back({cursor, p.begin});
+    cursor = p.end;
+    cursor_covered = p.closed_end;
+  }
+  if (cursor < tmax || !cursor_covered) {
+    if (!(cursor == tmax && cursor_covered)) r->collision_intervals.push_back({cursor, tmax});
+  }
+  r->collide = !r->collision_intervals.empty();
+  if (r->collide) r->first_contact_time = r->collision_intervals.front().begin;
+}
+
+// World point of contact at local time t: the centre of the pencil member (1-u) A + u B.
+Eigen::Vector3d pencilCentre(const PolynomialMatrix4& A, const PolynomialMatrix4& B, double t, double u) {
+  const Eigen::Matrix4d Q = (1.0 - u) * A.evaluate(t) + u * B.evaluate(t);
+  return -Q.topLeftCorner<3, 3>().ldlt().solve(Q.block<3, 1>(0, 3));
+}
+
+// One segment: both motions are single rational pieces on the local [0, 1]; t_max local.
+EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEllipsoid& b,
+                                const MotionMatrix& mb, double tmax, const CcdOptions& opt) {
+  EllipsoidCcdResult r;
+  const MovingEllipsoid a_local{a.body, PiecewiseMotion(ma)}, b_local{b.body, PiecewiseMotion(mb)};
+  const Ellipsoid a0 = ellipsoidAt(a_local, 0.0), b0 = ellipsoidAt(b_local, 0.0);
+  const bool affine = opt.interpolation == CcdInterpolation::Affine;
+
+  if (opt.culling && !affine) {
+    if (ma.isRigid() && mb.isRigid() && sphereCull(a, ma, b, mb)) {
+      r.culled_by = 1;
+      r.separation_intervals.push_back({0.0, tmax});
+      return r;
+    }
+    const std::optional<SeparatingPlane> sp = separatingPlane(a0, b0);
+    if (sp && sp->certified && planeCull(a, ma, mb, sp->plane)) {
+      r.culled_by = 2;
+      r.separation_intervals.push_back({0.0, tmax});
+      return r;
+    }
+  }
+
+  // Scaled coordinates y = S^{-1} x: origin between the centres at t = 0, unit ~ the largest radius.
+  const double L = std::max(a.body.radii().maxCoeff(), b.body.radii().maxCoeff());
+  Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
+  S.topLeftCorner<3, 3>() *= L;
+  PolynomialMatrix4 A, B;
+  if (!affine) {
+    S.block<3, 1>(0, 3) = 0.5 * (a0.center() + b0.center());
+    A = scaledQuadric(a.body.quadricMatrix(), ma.inverse(), S);
+    B = scaledQuadric(b.body.quadricMatrix(), mb.inverse(), S);
+  } else {
+    // In a's body frame: a is constant, b's shape and centre are interpolated (thesis §5.2).
+    Eigen::Matrix3d Bs[2];
+    Eigen::Vector3d cs[2];
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Matrix4d Ta = ma.evaluate(k);
+      const Ellipsoid bk = ellipsoidAt(b_local, k);
+      const Eigen::Matrix3d Lin = Ta.topLeftCorner<3, 3>().inverse();
+      const Eigen::Matrix3d Lb = Lin * bk.rotation() * bk.radii().asDiagonal();
+      cs[k] = Lin * (bk.center() - Ta.block<3, 1>(0, 3));
+      Bs[k] = (Lb * Lb.transpose()).inverse();
+    }
+    S.block<3, 1>(0, 3) = 0.5 * (a.body.center() + cs[0]);
+    A = scaledQuadric(a.body.quadricMatrix(), PolynomialMatrix4(Eigen::Matrix4d::Identity()), S);
+    B = balanced(affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], S));
+  }
+  BivariateBernstein F = ccdFunction(A, B);
+  {
+    const double m = F.coefficients().cwiseAbs().maxCoeff();
+    if (m > 0.0 && std::isfinite(m)) F = BivariateBernstein(F.coefficients() / m);
+  }
+  r.degree_t = F.degreeT();
+
+  IntervalSolver solver(F, &r);
+  const State s0 = solver.state(0.0);
+  double t_contact = 0.0;
+  double u_contact = s0.u;
+  if (!opt.all_intervals) {
+    if (s0.sign > 0) {
+      double x;
+      State sx;
+      const ChainEnd e = solver.chain(0.0, s0, tmax, true, &x, &sx);
+      if (e == ChainEnd::Reached) {
+        r.separation_intervals.push_back({0.0, tmax});
+        return r;
+      }
+      r.separation_intervals.push_back({0.0, x});
+      t_contact = x;
+      u_contact = sx.u;
+    }
+    r.collide = true;
+    r.first_contact_time = t_contact;
+    r.collision_intervals.push_back({t_contact, t_contact});
+  } else {
+    const State s1 = solver.state(tmax);
+    solver.process(0.0, s0, tmax, s1);
+    assemble(solver.separation, tmax, &r);
+    if (!r.collide) return r;
+    t_contact = *r.first_contact_time;
+    u_contact = t_contact == 0.0 ? s0.u : solver.state(t_contact).u;
+  }
+  Eigen::Vector3d x = pencilCentre(A, B, t_contact, u_contact);
+  x = S.topLeftCorner<3, 3>() * x + S.block<3, 1>(0, 3);
+  if (affine) {  // back from a's body frame to the world with a's motion
+    const Eigen::Matrix4d Ta = ma.evaluate(t_contact);
+    x = Ta.topLeftCorner<3, 3>() * x + Ta.block<3, 1>(0, 3);
+  }
+  r.contact_point = x;
+  return r;
+}
+
+}  // namespace
+
+EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const MovingEllipsoid& b,
+                                               const CcdOptions& options) {
+  if (!(options.t_max > 0.0 && options.t_max <= 1.0)) {
+    std::ostringstream os;
+    os << "continuousCollideEllipsoids: t_max must be in (0, 1], got " << options.t_max;
+    throw std::invalid_argument(os.str());
+  }
+  // The union of both break sequences, clipped to [0, t_max].
+  std::vector<double> breaks = a.motion.breaks();
+  breaks.insert(breaks.end(), b.motion.breaks().begin(), b.motion.breaks().end());
+  breaks.push_back(options.t_max);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double x) { return x > options.t_max; }),
+               breaks.end());
+
+  EllipsoidCcdResult total;
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double s0 = breaks[k], s1 = breaks[k + 1], w = s1 - s0;
+    const MotionMatrix ma = a.motion.restricted(s0, s1), mb = b.motion.restricted(s0, s1);
+    CcdOptions local = options;
+    local.t_max = 1.0;
+    const EllipsoidCcdResult r = solveSegment(a, ma, b, mb, 1.0, local);
+    total.work += r.work;
+    total.degree_t = std::max(total.degree_t, r.degree_t);
+    total.near_tangent = total.near_tangent || r.near_tangent;
+    total.unresolved = total.unresolved || r.unresolved;
+    if (breaks.size() == 2) total.culled_by = r.culled_by;
+    auto map = [&](const CcdInterval& i) { return CcdInterval{s0 + w * i.begin, s0 + w * i.end}; };
+    for (const CcdInterval& i : r.separation_intervals) {
+      const CcdInterval g = map(i);
+      if (!total.separation_intervals.empty() && total.separation_intervals.back().end == g.begin &&
+          (total.collision_intervals.empty() || total.collision_intervals.back().end < g.begin)) {
+        total.separation_intervals.back().end = g.end;  // continues across the break
+      } else {
+        total.separation_intervals.push_back(g);
+      }
+    }
+    for (const CcdInterval& i : r.collision_intervals) {
+      const CcdInterval g = map(i);
+      if (!total.collision_intervals.empty() && total.collision_intervals.back().end >= g.begin) {
+        total.collision_intervals.back().end = std::max(total.collision_intervals.back().end, g.end);
+      } else {
+        total.collision_intervals.push_back(g);
+      }
+    }
+    if (r.collide && !total.collide) {
+      total.collide = true;
+      total.first_contact_time = s0 + w * *r.first_contact_time;
+      total.contact_point = r.contact_point;
+      if (!options.all_intervals) break;
+    }
+  }
+  return total;
+}
+
+}  // namespace fcl_quadric

@@ -1,0 +1,241 @@
+#include "fcl_quadric/continuous/motion_matrix.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "fcl_quadric/algebra/bernstein_polynomial.h"
+#include "fcl_quadric/algebra/root_isolation.h"
+#include "fcl_quadric/geometry/ellipsoid.h"
+
+namespace fcl_quadric {
+
+namespace detail {
+
+void checkNoRootOnUnitInterval(const Polynomial& p, const char* what) {
+  const BernsteinPolynomial b = BernsteinPolynomial::fromPower(p.trimmed(), 0.0, 1.0);
+  if (b.minCoefficient() > 0.0 || b.maxCoefficient() < 0.0) return;  // convex hull: no root
+  if (b.isZero()) throw std::invalid_argument(std::string(what) + " is identically zero on [0, 1]");
+  // Root-free certification by Descartes subdivision; any reported interval (even Unresolved,
+  // which may hold no root) is treated as a root: a motion we cannot certify is rejected.
+  const std::vector<RootInterval> roots = isolateRoots(b, 1e-12);
+  if (!roots.empty()) {
+    std::ostringstream os;
+    os << what << " vanishes (or cannot be certified non-zero) at t in [" << roots.front().lo << ", "
+       << roots.front().hi << "]";
+    throw std::invalid_argument(os.str());
+  }
+}
+
+}  // namespace detail
+
+namespace {
+
+Polynomial linearPoly(double a0, double a1) { return Polynomial{a0, a1 - a0}; }  // (1-t) a0 + t a1
+
+// det of the 3x3 block rows/cols {0,1,2} of M, and its adjugate.
+Polynomial det3(const PolynomialMatrix4& M) {
+  return M(0, 0) * (M(1, 1) * M(2, 2) - M(1, 2) * M(2, 1)) - M(0, 1) * (M(1, 0) * M(2, 2) - M(1, 2) * M(2, 0)) +
+         M(0, 2) * (M(1, 0) * M(2, 1) - M(1, 1) * M(2, 0));
+}
+
+// adj(L)(i, j) = cofactor(j, i) of the 3x3 block.
+Polynomial adj3(const PolynomialMatrix4& M, int i, int j) {
+  int r[2], c[2];
+  for (int k = 0, n = 0; k < 3; ++k)
+    if (k != j) r[n++] = k;
+  for (int k = 0, n = 0; k < 3; ++k)
+    if (k != i) c[n++] = k;
+  Polynomial minor = M(r[0], c[0]) * M(r[1], c[1]) - M(r[0], c[1]) * M(r[1], c[0]);
+  return ((i + j) % 2 == 0) ? minor : -minor;
+}
+
+}  // namespace
+
+MotionMatrix::MotionMatrix() : MotionMatrix(PolynomialMatrix4(Eigen::Matrix4d::Identity()),
+                                            PolynomialMatrix4(Eigen::Matrix4d::Identity()), true) {}
+
+MotionMatrix::MotionMatrix(PolynomialMatrix4 M, PolynomialMatrix4 N, bool rigid)
+    : M_(std::move(M)), N_(std::move(N)), rigid_(rigid) {}
+
+MotionMatrix MotionMatrix::constant(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
+  return fromPoses(R, p, R, p);
+}
+
+MotionMatrix MotionMatrix::fromPoses(const Eigen::Isometry3d& X0, const Eigen::Isometry3d& X1) {
+  return fromPoses(X0.linear(), X0.translation(), X1.linear(), X1.translation());
+}
+
+MotionMatrix MotionMatrix::fromPoses(const Eigen::Matrix3d& R0, const Eigen::Vector3d& p0, const Eigen::Matrix3d& R1,
+                                     const Eigen::Vector3d& p1) {
+  detail::checkRotation(R0, "motion start rotation");
+  detail::checkRotation(R1, "motion end rotation");
+  detail::checkFinite(p0, "motion start translation");
+  detail::checkFinite(p1, "motion end translation");
+  Eigen::Quaterniond q0(R0), q1(R1);
+  q0.normalize();
+  q1.normalize();
+  if (q0.coeffs().dot(q1.coeffs()) < 0.0) q1.coeffs() = -q1.coeffs();
+  // Euler parameters e0 = w, e1 = x, e2 = y, e3 = z, each linear in t (thesis §5.1).
+  const Polynomial e0 = linearPoly(q0.w(), q1.w()), e1 = linearPoly(q0.x(), q1.x());
+  const Polynomial e2 = linearPoly(q0.y(), q1.y()), e3 = linearPoly(q0.z(), q1.z());
+  const Polynomial E = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3;
+  PolynomialMatrix4 Rt;  // the unnormalised rotation R~ = E R (thesis §5.1)
+  Rt(0, 0) = e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3;
+  Rt(0, 1) = 2.0 * (e1 * e2 - e0 * e3);
+  Rt(0, 2) = 2.0 * (e0 * e2 + e1 * e3);
+  Rt(1, 0) = 2.0 * (e0 * e3 + e1 * e2);
+  Rt(1, 1) = e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3;
+  Rt(1, 2) = 2.0 * (e2 * e3 - e0 * e1);
+  Rt(2, 0) = 2.0 * (e1 * e3 - e0 * e2);
+  Rt(2, 1) = 2.0 * (e0 * e1 + e2 * e3);
+  Rt(2, 2) = e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3;
+  Polynomial p[3];
+  for (int i = 0; i < 3; ++i) p[i] = linearPoly(p0[i], p1[i]);
+  PolynomialMatrix4 M, N;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      M(i, j) = Rt(i, j);
+      N(i, j) = Rt(j, i);
+    }
+    M(i, 3) = E * p[i];
+    N(i, 3) = -(Rt(0, i) * p[0] + Rt(1, i) * p[1] + Rt(2, i) * p[2]);
+  }
+  M(3, 3) = E;
+  N(3, 3) = E;
+  return MotionMatrix(std::move(M), std::move(N), true);
+}
+
+MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M) {
+  for (int j = 0; j < 3; ++j) {
+    if (!M(3, j).trimmed().isZero()) {
+      std::ostringstream os;
+      os << "motion matrix entry (3," << j << ") must be 0 (last row [0, 0, 0, w(t)])";
+      throw std::invalid_argument(os.str());
+    }
+  }
+  const Polynomial& w = M(3, 3);
+  detail::checkNoRootOnUnitInterval(w, "motion matrix w(t) = M(3,3)");
+  const Polynomial dl = det3(M);
+  detail::checkNoRootOnUnitInterval(dl, "motion matrix det of the linear part L(t)");
+  PolynomialMatrix4 N;
+  for (int i = 0; i < 3; ++i) {
+    Polynomial adj_v;
+    for (int j = 0; j < 3; ++j) {
+      const Polynomial a = adj3(M, i, j);
+      N(i, j) = w * a;
+      adj_v += a * M(j, 3);
+    }
+    N(i, 3) = -adj_v;
+  }
+  N(3, 3) = dl;
+  return MotionMatrix(M, std::move(N), false);
+}
+
+Eigen::Matrix4d MotionMatrix::evaluate(double t) const {
+  if (!std::isfinite(t)) throw std::invalid_argument("MotionMatrix::evaluate: non-finite t");
+  Eigen::Matrix4d m = M_.evaluate(t);
+  return m / m(3, 3);
+}
+
+MotionMatrix MotionMatrix::restricted(double t0, double t1) const {
+  if (!(t0 >= 0.0 && t0 < t1 && t1 <= 1.0)) {
+    std::ostringstream os;
+    os << "MotionMatrix::restricted: need 0 <= t0 < t1 <= 1, got [" << t0 << ", " << t1 << "]";
+    throw std::invalid_argument(os.str());
+  }
+  PolynomialMatrix4 M, N;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      M(i, j) = M_(i, j).composeAffine(t1 - t0, t0);
+      N(i, j) = N_(i, j).composeAffine(t1 - t0, t0);
+    }
+  }
+  return MotionMatrix(std::move(M), std::move(N), rigid_);
+}
+
+PolynomialMatrix4 movingQuadric(const Eigen::Matrix4d& Q_body, const MotionMatrix& motion) {
+  const PolynomialMatrix4& N = motion.inverse();
+  const PolynomialMatrix4 Q = N.transpose() * (PolynomialMatrix4(Q_body) * N);
+  PolynomialMatrix4 S;
+  for (int i = 0; i < 4; ++i) {
+    S(i, i) = Q(i, i);
+    for (int j = i + 1; j < 4; ++j) {
+      S(i, j) = (Q(i, j) + Q(j, i)) * 0.5;
+      S(j, i) = S(i, j);
+    }
+  }
+  return S;
+}
+
+PiecewiseMotion::PiecewiseMotion(MotionMatrix motion) : breaks_{0.0, 1.0}, pieces_{std::move(motion)} {}
+
+PiecewiseMotion::PiecewiseMotion(std::vector<double> breaks, std::vector<MotionMatrix> pieces)
+    : breaks_(std::move(breaks)), pieces_(std::move(pieces)) {
+  if (pieces_.empty() || breaks_.size() != pieces_.size() + 1) {
+    std::ostringstream os;
+    os << "PiecewiseMotion: need pieces.size() + 1 breaks, got " << breaks_.size() << " breaks for "
+       << pieces_.size() << " pieces";
+    throw std::invalid_argument(os.str());
+  }
+  if (breaks_.front() != 0.0 || breaks_.back() != 1.0)
+    throw std::invalid_argument("PiecewiseMotion: breaks must start at 0 and end at 1");
+  for (std::size_t k = 0; k + 1 < breaks_.size(); ++k) {
+    if (!(breaks_[k] < breaks_[k + 1])) {
+      std::ostringstream os;
+      os << "PiecewiseMotion: breaks must increase strictly, got breaks[" << k << "] = " << breaks_[k]
+         << " and breaks[" << k + 1 << "] = " << breaks_[k + 1];
+      throw std::invalid_argument(os.str());
+    }
+  }
+}
+
+PiecewiseMotion PiecewiseMotion::fromKeyframes(const std::vector<double>& times,
+                                               const std::vector<Eigen::Isometry3d>& poses) {
+  if (times.size() < 2 || times.size() != poses.size()) {
+    std::ostringstream os;
+    os << "keyframes: need at least two times and as many poses as times, got " << times.size() << " times and "
+       << poses.size() << " poses";
+    throw std::invalid_argument(os.str());
+  }
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    if (!std::isfinite(times[k])) {
+      std::ostringstream os;
+      os << "keyframes: times[" << k << "] is not finite";
+      throw std::invalid_argument(os.str());
+    }
+  }
+  std::vector<MotionMatrix> pieces;
+  for (std::size_t k = 0; k + 1 < poses.size(); ++k) pieces.push_back(MotionMatrix::fromPoses(poses[k], poses[k + 1]));
+  return PiecewiseMotion(times, std::move(pieces));
+}
+
+bool PiecewiseMotion::isRigid() const {
+  for (const MotionMatrix& m : pieces_)
+    if (!m.isRigid()) return false;
+  return true;
+}
+
+Eigen::Matrix4d PiecewiseMotion::evaluate(double t) const {
+  if (!std::isfinite(t)) throw std::invalid_argument("PiecewiseMotion::evaluate: non-finite t");
+  std::size_t k = 0;
+  while (k + 1 < pieces_.size() && t > breaks_[k + 1]) ++k;
+  const double s = (t - breaks_[k]) / (breaks_[k + 1] - breaks_[k]);
+  return pieces_[k].evaluate(s);
+}
+
+MotionMatrix PiecewiseMotion::restricted(double t0, double t1) const {
+  for (std::size_t k = 0; k < pieces_.size(); ++k) {
+    const double a = breaks_[k], b = breaks_[k + 1];
+    if (t0 >= a && t1 <= b && t0 < t1) {
+      const double s0 = (t0 - a) / (b - a), s1 = (t1 - a) / (b - a);
+      if (s0 == 0.0 && s1 == 1.0) return pieces_[k];
+      return pieces_[k].restricted(s0, std::min(s1, 1.0));
+    }
+  }
+  std::ostringstream os;
+  os << "PiecewiseMotion::restricted: [" << t0 << ", " << t1 << "] is not inside one piece";
+  throw std::invalid_argument(os.str());
+}
+
+}  // namespace fcl_quadric

@@ -1,0 +1,403 @@
+// Continuous collision of two ellipsoids (thesis ch.5) against independent computations: the
+// closed form for spheres on straight lines, and dense time sampling of the certified static
+// classifier (classifyEllipsoids) with bisection at every status change.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+
+#include "fcl_quadric/algebra/quadric_matrix.h"
+#include "fcl_quadric/continuous/ccd_function.h"
+#include "fcl_quadric/continuous/ellipsoid_ccd.h"
+#include "fcl_quadric/continuous/motion_matrix.h"
+#include "fcl_quadric/geometry/ellipsoid_separation.h"
+#include "fcl_quadric/geometry/signed_distance.h"
+#include "support/random_ellipsoids.h"
+
+namespace fcl_quadric {
+namespace {
+
+Eigen::Isometry3d pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = R;
+  X.translation() = p;
+  return X;
+}
+
+Ellipsoid bodyEllipsoid(const Eigen::Vector3d& radii) {
+  return Ellipsoid(radii, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
+}
+
+// --- Motions ------------------------------------------------------------------------------
+
+TEST(MotionMatrix, FromPosesHitsBothPosesAndStaysRigid) {
+  std::mt19937_64 rng(7);
+  for (int k = 0; k < 50; ++k) {
+    const Eigen::Matrix3d R0 = test::randomRotation(rng), R1 = test::randomRotation(rng);
+    const Eigen::Vector3d p0 = Eigen::Vector3d::Random() * 5, p1 = Eigen::Vector3d::Random() * 5;
+    const MotionMatrix m = MotionMatrix::fromPoses(R0, p0, R1, p1);
+    EXPECT_LE(m.degree(), 3);
+    EXPECT_TRUE((m.evaluate(0.0).topLeftCorner<3, 3>() - R0).isZero(1e-12));
+    EXPECT_TRUE((m.evaluate(1.0).topLeftCorner<3, 3>() - R1).isZero(1e-12));
+    EXPECT_TRUE((m.evaluate(0.0).block<3, 1>(0, 3) - p0).isZero(1e-12));
+    EXPECT_TRUE((m.evaluate(1.0).block<3, 1>(0, 3) - p1).isZero(1e-12));
+    for (double t : {0.1, 0.37, 0.5, 0.93}) {
+      const Eigen::Matrix4d T = m.evaluate(t);
+      const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+      EXPECT_TRUE((R.transpose() * R - Eigen::Matrix3d::Identity()).isZero(1e-12));
+      EXPECT_NEAR(R.determinant(), 1.0, 1e-12);
+      EXPECT_TRUE((T.block<3, 1>(0, 3) - ((1 - t) * p0 + t * p1)).isZero(1e-12));
+      // N(t) M(t) = c(t) I.
+      const Eigen::Matrix4d NM = m.inverse().evaluate(t) * m.matrix().evaluate(t);
+      EXPECT_TRUE((NM - NM(0, 0) * Eigen::Matrix4d::Identity()).isZero(1e-12 * std::abs(NM(0, 0))));
+    }
+  }
+}
+
+TEST(MotionMatrix, GeneralPolynomialMatrixInverseAndRestriction) {
+  PolynomialMatrix4 M;
+  M(0, 0) = Polynomial{1.0, 0.5};
+  M(0, 1) = Polynomial{0.0, 0.3, -0.2};
+  M(1, 1) = Polynomial{2.0, 0.0, 1.0};
+  M(1, 2) = Polynomial{0.1};
+  M(2, 2) = Polynomial{1.5, -0.5};
+  M(0, 3) = Polynomial{1.0, 2.0, -3.0};
+  M(2, 3) = Polynomial{0.0, 0.0, 0.0, 4.0};
+  M(3, 3) = Polynomial{2.0, 1.0};
+  const MotionMatrix m = MotionMatrix::fromPolynomialMatrix(M);
+  EXPECT_FALSE(m.isRigid());
+  for (double t : {0.0, 0.25, 0.8, 1.0}) {
+    const Eigen::Matrix4d NM = m.inverse().evaluate(t) * M.evaluate(t);
+    EXPECT_TRUE((NM - NM(0, 0) * Eigen::Matrix4d::Identity()).isZero(1e-12 * std::abs(NM(0, 0))));
+  }
+  const MotionMatrix r = m.restricted(0.25, 0.75);
+  for (double s : {0.0, 0.3, 1.0}) EXPECT_TRUE((r.evaluate(s) - m.evaluate(0.25 + 0.5 * s)).isZero(1e-12));
+}
+
+TEST(MotionMatrix, BadMatricesAreRejectedWithTheReason) {
+  PolynomialMatrix4 M(Eigen::Matrix4d::Identity());
+  M(3, 3) = Polynomial{-0.5, 1.0};  // w(t) = t - 1/2 vanishes at 1/2
+  try {
+    MotionMatrix::fromPolynomialMatrix(M);
+    FAIL() << "w(t) with a root in [0,1] accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("w(t)"), std::string::npos) << e.what();
+  }
+  PolynomialMatrix4 S(Eigen::Matrix4d::Identity());
+  S(1, 1) = Polynomial{1.0, -1.5};  // det L vanishes at t = 2/3
+  EXPECT_THROW(MotionMatrix::fromPolynomialMatrix(S), std::invalid_argument);
+  PolynomialMatrix4 R(Eigen::Matrix4d::Identity());
+  R(3, 0) = Polynomial{0.0, 1.0};
+  EXPECT_THROW(MotionMatrix::fromPolynomialMatrix(R), std::invalid_argument);
+  Eigen::Matrix3d bad = Eigen::Matrix3d::Identity();
+  bad(0, 1) = 0.1;
+  EXPECT_THROW(MotionMatrix::fromPoses(bad, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()),
+               std::invalid_argument);
+  EXPECT_THROW(PiecewiseMotion::fromKeyframes({0.0, 0.5, 0.4, 1.0}, std::vector<Eigen::Isometry3d>(4, Eigen::Isometry3d::Identity())),
+               std::invalid_argument);
+  EXPECT_THROW(PiecewiseMotion::fromKeyframes({0.0, 1.0}, std::vector<Eigen::Isometry3d>(3, Eigen::Isometry3d::Identity())),
+               std::invalid_argument);
+}
+
+// --- CCD function -----------------------------------------------------------------------------
+
+TEST(CcdFunction, MatchesTheDeterminantOfTheEvaluatedPencil) {
+  std::mt19937_64 rng(11);
+  for (int k = 0; k < 20; ++k) {
+    const MotionMatrix ma = MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d::Random(),
+                                                    test::randomRotation(rng), Eigen::Vector3d::Random());
+    const MotionMatrix mb = MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d::Random(),
+                                                    test::randomRotation(rng), Eigen::Vector3d::Random());
+    const PolynomialMatrix4 A = movingQuadric(quadric::ellipsoid(Eigen::Vector3d(1.0, 0.7, 0.4)), ma);
+    const PolynomialMatrix4 B = movingQuadric(quadric::ellipsoid(Eigen::Vector3d(0.5, 0.9, 0.6)), mb);
+    const BivariateBernstein F = ccdFunction(A, B);
+    EXPECT_LE(F.degreeT(), 18);  // 2 (2+2+2+3), file comment of motion_matrix.h
+    for (double t : {0.0, 0.3, 0.77, 1.0}) {
+      for (double u : {0.0, 0.2, 0.5, 0.9, 1.0}) {
+        const double expected = ((u - 1.0) * A.evaluate(t) - u * B.evaluate(t)).determinant();
+        EXPECT_NEAR(F(u, t), expected, 1e-10 * (std::abs(A.evaluate(t).determinant()) + std::abs(B.evaluate(t).determinant())));
+      }
+    }
+  }
+}
+
+// --- Oracle -------------------------------------------------------------------------------------
+
+// Collision status at t by the certified static test (Touching and Overlapping are collisions).
+bool collidesAt(const MovingEllipsoid& a, const MovingEllipsoid& b, double t) {
+  return classifyEllipsoids(ellipsoidAt(a, t), ellipsoidAt(b, t)).status != Separation::Separated;
+}
+
+struct Oracle {
+  std::vector<double> changes;  // bisected status changes
+  bool collides_at_start = false;
+  bool any = false;
+};
+
+Oracle sampleOracle(const MovingEllipsoid& a, const MovingEllipsoid& b, int samples) {
+  Oracle o;
+  bool prev = collidesAt(a, b, 0.0);
+  o.collides_at_start = prev;
+  o.any = prev;
+  double tp = 0.0;
+  for (int i = 1; i <= samples; ++i) {
+    const double t = static_cast<double>(i) / samples;
+    const bool c = collidesAt(a, b, t);
+    o.any = o.any || c;
+    if (c != prev) {
+      double lo = tp, hi = t;
+      for (int k = 0; k < 60 && hi - lo > 1e-14; ++k) {
+        const double m = 0.5 * (lo + hi);
+        (collidesAt(a, b, m) == prev ? lo : hi) = m;
+      }
+      o.changes.push_back(0.5 * (lo + hi));
+    }
+    prev = c;
+    tp = t;
+  }
+  return o;
+}
+
+bool insideCollision(const EllipsoidCcdResult& r, double t, double slack) {
+  for (const CcdInterval& i : r.collision_intervals)
+    if (t >= i.begin - slack && t <= i.end + slack) return true;
+  return false;
+}
+
+// --- Closed form ------------------------------------------------------------------------------
+
+TEST(EllipsoidCcd, SpheresOnStraightLinesMatchTheClosedForm) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int colliding = 0;
+  for (int k = 0; k < 200; ++k) {
+    const double ra = 0.3 + 0.7 * std::abs(U(rng)), rb = 0.3 + 0.7 * std::abs(U(rng));
+    const Eigen::Vector3d a0(U(rng) * 4, U(rng) * 4, U(rng)), a1(U(rng) * 4, U(rng) * 4, U(rng));
+    const Eigen::Vector3d b0(U(rng) * 4, U(rng) * 4, U(rng)), b1(U(rng) * 4, U(rng) * 4, U(rng));
+    const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+    const MovingEllipsoid A{Ellipsoid::sphere(ra, Eigen::Vector3d::Zero()), PiecewiseMotion(MotionMatrix::fromPoses(I, a0, I, a1))};
+    const MovingEllipsoid B{Ellipsoid::sphere(rb, Eigen::Vector3d::Zero()), PiecewiseMotion(MotionMatrix::fromPoses(I, b0, I, b1))};
+    // |d0 + t v|^2 = (ra + rb)^2.
+    const Eigen::Vector3d d0 = b0 - a0, v = (b1 - b0) - (a1 - a0);
+    const double R = ra + rb, qa = v.squaredNorm(), qb = 2 * d0.dot(v), qc = d0.squaredNorm() - R * R;
+    const double disc = qb * qb - 4 * qa * qc;
+    const EllipsoidCcdResult r = continuousCollideEllipsoids(A, B);
+    if (qc <= 0) {
+      ASSERT_TRUE(r.collide);
+      EXPECT_EQ(*r.first_contact_time, 0.0);
+      continue;
+    }
+    const double t_in = disc > 0 ? (-qb - std::sqrt(disc)) / (2 * qa) : 2.0;
+    if (disc > 1e-9 && t_in >= 0.0 && t_in <= 1.0) {
+      ++colliding;
+      ASSERT_TRUE(r.collide) << "missed contact at " << t_in;
+      EXPECT_NEAR(*r.first_contact_time, t_in, 1e-9);
+      EXPECT_LE(*r.first_contact_time, t_in + 1e-12);  // never later than the contact
+      const double t_out = std::min(1.0, (-qb + std::sqrt(disc)) / (2 * qa));
+      ASSERT_EQ(r.collision_intervals.size(), 1u);
+      EXPECT_NEAR(r.collision_intervals[0].end, t_out, 1e-9);
+      // The contact point is on both spheres at the contact time.
+      const Eigen::Vector3d ca = a0 + t_in * (a1 - a0), cb = b0 + t_in * (b1 - b0);
+      EXPECT_NEAR((r.contact_point - ca).norm(), ra, 1e-7);
+      EXPECT_NEAR((r.contact_point - cb).norm(), rb, 1e-7);
+    } else if (disc < -1e-9 || t_in > 1.0 + 1e-9 || (-qb + std::sqrt(std::max(disc, 0.0))) / (2 * qa) < -1e-9) {
+      EXPECT_FALSE(r.collide) << "k=" << k;
+    }
+  }
+  EXPECT_GT(colliding, 20);
+}
+
+// --- Randomised rigid motions against the sampling oracle -------------------------------------
+
+void checkAgainstOracle(const MovingEllipsoid& A, const MovingEllipsoid& B, const EllipsoidCcdResult& r, int samples,
+                        int* transversal_checked) {
+  const Oracle o = sampleOracle(A, B, samples);
+  // Never "no collision" where the oracle finds one.
+  if (o.any) {
+    ASSERT_TRUE(r.collide);
+  }
+  // Every sampled time: a certified overlap must lie in a reported collision interval; a certified
+  // separation must not, except within the band around a contact.
+  for (int i = 0; i <= samples; ++i) {
+    const double t = static_cast<double>(i) / samples;
+    const Separation s = classifyEllipsoids(ellipsoidAt(A, t), ellipsoidAt(B, t)).status;
+    if (s == Separation::Overlapping) {
+      EXPECT_TRUE(insideCollision(r, t, 0.0)) << "t=" << t;
+    }
+    if (s == Separation::Separated && insideCollision(r, t, 0.0)) {
+      bool near_change = false;
+      for (double c : o.changes) near_change = near_change || std::abs(c - t) < 1e-5;
+      EXPECT_TRUE(near_change || r.near_tangent) << "spurious collision at t=" << t;
+    }
+  }
+  if (!o.collides_at_start && !o.changes.empty() && r.collide) {
+    // Transversal first contact: the oracle's bisected time within 1e-8.
+    const double t = o.changes.front();
+    const Ellipsoid ea = ellipsoidAt(A, t + 1e-6), eb = ellipsoidAt(B, t + 1e-6);
+    if (classifyEllipsoids(ea, eb).status == Separation::Overlapping) {
+      EXPECT_NEAR(*r.first_contact_time, t, 1e-8);
+      ++*transversal_checked;
+      // At the reported contact time the static test is within the touching band.
+      const SignedDistanceResult d = signedDistance(ellipsoidAt(A, *r.first_contact_time), ellipsoidAt(B, *r.first_contact_time));
+      EXPECT_LT(std::abs(d.distance), 1e-6) << "signed distance at the contact time";
+    }
+  }
+}
+
+void randomRigidMotions(int cases, int samples, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int transversal = 0, colliding = 0;
+  for (int k = 0; k < cases; ++k) {
+    const MovingEllipsoid A{bodyEllipsoid(test::randomRadii(rng, 1.0, 4.0)),
+                            PiecewiseMotion(MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d(-2.5, U(rng), U(rng)),
+                                                                    test::randomRotation(rng), Eigen::Vector3d(2.5, U(rng), U(rng))))};
+    const MovingEllipsoid B{bodyEllipsoid(test::randomRadii(rng, 1.0, 4.0)),
+                            PiecewiseMotion(MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d(U(rng), -2.5, U(rng)),
+                                                                    test::randomRotation(rng), Eigen::Vector3d(U(rng), 2.5, U(rng))))};
+    const EllipsoidCcdResult r = continuousCollideEllipsoids(A, B);
+    EXPECT_FALSE(r.unresolved) << "k=" << k << " work=" << r.work;
+    colliding += r.collide;
+    checkAgainstOracle(A, B, r, samples, &transversal);
+    // First-contact mode agrees with the all-intervals mode.
+    CcdOptions first;
+    first.all_intervals = false;
+    const EllipsoidCcdResult f = continuousCollideEllipsoids(A, B, first);
+    ASSERT_EQ(f.collide, r.collide);
+    if (r.collide) {
+      EXPECT_NEAR(*f.first_contact_time, *r.first_contact_time, 1e-9);
+    }
+    // Culling never changes the answer.
+    CcdOptions raw;
+    raw.culling = false;
+    const EllipsoidCcdResult n = continuousCollideEllipsoids(A, B, raw);
+    ASSERT_EQ(n.collide, r.collide);
+    if (r.collide) {
+      EXPECT_NEAR(*n.first_contact_time, *r.first_contact_time, 1e-9);
+    }
+  }
+  EXPECT_GT(colliding, cases / 6);
+  EXPECT_GT(transversal, cases / 12);
+}
+
+TEST(EllipsoidCcd, RandomRigidMotionsAgreeWithTheSampledStaticOracle) { randomRigidMotions(60, 400, 2024); }
+TEST(EllipsoidCcd, LongRandomRigidMotionsAgreeWithTheSampledStaticOracle) { randomRigidMotions(1000, 1000, 77); }
+
+// Affine motions of degree 1-3 given as explicit polynomial matrices.
+TEST(EllipsoidCcd, RandomAffineMotionsAgreeWithTheSampledStaticOracle) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int transversal = 0, colliding = 0;
+  auto randomAffine = [&](double x0, double y0, double dx, double dy) {
+    PolynomialMatrix4 M;
+    const int deg = 1 + static_cast<int>(rng() % 3);
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        std::vector<double> c(deg + 1);
+        for (double& x : c) x = 0.25 * U(rng) / deg;
+        c[0] += (i == j) ? 1.0 : 0.0;
+        M(i, j) = Polynomial(c);
+      }
+    }
+    M(0, 3) = Polynomial{x0, dx, 0.3 * U(rng)};
+    M(1, 3) = Polynomial{y0, dy, 0.3 * U(rng)};
+    M(2, 3) = Polynomial{0.2 * U(rng), 0.2 * U(rng)};
+    M(3, 3) = Polynomial{1.0, 0.2 * U(rng)};
+    return MotionMatrix::fromPolynomialMatrix(M);
+  };
+  for (int k = 0; k < 40; ++k) {
+    const MovingEllipsoid A{bodyEllipsoid(test::randomRadii(rng, 0.8, 3.0)), PiecewiseMotion(randomAffine(-2, 0.3 * U(rng), 4, 0))};
+    const MovingEllipsoid B{bodyEllipsoid(test::randomRadii(rng, 0.8, 3.0)), PiecewiseMotion(randomAffine(0.3 * U(rng), -2, 0, 4))};
+    const EllipsoidCcdResult r = continuousCollideEllipsoids(A, B);
+    EXPECT_FALSE(r.unresolved);
+    colliding += r.collide;
+    checkAgainstOracle(A, B, r, 400, &transversal);
+  }
+  EXPECT_GT(colliding, 5);
+  EXPECT_GT(transversal, 3);
+}
+
+TEST(EllipsoidCcd, UnionOverHalvesEqualsTheWholeInterval) {
+  std::mt19937_64 rng(99);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int k = 0; k < 30; ++k) {
+    const MotionMatrix ma = MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d(-2, U(rng), 0),
+                                                    test::randomRotation(rng), Eigen::Vector3d(2, U(rng), 0));
+    const MotionMatrix mb = MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d(U(rng), -2, 0),
+                                                    test::randomRotation(rng), Eigen::Vector3d(U(rng), 2, 0));
+    const Ellipsoid ea = bodyEllipsoid(test::randomRadii(rng, 0.8, 3.0)), eb = bodyEllipsoid(test::randomRadii(rng, 0.8, 3.0));
+    const EllipsoidCcdResult whole = continuousCollideEllipsoids({ea, PiecewiseMotion(ma)}, {eb, PiecewiseMotion(mb)});
+    const PiecewiseMotion pa({0.0, 0.5, 1.0}, {ma.restricted(0.0, 0.5), ma.restricted(0.5, 1.0)});
+    const PiecewiseMotion pb({0.0, 0.5, 1.0}, {mb.restricted(0.0, 0.5), mb.restricted(0.5, 1.0)});
+    const EllipsoidCcdResult halves = continuousCollideEllipsoids({ea, pa}, {eb, pb});
+    ASSERT_EQ(whole.collide, halves.collide);
+    ASSERT_EQ(whole.collision_intervals.size(), halves.collision_intervals.size()) << "k=" << k;
+    for (std::size_t i = 0; i < whole.collision_intervals.size(); ++i) {
+      EXPECT_NEAR(whole.collision_intervals[i].begin, halves.collision_intervals[i].begin, 1e-9);
+      EXPECT_NEAR(whole.collision_intervals[i].end, halves.collision_intervals[i].end, 1e-9);
+    }
+  }
+}
+
+TEST(EllipsoidCcd, KeyframeMotionsAgreeWithTheOracle) {
+  std::mt19937_64 rng(5);
+  int transversal = 0;
+  for (int k = 0; k < 10; ++k) {
+    std::vector<Eigen::Isometry3d> pa, pb;
+    for (int i = 0; i < 4; ++i) {
+      pa.push_back(pose(test::randomRotation(rng), Eigen::Vector3d(-2.0 + 1.3 * i, 0.3 * i, 0.0)));
+      pb.push_back(pose(test::randomRotation(rng), Eigen::Vector3d(0.2 * i, -2.0 + 1.3 * i, 0.1)));
+    }
+    const MovingEllipsoid A{bodyEllipsoid(Eigen::Vector3d(1.0, 0.5, 0.3)), PiecewiseMotion::fromKeyframes({0, 0.2, 0.7, 1}, pa)};
+    const MovingEllipsoid B{bodyEllipsoid(Eigen::Vector3d(0.8, 0.4, 0.6)), PiecewiseMotion::fromKeyframes({0, 0.5, 0.6, 1}, pb)};
+    checkAgainstOracle(A, B, continuousCollideEllipsoids(A, B), 500, &transversal);
+  }
+}
+
+TEST(EllipsoidCcd, AffineInterpolantIsExactForPureTranslations) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (int k = 0; k < 30; ++k) {
+    const Eigen::Matrix3d Ra = test::randomRotation(rng), Rb = test::randomRotation(rng);
+    const MovingEllipsoid A{bodyEllipsoid(test::randomRadii(rng, 1.0, 3.0)),
+                            PiecewiseMotion(MotionMatrix::fromPoses(Ra, Eigen::Vector3d(-2, U(rng), U(rng)), Ra, Eigen::Vector3d(2, U(rng), U(rng))))};
+    const MovingEllipsoid B{bodyEllipsoid(test::randomRadii(rng, 1.0, 3.0)),
+                            PiecewiseMotion(MotionMatrix::fromPoses(Rb, Eigen::Vector3d(U(rng), -2, U(rng)), Rb, Eigen::Vector3d(U(rng), 2, U(rng))))};
+    CcdOptions affine;
+    affine.interpolation = CcdInterpolation::Affine;
+    const EllipsoidCcdResult r = continuousCollideEllipsoids(A, B), f = continuousCollideEllipsoids(A, B, affine);
+    EXPECT_LE(f.degree_t, 6);
+    ASSERT_EQ(r.collide, f.collide);
+    if (r.collide) {
+      EXPECT_NEAR(*r.first_contact_time, *f.first_contact_time, 1e-8);
+      EXPECT_LT((r.contact_point - f.contact_point).norm(), 1e-5);
+    }
+  }
+}
+
+TEST(EllipsoidCcd, FarApartPairsAreCulledAndTMaxLimitsTheSearch) {
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const MovingEllipsoid A{bodyEllipsoid(Eigen::Vector3d(1, 1, 1)),
+                          PiecewiseMotion(MotionMatrix::fromPoses(I, Eigen::Vector3d(0, 0, 0), I, Eigen::Vector3d(0, 0, 0)))};
+  const MovingEllipsoid far{bodyEllipsoid(Eigen::Vector3d(1, 2, 1)),
+                            PiecewiseMotion(MotionMatrix::fromPoses(I, Eigen::Vector3d(10, 0, 0), I, Eigen::Vector3d(10, 5, 0)))};
+  EXPECT_EQ(continuousCollideEllipsoids(A, far).culled_by, 1);
+  const MovingEllipsoid through{bodyEllipsoid(Eigen::Vector3d(0.5, 0.5, 0.5)),
+                                PiecewiseMotion(MotionMatrix::fromPoses(I, Eigen::Vector3d(-4, 0, 0), I, Eigen::Vector3d(4, 0, 0)))};
+  const EllipsoidCcdResult r = continuousCollideEllipsoids(A, through);
+  ASSERT_TRUE(r.collide);
+  EXPECT_NEAR(*r.first_contact_time, 2.5 / 8.0, 1e-10);  // centre reaches x = -1.5
+  ASSERT_EQ(r.collision_intervals.size(), 1u);
+  EXPECT_NEAR(r.collision_intervals[0].end, 5.5 / 8.0, 1e-10);
+  CcdOptions early;
+  early.t_max = 0.3;
+  EXPECT_FALSE(continuousCollideEllipsoids(A, through, early).collide);
+  early.t_max = 0.0;
+  EXPECT_THROW(continuousCollideEllipsoids(A, through, early), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace fcl_quadric
