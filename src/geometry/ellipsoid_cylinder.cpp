@@ -186,6 +186,8 @@ const std::array<Eigen::Vector3d, 40>& sphereGrid() {
   return grid;
 }
 
+void sideCandidatesCone(const Problem& P, Best* best);
+
 /// Cylinder side (r0 = r1): for n orthogonal to the axis phi = n.(p - c) - |S R^T n| - r, the
 /// point-ellipse problem of the projected axis against the ellipsoid's shadow on the plane
 /// orthogonal to a. Every critical point is a candidate.
@@ -198,6 +200,12 @@ void sideCandidatesCylinder(const Problem& P, Best* best) {
   const Eigen::Vector2d radii = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   if (!(radii.minCoeff() > 0.0)) return;
   const Eigen::Vector2d y = es.eigenvectors().transpose() * (B.transpose() * k.dp);
+  if (!(y.cwiseAbs().minCoeff() > 1e-150 * (1.0 + y.norm()))) {
+    // criticalPointsPrincipal evaluates 0/0 at a pole when a coordinate is zero (raises
+    // FE_INVALID); the generic circle search covers this case.
+    sideCandidatesCone(P, best);
+    return;
+  }
   Eigen::Vector2d xs[4];
   const int n = detail::criticalPointsPrincipal<2>(radii, y, xs, 4);
   for (int i = 0; i < n; ++i) {
@@ -231,12 +239,13 @@ void sideCandidatesCone(const Problem& P, Best* best) {
   double dummy;
   for (int j = 0; j <= K; ++j) dval[j] = derivs(2.0 * kPi * j / K, &dummy);
   for (int j = 0; j < K; ++j) {
-    if (!(dval[j] > 0.0 && dval[j + 1] <= 0.0)) continue;
+    if (!(dval[j] >= 0.0 && dval[j + 1] <= 0.0)) continue;  // a sample may sit on the maximum
     double lo = 2.0 * kPi * j / K, hi = 2.0 * kPi * (j + 1) / K;  // F'(lo) > 0 >= F'(hi)
     double t = 0.5 * (lo + hi);
     for (int it = 0; it < round_solid::kMaxConeSideIterations && hi - lo > 1e-15; ++it) {
       double d2;
       const double d1 = derivs(t, &d2);
+      if (d1 == 0.0) break;
       if (d1 > 0.0) lo = t; else hi = t;
       double next = d2 < 0.0 ? t - d1 / d2 : 0.5 * (lo + hi);
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
@@ -252,12 +261,15 @@ void sideCandidatesCone(const Problem& P, Best* best) {
 void pointCandidates(const Problem& P, const Eigen::Vector3d& dq, Best* best) {
   const Ellipsoid& e = *P.e;
   const Eigen::Vector3d y = e.rotation().transpose() * dq;
+  // A zero coordinate makes criticalPointsPrincipal evaluate 0/0 (FE_INVALID); Newton on the
+  // (smooth) point term covers that case (newtonCandidates).
+  if (!(y.cwiseAbs().minCoeff() > 1e-150 * (1.0 + y.norm()))) return;
   Eigen::Vector3d xs[8];
   const int n = detail::criticalPointsPrincipal<3>(e.radii(), y, xs, 8);
   for (int i = 0; i < n; ++i) consider(P, e.rotation() * xs[i].cwiseQuotient(e.radii().cwiseAbs2()), true, best);
 }
 
-/// Newton on phi_i for the disks with r_i > 0, from the `starts` best distinct seeds that lie in
+/// Newton on phi_i (for a point, r_i = 0, it backs up the exact candidates), from the `starts` best distinct seeds that lie in
 /// the region where disk i supports K (phi_i <= phi_j).
 void newtonCandidates(const Problem& P, int starts, Best* best) {
   const RoundSolid& k = P.k;
@@ -291,7 +303,7 @@ void newtonCandidates(const Problem& P, int starts, Best* best) {
   const bool same_disk = k.L == 0.0 && k.r[0] == k.r[1];
   const int base_seeds = ns;
   for (int i = 0; i < 2; ++i) {
-    if (!(k.r[i] > 0.0) || (same_disk && i == 1)) continue;
+    if (same_disk && i == 1) continue;
     const DiskObjective obj{&P, i};
     // Escape seeds: off each pole along the tangential gradient of phi_i's smooth part. Newton
     // started on the wrong side of a pole is drawn into the kink (where the cap candidate is exact
@@ -309,7 +321,7 @@ void newtonCandidates(const Problem& P, int starts, Best* best) {
     for (int s = 0; s < ns; ++s) {
       const double fi = phiDisk(P, i, seeds[s]), fj = phiDisk(P, 1 - i, seeds[s]);
       // Seeds where disk i supports K, off its kink (a pole is a start Newton cannot leave).
-      const bool kink = radialNorm(k.a, seeds[s]) <= 1e-9;
+      const bool kink = k.r[i] > 0.0 && radialNorm(k.a, seeds[s]) <= 1e-9;
       value[s] = (fi <= fj || same_disk) && !kink ? fi : -kInf;
     }
     std::array<int, 8> picked{};

@@ -378,6 +378,11 @@ TEST(EllipsoidCylinder, DegenerateSolids) {
   EXPECT_NEAR(signedDistanceEllipsoidCone(e, 0.5, 1.0, Eigen::Matrix3d::Identity(), {0, 0, 4}).distance, 0.5, 1e-14);
   EXPECT_EQ(signedDistanceEllipsoidCylinder(e, 0.5, 1.0, Eigen::Matrix3d::Identity(), {0, 0, 3.5}).status,
             Separation::Touching);
+  // Axis-aligned poses (zero principal coordinates): side at x = 3, apex above the top.
+  EXPECT_NEAR(signedDistanceEllipsoidCylinder(e, 0.5, 1.0, Eigen::Matrix3d::Identity(), {3, 0, 0}).distance, 1.5, 1e-14);
+  const Eigen::Matrix3d flip = Eigen::Vector3d(1, -1, -1).asDiagonal();  // apex down
+  EXPECT_NEAR(signedDistanceEllipsoidCone(e, 0.5, 1.0, flip, {0, 0, 4}).distance, 0.5, 1e-14);
+  EXPECT_EQ(signedDistanceEllipsoidCone(e, 0.5, 1.0, flip, {0, 0, 2}).status, Separation::Overlapping);
 }
 
 TEST(EllipsoidCylinder, BadInputThrowsNamingTheValue) {
