@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "fcl_quadric/ccd_command.h"
 #include "fcl_quadric/check_command.h"
 #include "fcl_quadric/demo_command.h"
 #include "fcl_quadric/scene.h"
@@ -55,6 +56,12 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
                "points and normal of each pair as JSON.");
   check->add_option("SCENE", scene_path, "Scene file (JSON; see examples/README.md)")->required();
 
+  std::string ccd_scene_path;
+  CLI::App* ccd = app.add_subcommand(
+      "ccd", "Continuous collision over t in [0, 1] of the scene's moving ellipsoids (objects with a "
+             "\"motion\"): first contact time, contact point and every overlap interval of each pair, as JSON.");
+  ccd->add_option("SCENE", ccd_scene_path, "Scene file (JSON with motions; see examples/README.md)")->required();
+
   DemoOptions demo_options;
   CLI::App* demo = app.add_subcommand(
       "demo", "Simulate spinning ellipsoids and compare classification with and without "
@@ -93,6 +100,8 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
   try {
     if (check->parsed()) {
       runCheck(scene_path, result);
+    } else if (ccd->parsed()) {
+      runCcd(ccd_scene_path, result);
     } else if (demo->parsed()) {
       demo_options.seed = *parseSeed(seed_text);
       runDemo(demo_options, result);

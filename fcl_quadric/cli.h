@@ -1,6 +1,6 @@
 #pragma once
 /// \file cli.h
-/// Entry point of the fcl_quadric command-line program (commands `check` and `demo`).
+/// Entry point of the fcl_quadric command-line program (commands `check`, `ccd` and `demo`).
 
 #include <ostream>
 #include <string>

@@ -205,9 +205,91 @@ Eigen::Isometry3d readPose(const json& node, const std::string& pointer) {
   return pose;
 }
 
+/// A power-basis polynomial: a number (constant) or a non-empty array of coefficients.
+Polynomial readPolynomial(const json& node, const std::string& pointer) {
+  if (node.is_number()) return Polynomial{readNumber(node, pointer, "matrix entry")};
+  requireType(node, pointer, json::value_t::array, "a number or an array of coefficients");
+  if (node.empty()) fail(pointer, "coefficient array must not be empty");
+  std::vector<double> c;
+  for (std::size_t i = 0; i < node.size(); ++i) c.push_back(readNumber(node[i], child(pointer, i), "coefficient"));
+  return Polynomial(std::move(c));
+}
+
+PiecewiseMotion readMotion(const json& node, const std::string& pointer) {
+  requireType(node, pointer, json::value_t::object, "an object");
+  const json& type = requireField(node, pointer, "type");
+  const std::string type_pointer = child(pointer, "type");
+  requireType(type, type_pointer, json::value_t::string, "a string");
+  const std::string name = type.get<std::string>();
+  if (name == "linear") {
+    rejectUnknownFields(node, pointer, {"type", "from", "to"});
+    const Eigen::Isometry3d from = readPose(requireField(node, pointer, "from"), child(pointer, "from"));
+    const Eigen::Isometry3d to = readPose(requireField(node, pointer, "to"), child(pointer, "to"));
+    return PiecewiseMotion(MotionMatrix::fromPoses(from, to));
+  }
+  if (name == "keyframes") {
+    rejectUnknownFields(node, pointer, {"type", "times", "poses"});
+    const json& times = requireField(node, pointer, "times");
+    const std::string tp = child(pointer, "times");
+    requireType(times, tp, json::value_t::array, "an array of times");
+    if (times.size() < 2) fail(tp, "needs at least two times, got " + std::to_string(times.size()));
+    std::vector<double> t;
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      const double v = readNumber(times[i], child(tp, i), "time");
+      if (i == 0 && v != 0.0) fail(child(tp, i), "the first time must be 0, got " + describeNumber(times[i]));
+      if (i + 1 == times.size() && v != 1.0) fail(child(tp, i), "the last time must be 1, got " + describeNumber(times[i]));
+      if (i > 0 && !(v > t.back())) fail(child(tp, i), "times must increase strictly, got " + describeNumber(times[i]));
+      t.push_back(v);
+    }
+    const json& poses = requireField(node, pointer, "poses");
+    const std::string pp = child(pointer, "poses");
+    requireArray(poses, pp, t.size(), "an array of poses, one per time");
+    std::vector<Eigen::Isometry3d> x;
+    for (std::size_t i = 0; i < poses.size(); ++i) x.push_back(readPose(poses[i], child(pp, i)));
+    return PiecewiseMotion::fromKeyframes(t, x);
+  }
+  if (name == "polynomial") {
+    rejectUnknownFields(node, pointer, {"type", "matrix"});
+    const json& matrix = requireField(node, pointer, "matrix");
+    const std::string mp = child(pointer, "matrix");
+    requireArray(matrix, mp, 4, "a 4x4 array of entries");
+    PolynomialMatrix4 M;
+    for (std::size_t i = 0; i < 4; ++i) {
+      requireArray(matrix[i], child(mp, i), 4, "a row of 4 entries");
+      for (std::size_t j = 0; j < 4; ++j) {
+        M(static_cast<int>(i), static_cast<int>(j)) = readPolynomial(matrix[i][j], child(child(mp, i), j));
+      }
+    }
+    try {
+      return PiecewiseMotion(MotionMatrix::fromPolynomialMatrix(M));
+    } catch (const std::invalid_argument& e) {
+      fail(mp, e.what());
+    }
+  }
+  fail(type_pointer, "unknown motion type " + jsonQuoted(name) + " (expected \"linear\", \"keyframes\" or \"polynomial\")");
+}
+
+CcdSettings readCcdSettings(const json& node, const std::string& pointer) {
+  requireType(node, pointer, json::value_t::object, "an object");
+  rejectUnknownFields(node, pointer, {"interpolation", "all_intervals"});
+  CcdSettings settings;
+  if (const auto it = node.find("interpolation"); it != node.end()) {
+    const std::string p = child(pointer, "interpolation");
+    requireType(*it, p, json::value_t::string, "a string");
+    const std::string v = it->get<std::string>();
+    if (v != "rigid" && v != "affine") fail(p, "must be \"rigid\" or \"affine\", got " + jsonQuoted(v));
+    settings.affine = v == "affine";
+  }
+  if (const auto it = node.find("all_intervals"); it != node.end()) {
+    requireType(*it, child(pointer, "all_intervals"), json::value_t::boolean, "true or false");
+    settings.all_intervals = it->get<bool>();
+  }
+  return settings;
+}
+
 SceneObject readObject(const json& node, const std::string& pointer) {
   requireType(node, pointer, json::value_t::object, "an object");
-  rejectUnknownFields(node, pointer, {"name", "shape", "pose"});
+  rejectUnknownFields(node, pointer, {"name", "shape", "pose", "motion"});
   SceneObject object;
   const json& name = requireField(node, pointer, "name");
   requireType(name, child(pointer, "name"), json::value_t::string, "a string");
@@ -215,6 +297,13 @@ SceneObject readObject(const json& node, const std::string& pointer) {
   if (object.name.empty()) fail(child(pointer, "name"), "object name must not be empty");
   object.shape = readShape(requireField(node, pointer, "shape"), child(pointer, "shape"));
   if (const auto it = node.find("pose"); it != node.end()) object.pose = readPose(*it, child(pointer, "pose"));
+  if (const auto it = node.find("motion"); it != node.end()) {
+    if (node.find("pose") != node.end()) fail(child(pointer, "motion"), "an object has a \"pose\" or a \"motion\", not both");
+    object.motion = readMotion(*it, child(pointer, "motion"));
+    const Eigen::Matrix4d T0 = object.motion->evaluate(0.0);
+    object.pose.linear() = T0.topLeftCorner<3, 3>();
+    object.pose.translation() = T0.block<3, 1>(0, 3);
+  }
   return object;
 }
 
@@ -285,12 +374,13 @@ std::string stripExceptionPrefix(const char* what) {
 Scene parseScene(const json& document) {
   const std::string root;
   requireType(document, root, json::value_t::object, "a JSON object with an \"objects\" array");
-  rejectUnknownFields(document, root, {"objects", "pairs"});
+  rejectUnknownFields(document, root, {"objects", "pairs", "ccd"});
   const json& objects = requireField(document, root, "objects");
   const std::string objects_pointer = child(root, "objects");
   requireType(objects, objects_pointer, json::value_t::array, "an array");
 
   Scene scene;
+  if (const auto it = document.find("ccd"); it != document.end()) scene.ccd = readCcdSettings(*it, child(root, "ccd"));
   std::map<std::string, std::size_t> index_of;
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const std::string p = child(objects_pointer, i);

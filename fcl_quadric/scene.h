@@ -10,13 +10,26 @@
 ///                      | {"type": "box", "size": [x, y, z]},         // full side lengths (fcl::Box)
 ///               "pose": {"translation": [x, y, z], "quaternion": [w, x, y, z]}},  // optional
 ///              ...],
-///  "pairs": [["A", "B"], ...]}                                        // optional
+///  "pairs": [["A", "B"], ...],                                       // optional
+///  "ccd": {"interpolation": "rigid" | "affine", "all_intervals": true | false}}  // optional
 /// \endcode
+/// For `fcl_quadric ccd`, an object may carry a "motion" (body -> world over t in [0, 1]) instead of
+/// a "pose":
+/// \code
+///   {"type": "linear", "from": POSE, "to": POSE}            // thesis §5.4.1 rigid interpolation
+///   {"type": "keyframes", "times": [0, ..., 1], "poses": [POSE, ...]}
+///   {"type": "polynomial", "matrix": [[e00, e01, e02, e03], ..., [0, 0, 0, w]]}
+/// \endcode
+/// where each matrix entry is a number (a constant) or an array of power-basis coefficients in t,
+/// lowest degree first. A polynomial motion must have last row [0, 0, 0, w(t)] with w(t) and the
+/// determinant of the linear part free of roots in [0, 1] (certified; otherwise the error names
+/// "/objects/i/motion/matrix").
 /// `pose` and both of its fields are optional (identity). `pairs` defaults to every unordered
 /// pair in object order. A quaternion must have unit norm within tolerance::kQuaternionNorm
 /// (relative) and is then normalised.
 
 #include <cstddef>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -26,6 +39,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json_fwd.hpp>
 
+#include "fcl_quadric/continuous/motion_matrix.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
 
 namespace fcl_quadric {
@@ -63,12 +77,21 @@ struct SceneObject {
   std::string name;
   Shape shape;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  /// The object's motion over [0, 1] when the scene gives one (`pose` is then the pose at t = 0).
+  std::optional<PiecewiseMotion> motion;
+};
+
+/// Options of `fcl_quadric ccd` (the scene's "ccd" object).
+struct CcdSettings {
+  bool affine = false;        ///< "interpolation": "affine" (thesis §5.2) instead of "rigid"
+  bool all_intervals = true;  ///< report every overlap interval (else only the first contact)
 };
 
 /// Objects and the pairs to test (indices into `objects`, first < second not required).
 struct Scene {
   std::vector<SceneObject> objects;
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  CcdSettings ccd;
 };
 
 /// Builds a Scene from a parsed JSON document.

@@ -165,6 +165,7 @@ class IntervalSolver {
     bool closed_begin, closed_end;  // the end point itself is certified separate
   };
   std::vector<Piece> separation;
+  std::vector<double> overlap_times;  // instants certified overlapping (state -1)
 
   State state(double t) {
     ++result_->work;
@@ -180,6 +181,7 @@ class IntervalSolver {
     s.u = static_cast<double>(best) / p.degree();
     if (p.maxCoefficient() < -s.band) {  // convex hull: F(., t) < 0, overlapping
       s.sign = -1;
+      overlap_times.push_back(t);
       s.value = p.maxCoefficient();
       s.u = std::clamp(s.u, 0.05, 0.95);
       return s;
@@ -200,6 +202,7 @@ class IntervalSolver {
       }
     }
     s.sign = s.value > s.band ? 1 : (s.value < -s.band ? -1 : 0);
+    if (s.sign < 0) overlap_times.push_back(t);
     return s;
   }
 
@@ -252,7 +255,6 @@ class IntervalSolver {
       // not trusted (coefficient rounding), so entering the band ends the chain with a contact at
       // the current instant, which precedes the exact contact by at most band / |dF/dt|.
       if (s.sign <= 0) {
-        if (s.value > 0.0) result_->near_tangent = true;
         *end = t;
         *s_end = s;
         return ChainEnd::Contact;
@@ -306,10 +308,7 @@ class IntervalSolver {
       process(t1, s1, y, sy);
       return;
     }
-    if (t2 - t1 <= tolerance::kCcdMinIntervalWidth) {  // Remark 5.4: reported colliding
-      if (s1.sign == 0 || s2.sign == 0) result_->near_tangent = true;
-      return;
-    }
+    if (t2 - t1 <= tolerance::kCcdMinIntervalWidth) return;  // Remark 5.4: reported colliding
     if (overlapCertified(t1, t2, std::max(s1.band, s2.band))) return;
     const double m = 0.5 * (t1 + t2);
     const State sm = state(m);
@@ -431,6 +430,9 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
       r.separation_intervals.push_back({0.0, x});
       t_contact = x;
       u_contact = sx.u;
+      // A contact inside the touching band with no overlap just after it may be a grazing touch.
+      if (sx.sign == 0 && (x >= tmax || solver.state(std::min(tmax, x + tolerance::kCcdMinIntervalWidth)).sign >= 0))
+        r.near_tangent = true;
     }
     r.collide = true;
     r.first_contact_time = t_contact;
@@ -440,6 +442,14 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
     solver.process(0.0, s0, tmax, s1);
     assemble(solver.separation, tmax, &r);
     if (!r.collide) return r;
+    // near_tangent: some collision interval holds no instant certified overlapping (probe its
+    // midpoint once): it may be a touch within the band, not a true overlap.
+    for (const CcdInterval& c : r.collision_intervals) {
+      bool witnessed = false;
+      for (double t : solver.overlap_times) witnessed = witnessed || (t >= c.begin && t <= c.end);
+      if (!witnessed) witnessed = solver.state(0.5 * (c.begin + c.end)).sign < 0;
+      if (!witnessed) r.near_tangent = true;
+    }
     t_contact = *r.first_contact_time;
     u_contact = t_contact == 0.0 ? s0.u : solver.state(t_contact).u;
   }

@@ -20,9 +20,15 @@ void checkNoRootOnUnitInterval(const Polynomial& p, const char* what) {
   // which may hold no root) is treated as a root: a motion we cannot certify is rejected.
   const std::vector<RootInterval> roots = isolateRoots(b, 1e-12);
   if (!roots.empty()) {
+    const RootInterval& r = roots.front();
     std::ostringstream os;
-    os << what << " vanishes (or cannot be certified non-zero) at t in [" << roots.front().lo << ", "
-       << roots.front().hi << "]";
+    os.precision(10);
+    if (r.kind == RootKind::Single) {
+      const double t = r.lo < r.hi ? refineRoot(b, r.lo, r.hi, 1e-12) : r.lo;
+      os << what << " vanishes at t = " << t << " in [0, 1]";
+    } else {
+      os << what << " vanishes (or cannot be certified non-zero) at t in [" << r.lo << ", " << r.hi << "]";
+    }
     throw std::invalid_argument(os.str());
   }
 }

@@ -30,6 +30,9 @@ inline std::vector<BadScene> badScenes() {
   auto posed = [](const std::string& pose) {
     return R"({"objects":[{"name":"P","shape":{"type":"sphere","radius":1},"pose":)" + pose + "}]}";
   };
+  auto moving = [](const std::string& motion) {
+    return R"({"objects":[{"name":"M","shape":{"type":"sphere","radius":1},"motion":)" + motion + "}]}";
+  };
   auto paired = [&](const std::string& pairs) { return R"({"objects":[)" + a + "," + b + R"(],"pairs":)" + pairs + "}"; };
   return {
       // Document level.
@@ -95,6 +98,34 @@ inline std::vector<BadScene> badScenes() {
       {"QuaternionJustBeyondTolerance", posed(R"({"quaternion":[1.000002,0,0,0]})"), "/objects/0/pose/quaternion", "unit norm"},
       {"QuaternionOverflow", posed(R"({"quaternion":[1,0,0,1e999]})"), "/objects/0/pose/quaternion/3", "out of the range"},
       {"QuaternionComponentString", posed(R"({"quaternion":[1,0,"0",0]})"), "/objects/0/pose/quaternion/2", "must be a number"},
+      // Motions (fcl_quadric ccd).
+      {"MotionUnknownType", moving(R"({"type":"spline"})"), "/objects/0/motion/type", "unknown motion type \"spline\""},
+      {"MotionWithPose", R"({"objects":[{"name":"M","shape":{"type":"sphere","radius":1},"pose":{},"motion":{"type":"linear","from":{},"to":{}}}]})",
+       "/objects/0/motion", "not both"},
+      {"MotionLinearMissingTo", moving(R"({"type":"linear","from":{}})"), "/objects/0/motion/to", "required field is missing"},
+      {"MotionLinearBadQuaternion", moving(R"({"type":"linear","from":{},"to":{"quaternion":[2,0,0,0]}})"),
+       "/objects/0/motion/to/quaternion", "unit norm"},
+      {"MotionKeyframesFirstTime", moving(R"({"type":"keyframes","times":[0.1,1],"poses":[{},{}]})"),
+       "/objects/0/motion/times/0", "first time must be 0"},
+      {"MotionKeyframesNotIncreasing", moving(R"({"type":"keyframes","times":[0,0.6,0.5,1],"poses":[{},{},{},{}]})"),
+       "/objects/0/motion/times/2", "increase strictly"},
+      {"MotionKeyframesPoseCount", moving(R"({"type":"keyframes","times":[0,1],"poses":[{}]})"),
+       "/objects/0/motion/poses", "exactly 2 elements, got 1"},
+      {"MotionMatrixRows", moving(R"({"type":"polynomial","matrix":[[1,0,0,0],[0,1,0,0],[0,0,1,0]]})"),
+       "/objects/0/motion/matrix", "exactly 4 elements, got 3"},
+      {"MotionMatrixEmptyEntry", moving(R"({"type":"polynomial","matrix":[[1,0,0,[]],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})"),
+       "/objects/0/motion/matrix/0/3", "must not be empty"},
+      {"MotionMatrixEntryString", moving(R"({"type":"polynomial","matrix":[[1,0,0,0],[0,"1",0,0],[0,0,1,0],[0,0,0,1]]})"),
+       "/objects/0/motion/matrix/1/1", "must be a number or an array"},
+      {"MotionMatrixWVanishes", moving(R"({"type":"polynomial","matrix":[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,[-0.5,1]]]})"),
+       "/objects/0/motion/matrix", "w(t)"},
+      {"MotionMatrixSingular", moving(R"({"type":"polynomial","matrix":[[[1,-2],0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})"),
+       "/objects/0/motion/matrix", "det of the linear part"},
+      {"MotionMatrixLastRow", moving(R"({"type":"polynomial","matrix":[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,[0,1],0,1]]})"),
+       "/objects/0/motion/matrix", "last row"},
+      {"CcdBadInterpolation", R"({"objects":[],"ccd":{"interpolation":"slerp"}})", "/ccd/interpolation", "\"rigid\" or \"affine\""},
+      {"CcdUnknownField", R"({"objects":[],"ccd":{"first_only":true}})", "/ccd/first_only", "unknown field"},
+      {"CcdAllIntervalsNotBool", R"({"objects":[],"ccd":{"all_intervals":1}})", "/ccd/all_intervals", "true or false"},
       // Pairs.
       {"PairsNotArray", paired(R"({"A":"B"})"), "/pairs", "must be an array"},
       {"PairNotArray", paired(R"(["A"])"), "/pairs/0", "must be an array of two object names, got string"},

@@ -82,7 +82,10 @@ struct EllipsoidCcdResult {
   std::vector<CcdInterval> collision_intervals;
   /// Maximal certified separation intervals (open in the thesis' sense), sorted.
   std::vector<CcdInterval> separation_intervals;
-  /// Some decision was taken inside the touching band (reported as contact).
+  /// Some reported collision interval contains no instant certified overlapping (max_u F below
+  /// minus the band): it may be a touch within the touching band, or a near miss reported as
+  /// contact. (First-contact mode: the contact instant is inside the band and the state just
+  /// after it is not certified overlapping.)
   bool near_tangent = false;
   /// The work cap was reached: some interval was reported colliding without certification.
   bool unresolved = false;

@@ -1,0 +1,57 @@
+#include "fcl_quadric/ccd_command.h"
+
+#include "fcl_quadric/continuous/ellipsoid_ccd.h"
+
+namespace fcl_quadric {
+namespace cli {
+
+namespace {
+
+nlohmann::ordered_json toJson(const Eigen::Vector3d& v) { return nlohmann::ordered_json::array({v[0], v[1], v[2]}); }
+
+MovingEllipsoid movingEllipsoid(const SceneObject& object, std::size_t index) {
+  if (!isEllipsoidal(object.shape)) {
+    throw SceneError("/objects/" + std::to_string(index) + "/shape",
+                     std::string("ccd handles ellipsoids and spheres; object \"") + object.name + "\" is a " +
+                         toString(object.shape.type));
+  }
+  const Ellipsoid body(object.shape.dimensions, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
+  if (object.motion) return MovingEllipsoid{body, *object.motion};
+  return MovingEllipsoid{body, PiecewiseMotion(MotionMatrix::constant(object.pose.linear(), object.pose.translation()))};
+}
+
+}  // namespace
+
+nlohmann::ordered_json ccdScene(const Scene& scene) {
+  CcdOptions options;
+  options.all_intervals = scene.ccd.all_intervals;
+  options.interpolation = scene.ccd.affine ? CcdInterpolation::Affine : CcdInterpolation::Rigid;
+  nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+  for (const auto& [i, j] : scene.pairs) {
+    const SceneObject& a = scene.objects.at(i);
+    const SceneObject& b = scene.objects.at(j);
+    const EllipsoidCcdResult r = continuousCollideEllipsoids(movingEllipsoid(a, i), movingEllipsoid(b, j), options);
+    nlohmann::ordered_json entry;
+    entry["a"] = a.name;
+    entry["b"] = b.name;
+    entry["collide"] = r.collide;
+    entry["first_contact_time"] = r.first_contact_time ? nlohmann::ordered_json(*r.first_contact_time) : nullptr;
+    entry["contact_point"] = r.collide ? toJson(r.contact_point) : nlohmann::ordered_json(nullptr);
+    nlohmann::ordered_json intervals = nlohmann::ordered_json::array();
+    for (const CcdInterval& c : r.collision_intervals) intervals.push_back({c.begin, c.end});
+    entry["overlap_intervals"] = std::move(intervals);
+    entry["near_tangent"] = r.near_tangent || r.unresolved;
+    pairs.push_back(std::move(entry));
+  }
+  nlohmann::ordered_json document;
+  document["pairs"] = std::move(pairs);
+  return document;
+}
+
+void runCcd(const std::string& scene_path, std::ostream& out) {
+  const Scene scene = readSceneFile(scene_path);
+  out << ccdScene(scene).dump(2) << '\n';
+}
+
+}  // namespace cli
+}  // namespace fcl_quadric

@@ -1,0 +1,31 @@
+#pragma once
+/// \file ccd_command.h
+/// `fcl_quadric ccd SCENE.json`: continuous collision of the scene's moving ellipsoids over
+/// t in [0, 1] (thesis ch.5; continuousCollideEllipsoids).
+
+#include <ostream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "fcl_quadric/scene.h"
+
+namespace fcl_quadric {
+namespace cli {
+
+/// The JSON document printed by `ccd`:
+/// {"pairs":[{"a","b","collide","first_contact_time","contact_point","overlap_intervals",
+///            "near_tangent"}]}
+/// with times in [0, 1]; first_contact_time and contact_point are null for a collision-free pair;
+/// overlap_intervals lists the maximal collision intervals [t0, t1] (t0 == t1 for a grazing
+/// contact; with "all_intervals": false only the first contact, as [t, t]). Objects without a
+/// motion stay at their pose.
+/// \throws SceneError (pointer of the object) for an object that is not an ellipsoid or sphere.
+nlohmann::ordered_json ccdScene(const Scene& scene);
+
+/// Runs `ccd`: reads the scene, solves every pair and writes the JSON (2-space indent, newline).
+/// \throws SceneError for an unreadable or invalid scene; nothing is written then.
+void runCcd(const std::string& scene_path, std::ostream& out);
+
+}  // namespace cli
+}  // namespace fcl_quadric
