@@ -644,4 +644,327 @@ EllipseCcdResult collideMovingEllipses(const MovingEllipse2& a, const MovingElli
   return res;
 }
 
+// ------------------------------------------------------------------------------------------------
+// Chapter 3: ellipses moving in 3D.
+
+MovingEllipse3::MovingEllipse3(double a, double b, const PolynomialMatrix4& motion) : a_(a), b_(b), m_(motion) {
+  checkRadius("MovingEllipse3", "a", a);
+  checkRadius("MovingEllipse3", "b", b);
+  if (motion.maxDegree() > kMaxEllipseMotionDegree) {
+    throw std::invalid_argument("MovingEllipse3: degree " + std::to_string(motion.maxDegree()) +
+                                " of motion M(t) exceeds kMaxEllipseMotionDegree = " +
+                                std::to_string(kMaxEllipseMotionDegree));
+  }
+  for (int j = 0; j < 3; ++j) {
+    if (!motion(3, j).isZero()) {
+      throw std::invalid_argument("MovingEllipse3: last row of motion M(t) must be [0, 0, 0, w(t)] (entry (3, " +
+                                  std::to_string(j) + ") is not zero)");
+    }
+  }
+  requireRootFree("MovingEllipse3", "w(t) = entry (3, 3) of motion M(t)", motion(3, 3));
+  PolynomialMatrix3 l;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) l(i, j) = motion(i, j);
+  }
+  requireRootFree("MovingEllipse3", "det of the linear 3x3 part of motion M(t)", l.determinant());
+}
+
+Eigen::Vector3d MovingEllipse3::centerAt(double t) const {
+  const Eigen::Matrix4d M = m_.evaluate(t);
+  return M.block<3, 1>(0, 3) / M(3, 3);
+}
+Eigen::Vector3d MovingEllipse3::axisUAt(double t) const {
+  const Eigen::Matrix4d M = m_.evaluate(t);
+  return M.block<3, 1>(0, 0) / M(3, 3);
+}
+Eigen::Vector3d MovingEllipse3::axisVAt(double t) const {
+  const Eigen::Matrix4d M = m_.evaluate(t);
+  return M.block<3, 1>(0, 1) / M(3, 3);
+}
+Eigen::Vector3d MovingEllipse3::normalAt(double t) const {
+  const Eigen::Matrix4d M = m_.evaluate(t);
+  return M.block<3, 1>(0, 0).cross(M.block<3, 1>(0, 1));
+}
+
+namespace {
+
+/// The conic (3x3, interior negative) of ellipse `e` at time t in the 2D coordinates (o, f1, f2) of
+/// a plane containing it: x = o + X f1 + Y f2.
+Eigen::Matrix3d conicInPlane(const MovingEllipse3& e, double t, const Eigen::Vector3d& o, const Eigen::Vector3d& f1,
+                             const Eigen::Vector3d& f2) {
+  const Eigen::Vector3d c = e.centerAt(t);
+  const Eigen::Vector3d u = e.axisUAt(t);
+  const Eigen::Vector3d v = e.axisVAt(t);
+  // Body -> plane: (X, Y) = [f1.u f1.v; f2.u f2.v] (alpha, beta) + (f1.(c-o), f2.(c-o)).
+  Eigen::Matrix3d M = Eigen::Matrix3d::Identity();
+  M(0, 0) = f1.dot(u);
+  M(0, 1) = f1.dot(v);
+  M(1, 0) = f2.dot(u);
+  M(1, 1) = f2.dot(v);
+  M(0, 2) = f1.dot(c - o);
+  M(1, 2) = f2.dot(c - o);
+  const Eigen::Matrix3d N = M.inverse();
+  const Eigen::Vector3d d(1.0 / (e.a() * e.a()), 1.0 / (e.b() * e.b()), -1.0);
+  return N.transpose() * d.asDiagonal() * N;
+}
+
+/// Chord [lo, hi] of the disk alpha^2/a^2 + beta^2/b^2 <= 1 of `e` along the world line
+/// x(s) = p0 + s d; false if the line misses the disk. Uses the body coordinates of x(s) in e's plane.
+bool chord(const MovingEllipse3& e, double t, const Eigen::Vector3d& p0, const Eigen::Vector3d& d, double* lo,
+           double* hi) {
+  const Eigen::Vector3d c = e.centerAt(t);
+  const Eigen::Vector3d u = e.axisUAt(t);
+  const Eigen::Vector3d v = e.axisVAt(t);
+  const Eigen::Vector3d n = u.cross(v);
+  const double nn = n.squaredNorm();
+  // alpha(s) = ((x - c) x v).n / |n|^2, beta(s) = (u x (x - c)).n / |n|^2, both affine in s.
+  const Eigen::Vector3d y0 = p0 - c;
+  const double a0 = y0.cross(v).dot(n) / nn, a1 = d.cross(v).dot(n) / nn;
+  const double b0 = u.cross(y0).dot(n) / nn, b1 = u.cross(d).dot(n) / nn;
+  const double ia = 1.0 / (e.a() * e.a()), ib = 1.0 / (e.b() * e.b());
+  // h(s) = A2 s^2 + 2 A1 s + A0 <= 0.
+  const double A2 = ia * a1 * a1 + ib * b1 * b1;
+  const double A1 = ia * a0 * a1 + ib * b0 * b1;
+  const double A0 = ia * a0 * a0 + ib * b0 * b0 - 1.0;
+  if (!(A2 > 0.0)) return false;
+  const double disc = A1 * A1 - A2 * A0;
+  if (disc < 0.0) return false;
+  const double sq = std::sqrt(disc);
+  *lo = (-A1 - sq) / A2;
+  *hi = (-A1 + sq) / A2;
+  return true;
+}
+
+}  // namespace
+
+Separation classifyEllipses3(const MovingEllipse3& a, const MovingEllipse3& b, double t) {
+  const Eigen::Vector3d na = a.normalAt(t);
+  const Eigen::Vector3d nb = b.normalAt(t);
+  const Eigen::Vector3d dir = na.cross(nb);
+  const Eigen::Vector3d ca = a.centerAt(t);
+  const Eigen::Vector3d cb = b.centerAt(t);
+  const double length = (cb - ca).norm() + std::max({a.a(), a.b()}) * a.axisUAt(t).norm() +
+                        std::max({b.a(), b.b()}) * b.axisVAt(t).norm() + a.axisVAt(t).norm() + b.axisUAt(t).norm();
+  if (dir.norm() <= kEllipseParallelPlanesRelative * na.norm() * nb.norm()) {
+    // Parallel planes (Step 7): distinct -> no contact; coincident -> Theorem 2.6 in the plane.
+    const Eigen::Vector3d n = na.normalized();
+    if (std::abs(n.dot(cb - ca)) > kEllipseCoplanarRelative * length) return Separation::Separated;
+    const Eigen::Vector3d f1 = a.axisUAt(t).normalized();
+    const Eigen::Vector3d f2 = n.cross(f1);
+    return classifyUnchecked(conicInPlane(a, t, ca, f1, f2), conicInPlane(b, t, ca, f1, f2)).status;
+  }
+  // A point of the intersection line: minimum-norm solution of na.x = na.ca, nb.x = nb.cb.
+  Eigen::Matrix<double, 2, 3> N;
+  N.row(0) = na.transpose();
+  N.row(1) = nb.transpose();
+  const Eigen::Vector2d rhs(na.dot(ca), nb.dot(cb));
+  const Eigen::Vector3d p0 = N.transpose() * (N * N.transpose()).ldlt().solve(rhs);
+  const Eigen::Vector3d d = dir.normalized();
+  double a_lo = 0.0, a_hi = 0.0, b_lo = 0.0, b_hi = 0.0;
+  const bool ha = chord(a, t, p0, d, &a_lo, &a_hi);
+  const bool hb = chord(b, t, p0, d, &b_lo, &b_hi);
+  if (!ha || !hb) return Separation::Separated;
+  const double gap = std::max(a_lo, b_lo) - std::min(a_hi, b_hi);
+  const double band = kEllipseTouchingRelativeBand * 64.0 *
+                      (length + std::abs(a_lo) + std::abs(a_hi) + std::abs(b_lo) + std::abs(b_hi));
+  if (gap > band) return Separation::Separated;
+  if (gap < -band) return Separation::Overlapping;
+  return Separation::Touching;
+}
+
+namespace {
+
+using BVec3 = std::array<BernsteinPolynomial, 3>;
+
+BernsteinPolynomial dotB(const BVec3& x, const BVec3& y) { return addB(addB(x[0] * y[0], x[1] * y[1]), x[2] * y[2]); }
+
+BVec3 crossB(const BVec3& x, const BVec3& y) {
+  return {subB(x[1] * y[2], x[2] * y[1]), subB(x[2] * y[0], x[0] * y[2]), subB(x[0] * y[1], x[1] * y[0])};
+}
+
+BVec3 scaleB(const BVec3& x, const BernsteinPolynomial& s) { return {x[0] * s, x[1] * s, x[2] * s}; }
+
+BVec3 subV(const BVec3& x, const BVec3& y) { return {subB(x[0], y[0]), subB(x[1], y[1]), subB(x[2], y[2])}; }
+
+struct Motion3B {
+  BVec3 u, v, c;  // L e_x, L e_y, translation column
+  BernsteinPolynomial w;
+};
+
+Motion3B toBernstein3(const PolynomialMatrix4& M) {
+  auto B = [&M](int i, int j) { return BernsteinPolynomial::fromPower(M(i, j), 0.0, 1.0); };
+  return {{B(0, 0), B(1, 0), B(2, 0)}, {B(0, 1), B(1, 1), B(2, 1)}, {B(0, 3), B(1, 3), B(2, 3)}, B(3, 3)};
+}
+
+BernsteinPolynomial normalised(const BernsteinPolynomial& p) {
+  const double m = std::max(std::abs(p.minCoefficient()), std::abs(p.maxCoefficient()));
+  return p * (1.0 / powerOfTwoScale(m));
+}
+
+/// True if every Bernstein coefficient of p is at most rel times max |coefficient of scale|.
+bool negligible(const BernsteinPolynomial& p, double scale_max, double rel) {
+  return std::max(std::abs(p.minCoefficient()), std::abs(p.maxCoefficient())) <= rel * scale_max;
+}
+
+double maxAbsCoef(const BernsteinPolynomial& p) { return std::max(std::abs(p.minCoefficient()), std::abs(p.maxCoefficient())); }
+
+/// 2x2 quadratic form [[q2, q1], [q1, q0]] of s -> (x0 + s x1)^T diag(ia, ib, -1) (x0 + s x1) for
+/// homogeneous body points x = (alpha, beta, omega).
+std::array<BernsteinPolynomial, 3> restrictConic(const BVec3& x0, const BVec3& x1, double ia, double ib) {
+  auto form = [&](const BVec3& p, const BVec3& q) {
+    return subB(addB((p[0] * q[0]) * ia, (p[1] * q[1]) * ib), p[2] * q[2]);
+  };
+  return {form(x1, x1), form(x1, x0), form(x0, x0)};
+}
+
+}  // namespace
+
+Ellipse3CcdResult collideMovingEllipses3(const MovingEllipse3& a, const MovingEllipse3& b) {
+  Ellipse3CcdResult res;
+  const Motion3B ma = toBernstein3(a.motion());
+  const Motion3B mb = toBernstein3(b.motion());
+  const BVec3 na = crossB(ma.u, ma.v);
+  const BVec3 nb = crossB(mb.u, mb.v);
+  // Step 1: identical planes for all t? n_A x n_B == 0 and n_A . (w_A c_B - w_B c_A) == 0.
+  const BVec3 nx = crossB(na, nb);
+  const BernsteinPolynomial off = dotB(na, subV(scaleB(mb.c, ma.w), scaleB(ma.c, mb.w)));
+  double nscale = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    nscale = std::max(nscale, maxAbsCoef(na[static_cast<std::size_t>(i)]) * maxAbsCoef(nb[static_cast<std::size_t>(i)]));
+  }
+  double nscale_full = 0.0;
+  for (const auto& x : na) {
+    for (const auto& y : nb) nscale_full = std::max(nscale_full, maxAbsCoef(x) * maxAbsCoef(y));
+  }
+  double oscale = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    for (const auto& x : na) {
+      oscale = std::max(oscale, maxAbsCoef(x) * (maxAbsCoef(mb.c[static_cast<std::size_t>(i)] * ma.w) +
+                                                 maxAbsCoef(ma.c[static_cast<std::size_t>(i)] * mb.w)));
+    }
+  }
+  const bool parallel_always = negligible(nx[0], nscale_full, 1e-12) && negligible(nx[1], nscale_full, 1e-12) &&
+                               negligible(nx[2], nscale_full, 1e-12);
+  (void)nscale;
+  if (parallel_always && negligible(off, oscale, kEllipseCoplanarRelative)) {
+    // Is the common plane fixed? Its unit normal and offset at t = 0 must hold at every t: n_A(t) x
+    // n0 == 0 and n0.(c_A(t) - c_A(0)) == 0 (checked at the Bernstein level as above).
+    const Eigen::Vector3d n0 = a.normalAt(0.0).normalized();
+    const Eigen::Vector3d o = a.centerAt(0.0);
+    BVec3 n0b = {BernsteinPolynomial({n0(0)}), BernsteinPolynomial({n0(1)}), BernsteinPolynomial({n0(2)})};
+    const BVec3 nax0 = crossB(na, n0b);
+    bool fixed = true;
+    double sc = 0.0;
+    for (const auto& x : na) sc = std::max(sc, maxAbsCoef(x));
+    for (const auto& x : nax0) fixed = fixed && negligible(x, sc, 1e-12);
+    BVec3 ob = {BernsteinPolynomial({o(0)}), BernsteinPolynomial({o(1)}), BernsteinPolynomial({o(2)})};
+    const BernsteinPolynomial moved = dotB(n0b, subV(ma.c, scaleB(ob, ma.w)));
+    double csc = o.norm();
+    for (const auto& x : ma.c) csc = std::max(csc, maxAbsCoef(x));
+    fixed = fixed && negligible(moved, csc * std::max(1.0, maxAbsCoef(ma.w)), kEllipseCoplanarRelative);
+    if (fixed) {
+      // Reduce to CD-DISC in the plane (o, f1, f2): 2D motion rows f1.(.), f2.(.), [0 0 w].
+      res.coplanar = true;
+      const Eigen::Vector3d f1 = a.axisUAt(0.0).normalized();
+      const Eigen::Vector3d f2 = n0.cross(f1);
+      auto planar = [&](const MovingEllipse3& e) {
+        const PolynomialMatrix4& M = e.motion();
+        PolynomialMatrix3 m2;
+        const std::array<Eigen::Vector3d, 2> f = {f1, f2};
+        for (int r = 0; r < 2; ++r) {
+          const Eigen::Vector3d& fr = f[static_cast<std::size_t>(r)];
+          for (int col = 0; col < 2; ++col) {
+            m2(r, col) = M(0, col) * fr(0) + M(1, col) * fr(1) + M(2, col) * fr(2);
+          }
+          m2(r, 2) = M(0, 3) * fr(0) + M(1, 3) * fr(1) + M(2, 3) * fr(2) - M(3, 3) * fr.dot(o);
+        }
+        m2(2, 2) = M(3, 3);
+        return MovingEllipse2(e.a(), e.b(), m2);
+      };
+      const EllipseCcdResult r2 = collideMovingEllipses(planar(a), planar(b), EllipseCcdQuery::FirstContact);
+      res.collide = r2.collide;
+      res.first_contact = r2.first_contact;
+      res.capped = r2.capped;
+      return res;
+    }
+  }
+  // Step 0: the state at t = 0.
+  if (classifyEllipses3(a, b, 0.0) != Separation::Separated) {
+    res.collide = true;
+    res.first_contact = 0.0;
+    return res;
+  }
+  // Steps 2-4: line p alpha + q beta + r = 0 in A's body plane (B's plane cut with A's plane).
+  const BernsteinPolynomial p = mb.w * dotB(nb, ma.u);
+  const BernsteinPolynomial q = mb.w * dotB(nb, ma.v);
+  const BernsteinPolynomial r = dotB(nb, subV(scaleB(ma.c, mb.w), scaleB(mb.c, ma.w)));
+  // Homogeneous A-body points X(s) = X0 + s D: D = (-q, p, 0), X0 = (-r p, -r q, p^2 + q^2).
+  const BernsteinPolynomial zero_d({0.0});
+  const BVec3 D = {-q, p, zero_d};
+  const BVec3 X0 = {-(r * p), -(r * q), addB(p * p, q * q)};
+  const std::array<BernsteinPolynomial, 3> h =
+      restrictConic(X0, D, 1.0 / (a.a() * a.a()), 1.0 / (a.b() * a.b()));
+  // World points W = M_A X (homogeneous, last coordinate omega = w_A X_w):
+  //   W_xyz = alpha u_A + beta v_A + omega_body c_A, W_w = w_A omega_body.
+  auto world = [&](const BVec3& X) {
+    BVec3 xyz;
+    for (std::size_t i = 0; i < 3; ++i) {
+      xyz[i] = addB(addB(X[0] * ma.u[i], X[1] * ma.v[i]), X[2] * ma.c[i]);
+    }
+    return std::make_pair(xyz, X[2] * ma.w);
+  };
+  // B-body homogeneous coordinates: Y = w_B W_xyz - W_w c_B; (alpha, beta, omega) =
+  // ((Y x v_B).n_B, (u_B x Y).n_B, W_w |n_B|^2).
+  const BernsteinPolynomial nbb = dotB(nb, nb);
+  auto bodyB = [&](const BVec3& X) {
+    const auto W = world(X);
+    const BVec3 Y = subV(scaleB(W.first, mb.w), scaleB(mb.c, W.second));
+    return BVec3{dotB(crossB(Y, mb.v), nb), dotB(crossB(mb.u, Y), nb), W.second * nbb};
+  };
+  const std::array<BernsteinPolynomial, 3> g =
+      restrictConic(bodyB(X0), bodyB(D), 1.0 / (b.a() * b.a()), 1.0 / (b.b() * b.b()));
+  // Step 5: f(lambda) = det(lambda H - G) = lambda^2 det H - lambda (h2 g0 + h0 g2 - 2 h1 g1) + det G.
+  const BernsteinPolynomial h2 = normalised(h[0]), h1 = h[1] * (1.0 / powerOfTwoScale(maxAbsCoef(h[0]))),
+                            h0 = h[2] * (1.0 / powerOfTwoScale(maxAbsCoef(h[0])));
+  const double gs = 1.0 / powerOfTwoScale(std::max({maxAbsCoef(g[0]), maxAbsCoef(g[1]), maxAbsCoef(g[2])}));
+  const BernsteinPolynomial g2 = g[0] * gs, g1 = g[1] * gs, g0 = g[2] * gs;
+  const BernsteinPolynomial c2 = subB(h2 * h0, h1 * h1);
+  const BernsteinPolynomial c1 = subB(addB(h2 * g0, h0 * g2), (h1 * g1) * 2.0);
+  const BernsteinPolynomial c0 = subB(g2 * g0, g1 * g1);
+  // Step 6: Delta_f = c1^2 - 4 c2 c0.
+  const BernsteinPolynomial delta = normalised(subB(c1 * c1, (c2 * c0) * 4.0));
+  res.discriminant_degree = delta.degree();
+  // Steps 7-8: candidates (roots and extrema of Delta_f), validated by the static test.
+  std::vector<double> cand;
+  for (const RootInterval& ri : isolateRoots(delta, kEllipseIsolationWidth)) cand.push_back(rootPoint(delta, ri));
+  const BernsteinPolynomial dd = delta.derivative();
+  for (const RootInterval& ri : isolateRoots(dd, kEllipseIsolationWidth)) {
+    cand.push_back(std::min(1.0, std::max(0.0, rootPoint(dd, ri))));
+  }
+  std::sort(cand.begin(), cand.end());
+  if (static_cast<int>(cand.size()) > kMaxEllipseEvents) {
+    res.capped = true;
+    res.collide = true;
+    res.first_contact = cand.front();
+    return res;
+  }
+  cand.push_back(1.0);
+  double prev = 0.0;
+  for (double t : cand) {
+    // A state change inside (prev, t) shows at the midpoint; a contact at t shows at t.
+    if (t > prev && classifyEllipses3(a, b, 0.5 * prev + 0.5 * t) != Separation::Separated) {
+      res.collide = true;
+      res.first_contact = prev;
+      return res;
+    }
+    if (classifyEllipses3(a, b, t) != Separation::Separated) {
+      res.collide = true;
+      res.first_contact = t;
+      return res;
+    }
+    prev = t;
+  }
+  return res;
+}
+
 }  // namespace fcl_quadric

@@ -535,5 +535,125 @@ TEST(EllipseCcdStatic, ClassifyEllipsesAgreesWithEllipsoidOracleOnRandomPairs) {
   EXPECT_GT(counts[2], 100);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Chapter 3: ellipses moving in 3D.
+
+/// 4x4 motion from a 2D one, in the plane z = z0.
+PolynomialMatrix4 lift(const PolynomialMatrix3& m, double z0) {
+  PolynomialMatrix4 M;
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) M(i, j) = m(i, j);
+    M(i, 3) = m(i, 2);
+  }
+  M(2, 2) = m(2, 2);
+  M(2, 3) = m(2, 2) * z0;
+  M(3, 3) = m(2, 2);
+  return M;
+}
+
+TEST(Ellipse3Ccd, CoplanarCaseAgreesWithTheTwoDimensionalAlgorithm) {
+  std::mt19937_64 rng(33);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int collided = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const int deg = 1 + trial % 3;
+    const Motion2 p = randomMotion(rng, deg, trial % 2 == 0, Eigen::Vector2d(-4.0 + u(rng), u(rng)),
+                                   Eigen::Vector2d(2.0 * u(rng), 2.0 * u(rng)));
+    const Motion2 q = randomMotion(rng, deg, trial % 2 == 0, Eigen::Vector2d(4.0 + u(rng), u(rng)),
+                                   Eigen::Vector2d(2.0 * u(rng), 2.0 * u(rng)));
+    const EllipseCcdResult r2 = collideMovingEllipses(MovingEllipse2(p.a, p.b, p.M), MovingEllipse2(q.a, q.b, q.M));
+    const Ellipse3CcdResult r3 =
+        collideMovingEllipses3(MovingEllipse3(p.a, p.b, lift(p.M, 0.75)), MovingEllipse3(q.a, q.b, lift(q.M, 0.75)));
+    EXPECT_TRUE(r3.coplanar) << trial;
+    ASSERT_EQ(r3.collide, r2.collide) << trial;
+    if (r2.collide) {
+      ++collided;
+      EXPECT_NEAR(*r3.first_contact, *r2.first_contact, 1e-9) << trial;
+    }
+  }
+  EXPECT_GT(collided, 2);
+}
+
+/// Ellipse B in the vertical plane y = 0 (body x -> world x, body y -> world z), centre
+/// (cx(t), 0, cz(t)) with cx = 3 - 2t, cz = 1.5 - 2t, radii (1, 1); ellipse A fixed in z = 0,
+/// radii (2, 1) at the origin. The planes meet in the x axis; A's chord there is [-2, 2] and B's is
+/// cx -+ sqrt(1 - cz^2) while |cz| <= 1.
+MovingEllipse3 transversalB(double shift_y) {
+  PolynomialMatrix4 M;
+  M(0, 0) = Polynomial::constant(1.0);  // body x -> world x
+  M(2, 1) = Polynomial::constant(1.0);  // body y -> world z
+  M(1, 2) = Polynomial::constant(1.0);  // body z -> world y (unused direction, keeps L invertible)
+  M(0, 3) = Polynomial{3.0, -2.0};
+  M(1, 3) = Polynomial::constant(shift_y);
+  M(2, 3) = Polynomial{1.5, -2.0};
+  M(3, 3) = Polynomial::constant(1.0);
+  return MovingEllipse3(1.0, 1.0, M);
+}
+
+TEST(Ellipse3Ccd, TransversalPassageMatchesIndependentChordSampling) {
+  const MovingEllipse3 a(2.0, 1.0, PolynomialMatrix4(Eigen::Matrix4d::Identity()));
+  const MovingEllipse3 b = transversalB(0.0);
+  // Independent first contact: dense sampling + bisection of the chord overlap.
+  auto overlap = [](double t) {
+    const double cx = 3.0 - 2.0 * t, cz = 1.5 - 2.0 * t;
+    if (std::abs(cz) > 1.0) return false;
+    return cx - std::sqrt(1.0 - cz * cz) <= 2.0;
+  };
+  double lo = 0.0, hi = -1.0;
+  for (int i = 1; i <= 20000; ++i) {
+    if (overlap(i / 20000.0)) {
+      lo = (i - 1) / 20000.0;
+      hi = i / 20000.0;
+      break;
+    }
+  }
+  ASSERT_GT(hi, 0.0);
+  for (int k = 0; k < 60; ++k) {
+    const double m = 0.5 * (lo + hi);
+    (overlap(m) ? hi : lo) = m;
+  }
+  const Ellipse3CcdResult r = collideMovingEllipses3(a, b);
+  EXPECT_FALSE(r.coplanar);
+  ASSERT_TRUE(r.collide);
+  ASSERT_TRUE(r.first_contact.has_value());
+  EXPECT_NEAR(*r.first_contact, hi, 1e-8);
+  EXPECT_EQ(classifyEllipses3(a, b, *r.first_contact), Separation::Touching);
+  std::printf("3D transversal: first contact %.15g (oracle %.15g), Delta_f degree %d\n", *r.first_contact, hi,
+              r.discriminant_degree);
+  // Shifted off A's plane line by y = 5 (B's plane y = 5 misses A's chord region): free.
+  const Ellipse3CcdResult miss = collideMovingEllipses3(a, transversalB(5.0));
+  EXPECT_FALSE(miss.collide);
+}
+
+TEST(Ellipse3Ccd, ParallelDistinctPlanesNeverCollide) {
+  const MovingEllipse3 a(2.0, 1.0, PolynomialMatrix4(Eigen::Matrix4d::Identity()));
+  PolynomialMatrix4 M(Eigen::Matrix4d::Identity());
+  M(0, 3) = Polynomial{-3.0, 6.0};  // sweeps over A, but in the plane z = 0.5
+  M(2, 3) = Polynomial::constant(0.5);
+  const Ellipse3CcdResult r = collideMovingEllipses3(a, MovingEllipse3(1.0, 1.0, M));
+  EXPECT_FALSE(r.coplanar);
+  EXPECT_FALSE(r.collide);
+  // The same sweep in A's plane collides (coplanar reduction): centres 3 apart at t = 0 with
+  // semi-axes 2 + 1 along x, so the first contact is t = 0 (touching).
+  M(2, 3) = Polynomial::constant(0.0);
+  const Ellipse3CcdResult c = collideMovingEllipses3(a, MovingEllipse3(1.0, 1.0, M));
+  EXPECT_TRUE(c.coplanar);
+  ASSERT_TRUE(c.collide);
+  EXPECT_NEAR(*c.first_contact, 0.0, 1e-12);
+}
+
+TEST(Ellipse3Ccd, BadInputThrowsNamingTheItem) {
+  PolynomialMatrix4 M(Eigen::Matrix4d::Identity());
+  expectThrowContaining([&] { MovingEllipse3(0.0, 1.0, M); }, "radius a");
+  M(3, 1) = Polynomial{0.0, 1.0};
+  expectThrowContaining([&] { MovingEllipse3(1.0, 1.0, M); }, "last row");
+  M = PolynomialMatrix4(Eigen::Matrix4d::Identity());
+  M(3, 3) = Polynomial{1.0, -1.5};
+  expectThrowContaining([&] { MovingEllipse3(1.0, 1.0, M); }, "w(t)");
+  M = PolynomialMatrix4(Eigen::Matrix4d::Identity());
+  M(2, 2) = Polynomial{-0.5, 1.0};
+  expectThrowContaining([&] { MovingEllipse3(1.0, 1.0, M); }, "det of the linear 3x3 part");
+}
+
 }  // namespace
 }  // namespace fcl_quadric

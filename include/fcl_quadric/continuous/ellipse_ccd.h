@@ -1,7 +1,8 @@
 #pragma once
 /// \file ellipse_ccd.h
 /// Continuous collision detection of moving ellipses: thesis ch.2 (elliptic disks moving in the
-/// plane, algorithm CD-DISC and its three variants, §2.3 and §2.5.3).
+/// plane, algorithm CD-DISC and its three variants, §2.3 and §2.5.3) and ch.3 (ellipses moving in
+/// 3D space, algorithm CD-DISC3D, Theorem 3.1, §3.3).
 ///
 /// Conventions (as in the rest of the library, thesis Remark 4.2): a conic matrix A is
 /// normalised so that X^T A X < 0 exactly for interior points X = (x, y, 1);
@@ -27,6 +28,7 @@
 #include <Eigen/Core>
 
 #include "fcl_quadric/algebra/bernstein_polynomial.h"
+#include "fcl_quadric/algebra/polynomial_matrix.h"
 #include "fcl_quadric/algebra/polynomial_matrix3.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 
@@ -75,6 +77,14 @@ constexpr int kMaxEllipseMotionDegree = 16;
 /// Tolerance (in t) for the validity checks of the motions (the certified root-exclusion of
 /// w(t) and det L(t) on [0, 1]; see root_isolation.h firstRoot()).
 constexpr double kEllipseValidationTolerance = 1e-12;
+
+/// Chapter 3: two containing planes are treated as parallel at time t when
+/// |n_A x n_B| <= this times |n_A| |n_B| (normals from the motions). Dimensionless.
+constexpr double kEllipseParallelPlanesRelative = 1e-12;
+
+/// Chapter 3: a parallel pair of planes is treated as coincident when the distance between them is
+/// at most this times the length scale (largest radius plus centre distance). Dimensionless.
+constexpr double kEllipseCoplanarRelative = 1e-12;
 
 // ---------------------------------------------------------------------------------------------
 // Static test (Theorem 2.6).
@@ -233,5 +243,73 @@ Eigen::MatrixXd characteristicPolynomial2(const MovingEllipse2& a, const MovingE
 /// motion entries, where the degree is lowest). Positive scale factors aside:
 /// normalised so that its largest Bernstein coefficient is in [1/2, 1) in absolute value).
 BernsteinPolynomial ellipseDiscriminant(const MovingEllipse2& a, const MovingEllipse2& b);
+
+// ---------------------------------------------------------------------------------------------
+// Ellipses moving in 3D space (thesis ch.3).
+
+/// A (filled) ellipse in 3D: the disk u^2/a^2 + v^2/b^2 <= 1 of the body xy-plane (z = 0) moved by
+/// a homogeneous 4x4 polynomial motion M(t), t in [0, 1] (body -> world, last row
+/// [0, 0, 0, w(t)], world point x = (L u + v) / w). Validation (std::invalid_argument naming the
+/// item): radii finite positive; degree <= kMaxEllipseMotionDegree; last row [0, 0, 0, w(t)];
+/// w(t) and det L(t) (3x3 linear part) root-free on [0, 1] (so the plane is never degenerate).
+class MovingEllipse3 {
+ public:
+  MovingEllipse3(double a, double b, const PolynomialMatrix4& motion);
+
+  double a() const { return a_; }
+  double b() const { return b_; }
+  const PolynomialMatrix4& motion() const { return m_; }
+
+  Eigen::Vector3d centerAt(double t) const;  ///< v(t) / w(t)
+  Eigen::Vector3d axisUAt(double t) const;   ///< L(t) e_x / w(t)
+  Eigen::Vector3d axisVAt(double t) const;   ///< L(t) e_y / w(t)
+  Eigen::Vector3d normalAt(double t) const;  ///< (L e_x) x (L e_y), not normalised
+
+ private:
+  double a_;
+  double b_;
+  PolynomialMatrix4 m_;
+};
+
+/// Static state of two planar ellipses in 3D at one instant (Theorem 3.1 and Table 2, evaluated
+/// numerically): planes parallel and distinct -> Separated; coincident -> the 2D test of
+/// Theorem 2.6 in the common plane; otherwise the chords ("1D ellipses") that the intersection
+/// line cuts from both disks: disjoint -> Separated, sharing only an end point -> Touching,
+/// overlapping -> Overlapping (the solids then intersect along a segment). The touching band is
+/// kEllipseTouchingRelativeBand relative to the chord scale.
+Separation classifyEllipses3(const MovingEllipse3& a, const MovingEllipse3& b, double t);
+
+/// Result of CD-DISC3D.
+struct Ellipse3CcdResult {
+  bool collide = false;
+  std::optional<double> first_contact;
+  /// True if the two containing planes coincide (and are fixed) for all t: Step 1 reduced the
+  /// problem to CD-DISC in that plane.
+  bool coplanar = false;
+  int discriminant_degree = 0;  ///< formal degree of Delta_f(t) (0 in the coplanar case)
+  bool capped = false;          ///< kMaxEllipseEvents reached: conservative answer
+};
+
+/// Algorithm CD-DISC3D (thesis §3.3, Theorem 3.1, steps 1-8): first contact of two filled planar
+/// ellipses moving in 3D.
+///  Step 1: if the containing planes coincide for every t (normals parallel and B's centre in A's
+///          plane, identically as Bernstein polynomials up to a relative 1e-12 of their scale) and
+///          the common plane is fixed, CD-DISC runs in that plane (coplanar = true). A common plane
+///          that moves is not reduced (Delta_f vanishes identically there): then every time is a
+///          candidate and the answer is decided by the static test at the isolation leaves
+///          (conservative, slow).
+///  Steps 2-4: the intersection line is B's plane cut with A's plane, written in A's body plane
+///          as p alpha + q beta + r = 0 (p, q, r polynomials); it is parametrised homogeneously as
+///          X(s) = X0 + s D in A's body coordinates (no division), and mapped to B's body plane
+///          by cross products with B's axes (again without division). The 1D ellipses are the
+///          2x2 matrices A(t), B(t) of the restrictions h(s), g(s) of the two ellipse equations.
+///  Steps 5-6: f(lambda; t) = det(lambda A(t) - B(t)) (quadratic) and Delta_f(t) = g1^2 - 4 g2 g0,
+///          all by Bernstein products from the motion entries.
+///  Step 7: every root of Delta_f (and every extremum, for grazing contacts as in CD-DISC) is
+///          validated by classifyEllipses3(): parallel distinct planes are invalid; coincident
+///          planes use Theorem 2.6; otherwise the chords decide (Theorem 3.1).
+///  Step 8: the first valid candidate (or a state change between candidates) is the first
+///          contact. t = 0 is checked first (Step 0 of CD-DISC).
+Ellipse3CcdResult collideMovingEllipses3(const MovingEllipse3& a, const MovingEllipse3& b);
 
 }  // namespace fcl_quadric
