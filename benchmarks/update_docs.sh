@@ -18,6 +18,13 @@
 #   fcl-scenes-summary    bench_fcl_scenes.txt, "== FCL scenes summary ..."
 #   fcl-scenes-results    bench_fcl_scenes.txt, "== FCL scenes: results ..."
 #   fcl-scenes-aim        bench_fcl_scenes.txt, "== FCL scenes: aim ..."
+#   ccd-run-info          results/TAG/bench_ccd_run_info.txt if present (a run of bench_ccd alone,
+#                         kept next to the full run's outputs), else results/TAG/run_info.txt
+#   ccd-summary           bench_ccd.txt, "== CCD summary ..."
+#   ccd-boxing            bench_ccd.txt, "== CCD boxing ..."
+#   ccd-fcl               bench_ccd.txt, "== CCD vs FCL ..."
+#   ccd-arm               bench_ccd.txt, "== CCD robot arm ..."
+#   ccd-aim               bench_ccd.txt, "== CCD aim ..."
 # Fails, leaving the document untouched, if a block is missing from the output, or a marker is
 # missing, duplicated, unknown or unbalanced in the document.
 #
@@ -33,8 +40,14 @@
 #            SKIP_RUN=1 RESULTS=/tmp/fcl-scenes \
 #              BLOCKS="fcl-scenes-run-info fcl-scenes-summary fcl-scenes-results fcl-scenes-aim" \
 #              benchmarks/update_docs.sh BUILD_DIR
-#        MIN_TIME, REPS, PAIRS, TABLE1_SEEDS, FRAMES, FRAMES_1000, QUERIES, PROGRAMS: passed on to
-#          run_benchmarks.sh (smoke runs).
+#          The continuous-collision section alone, kept in the results folder:
+#            PROGRAMS=bench_ccd benchmarks/run_benchmarks.sh BUILD_DIR /tmp/ccd
+#            cp /tmp/ccd/bench_ccd.txt /tmp/ccd/bench_ccd.json benchmarks/results/TAG/
+#            cp /tmp/ccd/run_info.txt benchmarks/results/TAG/bench_ccd_run_info.txt
+#            SKIP_RUN=1 BLOCKS="ccd-run-info ccd-summary ccd-boxing ccd-fcl ccd-arm ccd-aim" \
+#              benchmarks/update_docs.sh BUILD_DIR
+#        MIN_TIME, REPS, PAIRS, TABLE1_SEEDS, FRAMES, FRAMES_1000, QUERIES, CCD_FRAMES, CCD_RANDOM,
+#          PROGRAMS: passed on to run_benchmarks.sh (smoke runs).
 set -euo pipefail
 die() {
   echo "update_docs.sh: $*" >&2
@@ -85,15 +98,17 @@ block() {
     die "block ${name}: expected exactly one line starting with '${header}' in ${file}"
 }
 names=(run-info static-summary static-targets static-agreement planes-summary table1 table2
-       fcl-scenes-run-info fcl-scenes-summary fcl-scenes-results fcl-scenes-aim)
+       fcl-scenes-run-info fcl-scenes-summary fcl-scenes-results fcl-scenes-aim
+       ccd-run-info ccd-summary ccd-boxing ccd-fcl ccd-arm ccd-aim)
 read -r -a replace <<<"${BLOCKS:-${names[*]}}"
 for b in "${replace[@]}"; do
   [[ " ${names[*]} " == *" ${b} "* ]] || die "unknown block '${b}' in BLOCKS"
 done
 wanted() { [[ " ${replace[*]} " == *" $1 "* ]]; }
 run_info() {
-  [[ -s "${results}/run_info.txt" ]] || die "block $1: no ${results}/run_info.txt"
-  sed 's/\x1b\[[0-9;]*m//g' "${results}/run_info.txt" >"${work}/$1.txt"
+  local file=${results}/${2:-run_info.txt}
+  [[ -s "${file}" ]] || die "block $1: no ${file}"
+  sed 's/\x1b\[[0-9;]*m//g' "${file}" >"${work}/$1.txt"
 }
 if wanted run-info; then run_info run-info; fi
 if wanted static-summary; then block static-summary bench_static.txt "== Summary:"; fi
@@ -106,6 +121,18 @@ if wanted fcl-scenes-run-info; then run_info fcl-scenes-run-info; fi
 if wanted fcl-scenes-summary; then block fcl-scenes-summary bench_fcl_scenes.txt "== FCL scenes summary"; fi
 if wanted fcl-scenes-results; then block fcl-scenes-results bench_fcl_scenes.txt "== FCL scenes: results"; fi
 if wanted fcl-scenes-aim; then block fcl-scenes-aim bench_fcl_scenes.txt "== FCL scenes: aim"; fi
+if wanted ccd-run-info; then
+  if [[ -f "${results}/bench_ccd_run_info.txt" ]]; then
+    run_info ccd-run-info bench_ccd_run_info.txt
+  else
+    run_info ccd-run-info
+  fi
+fi
+if wanted ccd-summary; then block ccd-summary bench_ccd.txt "== CCD summary"; fi
+if wanted ccd-boxing; then block ccd-boxing bench_ccd.txt "== CCD boxing"; fi
+if wanted ccd-fcl; then block ccd-fcl bench_ccd.txt "== CCD vs FCL"; fi
+if wanted ccd-arm; then block ccd-arm bench_ccd.txt "== CCD robot arm"; fi
+if wanted ccd-aim; then block ccd-aim bench_ccd.txt "== CCD aim"; fi
 
 awk -v dir="${work}" -v names="${names[*]}" -v replace="${replace[*]}" '
   function fail(message) {
