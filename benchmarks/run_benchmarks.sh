@@ -6,8 +6,10 @@
 # Env: MIN_TIME (s, default 0.2), REPS (default 3), PAIRS (default 100000), TABLE1_SEEDS (default
 #      16), FRAMES (bench_fcl_scenes, default 1000), FRAMES_1000 (its 1,000-ellipsoid sequence,
 #      default FRAMES), QUERIES (bench_fcl_scenes, default 400); smaller values for smoke runs.
-#      PROGRAMS (default "bench_static bench_separating_planes bench_fcl_scenes"): the programs to
-#      build and run, e.g. PROGRAMS=bench_fcl_scenes for that program alone.
+#      CCD_FRAMES (bench_ccd boxing frames, default 1000), CCD_RANDOM (bench_ccd random pairs,
+#      default 2000).
+#      PROGRAMS (default "bench_static bench_separating_planes bench_fcl_scenes bench_ccd"): the
+#      programs to build and run, e.g. PROGRAMS=bench_fcl_scenes for that program alone.
 # A new BUILD_DIR is configured without tests and CLI. An existing one keeps its options (it may be
 # someone's working build): only the benchmark targets are built, and it must be Release.
 # The programs run from a copy of the binaries, so a rebuild of BUILD_DIR during the run cannot
@@ -29,10 +31,12 @@ table1_seeds=${TABLE1_SEEDS:-16}
 frames=${FRAMES:-1000}
 frames_1000=${FRAMES_1000:-${frames}}
 queries=${QUERIES:-400}
-read -r -a programs <<<"${PROGRAMS:-bench_static bench_separating_planes bench_fcl_scenes}"
+ccd_frames=${CCD_FRAMES:-1000}
+ccd_random=${CCD_RANDOM:-2000}
+read -r -a programs <<<"${PROGRAMS:-bench_static bench_separating_planes bench_fcl_scenes bench_ccd}"
 for p in "${programs[@]}"; do
   case "${p}" in
-    bench_static | bench_separating_planes | bench_fcl_scenes) ;;
+    bench_static | bench_separating_planes | bench_fcl_scenes | bench_ccd) ;;
     *)
       echo "$0: unknown program '${p}' in PROGRAMS" >&2
       exit 2
@@ -88,7 +92,7 @@ os=$(sed -n 's/^PRETTY_NAME="\(.*\)"$/\1/p' /etc/os-release 2>/dev/null || true)
   echo "build:    CMAKE_BUILD_TYPE=${build_type:-<none>}, $("${compiler:-c++}" --version | head -1)"
   [[ "${build_type}" == "Release" ]] || echo "WARNING: not a Release build"
   echo "settings: MIN_TIME=${min_time} REPS=${reps} PAIRS=${pairs} TABLE1_SEEDS=${table1_seeds}" \
-    "FRAMES=${frames} FRAMES_1000=${frames_1000} QUERIES=${queries}"
+    "FRAMES=${frames} FRAMES_1000=${frames_1000} QUERIES=${queries} CCD_FRAMES=${ccd_frames} CCD_RANDOM=${ccd_random}"
   echo "programs: ${programs[*]}"
   echo "load before: $(uptime | sed 's/^ *//')"
 } | tee "${out}/run_info.txt"
@@ -105,6 +109,10 @@ fi
 if runs bench_fcl_scenes; then
   "${bin}/bench_fcl_scenes" --frames "${frames}" --frames_1000 "${frames_1000}" --queries "${queries}" "${common[@]}" \
     --benchmark_out="${out}/bench_fcl_scenes.json" 2>&1 | tee "${out}/bench_fcl_scenes.txt"
+fi
+if runs bench_ccd; then
+  "${bin}/bench_ccd" --frames "${ccd_frames}" --random_pairs "${ccd_random}" "${common[@]}" \
+    --benchmark_out="${out}/bench_ccd.json" 2>&1 | tee "${out}/bench_ccd.txt"
 fi
 {
   echo "load after:  $(uptime | sed 's/^ *//')"
