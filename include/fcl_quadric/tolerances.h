@@ -73,6 +73,15 @@ constexpr double kCcdTouchingRelative = 1.0 / 1099511627776.0;  // 2^-40 ~ 9.1e-
 /// lower end of a certified bracket of this width (never later than the root).
 constexpr double kCcdTimeTolerance = 1.0 / 1099511627776.0;  // 2^-40 ~ 9.1e-13
 
+/// Rounding margin of the one-sided Bezier clipping of a shoot, in units of (n + 1) ulps of the
+/// largest coefficient (n the degree): covers the backward error of the de Casteljau
+/// restrictions of kCcdMaxClipSteps steps.
+constexpr double kCcdClipMarginUlps = 64.0;
+
+/// Clipping steps of one shoot. Each step is a valid lower bound of the first root, so reaching
+/// the cap just ends the shoot early (the chain shoots again from there).
+constexpr int kCcdMaxClipSteps = 48;
+
 /// Candidate intervals narrower than this are not subdivided further; when such an interval
 /// cannot be certified separate it is reported as colliding (thesis Remark 5.4: conservative).
 constexpr double kCcdMinIntervalWidth = 1.0 / 1073741824.0;  // 2^-30 ~ 9.3e-10

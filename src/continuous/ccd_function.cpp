@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <stdexcept>
+#include <string>
 #include <cmath>
 #include <vector>
 
@@ -26,14 +28,28 @@ Scaled convolve(const Scaled& a, const Scaled& b) {
   return c;
 }
 
+// Rows 0..kMaxRow of Pascal's triangle (exact in double up to row 1029 is not needed: the CCD
+// degrees stay far below kMaxRow); computed once.
+constexpr int kMaxRow = 400;
+const std::vector<double>& binomialRow(int r) {
+  static const std::vector<std::vector<double>> rows = [] {
+    std::vector<std::vector<double>> t(kMaxRow + 1);
+    for (int n = 0; n <= kMaxRow; ++n) {
+      t[n].resize(n + 1);
+      for (int k = 0; k <= n; ++k) t[n][k] = detail::binomial(n, k);
+    }
+    return t;
+  }();
+  if (r > kMaxRow) throw std::invalid_argument("ccdFunction: degree " + std::to_string(r) + " exceeds " + std::to_string(kMaxRow));
+  return rows[r];
+}
+
 // Degree elevation to `degree`: multiplication by ((1-t) + t)^r, i.e. convolution with the
 // binomial row of r.
 Scaled elevate(const Scaled& a, int degree) {
   const int r = degree - (static_cast<int>(a.size()) - 1);
   if (r <= 0) return a;
-  Scaled row(r + 1);
-  for (int k = 0; k <= r; ++k) row[k] = detail::binomial(r, k);
-  return convolve(a, row);
+  return convolve(a, binomialRow(r));
 }
 
 Scaled axpby(double alpha, const Scaled& a, double beta, const Scaled& b) {
@@ -67,8 +83,9 @@ Scaled determinant4(const std::array<Scaled, 16>& m) {
 
 std::vector<double> scaledToBernstein(const Scaled& d) {
   const int n = static_cast<int>(d.size()) - 1;
+  const std::vector<double>& row = binomialRow(n);
   std::vector<double> c(d.size());
-  for (int i = 0; i <= n; ++i) c[i] = d[i] / detail::binomial(n, i);
+  for (int i = 0; i <= n; ++i) c[i] = d[i] / row[i];
   return c;
 }
 

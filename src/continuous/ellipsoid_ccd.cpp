@@ -17,14 +17,31 @@
 
 namespace fcl_quadric {
 
-Ellipsoid ellipsoidAt(const MovingEllipsoid& m, double t) {
-  const Eigen::Matrix4d T = m.motion.evaluate(t);
+namespace {
+
+Ellipsoid worldEllipsoidFromMap(const Ellipsoid& e, const Eigen::Matrix4d& T) {
   const Eigen::Matrix3d L = T.topLeftCorner<3, 3>();
-  const Ellipsoid& e = m.body;
   return Ellipsoid::fromAffine(L * e.rotation() * e.radii().asDiagonal(), L * e.center() + T.block<3, 1>(0, 3));
 }
 
+Ellipsoid worldEllipsoid(const Ellipsoid& body, const MotionMatrix& m, double t) {
+  const Eigen::Matrix4d T = m.evaluate(t);
+  if (m.isRigid()) {  // no eigen-decomposition: the axes just rotate
+    const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+    return Ellipsoid(body.radii(), R * body.rotation(), R * body.center() + T.block<3, 1>(0, 3));
+  }
+  return worldEllipsoidFromMap(body, T);
+}
+
+}  // namespace
+
+Ellipsoid ellipsoidAt(const MovingEllipsoid& m, double t) { return worldEllipsoidFromMap(m.body, m.motion.evaluate(t)); }
+
 namespace {
+
+/// Newton/bisection steps per monotone piece of the quartic's derivative (quadratic convergence:
+/// a handful suffices; the cap bounds the work).
+constexpr int kQuarticSteps = 40;
 
 using Vec4P = std::array<Polynomial, 4>;
 
@@ -36,12 +53,6 @@ Vec4P times(const PolynomialMatrix4& M, const Eigen::Vector4d& v) {  // M(t) v
   return r;
 }
 
-Vec4P transposeTimes(const PolynomialMatrix4& M, const Vec4P& v) {  // M(t)^T v(t)
-  Vec4P r;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) r[i] += M(j, i) * v[j];
-  return r;
-}
 
 // Certified sign of a polynomial on [0, 1] from its Bernstein coefficients, with a relative margin
 // for the rounding of the coefficients: +1 if all > margin, -1 if all < -margin, 0 otherwise.
@@ -58,6 +69,17 @@ int certifiedSign(const Polynomial& p) {
 // Thesis §5.4.1 bounding-sphere cull for rigid motions: |c_a(t) - c_b(t)|^2 > (r_a + r_b)^2 on
 // [0, 1], multiplied through by the squared homogeneous weights.
 bool sphereCull(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEllipsoid& b, const MotionMatrix& mb) {
+  if (ma.linearTranslation() && mb.linearTranslation()) {
+    // Bounding spheres about the body origins, whose paths are segments: |d0 + t v|^2 > R^2 on
+    // [0, 1] by the minimum of the quadratic (margin relative to R^2 for rounding).
+    const double R = a.body.center().norm() + a.body.radii().maxCoeff() + b.body.center().norm() + b.body.radii().maxCoeff();
+    const auto& [a0, a1] = *ma.linearTranslation();
+    const auto& [b0, b1] = *mb.linearTranslation();
+    const Eigen::Vector3d d0 = b0 - a0, v = (b1 - b0) - (a1 - a0);
+    const double vv = v.squaredNorm();
+    const double t = vv > 0.0 ? std::clamp(-d0.dot(v) / vv, 0.0, 1.0) : 0.0;
+    return (d0 + t * v).squaredNorm() > R * R * (1.0 + 1e-12);
+  }
   const Vec4P ca = times(ma.matrix(), a.body.center().homogeneous());
   const Vec4P cb = times(mb.matrix(), b.body.center().homogeneous());
   const double r = a.body.radii().maxCoeff() + b.body.radii().maxCoeff();
@@ -72,21 +94,25 @@ bool sphereCull(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEl
 }
 
 // Thesis §5.4.1 separating-plane cull: the plane separating a(0) and b(0) moves with b; a never
-// reaches it iff q(t)^T Q_a^{-1} q(t) < 0 on [0, 1], q the plane in a's body frame.
-bool planeCull(const MovingEllipsoid& a, const MotionMatrix& ma, const MotionMatrix& mb,
-               const Plane& plane) {
+// reaches it iff q(t)^T Q_a^{-1} q(t) < 0 on [0, 1], q(t) = M_a(t)^T N_b(t)^T pi_b the plane in a's
+// body frame and Q_a^{-1} a's dual quadric (computed on coefficient matrices).
+bool planeCull(const MovingEllipsoid& a, const MotionMatrix& ma, const MotionMatrix& mb, const Plane& plane) {
   const Eigen::Vector4d pi_world(plane.normal.x(), plane.normal.y(), plane.normal.z(), -plane.offset);
   const Eigen::Vector4d pi_body_b = mb.matrix().evaluate(0.0).transpose() * pi_world;
-  Vec4P pi_t;  // N_b(t)^T pi_body_b
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j)
-      if (pi_body_b[j] != 0.0) pi_t[i] += mb.inverse()(j, i) * pi_body_b[j];
-  const Vec4P q = transposeTimes(ma.matrix(), pi_t);
+  const std::vector<Eigen::Matrix4d>& Nb = mb.inverseCoefficients();
+  const std::vector<Eigen::Matrix4d>& Ma = ma.matrixCoefficients();
+  std::vector<Eigen::Vector4d> q(Nb.size() + Ma.size() - 1, Eigen::Vector4d::Zero());
+  for (std::size_t k = 0; k < Nb.size(); ++k) {
+    const Eigen::Vector4d pk = Nb[k].transpose() * pi_body_b;
+    for (std::size_t l = 0; l < Ma.size(); ++l) q[k + l].noalias() += Ma[l].transpose() * pk;
+  }
   const Eigen::Matrix4d dual = a.body.quadricMatrix().inverse();
-  Polynomial g;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) g += q[i] * q[j] * dual(i, j);
-  return certifiedSign(g) < 0;
+  std::vector<double> g(2 * q.size() - 1, 0.0);
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const Eigen::Vector4d dq = dual * q[k];
+    for (std::size_t l = 0; l < q.size(); ++l) g[k + l] += q[l].dot(dq);
+  }
+  return certifiedSign(Polynomial(std::move(g))) < 0;
 }
 
 // Symmetrised and balanced: divided by |det Q(1/2)|^(1/4), so that det A and det B are both
@@ -113,8 +139,7 @@ PolynomialMatrix4 balanced(const PolynomialMatrix4& Q) {
 }
 
 PolynomialMatrix4 scaledQuadric(const Eigen::Matrix4d& Q_body, const PolynomialMatrix4& N, const Eigen::Matrix4d& S) {
-  const PolynomialMatrix4 NS = N * PolynomialMatrix4(S);
-  return balanced(NS.transpose() * (PolynomialMatrix4(Q_body) * NS));
+  return balanced(congruence(Q_body, coefficientMatrices(N), S));
 }
 
 // Thesis §5.2: the affine interpolant of b's state relative to a, in a's body frame.
@@ -147,6 +172,104 @@ PolynomialMatrix4 affineInterpolant(const Eigen::Matrix3d B0, const Eigen::Vecto
   return Q;
 }
 
+// Lower bound of the first root in [0, 1] of the Bernstein polynomial with coefficients c (unit
+// parameter), by one-sided Bezier clipping (Sederberg-Nishita): the control points lie above the
+// line from (0, c_0) with the steepest descent toward any (j/n, c_j), so no root precedes its zero
+// crossing; restrict to the rest and repeat (quadratic convergence to a simple root). Coefficients
+// are lowered by a rounding margin (kCcdClipMarginUlps n ulps of max|c|, covering the de Casteljau
+// restrictions of up to kCcdMaxClipSteps steps), so the bound holds for the computed polynomial
+// within its rounding. Returns nullopt when every coefficient exceeds the margin (no root); stops
+// with the current (valid) lower bound when the value at it is within the margin, or after
+// kCcdMaxClipSteps steps.
+std::optional<double> firstRootLowerBound(const std::vector<double>& coefficients) {
+  std::vector<double> c = coefficients, left, right;
+  const int n = static_cast<int>(c.size()) - 1;
+  double scale = 0.0;
+  for (double x : c) scale = std::max(scale, std::abs(x));
+  const double margin = tolerance::kCcdClipMarginUlps * (n + 1) * tolerance::kUnitRoundoff * scale;
+  double lo = 0.0, width = 1.0;
+  for (int step = 0; step < tolerance::kCcdMaxClipSteps; ++step) {
+    const double c0 = c[0] - margin;
+    if (!(c0 > 0.0)) return lo;
+    double s = 2.0;
+    for (int j = 1; j <= n; ++j) {
+      const double cj = c[j] - margin;
+      if (cj < c0) s = std::min(s, (static_cast<double>(j) / n) * c0 / (c0 - cj));
+    }
+    if (s >= 1.0) {
+      bool positive = true;
+      for (int j = 1; j <= n && positive; ++j) positive = c[j] - margin > 0.0;
+      if (positive) return std::nullopt;
+      s = 1.0;
+    }
+    s *= 1.0 - 8.0 * tolerance::kUnitRoundoff;
+    const double next = lo + width * s;
+    if (!(next > lo) || s <= 0.0) return lo;
+    detail::deCasteljauSplit(c, s, &left, &right);
+    c.swap(right);
+    lo = next;
+    width *= 1.0 - s;
+  }
+  return lo;
+}
+
+struct QuarticMax {
+  double u;
+  double value;
+};
+
+// Maximum over [0, 1] of the quartic with Bernstein coefficients c: its power form q, the
+// critical points from the monotone pieces of q' (split at the roots of the quadratic q'') by
+// safeguarded Newton (bisection whenever a step leaves the bracket; at most kQuarticSteps steps per
+// piece), and the ends. The maximiser only needs to be approximate (the value is second order in
+// its error); the value is evaluated at it.
+QuarticMax maximiseQuartic(const std::array<double, 5>& c) {
+  // Power form: q(u) = sum_k a_k u^k.
+  const double a0 = c[0], a1 = 4 * (c[1] - c[0]), a2 = 6 * (c[2] - 2 * c[1] + c[0]),
+               a3 = 4 * (c[3] - 3 * c[2] + 3 * c[1] - c[0]), a4 = c[4] - 4 * c[3] + 6 * c[2] - 4 * c[1] + c[0];
+  auto q = [&](double u) { return (((a4 * u + a3) * u + a2) * u + a1) * u + a0; };
+  auto dq = [&](double u) { return ((4 * a4 * u + 3 * a3) * u + 2 * a2) * u + a1; };
+  auto ddq = [&](double u) { return (12 * a4 * u + 6 * a3) * u + 2 * a2; };
+  QuarticMax best{c[0] >= c[4] ? 0.0 : 1.0, std::max(c[0], c[4])};
+  // Breakpoints: 0, roots of q'' in (0, 1), 1.
+  double br[4];
+  int nb = 0;
+  br[nb++] = 0.0;
+  const double A = 12 * a4, B = 6 * a3, C = 2 * a2;
+  if (A != 0.0) {
+    const double disc = B * B - 4 * A * C;
+    if (disc > 0.0) {
+      const double sq = std::sqrt(disc), qq = -0.5 * (B + (B >= 0 ? sq : -sq));
+      double r1 = qq / A, r2 = qq != 0.0 ? C / qq : r1;
+      if (r1 > r2) std::swap(r1, r2);
+      if (r1 > 0.0 && r1 < 1.0) br[nb++] = r1;
+      if (r2 > 0.0 && r2 < 1.0 && r2 != r1) br[nb++] = r2;
+    }
+  } else if (B != 0.0) {
+    const double r = -C / B;
+    if (r > 0.0 && r < 1.0) br[nb++] = r;
+  }
+  br[nb++] = 1.0;
+  for (int k = 0; k + 1 < nb; ++k) {
+    double lo = br[k], hi = br[k + 1];
+    double flo = dq(lo), fhi = dq(hi);
+    if (!(flo > 0.0 && fhi < 0.0)) continue;  // a maximum needs q' from + to -
+    double u = 0.5 * (lo + hi);
+    for (int it = 0; it < kQuarticSteps; ++it) {
+      const double f = dq(u);
+      if (f > 0.0) lo = u; else hi = u;
+      const double d = ddq(u);
+      double next = d != 0.0 ? u - f / d : 0.5 * (lo + hi);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (std::abs(next - u) <= 1e-15) { u = next; break; }
+      u = next;
+    }
+    const double v = q(u);
+    if (v > best.value) best = {u, v};
+  }
+  return best;
+}
+
 struct State {
   int sign = 0;        // +1 separate, 0 touching (within the band), -1 overlapping
   double u = 0.5;      // maximiser of u -> F(u, t)
@@ -158,7 +281,12 @@ enum class ChainEnd { Reached, Contact, Stalled };
 
 class IntervalSolver {
  public:
-  IntervalSolver(const BivariateBernstein& F, EllipsoidCcdResult* result) : F_(F), result_(result) {}
+  IntervalSolver(const BivariateBernstein& F, EllipsoidCcdResult* result) : F_(F), result_(result) {
+    const int n = F.degreeT();
+    binomial_t_.resize(n + 1);
+    for (int j = 0; j <= n; ++j) binomial_t_[j] = detail::binomial(n, j);
+    basis_.resize(n + 1);
+  }
 
   struct Piece {
     double begin, end;
@@ -167,40 +295,57 @@ class IntervalSolver {
   std::vector<Piece> separation;
   std::vector<double> overlap_times;  // instants certified overlapping (state -1)
 
+  // The Bernstein coefficients in u of F(., t): rows of F dotted with the degree-n Bernstein
+  // basis at t (all terms of one sign: relative accuracy ~ n ulps).
+  // t -> F(u, t) in the Bernstein basis of [t0, t1]: the rows combined with B_i^4(u).
+  BernsteinPolynomial atU(double u) const {
+    const double v = 1.0 - u;
+    const double w[5] = {v * v * v * v, 4 * u * v * v * v, 6 * u * u * v * v, 4 * u * u * u * v, u * u * u * u};
+    const Eigen::MatrixXd& C = F_.coefficients();
+    std::vector<double> g(C.cols());
+    for (Eigen::Index j = 0; j < C.cols(); ++j) g[j] = w[0] * C(0, j) + w[1] * C(1, j) + w[2] * C(2, j) + w[3] * C(3, j) + w[4] * C(4, j);
+    return BernsteinPolynomial(std::move(g), F_.tLower(), F_.tUpper());
+  }
+
+  std::array<double, 5> rowsAt(double t) {
+    const int n = F_.degreeT();
+    const double x = (t - F_.tLower()) / (F_.tUpper() - F_.tLower()), y = 1.0 - x;
+    double xp = 1.0;
+    for (int j = 0; j <= n; ++j, xp *= x) basis_[j] = binomial_t_[j] * xp;
+    double yp = 1.0;
+    for (int j = n; j >= 0; --j, yp *= y) basis_[j] *= yp;
+    std::array<double, 5> c{};
+    const Eigen::MatrixXd& C = F_.coefficients();
+    for (int i = 0; i <= 4; ++i) {
+      double v = 0.0;
+      for (int j = 0; j <= n; ++j) v += C(i, j) * basis_[j];
+      c[i] = v;
+    }
+    return c;
+  }
+
   State state(double t) {
     ++result_->work;
-    const BernsteinPolynomial p = F_.atT(t);
+    const std::array<double, 5> c = rowsAt(t);
     State s;
     double scale = 0.0;
     int best = 0;
-    for (int i = 0; i <= p.degree(); ++i) {
-      scale = std::max(scale, std::abs(p.coefficients()[i]));
-      if (p.coefficients()[i] > p.coefficients()[best]) best = i;
+    for (int i = 0; i <= 4; ++i) {
+      scale = std::max(scale, std::abs(c[i]));
+      if (c[i] > c[best]) best = i;
     }
     s.band = tolerance::kCcdTouchingRelative * scale;
-    s.u = static_cast<double>(best) / p.degree();
-    if (p.maxCoefficient() < -s.band) {  // convex hull: F(., t) < 0, overlapping
+    if (c[best] < -s.band) {  // convex hull: F(., t) < 0, overlapping
       s.sign = -1;
       overlap_times.push_back(t);
-      s.value = p.maxCoefficient();
-      s.u = std::clamp(s.u, 0.05, 0.95);
+      s.value = c[best];
+      s.u = std::clamp(best / 4.0, 0.05, 0.95);
       return s;
     }
-    // max over [0, 1]: the ends (det A, det B < 0) and the critical points of the quartic.
-    s.value = std::max(p.evaluate(0.0), p.evaluate(1.0));
-    s.u = p.evaluate(0.0) > p.evaluate(1.0) ? 0.0 : 1.0;
-    const BernsteinPolynomial dp = p.derivative();
-    if (!dp.isZero()) {
-      for (const RootInterval& r : isolateRoots(dp, 1e-6)) {
-        double u = 0.5 * (r.lo + r.hi);
-        if (r.kind == RootKind::Single && r.lo < r.hi) u = refineRoot(dp, r.lo, r.hi, 1e-15);
-        const double v = p.evaluate(u);
-        if (v > s.value) {
-          s.value = v;
-          s.u = u;
-        }
-      }
-    }
+    // max over [0, 1] of the quartic: the ends (det A, det B < 0) and the critical points.
+    const QuarticMax m = maximiseQuartic(c);
+    s.value = m.value;
+    s.u = m.u;
     s.sign = s.value > s.band ? 1 : (s.value < -s.band ? -1 : 0);
     if (s.sign < 0) overlap_times.push_back(t);
     return s;
@@ -219,22 +364,21 @@ class IntervalSolver {
         return ChainEnd::Stalled;
       }
       ++result_->work;
-      const BernsteinPolynomial g = F_.atU(s.u);
+      const BernsteinPolynomial g = atU(s.u);
       const double lo = rightward ? t : t2, hi = rightward ? t2 : t;
       BernsteinPolynomial gr = (lo == g.lower() && hi == g.upper()) ? g : g.restrict(lo, hi);
       if (!rightward) {
         std::vector<double> rev(gr.coefficients().rbegin(), gr.coefficients().rend());
         gr = BernsteinPolynomial(std::move(rev), 0.0, 1.0);
       }
-      const std::optional<double> root = firstRoot(gr, rightward ? tolerance::kCcdTimeTolerance
-                                                                  : tolerance::kCcdTimeTolerance / (hi - lo));
+      const std::optional<double> root = firstRootLowerBound(gr.coefficients());
       double next;
       if (!root) {
         next = t2;
       } else if (rightward) {
-        next = *root;
+        next = std::min(hi, lo + *root * (hi - lo));
       } else {
-        next = hi - *root * (hi - lo);
+        next = std::max(lo, hi - *root * (hi - lo));
       }
       if (!root) {
         *end = t2;
@@ -319,6 +463,8 @@ class IntervalSolver {
  private:
   const BivariateBernstein& F_;
   EllipsoidCcdResult* result_;
+  std::vector<double> binomial_t_;
+  std::vector<double> basis_;
 };
 
 // Collision intervals: the complement in [0, tmax] of the certified separation pieces.
@@ -364,16 +510,14 @@ Eigen::Vector3d pencilCentre(const PolynomialMatrix4& A, const PolynomialMatrix4
 EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEllipsoid& b,
                                 const MotionMatrix& mb, double tmax, const CcdOptions& opt) {
   EllipsoidCcdResult r;
-  const MovingEllipsoid a_local{a.body, PiecewiseMotion(ma)}, b_local{b.body, PiecewiseMotion(mb)};
-  const Ellipsoid a0 = ellipsoidAt(a_local, 0.0), b0 = ellipsoidAt(b_local, 0.0);
   const bool affine = opt.interpolation == CcdInterpolation::Affine;
-
+  if (opt.culling && !affine && ma.isRigid() && mb.isRigid() && sphereCull(a, ma, b, mb)) {
+    r.culled_by = 1;
+    r.separation_intervals.push_back({0.0, tmax});
+    return r;
+  }
+  const Ellipsoid a0 = worldEllipsoid(a.body, ma, 0.0), b0 = worldEllipsoid(b.body, mb, 0.0);
   if (opt.culling && !affine) {
-    if (ma.isRigid() && mb.isRigid() && sphereCull(a, ma, b, mb)) {
-      r.culled_by = 1;
-      r.separation_intervals.push_back({0.0, tmax});
-      return r;
-    }
     const std::optional<SeparatingPlane> sp = separatingPlane(a0, b0);
     if (sp && sp->certified && planeCull(a, ma, mb, sp->plane)) {
       r.culled_by = 2;
@@ -397,7 +541,7 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
     Eigen::Vector3d cs[2];
     for (int k = 0; k < 2; ++k) {
       const Eigen::Matrix4d Ta = ma.evaluate(k);
-      const Ellipsoid bk = ellipsoidAt(b_local, k);
+      const Ellipsoid bk = worldEllipsoid(b.body, mb, k);
       const Eigen::Matrix3d Lin = Ta.topLeftCorner<3, 3>().inverse();
       const Eigen::Matrix3d Lb = Lin * bk.rotation() * bk.radii().asDiagonal();
       cs[k] = Lin * (bk.center() - Ta.block<3, 1>(0, 3));
@@ -484,10 +628,12 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
   EllipsoidCcdResult total;
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const double s0 = breaks[k], s1 = breaks[k + 1], w = s1 - s0;
-    const MotionMatrix ma = a.motion.restricted(s0, s1), mb = b.motion.restricted(s0, s1);
     CcdOptions local = options;
     local.t_max = 1.0;
-    const EllipsoidCcdResult r = solveSegment(a, ma, b, mb, 1.0, local);
+    const bool whole = s0 == 0.0 && s1 == 1.0;  // single pieces over [0, 1]: no copies
+    const EllipsoidCcdResult r =
+        whole ? solveSegment(a, a.motion.pieces().front(), b, b.motion.pieces().front(), 1.0, local)
+              : solveSegment(a, a.motion.restricted(s0, s1), b, b.motion.restricted(s0, s1), 1.0, local);
     total.work += r.work;
     total.degree_t = std::max(total.degree_t, r.degree_t);
     total.near_tangent = total.near_tangent || r.near_tangent;

@@ -62,7 +62,7 @@ MotionMatrix::MotionMatrix() : MotionMatrix(PolynomialMatrix4(Eigen::Matrix4d::I
                                             PolynomialMatrix4(Eigen::Matrix4d::Identity()), true) {}
 
 MotionMatrix::MotionMatrix(PolynomialMatrix4 M, PolynomialMatrix4 N, bool rigid)
-    : M_(std::move(M)), N_(std::move(N)), rigid_(rigid) {}
+    : M_(std::move(M)), N_(std::move(N)), Mk_(coefficientMatrices(M_)), Nk_(coefficientMatrices(N_)), rigid_(rigid) {}
 
 MotionMatrix MotionMatrix::constant(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
   return fromPoses(R, p, R, p);
@@ -109,7 +109,9 @@ MotionMatrix MotionMatrix::fromPoses(const Eigen::Matrix3d& R0, const Eigen::Vec
   }
   M(3, 3) = E;
   N(3, 3) = E;
-  return MotionMatrix(std::move(M), std::move(N), true);
+  MotionMatrix m(std::move(M), std::move(N), true);
+  m.linear_translation_ = std::make_pair(p0, p1);
+  return m;
 }
 
 MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M) {
@@ -157,21 +159,52 @@ MotionMatrix MotionMatrix::restricted(double t0, double t1) const {
       N(i, j) = N_(i, j).composeAffine(t1 - t0, t0);
     }
   }
-  return MotionMatrix(std::move(M), std::move(N), rigid_);
+  MotionMatrix r(std::move(M), std::move(N), rigid_);
+  if (linear_translation_) {
+    const auto& [p0, p1] = *linear_translation_;
+    r.linear_translation_ = std::make_pair(Eigen::Vector3d(p0 + t0 * (p1 - p0)), Eigen::Vector3d(p0 + t1 * (p1 - p0)));
+  }
+  return r;
+}
+
+std::vector<Eigen::Matrix4d> coefficientMatrices(const PolynomialMatrix4& M) {
+  std::vector<Eigen::Matrix4d> Mk(M.maxDegree() + 1, Eigen::Matrix4d::Zero());
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const std::vector<double>& c = M(i, j).coefficients();
+      for (std::size_t k = 0; k < c.size(); ++k) Mk[k](i, j) = c[k];
+    }
+  }
+  return Mk;
+}
+
+PolynomialMatrix4 congruence(const Eigen::Matrix4d& Q, const PolynomialMatrix4& N, const Eigen::Matrix4d& S) {
+  return congruence(Q, coefficientMatrices(N), S);
+}
+
+PolynomialMatrix4 congruence(const Eigen::Matrix4d& Q, const std::vector<Eigen::Matrix4d>& N, const Eigen::Matrix4d& S) {
+  const int d = static_cast<int>(N.size()) - 1;
+  std::vector<Eigen::Matrix4d> Nk = N;
+  for (Eigen::Matrix4d& m : Nk) m = m * S;
+  std::vector<Eigen::Matrix4d> QN(d + 1);
+  for (int k = 0; k <= d; ++k) QN[k] = Q * Nk[k];
+  std::vector<Eigen::Matrix4d> A(2 * d + 1, Eigen::Matrix4d::Zero());
+  for (int k = 0; k <= d; ++k)
+    for (int l = 0; l <= d; ++l) A[k + l].noalias() += Nk[k].transpose() * QN[l];
+  PolynomialMatrix4 R;
+  std::vector<double> c(2 * d + 1);
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i; j < 4; ++j) {
+      for (int m = 0; m <= 2 * d; ++m) c[m] = 0.5 * (A[m](i, j) + A[m](j, i));
+      R(i, j) = Polynomial(c).trimmed();
+      R(j, i) = R(i, j);
+    }
+  }
+  return R;
 }
 
 PolynomialMatrix4 movingQuadric(const Eigen::Matrix4d& Q_body, const MotionMatrix& motion) {
-  const PolynomialMatrix4& N = motion.inverse();
-  const PolynomialMatrix4 Q = N.transpose() * (PolynomialMatrix4(Q_body) * N);
-  PolynomialMatrix4 S;
-  for (int i = 0; i < 4; ++i) {
-    S(i, i) = Q(i, i);
-    for (int j = i + 1; j < 4; ++j) {
-      S(i, j) = (Q(i, j) + Q(j, i)) * 0.5;
-      S(j, i) = S(i, j);
-    }
-  }
-  return S;
+  return congruence(Q_body, motion.inverseCoefficients());
 }
 
 PiecewiseMotion::PiecewiseMotion(MotionMatrix motion) : breaks_{0.0, 1.0}, pieces_{std::move(motion)} {}

@@ -23,6 +23,8 @@
 ///
 /// Part of the continuous-collision layer: standard library and Eigen only.
 
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -64,8 +66,17 @@ class MotionMatrix {
   const PolynomialMatrix4& matrix() const { return M_; }
   /// N(t) = c(t) M(t)^{-1} with c(t) != 0 on [0, 1].
   const PolynomialMatrix4& inverse() const { return N_; }
+  /// The power-basis coefficient matrices of M and N: M(t) = sum_k matrixCoefficients()[k] t^k
+  /// (cached at construction for the fixed-size arithmetic of the solver).
+  const std::vector<Eigen::Matrix4d>& matrixCoefficients() const { return Mk_; }
+  const std::vector<Eigen::Matrix4d>& inverseCoefficients() const { return Nk_; }
   /// True for motions built by constant() or fromPoses() (rigid by construction).
   bool isRigid() const { return rigid_; }
+  /// For motions built by fromPoses() (and their restrictions): the path of the body origin is
+  /// the segment (1-t) p0 + t p1, returned as {p0, p1}; empty otherwise. Used by the culls.
+  const std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& linearTranslation() const {
+    return linear_translation_;
+  }
   /// Largest degree of the entries of M.
   int degree() const { return M_.maxDegree(); }
 
@@ -82,12 +93,28 @@ class MotionMatrix {
   MotionMatrix(PolynomialMatrix4 M, PolynomialMatrix4 N, bool rigid);
   PolynomialMatrix4 M_;
   PolynomialMatrix4 N_;
+  std::vector<Eigen::Matrix4d> Mk_;
+  std::vector<Eigen::Matrix4d> Nk_;
   bool rigid_ = true;
+  std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> linear_translation_;
 };
 
 /// Q(t) up to the positive factor c(t)^2: N(t)^T Q N(t), symmetrised. Q is the body-frame quadric
 /// matrix (interior X^T Q X < 0). \throws std::invalid_argument if Q is not finite.
 PolynomialMatrix4 movingQuadric(const Eigen::Matrix4d& Q_body, const MotionMatrix& motion);
+
+/// (N(t) S)^T Q (N(t) S) for a polynomial matrix N and a constant S, symmetrised, computed on the
+/// coefficient matrices (N = sum_k N_k t^k gives sum_m t^m sum_{k+l=m} (N_k S)^T Q N_l S):
+/// fixed-size 4x4 products instead of per-entry polynomial arithmetic.
+PolynomialMatrix4 congruence(const Eigen::Matrix4d& Q, const PolynomialMatrix4& N,
+                             const Eigen::Matrix4d& S = Eigen::Matrix4d::Identity());
+/// The same from the coefficient matrices N_k (e.g. MotionMatrix::inverseCoefficients()).
+PolynomialMatrix4 congruence(const Eigen::Matrix4d& Q, const std::vector<Eigen::Matrix4d>& N,
+                             const Eigen::Matrix4d& S = Eigen::Matrix4d::Identity());
+
+/// The coefficient matrices of a polynomial matrix: M(t) = sum_k result[k] t^k (maxDegree() + 1
+/// of them).
+std::vector<Eigen::Matrix4d> coefficientMatrices(const PolynomialMatrix4& M);
 
 /// A piecewise rational motion over [0, 1]: motion k is used on [breaks[k], breaks[k+1]] and is
 /// parametrised over its own [0, 1] (so piece k at local s is the motion at
