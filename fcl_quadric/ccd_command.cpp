@@ -1,5 +1,6 @@
 #include "fcl_quadric/ccd_command.h"
 
+#include "fcl_quadric/continuous/ellipse_ccd.h"
 #include "fcl_quadric/continuous/ellipsoid_ccd.h"
 
 namespace fcl_quadric {
@@ -22,7 +23,46 @@ MovingEllipsoid movingEllipsoid(const SceneObject& object, std::size_t index) {
 
 }  // namespace
 
+namespace {
+
+nlohmann::ordered_json ccdScene2(const Scene& scene) {
+  nlohmann::ordered_json pairs = nlohmann::ordered_json::array();
+  const EllipseCcdQuery query = scene.ccd.all_intervals ? EllipseCcdQuery::AllContacts : EllipseCcdQuery::FirstContact;
+  for (const auto& [i, j] : scene.pairs) {
+    const SceneObject& a = scene.objects.at(i);
+    const SceneObject& b = scene.objects.at(j);
+    const MovingEllipse2 ea(a.shape.dimensions[0], a.shape.dimensions[1], a.motion2);
+    const MovingEllipse2 eb(b.shape.dimensions[0], b.shape.dimensions[1], b.motion2);
+    const EllipseCcdResult r = collideMovingEllipses(ea, eb, query);
+    nlohmann::ordered_json entry;
+    entry["a"] = a.name;
+    entry["b"] = b.name;
+    entry["collide"] = r.collide;
+    entry["first_contact_time"] = r.first_contact ? nlohmann::ordered_json(*r.first_contact) : nullptr;
+    entry["contact_point"] = r.first_contact_point_valid
+                                 ? nlohmann::ordered_json::array({r.first_contact_point[0], r.first_contact_point[1]})
+                                 : nlohmann::ordered_json(nullptr);
+    nlohmann::ordered_json intervals = nlohmann::ordered_json::array();
+    if (scene.ccd.all_intervals) {
+      for (const auto& [t0, t1] : r.collision_intervals) intervals.push_back({t0, t1});
+    } else if (r.first_contact) {
+      intervals.push_back({*r.first_contact, *r.first_contact});
+    }
+    entry["overlap_intervals"] = std::move(intervals);
+    bool unverified = r.capped;
+    for (const EllipseContact& c : r.contacts) unverified = unverified || !c.verified;
+    entry["near_tangent"] = unverified;
+    pairs.push_back(std::move(entry));
+  }
+  nlohmann::ordered_json document;
+  document["pairs"] = std::move(pairs);
+  return document;
+}
+
+}  // namespace
+
 nlohmann::ordered_json ccdScene(const Scene& scene) {
+  if (scene.dimension == 2) return ccdScene2(scene);
   CcdOptions options;
   options.all_intervals = scene.ccd.all_intervals;
   options.interpolation = scene.ccd.affine ? CcdInterpolation::Affine : CcdInterpolation::Rigid;

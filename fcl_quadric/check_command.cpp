@@ -76,6 +76,7 @@ nlohmann::ordered_json checkScene(const Scene& scene) {
 
 void runCheck(const std::string& scene_path, std::ostream& out) {
   const Scene scene = readSceneFile(scene_path);
+  if (scene.dimension != 3) throw SceneError("/dimension", "check handles 3D scenes; a 2D scene of ellipses is for ccd");
   const std::string text = checkScene(scene).dump(2);
   out << text << '\n';
 }

@@ -21,6 +21,7 @@ std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Shape& shape) {
     case ShapeType::Ellipsoid: return std::make_shared<fcl::Ellipsoidd>(d[0], d[1], d[2]);
     case ShapeType::Sphere: return std::make_shared<fcl::Sphered>(d[0]);
     case ShapeType::Box: return std::make_shared<fcl::Boxd>(d[0], d[1], d[2]);
+    case ShapeType::Ellipse: break;  // 2D scenes never reach FCL (check rejects them)
   }
   return nullptr;
 }

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fcl_quadric/continuous/ellipse_ccd.h"
 #include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
@@ -27,6 +28,7 @@ const char* toString(ShapeType type) {
     case ShapeType::Ellipsoid: return "ellipsoid";
     case ShapeType::Sphere: return "sphere";
     case ShapeType::Box: return "box";
+    case ShapeType::Ellipse: return "ellipse";
   }
   return "unknown";
 }
@@ -287,6 +289,114 @@ CcdSettings readCcdSettings(const json& node, const std::string& pointer) {
   return settings;
 }
 
+// --- Planar scenes (dimension 2) -------------------------------------------------------------
+
+Eigen::Matrix3d readPose2(const json& node, const std::string& pointer) {
+  requireType(node, pointer, json::value_t::object, "an object");
+  rejectUnknownFields(node, pointer, {"translation", "angle"});
+  Eigen::Matrix3d T = Eigen::Matrix3d::Identity();
+  if (const auto it = node.find("translation"); it != node.end()) {
+    const std::string p = child(pointer, "translation");
+    requireArray(*it, p, 2, "an array of 2 numbers");
+    for (std::size_t i = 0; i < 2; ++i) T(static_cast<Eigen::Index>(i), 2) = readNumber((*it)[i], child(p, i), "translation");
+  }
+  if (const auto it = node.find("angle"); it != node.end()) {
+    const double a = readNumber(*it, child(pointer, "angle"), "angle");
+    T.topLeftCorner<2, 2>() << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+  }
+  return T;
+}
+
+// Planar rigid motion between two poses: translation linear, rotation by the linear interpolation
+// e(t) = (1-t) e0 + t e1 of the half-angle unit vectors (shorter arc), R = [[e0^2 - e1^2, -2 e0 e1],
+// [2 e0 e1, e0^2 - e1^2]] / |e|^2: M = [[R~, |e|^2 p(t)], [0, |e|^2]].
+PolynomialMatrix3 linearMotion2(const Eigen::Matrix3d& from, const Eigen::Matrix3d& to) {
+  auto half = [](const Eigen::Matrix3d& T) {
+    const double a = std::atan2(T(1, 0), T(0, 0));
+    return Eigen::Vector2d(std::cos(0.5 * a), std::sin(0.5 * a));
+  };
+  const Eigen::Vector2d h0 = half(from);
+  Eigen::Vector2d h1 = half(to);
+  if (h0.dot(h1) < 0.0) h1 = -h1;
+  const Polynomial e0{h0[0], h1[0] - h0[0]}, e1{h0[1], h1[1] - h0[1]};
+  const Polynomial E = e0 * e0 + e1 * e1, c = e0 * e0 - e1 * e1, s = 2.0 * (e0 * e1);
+  PolynomialMatrix3 M;
+  M(0, 0) = c;
+  M(0, 1) = -s;
+  M(1, 0) = s;
+  M(1, 1) = c;
+  M(0, 2) = E * Polynomial{from(0, 2), to(0, 2) - from(0, 2)};
+  M(1, 2) = E * Polynomial{from(1, 2), to(1, 2) - from(1, 2)};
+  M(2, 2) = E;
+  return M;
+}
+
+PolynomialMatrix3 readMotion2(const json& node, const std::string& pointer, double a, double b) {
+  requireType(node, pointer, json::value_t::object, "an object");
+  const json& type = requireField(node, pointer, "type");
+  const std::string type_pointer = child(pointer, "type");
+  requireType(type, type_pointer, json::value_t::string, "a string");
+  const std::string name = type.get<std::string>();
+  PolynomialMatrix3 M;
+  std::string where = pointer;
+  if (name == "linear") {
+    rejectUnknownFields(node, pointer, {"type", "from", "to"});
+    M = linearMotion2(readPose2(requireField(node, pointer, "from"), child(pointer, "from")),
+                      readPose2(requireField(node, pointer, "to"), child(pointer, "to")));
+  } else if (name == "polynomial") {
+    rejectUnknownFields(node, pointer, {"type", "matrix"});
+    const json& matrix = requireField(node, pointer, "matrix");
+    where = child(pointer, "matrix");
+    requireArray(matrix, where, 3, "a 3x3 array of entries");
+    for (std::size_t i = 0; i < 3; ++i) {
+      requireArray(matrix[i], child(where, i), 3, "a row of 3 entries");
+      for (std::size_t j = 0; j < 3; ++j) {
+        M(static_cast<int>(i), static_cast<int>(j)) = readPolynomial(matrix[i][j], child(child(where, i), j));
+      }
+    }
+  } else {
+    fail(type_pointer, "unknown planar motion type " + jsonQuoted(name) + " (expected \"linear\" or \"polynomial\")");
+  }
+  try {
+    (void)MovingEllipse2(a, b, M);  // validates the motion (last row, w(t), det L(t) on [0, 1])
+  } catch (const std::invalid_argument& e) {
+    fail(where, e.what());
+  }
+  return M;
+}
+
+SceneObject readObject2(const json& node, const std::string& pointer) {
+  requireType(node, pointer, json::value_t::object, "an object");
+  rejectUnknownFields(node, pointer, {"name", "shape", "pose", "motion"});
+  SceneObject object;
+  const json& name = requireField(node, pointer, "name");
+  requireType(name, child(pointer, "name"), json::value_t::string, "a string");
+  object.name = name.get<std::string>();
+  if (object.name.empty()) fail(child(pointer, "name"), "object name must not be empty");
+  const json& shape = requireField(node, pointer, "shape");
+  const std::string sp = child(pointer, "shape");
+  requireType(shape, sp, json::value_t::object, "an object");
+  const json& type = requireField(shape, sp, "type");
+  requireType(type, child(sp, "type"), json::value_t::string, "a string");
+  if (type.get<std::string>() != "ellipse") {
+    fail(child(sp, "type"), "a 2D scene holds ellipses, got " + jsonQuoted(type.get<std::string>()) + " (expected \"ellipse\")");
+  }
+  rejectUnknownFields(shape, sp, {"type", "radii"});
+  const json& radii = requireField(shape, sp, "radii");
+  const std::string rp = child(sp, "radii");
+  requireArray(radii, rp, 2, "an array of 2 numbers");
+  object.shape.type = ShapeType::Ellipse;
+  object.shape.dimensions = Eigen::Vector3d(readPositive(radii[0], child(rp, 0), "radius"),
+                                            readPositive(radii[1], child(rp, 1), "radius"), 0.0);
+  const auto pose = node.find("pose");
+  if (pose != node.end()) object.motion2 = PolynomialMatrix3(readPose2(*pose, child(pointer, "pose")));
+  if (const auto it = node.find("motion"); it != node.end()) {
+    if (pose != node.end()) fail(child(pointer, "motion"), "an object has a \"pose\" or a \"motion\", not both");
+    object.motion2 = readMotion2(*it, child(pointer, "motion"), object.shape.dimensions[0], object.shape.dimensions[1]);
+  }
+  return object;
+}
+
 SceneObject readObject(const json& node, const std::string& pointer) {
   requireType(node, pointer, json::value_t::object, "an object");
   rejectUnknownFields(node, pointer, {"name", "shape", "pose", "motion"});
@@ -374,17 +484,27 @@ std::string stripExceptionPrefix(const char* what) {
 Scene parseScene(const json& document) {
   const std::string root;
   requireType(document, root, json::value_t::object, "a JSON object with an \"objects\" array");
-  rejectUnknownFields(document, root, {"objects", "pairs", "ccd"});
+  rejectUnknownFields(document, root, {"objects", "pairs", "ccd", "dimension"});
   const json& objects = requireField(document, root, "objects");
   const std::string objects_pointer = child(root, "objects");
   requireType(objects, objects_pointer, json::value_t::array, "an array");
 
   Scene scene;
-  if (const auto it = document.find("ccd"); it != document.end()) scene.ccd = readCcdSettings(*it, child(root, "ccd"));
+  if (const auto it = document.find("dimension"); it != document.end()) {
+    const std::string p = child(root, "dimension");
+    if (!it->is_number_integer() && !it->is_number_unsigned()) fail(p, std::string("must be 2 or 3, got ") + it->dump());
+    const auto d = it->get<long long>();
+    if (d != 2 && d != 3) fail(p, "must be 2 or 3, got " + it->dump());
+    scene.dimension = static_cast<int>(d);
+  }
+  if (const auto it = document.find("ccd"); it != document.end()) {
+    scene.ccd = readCcdSettings(*it, child(root, "ccd"));
+    if (scene.dimension == 2 && scene.ccd.affine) fail(child(child(root, "ccd"), "interpolation"), "the affine interpolant applies to 3D scenes only");
+  }
   std::map<std::string, std::size_t> index_of;
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const std::string p = child(objects_pointer, i);
-    SceneObject object = readObject(objects[i], p);
+    SceneObject object = scene.dimension == 2 ? readObject2(objects[i], p) : readObject(objects[i], p);
     const auto [it, inserted] = index_of.emplace(object.name, i);
     if (!inserted) {
       fail(child(p, "name"), "duplicate object name " + jsonQuoted(object.name) + " (first used by " +

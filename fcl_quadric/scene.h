@@ -24,6 +24,12 @@
 /// lowest degree first. A polynomial motion must have last row [0, 0, 0, w(t)] with w(t) and the
 /// determinant of the linear part free of roots in [0, 1] (certified; otherwise the error names
 /// "/objects/i/motion/matrix").
+///
+/// A planar scene has "dimension": 2; its objects are {"type": "ellipse", "radii": [a, b]} with
+/// an optional pose {"translation": [x, y], "angle": theta} or a motion: {"type": "linear",
+/// "from": POSE2, "to": POSE2} (translation linear, rotation by linear interpolation of the
+/// half-angle unit vector (cos theta/2, sin theta/2): rational of degree 2) or {"type":
+/// "polynomial", "matrix": 3x3 entries, last row [0, 0, w]} (thesis ch.2).
 /// `pose` and both of its fields are optional (identity). `pairs` defaults to every unordered
 /// pair in object order. A quaternion must have unit norm within tolerance::kQuaternionNorm
 /// (relative) and is then normalised.
@@ -39,6 +45,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json_fwd.hpp>
 
+#include "fcl_quadric/algebra/polynomial_matrix3.h"
 #include "fcl_quadric/continuous/motion_matrix.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
 
@@ -60,15 +67,16 @@ class SceneError : public std::runtime_error {
   std::string message_;
 };
 
-enum class ShapeType { Ellipsoid, Sphere, Box };
+enum class ShapeType { Ellipsoid, Sphere, Box, Ellipse };
 
-/// "ellipsoid", "sphere" or "box" (the JSON spelling).
+/// "ellipsoid", "sphere", "box" or "ellipse" (the JSON spelling).
 const char* toString(ShapeType type);
 
 /// A primitive shape in its body frame, centred at the body origin.
 struct Shape {
   ShapeType type = ShapeType::Ellipsoid;
   /// Ellipsoid: semi-axes (a, b, c). Sphere: (r, r, r). Box: full side lengths, as fcl::Box.
+  /// Ellipse (2D scenes): semi-axes (a, b, 0).
   Eigen::Vector3d dimensions = Eigen::Vector3d::Ones();
 };
 
@@ -79,6 +87,9 @@ struct SceneObject {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   /// The object's motion over [0, 1] when the scene gives one (`pose` is then the pose at t = 0).
   std::optional<PiecewiseMotion> motion;
+  /// 2D scenes: the 3x3 homogeneous motion (body -> world in the plane), or the pose as a
+  /// constant matrix when the object has no motion.
+  PolynomialMatrix3 motion2 = PolynomialMatrix3(Eigen::Matrix3d::Identity());
 };
 
 /// Options of `fcl_quadric ccd` (the scene's "ccd" object).
@@ -92,6 +103,8 @@ struct Scene {
   std::vector<SceneObject> objects;
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   CcdSettings ccd;
+  /// 3, or 2 for a planar scene of ellipses ("dimension": 2; `fcl_quadric ccd` only).
+  int dimension = 3;
 };
 
 /// Builds a Scene from a parsed JSON document.

@@ -122,6 +122,73 @@ TEST(CcdCommand, SingularMotionExitsWithStatusTwoAndThePath) {
   EXPECT_NE(r.err.find("0.25"), std::string::npos) << "names where det L(t) vanishes: " << r.err;
 }
 
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Thesis Example 2.2 (with the erratum of ../shared/seeds/README.md): the disks touch at t = 1/2 at
+// the origin. Moving B (the lower disk at t = 1/2) down by d leaves a gap d: collision-free; up by
+// d: overlapping.
+TEST(CcdCommand, PlanarExample22TouchesAtOneHalfAndSeparatesAfterAShiftDown) {
+  const std::string text = readText(std::string(FCL_QUADRIC_SOURCE_DIR) + "/examples/scene_ccd_2d.json");
+  const RunResult r = runCcdText(text, "ccd_2d");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json p = nlohmann::json::parse(r.out)["pairs"][0];
+  ASSERT_TRUE(p["collide"].get<bool>());
+  EXPECT_NEAR(p["first_contact_time"].get<double>(), 0.5, 1e-9);
+  EXPECT_NEAR(p["contact_point"][0].get<double>(), 0.0, 1e-6);
+  EXPECT_NEAR(p["contact_point"][1].get<double>(), 0.0, 1e-6);
+  const std::string b_translation_y = "[-80, 400, -880, 960, -480]";
+  ASSERT_NE(text.find(b_translation_y), std::string::npos);
+  for (double d : {1e-7, 1e-5, 1e-3}) {
+    for (double sign : {-1.0, 1.0}) {  // w(t) = 4 - 16t + 32t^2 - 32t^3 + 16t^4; shift y by sign d
+      std::ostringstream shifted;
+      shifted.precision(17);
+      const double w[5] = {4, -16, 32, -32, 16}, y[5] = {-80, 400, -880, 960, -480};
+      shifted << "[";
+      for (int k = 0; k < 5; ++k) shifted << (k ? ", " : "") << y[k] + sign * d * w[k];
+      shifted << "]";
+      std::string moved = text;
+      moved.replace(moved.find(b_translation_y), b_translation_y.size(), shifted.str());
+      const RunResult m = runCcdText(moved, "ccd_2d_shift");
+      ASSERT_EQ(m.status, 0) << m.err;
+      const nlohmann::json q = nlohmann::json::parse(m.out)["pairs"][0];
+      EXPECT_EQ(q["collide"].get<bool>(), sign > 0) << "d = " << sign * d;
+    }
+  }
+}
+
+TEST(CcdCommand, PlanarSceneErrorsNameTheirPointer) {
+  struct Case {
+    std::string text, pointer;
+  };
+  const std::vector<Case> cases = {
+      {R"({"dimension":2,"objects":[{"name":"A","shape":{"type":"ellipsoid","radii":[1,1,1]}}]})", "/objects/0/shape/type"},
+      {R"({"dimension":2,"objects":[{"name":"A","shape":{"type":"ellipse","radii":[1,1,1]}}]})", "/objects/0/shape/radii"},
+      {R"({"dimension":4,"objects":[]})", "/dimension"},
+      {R"({"dimension":2,"objects":[],"ccd":{"interpolation":"affine"}})", "/ccd/interpolation"},
+      {R"({"dimension":2,"objects":[{"name":"A","shape":{"type":"ellipse","radii":[1,2]},
+          "motion":{"type":"polynomial","matrix":[[1,0,0],[0,1,0],[0,0,[1,-2]]]}}]})", "/objects/0/motion/matrix"},
+      {R"({"dimension":2,"objects":[{"name":"A","shape":{"type":"ellipse","radii":[1,2]},
+          "motion":{"type":"linear","from":{"angle":"x"},"to":{}}}]})", "/objects/0/motion/from/angle"},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = runCcdText(c.text, "ccd_2d_bad");
+    EXPECT_EQ(r.status, kExitBadInput) << c.text;
+    EXPECT_NE(r.err.find(c.pointer + ":"), std::string::npos) << r.err;
+  }
+  // check does not take planar scenes.
+  const std::string path = ::testing::TempDir() + "planar_for_check.json";
+  std::ofstream(path) << R"({"dimension":2,"objects":[]})";
+  const char* argv[] = {"fcl_quadric", "check", path.c_str()};
+  std::ostringstream out, err;
+  EXPECT_EQ(run(3, argv, out, err), kExitBadInput);
+  EXPECT_NE(err.str().find("/dimension"), std::string::npos) << err.str();
+}
+
 }  // namespace
 }  // namespace cli
 }  // namespace fcl_quadric
