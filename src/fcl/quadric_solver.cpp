@@ -8,6 +8,7 @@
 #include <string>
 
 #include "fcl_quadric/geometry/ellipsoid_capsule.h"
+#include "fcl_quadric/geometry/ellipsoid_cylinder.h"
 #include "fcl_quadric/geometry/ellipsoid_plane.h"
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
@@ -163,6 +164,44 @@ WorldCapsule capsuleFromFcl(double radius, double length, const Eigen::Matrix3d&
   c.R = R;
   c.p = p;
   return c;
+}
+
+namespace {
+
+/// The radius / length / rotation checks of a round solid (capsuleFromFcl's, for `shape`).
+template <typename World>
+World roundSolidFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                        const char* which, const char* shape, const char* noun) {
+  try {
+    for (const auto& [what, v] : {std::pair<const char*, double>{"radius", radius}, {"length", length}}) {
+      if (!std::isfinite(v) || !(v >= 0.0)) {
+        std::ostringstream os;
+        os << noun << " " << what << " must be finite and >= 0, got " << v;
+        throw std::invalid_argument(os.str());
+      }
+    }
+    fcl_quadric::detail::checkRotation(R, (std::string(noun) + " rotation").c_str());
+  } catch (const std::invalid_argument& e) {
+    rethrowNamed(which, shape, e);
+  }
+  World w;
+  w.radius = radius;
+  w.length = length;
+  w.R = R;
+  w.p = p;
+  return w;
+}
+
+}  // namespace
+
+WorldCylinder cylinderFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                              const char* which) {
+  return roundSolidFromFcl<WorldCylinder>(radius, length, R, p, which, "fcl::Cylinder", "cylinder");
+}
+
+WorldCone coneFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                      const char* which) {
+  return roundSolidFromFcl<WorldCone>(radius, length, R, p, which, "fcl::Cone", "cone");
 }
 
 WorldTriangle triangleFromFcl(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
@@ -339,6 +378,43 @@ bool exactDistance(const Ellipsoid& e, const WorldCapsule& c, ExactDistance* out
 
 bool exactSignedDistance(const Ellipsoid& e, const WorldCapsule& c, ExactDistance* out) {
   return signedDistanceFrom(signedDistanceEllipsoidCapsule(e, c.radius, c.length, c.R, c.p), out);
+}
+
+// Cylinder and cone: one certified kernel answers all three queries (as for the capsule).
+namespace {
+
+bool intersectFrom(const SignedDistanceResult& d, ExactContact* contact) {
+  if (!contact) return d.status != Separation::Separated;
+  return contactFrom(d, contact);
+}
+
+bool unsignedDistanceFrom(const SignedDistanceResult& d, ExactDistance* out) {
+  if (d.status == Separation::Separated) return signedDistanceFrom(d, out);
+  out->distance = -1.0;  // libccd's convention for overlapping pairs
+  out->p1 = out->p2 = 0.5 * (d.point_a + d.point_b);
+  return false;
+}
+
+}  // namespace
+
+bool exactIntersect(const Ellipsoid& e, const WorldCylinder& c, ExactContact* contact) {
+  return intersectFrom(signedDistanceEllipsoidCylinder(e, c.radius, c.length, c.R, c.p), contact);
+}
+bool exactDistance(const Ellipsoid& e, const WorldCylinder& c, ExactDistance* out) {
+  return unsignedDistanceFrom(signedDistanceEllipsoidCylinder(e, c.radius, c.length, c.R, c.p), out);
+}
+bool exactSignedDistance(const Ellipsoid& e, const WorldCylinder& c, ExactDistance* out) {
+  return signedDistanceFrom(signedDistanceEllipsoidCylinder(e, c.radius, c.length, c.R, c.p), out);
+}
+
+bool exactIntersect(const Ellipsoid& e, const WorldCone& c, ExactContact* contact) {
+  return intersectFrom(signedDistanceEllipsoidCone(e, c.radius, c.length, c.R, c.p), contact);
+}
+bool exactDistance(const Ellipsoid& e, const WorldCone& c, ExactDistance* out) {
+  return unsignedDistanceFrom(signedDistanceEllipsoidCone(e, c.radius, c.length, c.R, c.p), out);
+}
+bool exactSignedDistance(const Ellipsoid& e, const WorldCone& c, ExactDistance* out) {
+  return signedDistanceFrom(signedDistanceEllipsoidCone(e, c.radius, c.length, c.R, c.p), out);
 }
 
 bool exactIntersect(const Ellipsoid& e, const WorldTriangle& t, ExactContact* contact) {

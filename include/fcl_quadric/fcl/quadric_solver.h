@@ -26,6 +26,8 @@
 #include <fcl/common/types.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/halfspace.h>
 #include <fcl/geometry/shape/plane.h>
@@ -66,6 +68,10 @@ enum class QuadricPairKind {
   /// fcl::Ellipsoid x fcl::Capsule (both orders): signedDistanceEllipsoidCapsule (the segment's
   /// exact classification and signed distance, minus the radius).
   kEllipsoidCapsule,
+  /// fcl::Ellipsoid x fcl::Cylinder / fcl::Cone (both orders): signedDistanceEllipsoidCylinder /
+  /// signedDistanceEllipsoidCone (ellipsoid_cylinder.h: certified status, exact signed distance).
+  kEllipsoidCylinder,
+  kEllipsoidCone,
   /// fcl::Ellipsoid x triangle (QuadricTriangle, BVH meshes): classifyEllipsoidTriangle /
   /// signedDistanceEllipsoidTriangle.
   kEllipsoidTriangle,
@@ -132,6 +138,27 @@ struct QuadricPair<fcl::Ellipsoid<S>, fcl::Capsule<S>> {
 template <typename S>
 struct QuadricPair<fcl::Capsule<S>, fcl::Ellipsoid<S>> {
   static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCapsule;
+  static constexpr bool swapped = true;
+};
+
+template <typename S>
+struct QuadricPair<fcl::Ellipsoid<S>, fcl::Cylinder<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCylinder;
+  static constexpr bool swapped = false;
+};
+template <typename S>
+struct QuadricPair<fcl::Cylinder<S>, fcl::Ellipsoid<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCylinder;
+  static constexpr bool swapped = true;
+};
+template <typename S>
+struct QuadricPair<fcl::Ellipsoid<S>, fcl::Cone<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCone;
+  static constexpr bool swapped = false;
+};
+template <typename S>
+struct QuadricPair<fcl::Cone<S>, fcl::Ellipsoid<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCone;
   static constexpr bool swapped = true;
 };
 
@@ -239,6 +266,22 @@ struct WorldCapsule {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
 };
 
+/// An fcl::Cylinder posed in the world: { p + R (x, y, z) : |(x, y)| <= r, |z| <= L/2 }.
+struct WorldCylinder {
+  double radius = 0.0;
+  double length = 0.0;
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+};
+
+/// An fcl::Cone posed in the world: base disk of radius r at local z = -L/2, apex at +L/2.
+struct WorldCone {
+  double radius = 0.0;
+  double length = 0.0;
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+};
+
 /// A triangle in the world frame.
 struct WorldTriangle {
   Eigen::Vector3d a, b, c;
@@ -256,6 +299,11 @@ WorldBox boxFromFcl(const Eigen::Vector3d& side, const Eigen::Matrix3d& R, const
 /// Throws std::invalid_argument naming `which` for a bad radius or length or a non-rotation.
 WorldCapsule capsuleFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
                             const char* which);
+/// Throw std::invalid_argument naming `which` for a bad radius or length or a non-rotation.
+WorldCylinder cylinderFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                              const char* which);
+WorldCone coneFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                      const char* which);
 /// Throws std::invalid_argument for a non-finite vertex.
 WorldTriangle triangleFromFcl(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
@@ -269,16 +317,22 @@ bool exactIntersect(const Ellipsoid& e, const WorldPlane& other, ExactContact* c
 bool exactIntersect(const Ellipsoid& e, const WorldBox& other, ExactContact* contact);
 bool exactIntersect(const Ellipsoid& e, const WorldTriangle& other, ExactContact* contact);
 bool exactIntersect(const Ellipsoid& e, const WorldCapsule& other, ExactContact* contact);
+bool exactIntersect(const Ellipsoid& e, const WorldCylinder& other, ExactContact* contact);
+bool exactIntersect(const Ellipsoid& e, const WorldCone& other, ExactContact* contact);
 bool exactDistance(const Ellipsoid& e, const Ellipsoid& other, ExactDistance* out);
 bool exactDistance(const Ellipsoid& e, const WorldPlane& other, ExactDistance* out);
 bool exactDistance(const Ellipsoid& e, const WorldBox& other, ExactDistance* out);
 bool exactDistance(const Ellipsoid& e, const WorldTriangle& other, ExactDistance* out);
 bool exactDistance(const Ellipsoid& e, const WorldCapsule& other, ExactDistance* out);
+bool exactDistance(const Ellipsoid& e, const WorldCylinder& other, ExactDistance* out);
+bool exactDistance(const Ellipsoid& e, const WorldCone& other, ExactDistance* out);
 bool exactSignedDistance(const Ellipsoid& e, const Ellipsoid& other, ExactDistance* out);
 bool exactSignedDistance(const Ellipsoid& e, const WorldPlane& other, ExactDistance* out);
 bool exactSignedDistance(const Ellipsoid& e, const WorldBox& other, ExactDistance* out);
 bool exactSignedDistance(const Ellipsoid& e, const WorldTriangle& other, ExactDistance* out);
 bool exactSignedDistance(const Ellipsoid& e, const WorldCapsule& other, ExactDistance* out);
+bool exactSignedDistance(const Ellipsoid& e, const WorldCylinder& other, ExactDistance* out);
+bool exactSignedDistance(const Ellipsoid& e, const WorldCone& other, ExactDistance* out);
 
 /// The posed FCL shape as the operand type of the exact kernels.
 template <typename S>
@@ -308,6 +362,16 @@ template <typename S>
 WorldCapsule asExact(const fcl::Capsule<S>& s, const fcl::Transform3<S>& tf, const char* which) {
   return capsuleFromFcl(static_cast<double>(s.radius), static_cast<double>(s.lz), tf.linear().template cast<double>(),
                         tf.translation().template cast<double>(), which);
+}
+template <typename S>
+WorldCylinder asExact(const fcl::Cylinder<S>& s, const fcl::Transform3<S>& tf, const char* which) {
+  return cylinderFromFcl(static_cast<double>(s.radius), static_cast<double>(s.lz),
+                         tf.linear().template cast<double>(), tf.translation().template cast<double>(), which);
+}
+template <typename S>
+WorldCone asExact(const fcl::Cone<S>& s, const fcl::Transform3<S>& tf, const char* which) {
+  return coneFromFcl(static_cast<double>(s.radius), static_cast<double>(s.lz), tf.linear().template cast<double>(),
+                     tf.translation().template cast<double>(), which);
 }
 template <typename S>
 WorldTriangle asExactTriangle(const fcl::Vector3<S>& P1, const fcl::Vector3<S>& P2, const fcl::Vector3<S>& P3) {
@@ -363,6 +427,8 @@ void appendContact(const ExactContact& c, std::vector<fcl::ContactPoint<S>>* con
 ///  - fcl::Ellipsoid-fcl::Plane, fcl::Ellipsoid-fcl::Halfspace: classifyEllipsoidPlane /
 ///    ellipsoidHalfspace (seed Theorem 13 / Corollary 14) and the support function;
 ///  - fcl::Ellipsoid-fcl::Box (OcTree leaves): classifyEllipsoidBox, signedDistanceEllipsoidBox;
+///  - fcl::Ellipsoid-fcl::Capsule / fcl::Cylinder / fcl::Cone: signedDistanceEllipsoidCapsule /
+///    signedDistanceEllipsoidCylinder / signedDistanceEllipsoidCone;
 ///  - fcl::Ellipsoid-triangle (shapeTriangleIntersect / shapeTriangleDistance, BVH meshes):
 ///    classifyEllipsoidTriangle, signedDistanceEllipsoidTriangle.
 /// Results follow FCL's conventions (docs/fcl_integration.md section 3):
@@ -559,7 +625,8 @@ class QuadricSolver {
   static constexpr bool isShapePairKind(detail::QuadricPairKind k) {
     return k == detail::QuadricPairKind::kEllipsoidEllipsoid || k == detail::QuadricPairKind::kEllipsoidPlane ||
            k == detail::QuadricPairKind::kEllipsoidHalfspace || k == detail::QuadricPairKind::kEllipsoidBox ||
-           k == detail::QuadricPairKind::kEllipsoidCapsule;
+           k == detail::QuadricPairKind::kEllipsoidCapsule || k == detail::QuadricPairKind::kEllipsoidCylinder ||
+           k == detail::QuadricPairKind::kEllipsoidCone;
   }
 
   static bool triangleIntersect(const Ellipsoid& e, const detail::WorldTriangle& t, fcl::Vector3<S>* contact_points,
