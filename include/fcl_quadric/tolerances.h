@@ -78,9 +78,10 @@ constexpr double kCcdTimeTolerance = 1.0 / 1099511627776.0;  // 2^-40 ~ 9.1e-13
 /// restrictions of kCcdMaxClipSteps steps.
 constexpr double kCcdClipMarginUlps = 64.0;
 
-/// Clipping steps of one shoot. Each step is a valid lower bound of the first root, so reaching
-/// the cap just ends the shoot early (the chain shoots again from there).
-constexpr int kCcdMaxClipSteps = 48;
+/// Clipping / halving steps of one shoot. The left end of the current sub-interval is always a
+/// valid lower bound of the first root, so reaching the cap just ends the shoot early (the chain
+/// shoots again from there).
+constexpr int kCcdMaxClipSteps = 96;
 
 /// Candidate intervals narrower than this are not subdivided further; when such an interval
 /// cannot be certified separate it is reported as colliding (thesis Remark 5.4: conservative).

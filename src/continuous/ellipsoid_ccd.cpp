@@ -12,6 +12,7 @@
 #include "fcl_quadric/algebra/bivariate_bernstein.h"
 #include "fcl_quadric/algebra/root_isolation.h"
 #include "fcl_quadric/continuous/ccd_function.h"
+#include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/geometry/separating_plane.h"
 #include "fcl_quadric/tolerances.h"
 
@@ -172,45 +173,83 @@ PolynomialMatrix4 affineInterpolant(const Eigen::Matrix3d B0, const Eigen::Vecto
   return Q;
 }
 
+// de Casteljau restriction of Bernstein coefficients on [0, 1] to [a, b] (0 <= a < b <= 1),
+// applied alike to |c| so that the rounding of every restricted coefficient is bounded by a few
+// (n + 1) ulps of the matching restricted |c| (all weights are convex: the standard running error
+// bound of de Casteljau's algorithm).
+void restrictWithBound(std::vector<double>* c, std::vector<double>* cabs, double a, double b) {
+  std::vector<double> left, right;
+  if (a > 0.0) {
+    detail::deCasteljauSplit(*c, a, &left, &right);
+    c->swap(right);
+    detail::deCasteljauSplit(*cabs, a, &left, &right);
+    cabs->swap(right);
+  }
+  if (b < 1.0) {
+    const double s = (b - a) / (1.0 - a);
+    detail::deCasteljauSplit(*c, s, &left, &right);
+    c->swap(left);
+    detail::deCasteljauSplit(*cabs, s, &left, &right);
+    cabs->swap(left);
+  }
+}
+
 // Lower bound of the first root in [0, 1] of the Bernstein polynomial with coefficients c (unit
-// parameter), by one-sided Bezier clipping (Sederberg-Nishita): the control points lie above the
-// line from (0, c_0) with the steepest descent toward any (j/n, c_j), so no root precedes its zero
-// crossing; restrict to the rest and repeat (quadratic convergence to a simple root). Coefficients
-// are lowered by a rounding margin (kCcdClipMarginUlps n ulps of max|c|, covering the de Casteljau
-// restrictions of up to kCcdMaxClipSteps steps), so the bound holds for the computed polynomial
-// within its rounding. Returns nullopt when every coefficient exceeds the margin (no root); stops
-// with the current (valid) lower bound when the value at it is within the margin, or after
-// kCcdMaxClipSteps steps.
-std::optional<double> firstRootLowerBound(const std::vector<double>& coefficients) {
-  std::vector<double> c = coefficients, left, right;
+// parameter), by one-sided Bezier clipping (Sederberg-Nishita) with midpoint subdivision: the
+// control points lie above the line from (0, c_0) with the steepest descent toward any (j/n, c_j),
+// so no root precedes its zero crossing s. When s >= 1/2 the interval is clipped to [s, 1]
+// (quadratic convergence to a simple root); otherwise (a large coefficient far to the right makes
+// the hull bound weak) it is halved and the left half examined first, a half whose coefficients
+// all exceed their margins being certified root-free. Sub-intervals are visited left to right, so
+// the left end of the current one is always a lower bound of the first root. Each coefficient is
+// lowered by its own rounding margin, kCcdClipMarginUlps (n + 1) ulps of the matching coefficient of
+// the restricted |c| (cabs, carried along): local margins stay meaningful where the polynomial is
+// small (F varies by orders of magnitude along t for high-degree motions). Returns nullopt when
+// [0, 1] is certified root-free; otherwise stops at the first sub-interval whose left value is
+// within its margin, or after kCcdMaxClipSteps steps, returning that left end.
+std::optional<double> firstRootLowerBound(std::vector<double> c, std::vector<double> cabs) {
+  struct Piece {
+    double lo, width;
+    std::vector<double> c, cabs;
+  };
   const int n = static_cast<int>(c.size()) - 1;
-  double scale = 0.0;
-  for (double x : c) scale = std::max(scale, std::abs(x));
-  const double margin = tolerance::kCcdClipMarginUlps * (n + 1) * tolerance::kUnitRoundoff * scale;
-  double lo = 0.0, width = 1.0;
-  for (int step = 0; step < tolerance::kCcdMaxClipSteps; ++step) {
-    const double c0 = c[0] - margin;
-    if (!(c0 > 0.0)) return lo;
+  const double ulps = tolerance::kCcdClipMarginUlps * (n + 1) * tolerance::kUnitRoundoff;
+  std::vector<Piece> stack;  // back() is the leftmost pending piece
+  stack.push_back({0.0, 1.0, std::move(c), std::move(cabs)});
+  std::vector<double> left, right, left_abs, right_abs;
+  for (int step = 0; !stack.empty(); ++step) {
+    Piece& p = stack.back();
+    if (step >= tolerance::kCcdMaxClipSteps) return p.lo;
+    const double c0 = p.c[0] - ulps * p.cabs[0];
+    if (!(c0 > 0.0)) return p.lo;
     double s = 2.0;
+    bool positive = true;
     for (int j = 1; j <= n; ++j) {
-      const double cj = c[j] - margin;
+      const double cj = p.c[j] - ulps * p.cabs[j];
+      positive = positive && cj > 0.0;
       if (cj < c0) s = std::min(s, (static_cast<double>(j) / n) * c0 / (c0 - cj));
     }
-    if (s >= 1.0) {
-      bool positive = true;
-      for (int j = 1; j <= n && positive; ++j) positive = c[j] - margin > 0.0;
-      if (positive) return std::nullopt;
-      s = 1.0;
+    if (positive) {  // root-free piece
+      stack.pop_back();
+      continue;
     }
-    s *= 1.0 - 8.0 * tolerance::kUnitRoundoff;
-    const double next = lo + width * s;
-    if (!(next > lo) || s <= 0.0) return lo;
-    detail::deCasteljauSplit(c, s, &left, &right);
-    c.swap(right);
-    lo = next;
-    width *= 1.0 - s;
+    s = std::min(s, 1.0) * (1.0 - 8.0 * tolerance::kUnitRoundoff);
+    if (s >= 0.5) {
+      const double next = p.lo + p.width * s;
+      if (!(next > p.lo)) return p.lo;
+      restrictWithBound(&p.c, &p.cabs, s, 1.0);
+      p.lo = next;
+      p.width *= 1.0 - s;
+      continue;
+    }
+    if (!(p.lo + 0.5 * p.width > p.lo)) return p.lo;
+    detail::deCasteljauSplit(p.c, 0.5, &left, &right);
+    detail::deCasteljauSplit(p.cabs, 0.5, &left_abs, &right_abs);
+    const double lo = p.lo, half = 0.5 * p.width;
+    p = Piece{lo + half, half, right, right_abs};  // the right half waits below the left one
+    stack.push_back(Piece{lo, half, left, left_abs});
   }
-  return lo;
+  return std::nullopt;
 }
 
 struct QuarticMax {
@@ -366,12 +405,15 @@ class IntervalSolver {
       ++result_->work;
       const BernsteinPolynomial g = atU(s.u);
       const double lo = rightward ? t : t2, hi = rightward ? t2 : t;
-      BernsteinPolynomial gr = (lo == g.lower() && hi == g.upper()) ? g : g.restrict(lo, hi);
+      const double t0 = F_.tLower(), w = F_.tUpper() - F_.tLower();
+      std::vector<double> c = g.coefficients(), cabs(c.size());
+      for (std::size_t j = 0; j < c.size(); ++j) cabs[j] = std::abs(c[j]);
+      restrictWithBound(&c, &cabs, (lo - t0) / w, (hi - t0) / w);
       if (!rightward) {
-        std::vector<double> rev(gr.coefficients().rbegin(), gr.coefficients().rend());
-        gr = BernsteinPolynomial(std::move(rev), 0.0, 1.0);
+        std::reverse(c.begin(), c.end());
+        std::reverse(cabs.begin(), cabs.end());
       }
-      const std::optional<double> root = firstRootLowerBound(gr.coefficients());
+      const std::optional<double> root = firstRootLowerBound(std::move(c), std::move(cabs));
       double next;
       if (!root) {
         next = t2;
@@ -525,6 +567,19 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
       return r;
     }
   }
+  if (!opt.all_intervals && !affine) {
+    // First contact only: a pair not separate at t = 0 (certified static test, Theorem 4.1)
+    // collides at 0; no CCD function is needed.
+    const SeparationCertificate c0 = classifyEllipsoids(a0, b0);
+    if (c0.status != Separation::Separated) {
+      r.collide = true;
+      r.first_contact_time = 0.0;
+      r.collision_intervals.push_back({0.0, 0.0});
+      r.contact_point = c0.witness;
+      r.near_tangent = c0.status == Separation::Touching;
+      return r;
+    }
+  }
 
   // Scaled coordinates y = S^{-1} x: origin between the centres at t = 0, unit ~ the largest radius.
   const double L = std::max(a.body.radii().maxCoeff(), b.body.radii().maxCoeff());
@@ -626,6 +681,18 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
                breaks.end());
 
   EllipsoidCcdResult total;
+  // Single pieces examined on [0, t_max] with t_max < 1: the culls certify [0, 1] on the
+  // unrestricted motions (which implies [0, t_max]) before any restriction is computed.
+  if (options.culling && options.interpolation == CcdInterpolation::Rigid && options.t_max < 1.0 &&
+      a.motion.pieces().size() == 1 && b.motion.pieces().size() == 1) {
+    const MotionMatrix& ma = a.motion.pieces().front();
+    const MotionMatrix& mb = b.motion.pieces().front();
+    if (ma.isRigid() && mb.isRigid() && sphereCull(a, ma, b, mb)) {
+      total.culled_by = 1;
+      total.separation_intervals.push_back({0.0, options.t_max});
+      return total;
+    }
+  }
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const double s0 = breaks[k], s1 = breaks[k + 1], w = s1 - s0;
     CcdOptions local = options;

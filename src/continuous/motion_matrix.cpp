@@ -1,5 +1,6 @@
 #include "fcl_quadric/continuous/motion_matrix.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -126,6 +127,36 @@ MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M) {
   detail::checkNoRootOnUnitInterval(w, "motion matrix w(t) = M(3,3)");
   const Polynomial dl = det3(M);
   detail::checkNoRootOnUnitInterval(dl, "motion matrix det of the linear part L(t)");
+  // Rigid (up to the scale w): L^T L = sigma I as polynomials, to rounding.
+  {
+    PolynomialMatrix4 G;
+    double scale = 0.0, off = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        G(i, j) = M(0, i) * M(0, j) + M(1, i) * M(1, j) + M(2, i) * M(2, j);
+        scale = std::max(scale, G(i, j).maxAbsCoefficient());
+      }
+    }
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        const Polynomial d = i == j ? G(i, j) - G(0, 0) : G(i, j);
+        off = std::max(off, d.maxAbsCoefficient());
+      }
+    }
+    if (scale > 0.0 && off <= 1e-13 * scale) {
+      PolynomialMatrix4 N;
+      for (int i = 0; i < 3; ++i) {
+        Polynomial ltv;
+        for (int j = 0; j < 3; ++j) {
+          N(i, j) = w * M(j, i);
+          ltv += M(j, i) * M(j, 3);
+        }
+        N(i, 3) = -ltv;
+      }
+      N(3, 3) = G(0, 0);
+      return MotionMatrix(M, std::move(N), true);
+    }
+  }
   PolynomialMatrix4 N;
   for (int i = 0; i < 3; ++i) {
     Polynomial adj_v;
@@ -138,6 +169,10 @@ MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M) {
   }
   N(3, 3) = dl;
   return MotionMatrix(M, std::move(N), false);
+}
+
+MotionMatrix MotionMatrix::compose(const MotionMatrix& outer, const MotionMatrix& inner) {
+  return MotionMatrix(outer.M_ * inner.M_, inner.N_ * outer.N_, outer.rigid_ && inner.rigid_);
 }
 
 Eigen::Matrix4d MotionMatrix::evaluate(double t) const {

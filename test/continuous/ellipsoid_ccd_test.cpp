@@ -320,6 +320,37 @@ TEST(EllipsoidCcd, RandomAffineMotionsAgreeWithTheSampledStaticOracle) {
   EXPECT_GT(transversal, 3);
 }
 
+// Rigid motions of degree 5 given as explicit matrices: the product of two motions from poses
+// (a body rotating on a rotating arm), validated and inverted through the general adjugate path
+// (N = [[w adj L, -adj(L) v], [0, det L]] of degree 15, F of high degree in t).
+TEST(EllipsoidCcd, HighDegreeComposedMotionsAgreeWithTheSampledStaticOracle) {
+  std::mt19937_64 rng(404);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int transversal = 0, colliding = 0;
+  for (int k = 0; k < 16; ++k) {
+    const MotionMatrix base = MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d(U(rng), U(rng), 0),
+                                                      test::randomRotation(rng), Eigen::Vector3d(U(rng), U(rng), 0));
+    const MotionMatrix arm = MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d(2.0, 0, 0),
+                                                     test::randomRotation(rng), Eigen::Vector3d(2.0, 0.5, 0));
+    const MotionMatrix composed = (k % 2 == 0) ? MotionMatrix::compose(base, arm)
+                                               : MotionMatrix::fromPolynomialMatrix(base.matrix() * arm.matrix());
+    EXPECT_EQ(composed.degree(), 5);  // rotation 4, translation column 5, w 4
+    EXPECT_TRUE(composed.isRigid());
+    const MovingEllipsoid A{bodyEllipsoid(Eigen::Vector3d(0.8, 0.3, 0.3)), PiecewiseMotion(composed)};
+    // An obstacle near the link's mid-motion position, so the link usually sweeps into it (or
+    // just misses it).
+    const Eigen::Vector3d mid = composed.evaluate(0.5).block<3, 1>(0, 3);
+    const MovingEllipsoid B{bodyEllipsoid(test::randomRadii(rng, 0.5, 3.0)),
+                            PiecewiseMotion(MotionMatrix::constant(test::randomRotation(rng), mid + 0.8 * test::randomUnitVector(rng)))};
+    const EllipsoidCcdResult r = continuousCollideEllipsoids(A, B);
+    EXPECT_FALSE(r.unresolved) << "degree " << r.degree_t << " work " << r.work;
+    colliding += r.collide;
+    checkAgainstOracle(A, B, r, 1000, &transversal);
+  }
+  EXPECT_GT(colliding, 5);
+  EXPECT_GT(transversal, 2);
+}
+
 TEST(EllipsoidCcd, UnionOverHalvesEqualsTheWholeInterval) {
   std::mt19937_64 rng(99);
   std::uniform_real_distribution<double> U(-1.0, 1.0);

@@ -19,7 +19,9 @@
 /// M = [[R~(t), E(t) p(t)], [0, E(t)]] (R~ the unnormalised quaternion rotation, E = |q(t)|^2) and
 /// N = [[R~^T, -R~^T p(t)], [0, E(t)]], so N M = E^2 I: columns of N have degrees (2, 2, 2, 3) and
 /// the CCD function of two such motions has degree at most 2 (2+2+2+3) = 18 in t. A general
-/// affine motion uses N = [[w adj L, -adj(L) v], [0, det L]] (N M = w det(L) I).
+/// affine motion uses N = [[w adj L, -adj(L) v], [0, det L]] (N M = w det(L) I); a rigid one
+/// (L^T L = sigma I as polynomials, detected to rounding) uses N = [[w L^T, -L^T v], [0, sigma]]
+/// (N M = w sigma I), of lower degree. Compositions keep the product of the factors' inverses.
 ///
 /// Part of the continuous-collision layer: standard library and Eigen only.
 
@@ -61,6 +63,11 @@ class MotionMatrix {
   /// excluded counts as a root). \throws std::invalid_argument naming the failed condition and
   /// where in [0, 1] it fails.
   static MotionMatrix fromPolynomialMatrix(const PolynomialMatrix4& M);
+
+  /// The composition outer(inner(x)): M = M_outer M_inner with the polynomial inverse
+  /// N = N_inner N_outer (no adjugate: the degrees of the factors add, e.g. a link of a serial
+  /// chain is the product of its joints' motions). Rigid if both are.
+  static MotionMatrix compose(const MotionMatrix& outer, const MotionMatrix& inner);
 
   /// M(t) (homogeneous, not normalised).
   const PolynomialMatrix4& matrix() const { return M_; }
