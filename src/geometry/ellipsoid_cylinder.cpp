@@ -20,6 +20,8 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
+/// Newton on a disk term stops within this angle of the axis (see ascend).
+constexpr double kPoleAngle = 1e-7;
 
 /// K = conv(D0 u D1): coaxial disks with centres q_i (stored relative to the ellipsoid centre c)
 /// and radii r_i. Disk 0 is at local z = -L/2, disk 1 at +L/2.
@@ -128,6 +130,9 @@ LocalMax ascend(const DiskObjective& obj, Eigen::Vector3d n, double scale) {
     tangentBasis(n, &e1, &e2);
     const Eigen::Vector2d g(e1.dot(grad), e2.dot(grad));
     if (g.norm() <= gtol) return {n, it, true};
+    // Drawn into the cap's kink: the pole candidate is exact there, and an optimum this close to
+    // the pole (angle < kPoleAngle) is worth less than kPoleAngle^2 relative over the pole.
+    if (obj.P->k.r[obj.i] > 0.0 && radialNorm(obj.P->k.a, n) < kPoleAngle) return {n, it, false};
     const Eigen::Vector3d he1 = hess * e1, he2 = hess * e2;
     const double h11 = e1.dot(he1) - f, h22 = e2.dot(he2) - f, h12 = 0.5 * (e1.dot(he2) + e2.dot(he1));
     const double hd = 0.5 * (h11 - h22);
@@ -190,7 +195,7 @@ void sideCandidatesCone(const Problem& P, Best* best);
 
 /// Cylinder side (r0 = r1): for n orthogonal to the axis phi = n.(p - c) - |S R^T n| - r, the
 /// point-ellipse problem of the projected axis against the ellipsoid's shadow on the plane
-/// orthogonal to a. Every critical point is a candidate.
+/// orthogonal to a.
 void sideCandidatesCylinder(const Problem& P, Best* best) {
   const RoundSolid& k = P.k;
   Eigen::Matrix<double, 3, 2> B;
@@ -206,12 +211,11 @@ void sideCandidatesCylinder(const Problem& P, Best* best) {
     sideCandidatesCone(P, best);
     return;
   }
-  Eigen::Vector2d xs[4];
-  const int n = detail::criticalPointsPrincipal<2>(radii, y, xs, 4);
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector2d n2 = xs[i].cwiseQuotient(radii.cwiseAbs2());
-    consider(P, B * (es.eigenvectors() * n2), true, best);
-  }
+  // Restricted to this circle phi is the 2D signed distance minus r, whose maximum is attained at
+  // the closest point of the shadow's boundary (inside or outside): one candidate suffices.
+  Eigen::Vector2d x;
+  detail::closestPointPrincipal<2>(radii, y, &x);
+  consider(P, B * (es.eigenvectors() * x.cwiseQuotient(radii.cwiseAbs2())), true, best);
 }
 
 /// Cone (frustum) side (r0 != r1): both disks support K at -n exactly on the circle of directions
@@ -299,7 +303,8 @@ void newtonCandidates(const Problem& P, int starts, Best* best) {
     add(P.e->rotation().col(j));
     add(-P.e->rotation().col(j));
   }
-  for (const Eigen::Vector3d& g : sphereGrid()) add(g);
+  if (starts > 2)
+    for (const Eigen::Vector3d& g : sphereGrid()) add(g);  // penetration depth: more basins
   const bool same_disk = k.L == 0.0 && k.r[0] == k.r[1];
   const int base_seeds = ns;
   for (int i = 0; i < 2; ++i) {
