@@ -1,0 +1,115 @@
+#pragma once
+/// \file continuous_collision.h
+/// fcl_quadric::continuousCollide: FCL's continuousCollide (<fcl/narrowphase/continuous_collision.h>)
+/// with exact or certified-conservative answers for ellipsoid and sphere pairs.
+///
+/// Same three overloads, arguments and result semantics as fcl::continuousCollide:
+///  - result.is_collide, result.time_of_contact (the first contact time in [0, 1]; 1 when there is
+///    no collision, as FCL), result.contact_tf1 / contact_tf2 (the poses of the two motions at the
+///    contact time; left untouched when there is no collision, as FCL);
+///  - the return value is result.time_of_contact (FCL returns -1 for settings it does not
+///    support; delegated pairs keep that).
+///
+/// Dispatch (o1 and o2 both fcl::Ellipsoid or fcl::Sphere, in any combination):
+///  - both motions RationalMotion or fcl::TranslationMotion (a TranslationMotion is the rational
+///    motion MotionMatrix::fromPoses(R, p0, R, p1)): EXACT, continuousCollideEllipsoids with
+///    all_intervals = false. The contact time is never later than the exact first contact (by at
+///    most ~1e-12, tolerances.h kCcdTimeTolerance / kCcdTouchingRelative) and errs early only at
+///    near-tangent grazes. request.ccd_solver_type, num_max_iterations and toc_err are ignored.
+///  - some motion fcl::InterpMotion or fcl::ScrewMotion (the other any of the four):
+///    CERTIFIED-CONSERVATIVE advancement driven by the exact signed distance (signedDistance of the
+///    world ellipsoids at t, a certified lower bound of the distance: it is the support gap along a
+///    unit normal) and a certified bound of the speed of every point of each solid, from the
+///    motion's parameters (see kAdvancement* below). t advances by d / (V1 + V2); contact is
+///    reported at the first t where the pair is not certified separate or d <= tolerance; the
+///    reported time is never later than the true first contact. On the step cap the current t
+///    is reported as contact (conservative).
+///  - some motion fcl::SplineMotion, or another MotionBase: no certified bound is available:
+///    delegated to fcl::continuousCollide (NOT certified: FCL's naive sampling or its conservative
+///    advancement, per request.ccd_solver_type).
+/// Every other pair of geometries is delegated unchanged to fcl::continuousCollide with the same
+/// request (a RationalMotion works there with CCDC_NAIVE and CCDC_CONSERVATIVE_ADVANCEMENT).
+///
+/// Transforms overload: the motions are built as fcl::continuousCollide builds them from
+/// request.ccd_motion_type (CCDM_TRANS: TranslationMotion, which keeps tf_beg's rotation;
+/// CCDM_LINEAR: InterpMotion; CCDM_SCREW: ScrewMotion; CCDM_SPLINE: SplineMotion). For
+/// ellipsoid pairs the InterpMotion is built with its reference point at the body origin (FCL's
+/// InterpMotion(tf1, tf2) constructor leaves the reference point uninitialised). FCL's
+/// CCDM_LINEAR is not a rational motion (it rotates at constant angular velocity about a fixed
+/// axis); for fcl_quadric's exact rational interpolation between two poses pass
+/// RationalMotion(tf_beg, tf_end) objects to the motion overload.
+///
+/// State: fcl_quadric's paths evaluate the motions from t = 0 whatever their current state and
+/// leave them integrated to the contact time (as FCL does). FCL's conservative advancement (on
+/// delegated pairs) starts from the motions' current state: re-create or integrate(0) a motion
+/// before reusing it there.
+///
+/// Bad input throws std::invalid_argument naming the argument: a null geometry, object or
+/// motion, a non-finite transform, a motion whose pose at some visited time is not finite, a
+/// non-rigid RationalMotion on a pair that is not ellipsoid/sphere, and CCDC_POLYNOMIAL_SOLVER
+/// with a motion that is not an fcl::TranslationMotion (FCL would reinterpret it as one).
+///
+/// Call it qualified (fcl_quadric::continuousCollide): with FCL argument types an unqualified
+/// call also finds fcl::continuousCollide by argument-dependent lookup. Only S = double is
+/// instantiated (src/fcl/continuous_collision.cpp).
+
+#include <fcl/common/types.h>
+#include <fcl/math/motion/motion_base.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/continuous_collision_request.h>
+#include <fcl/narrowphase/continuous_collision_result.h>
+
+namespace fcl_quadric {
+
+/// Conservative advancement (InterpMotion / ScrewMotion ellipsoid pairs): contact is reported at
+/// the first advancement time at which the certified distance lower bound is at most this times
+/// (largest radius of o1 + largest radius of o2). At the reported time t_r the pair is within that
+/// distance (or not certified separate); the true first contact t* satisfies t_r <= t*.
+constexpr double kAdvancementDistanceRelative = 1e-6;
+/// Step cap of the conservative advancement; on reaching it the current time is reported as the
+/// contact time (conservative; the result is then early, never late).
+constexpr int kAdvancementMaxSteps = 10000;
+
+template <typename S>
+S continuousCollide(const fcl::CollisionGeometry<S>* o1, const fcl::MotionBase<S>* motion1,
+                    const fcl::CollisionGeometry<S>* o2, const fcl::MotionBase<S>* motion2,
+                    const fcl::ContinuousCollisionRequest<S>& request, fcl::ContinuousCollisionResult<S>& result);
+
+template <typename S>
+S continuousCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1_beg,
+                    const fcl::Transform3<S>& tf1_end, const fcl::CollisionGeometry<S>* o2,
+                    const fcl::Transform3<S>& tf2_beg, const fcl::Transform3<S>& tf2_end,
+                    const fcl::ContinuousCollisionRequest<S>& request, fcl::ContinuousCollisionResult<S>& result);
+
+/// The objects' current transforms are the begin poses.
+template <typename S>
+S continuousCollide(const fcl::CollisionObject<S>* o1, const fcl::Transform3<S>& tf1_end,
+                    const fcl::CollisionObject<S>* o2, const fcl::Transform3<S>& tf2_end,
+                    const fcl::ContinuousCollisionRequest<S>& request, fcl::ContinuousCollisionResult<S>& result);
+
+/// Diagnostics of the last fcl_quadric::continuousCollide call on this thread: which path
+/// answered and how much work it took (for tests and benchmarks).
+struct ContinuousCollideStats {
+  enum class Path { None, Exact, ConservativeAdvancement, Delegated };
+  Path path = Path::None;
+  int steps = 0;            ///< advancement steps, or the exact solver's work count
+  bool step_cap = false;    ///< the advancement stopped on kAdvancementMaxSteps
+  bool near_tangent = false;  ///< exact path: a decision was taken in the touching band
+};
+const ContinuousCollideStats& lastContinuousCollideStats();
+
+extern template double continuousCollide(const fcl::CollisionGeometry<double>*, const fcl::MotionBase<double>*,
+                                         const fcl::CollisionGeometry<double>*, const fcl::MotionBase<double>*,
+                                         const fcl::ContinuousCollisionRequest<double>&,
+                                         fcl::ContinuousCollisionResult<double>&);
+extern template double continuousCollide(const fcl::CollisionGeometry<double>*, const fcl::Transform3<double>&,
+                                         const fcl::Transform3<double>&, const fcl::CollisionGeometry<double>*,
+                                         const fcl::Transform3<double>&, const fcl::Transform3<double>&,
+                                         const fcl::ContinuousCollisionRequest<double>&,
+                                         fcl::ContinuousCollisionResult<double>&);
+extern template double continuousCollide(const fcl::CollisionObject<double>*, const fcl::Transform3<double>&,
+                                         const fcl::CollisionObject<double>*, const fcl::Transform3<double>&,
+                                         const fcl::ContinuousCollisionRequest<double>&,
+                                         fcl::ContinuousCollisionResult<double>&);
+
+}  // namespace fcl_quadric
