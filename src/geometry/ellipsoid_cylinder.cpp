@@ -205,12 +205,6 @@ void sideCandidatesCylinder(const Problem& P, Best* best) {
   const Eigen::Vector2d radii = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   if (!(radii.minCoeff() > 0.0)) return;
   const Eigen::Vector2d y = es.eigenvectors().transpose() * (B.transpose() * k.dp);
-  if (!(y.cwiseAbs().minCoeff() > 1e-150 * (1.0 + y.norm()))) {
-    // criticalPointsPrincipal evaluates 0/0 at a pole when a coordinate is zero (raises
-    // FE_INVALID); the generic circle search covers this case.
-    sideCandidatesCone(P, best);
-    return;
-  }
   // Restricted to this circle phi is the 2D signed distance minus r, whose maximum is attained at
   // the closest point of the shadow's boundary (inside or outside): one candidate suffices.
   Eigen::Vector2d x;
@@ -265,9 +259,6 @@ void sideCandidatesCone(const Problem& P, Best* best) {
 void pointCandidates(const Problem& P, const Eigen::Vector3d& dq, Best* best) {
   const Ellipsoid& e = *P.e;
   const Eigen::Vector3d y = e.rotation().transpose() * dq;
-  // A zero coordinate makes criticalPointsPrincipal evaluate 0/0 (FE_INVALID); Newton on the
-  // (smooth) point term covers that case (newtonCandidates).
-  if (!(y.cwiseAbs().minCoeff() > 1e-150 * (1.0 + y.norm()))) return;
   Eigen::Vector3d xs[8];
   const int n = detail::criticalPointsPrincipal<3>(e.radii(), y, xs, 8);
   for (int i = 0; i < n; ++i) consider(P, e.rotation() * xs[i].cwiseQuotient(e.radii().cwiseAbs2()), true, best);

@@ -35,6 +35,7 @@ double closestPointPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::
   auto g = [&](LD t) {
     LD s = -1;
     for (int i = 0; i < N; ++i) {
+      if (yy[i] == 0) continue;  // contributes 0 (and 0/0 at its pole)
       const LD q = ee[i] * yy[i] / (ee[i] * ee[i] + t);
       s += q * q;
     }
@@ -49,8 +50,12 @@ double closestPointPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::
     // with t = -emin^2.
     LD denom_sum = 0;
     for (int i = 0; i < N; ++i) {
-      if (i == imin) continue;
+      if (i == imin || yy[i] == 0) continue;
       const LD d = ee[i] * ee[i] - emin2;
+      if (d == 0) {  // an axis as short as the shortest with y_i != 0: not this degenerate case
+        denom_sum = 2;
+        break;
+      }
       const LD q = ee[i] * yy[i] / d;
       denom_sum += q * q;
     }
@@ -58,7 +63,7 @@ double closestPointPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::
       LD s2 = 0;
       for (int i = 0; i < N; ++i) {
         if (i == imin) continue;
-        xs[i] = ee[i] * ee[i] * yy[i] / (ee[i] * ee[i] - emin2);
+        xs[i] = yy[i] == 0 ? 0 : ee[i] * ee[i] * yy[i] / (ee[i] * ee[i] - emin2);
         s2 += (xs[i] / ee[i]) * (xs[i] / ee[i]);
       }
       xs[imin] = ee[imin] * std::sqrt(std::max<LD>(0, 1 - s2));
@@ -81,6 +86,7 @@ double closestPointPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::
       if (gt > 0) lo = t; else hi = t;
       LD dg = 0;
       for (int i = 0; i < N; ++i) {
+        if (yy[i] == 0) continue;
         const LD d = ee[i] * ee[i] + t;
         dg += -2 * ee[i] * ee[i] * yy[i] * yy[i] / (d * d * d);
       }
@@ -92,7 +98,7 @@ double closestPointPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::
       }
       t = next;
     }
-    for (int i = 0; i < N; ++i) xs[i] = ee[i] * ee[i] * yy[i] / (ee[i] * ee[i] + t);
+    for (int i = 0; i < N; ++i) xs[i] = yy[i] == 0 ? 0 : ee[i] * ee[i] * yy[i] / (ee[i] * ee[i] + t);
   }
   LD d2 = 0;
   for (int i = 0; i < N; ++i) {
@@ -114,19 +120,28 @@ int criticalPointsPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::M
   }
   auto g = [&](LD t) {
     LD s = -1;
-    for (int i = 0; i < N; ++i) s += c2[i] / ((ee2[i] + t) * (ee2[i] + t));
+    for (int i = 0; i < N; ++i)  // a zero coordinate contributes nothing (and 0/0 at its pole)
+      if (c2[i] != 0) s += c2[i] / ((ee2[i] + t) * (ee2[i] + t));
     return s;
   };
   auto dg = [&](LD t) {
     LD s = 0;
-    for (int i = 0; i < N; ++i) s -= 2 * c2[i] / ((ee2[i] + t) * (ee2[i] + t) * (ee2[i] + t));
+    for (int i = 0; i < N; ++i)
+      if (c2[i] != 0) s -= 2 * c2[i] / ((ee2[i] + t) * (ee2[i] + t) * (ee2[i] + t));
     return s;
   };
   int count = 0;
   auto emit = [&](LD t) {
     if (count >= max_out) return;
     Eigen::Matrix<double, N, 1> x;
-    for (int i = 0; i < N; ++i) x[i] = static_cast<double>(ee2[i] * y[i] / (ee2[i] + t));
+    for (int i = 0; i < N; ++i) {
+      if (c2[i] == 0) {
+        if (ee2[i] + t == 0) return;  // t = -e_i^2 with y_i = 0: the points of the loop below
+        x[i] = 0;
+      } else {
+        x[i] = static_cast<double>(ee2[i] * y[i] / (ee2[i] + t));
+      }
+    }
     out[count++] = x;
   };
   // Root of g on (a, b) where g changes sign: bisection-safeguarded Newton.
@@ -200,7 +215,7 @@ int criticalPointsPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::M
     for (int k = 0; k < N; ++k) {
       if (k == i) continue;
       const LD d = ee2[k] - ee2[i];
-      if (d == 0) {
+      if (d == 0 || c2[k] == 0) {
         if (c2[k] != 0) ok = false;
         x[k] = 0;
         continue;

@@ -73,3 +73,41 @@ TEST(PointEllipsoid, DegenerateInteriorPointsOnPrincipalPlanes) {
 
 }  // namespace
 }  // namespace fcl_quadric
+
+namespace fcl_quadric {
+namespace {
+
+// Regression: zero coordinates and equal radii (axis-aligned scenes) made the closest-point and
+// critical-point solvers evaluate 0/0 (FE_INVALID, trapped by the test main): the reduced
+// degenerate case divided y_i / (e_i^2 - e_min^2) with both zero, and a root at t = -e_i^2 of an
+// axis with y_i = 0 was turned into a point by 0/0. Every combination of radii in {1, 2, 3} and
+// coordinates in {0, +-0.5, 1, 2, 3, 4}: the points are on the surface and stationary, and the
+// closest point is at least as close as every critical point.
+TEST(PointEllipsoid, ZeroCoordinatesAndEqualRadiiStayFinite) {
+  const double radii[] = {1, 2, 3}, coords[] = {0, 0.5, -0.5, 1, 2, 3, 4};
+  int cases = 0;
+  for (double a : radii) for (double b : radii) for (double c : radii) {
+    const Eigen::Vector3d e(a, b, c);
+    for (double y0 : coords) for (double y1 : coords) for (double y2 : coords) {
+      const Eigen::Vector3d y(y0, y1, y2);
+      Eigen::Vector3d pts[8], closest;
+      const int n = detail::criticalPointsPrincipal<3>(e, y, pts, 8);
+      const double d = detail::closestPointPrincipal<3>(e, y, &closest);
+      ASSERT_TRUE(closest.allFinite()) << e.transpose() << " | " << y.transpose();
+      EXPECT_NEAR(closest.cwiseQuotient(e).squaredNorm(), 1.0, 1e-12);
+      for (int k = 0; k < n; ++k) {
+        const Eigen::Vector3d x = pts[k];
+        ASSERT_TRUE(x.allFinite());
+        EXPECT_NEAR(x.cwiseQuotient(e).squaredNorm(), 1.0, 1e-9) << e.transpose() << " | " << y.transpose();
+        const Eigen::Vector3d normal = x.cwiseQuotient(e.cwiseProduct(e));
+        EXPECT_LT((y - x).cross(normal).norm(), 1e-9 * (1.0 + (y - x).norm()) * normal.norm());
+        EXPECT_LE(std::abs(d), (y - x).norm() + 1e-12);
+      }
+      ++cases;
+    }
+  }
+  EXPECT_EQ(cases, 27 * 343);
+}
+
+}  // namespace
+}  // namespace fcl_quadric
