@@ -662,6 +662,60 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
   return r;
 }
 
+// Two spheres centred at their body origins under motions from poses: the centres move on
+// segments, so |d0 + t v|^2 = R^2 is a quadratic and the collision interval is in closed form
+// (no CCD function). Empty optional when the pair is not of that kind.
+std::optional<EllipsoidCcdResult> movingSpheres(const MovingEllipsoid& a, const MovingEllipsoid& b, const CcdOptions& opt) {
+  const MotionMatrix& ma = a.motion.pieces().front();
+  const MotionMatrix& mb = b.motion.pieces().front();
+  auto isSphere = [](const Ellipsoid& e) {
+    return e.radii().minCoeff() == e.radii().maxCoeff() && e.center() == Eigen::Vector3d::Zero();
+  };
+  if (!isSphere(a.body) || !isSphere(b.body) || !ma.linearTranslation() || !mb.linearTranslation()) return std::nullopt;
+  const auto& [a0, a1] = *ma.linearTranslation();
+  const auto& [b0, b1] = *mb.linearTranslation();
+  const double ra = a.body.radii()[0], rb = b.body.radii()[0], R = ra + rb;
+  const Eigen::Vector3d d0 = b0 - a0, v = (b1 - b0) - (a1 - a0);
+  const double qa = v.squaredNorm(), qb = 2.0 * d0.dot(v), qc = d0.squaredNorm() - R * R;
+  const double tmax = opt.t_max;
+  // Touching band: relative to R^2 as the static test's (2^-40).
+  const double band = tolerance::kCertificateRelativeBoundDouble * R * R;
+  EllipsoidCcdResult r;
+  double t_in = 0.0, t_out = -1.0;  // the collision interval [t_in, t_out] of the quadratic
+  if (qc <= band) {
+    t_in = 0.0;
+    t_out = qa > 0.0 ? (-qb + std::sqrt(std::max(0.0, qb * qb - 4 * qa * qc))) / (2 * qa) : tmax;
+    if (qa == 0.0) t_out = tmax;
+  } else if (qa > 0.0) {
+    const double disc = qb * qb - 4 * qa * qc;
+    const double tv = std::clamp(-qb / (2 * qa), 0.0, tmax);  // closest approach in [0, tmax]
+    const double dmin = (d0 + tv * v).squaredNorm() - R * R;
+    if (dmin <= band) {
+      const double sq = std::sqrt(std::max(disc, 0.0));
+      const double q = -0.5 * (qb + (qb >= 0 ? sq : -sq));  // stable roots q/qa and qc/q
+      double r1 = q / qa, r2 = q != 0.0 ? qc / q : r1;
+      if (r1 > r2) std::swap(r1, r2);
+      t_in = std::max(0.0, disc > 0.0 ? r1 : tv);
+      t_out = disc > 0.0 ? r2 : tv;
+      r.near_tangent = dmin > -band;
+    }
+  }
+  if (t_out < t_in || t_in > tmax) {
+    r.separation_intervals.push_back({0.0, tmax});
+    return r;
+  }
+  t_out = std::min(t_out, tmax);
+  r.collide = true;
+  r.first_contact_time = t_in;
+  r.collision_intervals.push_back({t_in, opt.all_intervals ? t_out : t_in});
+  if (t_in > 0.0) r.separation_intervals.push_back({0.0, t_in});
+  if (opt.all_intervals && t_out < tmax) r.separation_intervals.push_back({t_out, tmax});
+  const Eigen::Vector3d ca = a0 + t_in * (a1 - a0), cb = b0 + t_in * (b1 - b0);
+  const Eigen::Vector3d dc = cb - ca;
+  r.contact_point = dc.norm() > 0.0 ? Eigen::Vector3d(ca + dc * (ra / R)) : ca;
+  return r;
+}
+
 }  // namespace
 
 EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const MovingEllipsoid& b,
@@ -680,6 +734,10 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
   breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double x) { return x > options.t_max; }),
                breaks.end());
 
+  if (options.interpolation == CcdInterpolation::Rigid && a.motion.pieces().size() == 1 &&
+      b.motion.pieces().size() == 1) {
+    if (std::optional<EllipsoidCcdResult> r = movingSpheres(a, b, options)) return *r;
+  }
   EllipsoidCcdResult total;
   // Single pieces examined on [0, t_max] with t_max < 1: the culls certify [0, 1] on the
   // unrestricted motions (which implies [0, t_max]) before any restriction is computed.
