@@ -99,7 +99,7 @@ bool sphereCull(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEl
 // body frame and Q_a^{-1} a's dual quadric (computed on coefficient matrices).
 bool planeCull(const MovingEllipsoid& a, const MotionMatrix& ma, const MotionMatrix& mb, const Plane& plane) {
   const Eigen::Vector4d pi_world(plane.normal.x(), plane.normal.y(), plane.normal.z(), -plane.offset);
-  const Eigen::Vector4d pi_body_b = mb.matrix().evaluate(0.0).transpose() * pi_world;
+  const Eigen::Vector4d pi_body_b = mb.evaluate(0.0).transpose() * pi_world;  // scale irrelevant
   const std::vector<Eigen::Matrix4d>& Nb = mb.inverseCoefficients();
   const std::vector<Eigen::Matrix4d>& Ma = ma.matrixCoefficients();
   std::vector<Eigen::Vector4d> q(Nb.size() + Ma.size() - 1, Eigen::Vector4d::Zero());
@@ -139,8 +139,8 @@ PolynomialMatrix4 balanced(const PolynomialMatrix4& Q) {
   return R;
 }
 
-PolynomialMatrix4 scaledQuadric(const Eigen::Matrix4d& Q_body, const PolynomialMatrix4& N, const Eigen::Matrix4d& S) {
-  return balanced(congruence(Q_body, coefficientMatrices(N), S));
+PolynomialMatrix4 scaledQuadric(const Eigen::Matrix4d& Q_body, const std::vector<Eigen::Matrix4d>& N, const Eigen::Matrix4d& S) {
+  return balanced(congruence(Q_body, N, S));
 }
 
 // Thesis §5.2: the affine interpolant of b's state relative to a, in a's body frame.
@@ -588,8 +588,8 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
   PolynomialMatrix4 A, B;
   if (!affine) {
     S.block<3, 1>(0, 3) = 0.5 * (a0.center() + b0.center());
-    A = scaledQuadric(a.body.quadricMatrix(), ma.inverse(), S);
-    B = scaledQuadric(b.body.quadricMatrix(), mb.inverse(), S);
+    A = scaledQuadric(a.body.quadricMatrix(), ma.inverseCoefficients(), S);
+    B = scaledQuadric(b.body.quadricMatrix(), mb.inverseCoefficients(), S);
   } else {
     // In a's body frame: a is constant, b's shape and centre are interpolated (thesis §5.2).
     Eigen::Matrix3d Bs[2];
@@ -603,7 +603,7 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
       Bs[k] = (Lb * Lb.transpose()).inverse();
     }
     S.block<3, 1>(0, 3) = 0.5 * (a.body.center() + cs[0]);
-    A = scaledQuadric(a.body.quadricMatrix(), PolynomialMatrix4(Eigen::Matrix4d::Identity()), S);
+    A = scaledQuadric(a.body.quadricMatrix(), {Eigen::Matrix4d::Identity()}, S);
     B = balanced(affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], S));
   }
   BivariateBernstein F = ccdFunction(A, B);
@@ -725,24 +725,14 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
     os << "continuousCollideEllipsoids: t_max must be in (0, 1], got " << options.t_max;
     throw std::invalid_argument(os.str());
   }
-  // The union of both break sequences, clipped to [0, t_max].
-  std::vector<double> breaks = a.motion.breaks();
-  breaks.insert(breaks.end(), b.motion.breaks().begin(), b.motion.breaks().end());
-  breaks.push_back(options.t_max);
-  std::sort(breaks.begin(), breaks.end());
-  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
-  breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double x) { return x > options.t_max; }),
-               breaks.end());
-
-  if (options.interpolation == CcdInterpolation::Rigid && a.motion.pieces().size() == 1 &&
-      b.motion.pieces().size() == 1) {
+  const bool single = a.motion.pieces().size() == 1 && b.motion.pieces().size() == 1;
+  if (single && options.interpolation == CcdInterpolation::Rigid) {
     if (std::optional<EllipsoidCcdResult> r = movingSpheres(a, b, options)) return *r;
   }
   EllipsoidCcdResult total;
   // Single pieces examined on [0, t_max] with t_max < 1: the culls certify [0, 1] on the
   // unrestricted motions (which implies [0, t_max]) before any restriction is computed.
-  if (options.culling && options.interpolation == CcdInterpolation::Rigid && options.t_max < 1.0 &&
-      a.motion.pieces().size() == 1 && b.motion.pieces().size() == 1) {
+  if (single && options.culling && options.interpolation == CcdInterpolation::Rigid && options.t_max < 1.0) {
     const MotionMatrix& ma = a.motion.pieces().front();
     const MotionMatrix& mb = b.motion.pieces().front();
     if (ma.isRigid() && mb.isRigid() && sphereCull(a, ma, b, mb)) {
@@ -751,6 +741,17 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
       return total;
     }
   }
+  if (single && options.t_max == 1.0) {  // the common case: no segments, no copies
+    return solveSegment(a, a.motion.pieces().front(), b, b.motion.pieces().front(), 1.0, options);
+  }
+  // The union of both break sequences, clipped to [0, t_max].
+  std::vector<double> breaks = a.motion.breaks();
+  breaks.insert(breaks.end(), b.motion.breaks().begin(), b.motion.breaks().end());
+  breaks.push_back(options.t_max);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double x) { return x > options.t_max; }),
+               breaks.end());
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const double s0 = breaks[k], s1 = breaks[k + 1], w = s1 - s0;
     CcdOptions local = options;

@@ -38,8 +38,6 @@ void checkNoRootOnUnitInterval(const Polynomial& p, const char* what) {
 
 namespace {
 
-Polynomial linearPoly(double a0, double a1) { return Polynomial{a0, a1 - a0}; }  // (1-t) a0 + t a1
-
 // det of the 3x3 block rows/cols {0,1,2} of M, and its adjugate.
 Polynomial det3(const PolynomialMatrix4& M) {
   return M(0, 0) * (M(1, 1) * M(2, 2) - M(1, 2) * M(2, 1)) - M(0, 1) * (M(1, 0) * M(2, 2) - M(1, 2) * M(2, 0)) +
@@ -59,11 +57,50 @@ Polynomial adj3(const PolynomialMatrix4& M, int i, int j) {
 
 }  // namespace
 
-MotionMatrix::MotionMatrix() : MotionMatrix(PolynomialMatrix4(Eigen::Matrix4d::Identity()),
-                                            PolynomialMatrix4(Eigen::Matrix4d::Identity()), true) {}
+namespace {
 
-MotionMatrix::MotionMatrix(PolynomialMatrix4 M, PolynomialMatrix4 N, bool rigid)
-    : M_(std::move(M)), N_(std::move(N)), Mk_(coefficientMatrices(M_)), Nk_(coefficientMatrices(N_)), rigid_(rigid) {}
+// Drops trailing zero coefficient matrices (keeps at least one).
+std::vector<Eigen::Matrix4d> trimmedCoefficients(std::vector<Eigen::Matrix4d> c) {
+  while (c.size() > 1 && c.back().isZero(0.0)) c.pop_back();
+  return c;
+}
+
+PolynomialMatrix4 fromCoefficientMatrices(const std::vector<Eigen::Matrix4d>& c) {
+  PolynomialMatrix4 M = PolynomialMatrix4::fromCoefficients(c);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) M(i, j) = M(i, j).trimmed();
+  return M;
+}
+
+// sum_k A_k t^k times sum_l B_l t^l.
+std::vector<Eigen::Matrix4d> convolve(const std::vector<Eigen::Matrix4d>& A, const std::vector<Eigen::Matrix4d>& B) {
+  std::vector<Eigen::Matrix4d> C(A.size() + B.size() - 1, Eigen::Matrix4d::Zero());
+  for (std::size_t k = 0; k < A.size(); ++k)
+    for (std::size_t l = 0; l < B.size(); ++l) C[k + l].noalias() += A[k] * B[l];
+  return C;
+}
+
+// Coefficients of s -> M(t0 + h s): sum_j s^j sum_{k >= j} C(k, j) t0^(k-j) h^j M_k.
+std::vector<Eigen::Matrix4d> composeAffine(const std::vector<Eigen::Matrix4d>& M, double h, double t0) {
+  const int d = static_cast<int>(M.size()) - 1;
+  std::vector<Eigen::Matrix4d> R(d + 1, Eigen::Matrix4d::Zero());
+  for (int k = 0; k <= d; ++k) {
+    double hj = 1.0;
+    for (int j = 0; j <= k; ++j, hj *= h) R[j] += (detail::binomial(k, j) * std::pow(t0, k - j) * hj) * M[k];
+  }
+  return R;
+}
+
+}  // namespace
+
+MotionMatrix::MotionMatrix()
+    : MotionMatrix({Eigen::Matrix4d::Identity()}, {Eigen::Matrix4d::Identity()}, true) {}
+
+MotionMatrix::MotionMatrix(std::vector<Eigen::Matrix4d> M, std::vector<Eigen::Matrix4d> N, bool rigid)
+    : Mk_(trimmedCoefficients(std::move(M))), Nk_(trimmedCoefficients(std::move(N))), rigid_(rigid) {}
+
+PolynomialMatrix4 MotionMatrix::matrix() const { return fromCoefficientMatrices(Mk_); }
+PolynomialMatrix4 MotionMatrix::inverse() const { return fromCoefficientMatrices(Nk_); }
 
 MotionMatrix MotionMatrix::constant(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
   return fromPoses(R, p, R, p);
@@ -83,34 +120,36 @@ MotionMatrix MotionMatrix::fromPoses(const Eigen::Matrix3d& R0, const Eigen::Vec
   q0.normalize();
   q1.normalize();
   if (q0.coeffs().dot(q1.coeffs()) < 0.0) q1.coeffs() = -q1.coeffs();
-  // Euler parameters e0 = w, e1 = x, e2 = y, e3 = z, each linear in t (thesis §5.1).
-  const Polynomial e0 = linearPoly(q0.w(), q1.w()), e1 = linearPoly(q0.x(), q1.x());
-  const Polynomial e2 = linearPoly(q0.y(), q1.y()), e3 = linearPoly(q0.z(), q1.z());
-  const Polynomial E = e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3;
-  PolynomialMatrix4 Rt;  // the unnormalised rotation R~ = E R (thesis §5.1)
-  Rt(0, 0) = e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3;
-  Rt(0, 1) = 2.0 * (e1 * e2 - e0 * e3);
-  Rt(0, 2) = 2.0 * (e0 * e2 + e1 * e3);
-  Rt(1, 0) = 2.0 * (e0 * e3 + e1 * e2);
-  Rt(1, 1) = e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3;
-  Rt(1, 2) = 2.0 * (e2 * e3 - e0 * e1);
-  Rt(2, 0) = 2.0 * (e1 * e3 - e0 * e2);
-  Rt(2, 1) = 2.0 * (e0 * e1 + e2 * e3);
-  Rt(2, 2) = e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3;
-  Polynomial p[3];
-  for (int i = 0; i < 3; ++i) p[i] = linearPoly(p0[i], p1[i]);
-  PolynomialMatrix4 M, N;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      M(i, j) = Rt(i, j);
-      N(i, j) = Rt(j, i);
+  // Euler parameters e(t) = e_a + t e_b, e = (e0, e1, e2, e3) = (w, x, y, z) (thesis §5.1). The
+  // unnormalised rotation R~(e) is a quadratic form of e, so R~(t) = R~(e_a) + t (R~(e_a + e_b) -
+  // R~(e_a) - R~(e_b)) + t^2 R~(e_b); E(t) = |e(t)|^2 likewise. Built on coefficient matrices.
+  auto rotation = [](const Eigen::Vector4d& e) {
+    Eigen::Matrix3d R;
+    R << e[0] * e[0] + e[1] * e[1] - e[2] * e[2] - e[3] * e[3], 2 * (e[1] * e[2] - e[0] * e[3]),
+        2 * (e[0] * e[2] + e[1] * e[3]), 2 * (e[0] * e[3] + e[1] * e[2]),
+        e[0] * e[0] - e[1] * e[1] + e[2] * e[2] - e[3] * e[3], 2 * (e[2] * e[3] - e[0] * e[1]),
+        2 * (e[1] * e[3] - e[0] * e[2]), 2 * (e[0] * e[1] + e[2] * e[3]),
+        e[0] * e[0] - e[1] * e[1] - e[2] * e[2] + e[3] * e[3];
+    return R;
+  };
+  const Eigen::Vector4d ea(q0.w(), q0.x(), q0.y(), q0.z());
+  const Eigen::Vector4d eb = Eigen::Vector4d(q1.w(), q1.x(), q1.y(), q1.z()) - ea;
+  const Eigen::Matrix3d Ra = rotation(ea), Rb = rotation(eb);
+  const Eigen::Matrix3d Rk[3] = {Ra, rotation(ea + eb) - Ra - Rb, Rb};
+  const double Ek[3] = {ea.squaredNorm(), 2.0 * ea.dot(eb), eb.squaredNorm()};
+  const Eigen::Vector3d pk[2] = {p0, p1 - p0};
+  std::vector<Eigen::Matrix4d> Mk(4, Eigen::Matrix4d::Zero()), Nk(4, Eigen::Matrix4d::Zero());
+  for (int k = 0; k < 3; ++k) {
+    Mk[k].topLeftCorner<3, 3>() = Rk[k];
+    Nk[k].topLeftCorner<3, 3>() = Rk[k].transpose();
+    Mk[k](3, 3) = Ek[k];
+    Nk[k](3, 3) = Ek[k];
+    for (int l = 0; l < 2; ++l) {
+      Mk[k + l].block<3, 1>(0, 3) += Ek[k] * pk[l];                   // E(t) p(t)
+      Nk[k + l].block<3, 1>(0, 3) -= Rk[k].transpose() * pk[l];       // -R~(t)^T p(t)
     }
-    M(i, 3) = E * p[i];
-    N(i, 3) = -(Rt(0, i) * p[0] + Rt(1, i) * p[1] + Rt(2, i) * p[2]);
   }
-  M(3, 3) = E;
-  N(3, 3) = E;
-  MotionMatrix m(std::move(M), std::move(N), true);
+  MotionMatrix m(std::move(Mk), std::move(Nk), true);
   m.linear_translation_ = std::make_pair(p0, p1);
   return m;
 }
@@ -154,7 +193,7 @@ MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M) {
         N(i, 3) = -ltv;
       }
       N(3, 3) = G(0, 0);
-      return MotionMatrix(M, std::move(N), true);
+      return MotionMatrix(coefficientMatrices(M), coefficientMatrices(N), true);
     }
   }
   PolynomialMatrix4 N;
@@ -168,16 +207,17 @@ MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M) {
     N(i, 3) = -adj_v;
   }
   N(3, 3) = dl;
-  return MotionMatrix(M, std::move(N), false);
+  return MotionMatrix(coefficientMatrices(M), coefficientMatrices(N), false);
 }
 
 MotionMatrix MotionMatrix::compose(const MotionMatrix& outer, const MotionMatrix& inner) {
-  return MotionMatrix(outer.M_ * inner.M_, inner.N_ * outer.N_, outer.rigid_ && inner.rigid_);
+  return MotionMatrix(convolve(outer.Mk_, inner.Mk_), convolve(inner.Nk_, outer.Nk_), outer.rigid_ && inner.rigid_);
 }
 
 Eigen::Matrix4d MotionMatrix::evaluate(double t) const {
   if (!std::isfinite(t)) throw std::invalid_argument("MotionMatrix::evaluate: non-finite t");
-  Eigen::Matrix4d m = M_.evaluate(t);
+  Eigen::Matrix4d m = Mk_.back();
+  for (std::size_t k = Mk_.size() - 1; k-- > 0;) m = m * t + Mk_[k];
   return m / m(3, 3);
 }
 
@@ -187,13 +227,7 @@ MotionMatrix MotionMatrix::restricted(double t0, double t1) const {
     os << "MotionMatrix::restricted: need 0 <= t0 < t1 <= 1, got [" << t0 << ", " << t1 << "]";
     throw std::invalid_argument(os.str());
   }
-  PolynomialMatrix4 M, N;
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      M(i, j) = M_(i, j).composeAffine(t1 - t0, t0);
-      N(i, j) = N_(i, j).composeAffine(t1 - t0, t0);
-    }
-  }
+  std::vector<Eigen::Matrix4d> M = composeAffine(Mk_, t1 - t0, t0), N = composeAffine(Nk_, t1 - t0, t0);
   MotionMatrix r(std::move(M), std::move(N), rigid_);
   if (linear_translation_) {
     const auto& [p0, p1] = *linear_translation_;

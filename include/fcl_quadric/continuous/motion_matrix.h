@@ -69,12 +69,13 @@ class MotionMatrix {
   /// chain is the product of its joints' motions). Rigid if both are.
   static MotionMatrix compose(const MotionMatrix& outer, const MotionMatrix& inner);
 
-  /// M(t) (homogeneous, not normalised).
-  const PolynomialMatrix4& matrix() const { return M_; }
-  /// N(t) = c(t) M(t)^{-1} with c(t) != 0 on [0, 1].
-  const PolynomialMatrix4& inverse() const { return N_; }
-  /// The power-basis coefficient matrices of M and N: M(t) = sum_k matrixCoefficients()[k] t^k
-  /// (cached at construction for the fixed-size arithmetic of the solver).
+  /// M(t) (homogeneous, not normalised), built from the coefficient matrices.
+  PolynomialMatrix4 matrix() const;
+  /// N(t) = c(t) M(t)^{-1} with c(t) != 0 on [0, 1], built from the coefficient matrices.
+  PolynomialMatrix4 inverse() const;
+  /// The power-basis coefficient matrices of M and N: M(t) = sum_k matrixCoefficients()[k] t^k,
+  /// trailing zero matrices removed. They are the stored representation (a motion from poses is
+  /// built with two allocations; the solver works on fixed-size 4x4 products).
   const std::vector<Eigen::Matrix4d>& matrixCoefficients() const { return Mk_; }
   const std::vector<Eigen::Matrix4d>& inverseCoefficients() const { return Nk_; }
   /// True for motions built by constant() or fromPoses() (rigid by construction).
@@ -85,7 +86,7 @@ class MotionMatrix {
     return linear_translation_;
   }
   /// Largest degree of the entries of M.
-  int degree() const { return M_.maxDegree(); }
+  int degree() const { return static_cast<int>(Mk_.size()) - 1; }
 
   /// The affine map at time t: M(t) / w(t), last row [0, 0, 0, 1]. \throws std::invalid_argument
   /// if t is not finite.
@@ -97,9 +98,7 @@ class MotionMatrix {
   MotionMatrix restricted(double t0, double t1) const;
 
  private:
-  MotionMatrix(PolynomialMatrix4 M, PolynomialMatrix4 N, bool rigid);
-  PolynomialMatrix4 M_;
-  PolynomialMatrix4 N_;
+  MotionMatrix(std::vector<Eigen::Matrix4d> M, std::vector<Eigen::Matrix4d> N, bool rigid);
   std::vector<Eigen::Matrix4d> Mk_;
   std::vector<Eigen::Matrix4d> Nk_;
   bool rigid_ = true;
