@@ -12,13 +12,37 @@
 namespace fcl_quadric {
 namespace detail {
 
-double binomial(int n, int k) {
-  if (k < 0 || k > n) return 0.0;
+namespace {
+
+double binomialLoop(int n, int k) {
   k = std::min(k, n - k);
   double r = 1.0;
   // r_i = C(n - k + i, i) is an integer at every step; exact while below 2^53.
   for (int i = 1; i <= k; ++i) r = r * static_cast<double>(n - k + i) / static_cast<double>(i);
   return r;
+}
+
+// Rows 0..kTableRows-1 of Pascal's triangle, computed once by the same loop (identical values):
+// the basis conversions call binomial() O(n^2) times, which profiling showed at ~20 % of a
+// continuous-collision query.
+constexpr int kTableRows = 160;
+const std::vector<double>& binomialTable() {
+  static const std::vector<double> table = [] {
+    std::vector<double> t;
+    t.reserve(kTableRows * (kTableRows + 1) / 2);
+    for (int n = 0; n < kTableRows; ++n)
+      for (int k = 0; k <= n; ++k) t.push_back(binomialLoop(n, k));
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
+double binomial(int n, int k) {
+  if (k < 0 || k > n) return 0.0;
+  if (n < kTableRows) return binomialTable()[static_cast<std::size_t>(n * (n + 1) / 2 + k)];
+  return binomialLoop(n, k);
 }
 
 void checkInterval(const char* where, double a, double b) {

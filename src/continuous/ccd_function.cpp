@@ -28,15 +28,15 @@ Scaled convolve(const Scaled& a, const Scaled& b) {
   return c;
 }
 
-// Rows 0..kMaxRow of Pascal's triangle (exact in double up to row 1029 is not needed: the CCD
-// degrees stay far below kMaxRow); computed once.
+// Rows 0..kMaxRow of Pascal's triangle, computed once (exact up to row 56; beyond, correctly
+// rounded sums; the CCD degrees stay far below kMaxRow).
 constexpr int kMaxRow = 400;
 const std::vector<double>& binomialRow(int r) {
   static const std::vector<std::vector<double>> rows = [] {
     std::vector<std::vector<double>> t(kMaxRow + 1);
-    for (int n = 0; n <= kMaxRow; ++n) {
-      t[n].resize(n + 1);
-      for (int k = 0; k <= n; ++k) t[n][k] = detail::binomial(n, k);
+    for (int n = 0; n <= kMaxRow; ++n) {  // Pascal's rule: exact integers while below 2^53
+      t[n].assign(n + 1, 1.0);
+      for (int k = 1; k < n; ++k) t[n][k] = t[n - 1][k - 1] + t[n - 1][k];
     }
     return t;
   }();

@@ -177,20 +177,29 @@ PolynomialMatrix4 affineInterpolant(const Eigen::Matrix3d B0, const Eigen::Vecto
 // applied alike to |c| so that the rounding of every restricted coefficient is bounded by a few
 // (n + 1) ulps of the matching restricted |c| (all weights are convex: the standard running error
 // bound of de Casteljau's algorithm).
+// In place, no allocation: the de Casteljau triangle keeps P_j^(n-j) (the coefficients on [s, 1])
+// when updated from the left, and P_0^j (those on [0, s]) when updated from the right.
+void keepRight(double* c, int n, double s) {
+  const double r = 1.0 - s;
+  for (int level = 1; level <= n; ++level)
+    for (int i = 0; i <= n - level; ++i) c[i] = r * c[i] + s * c[i + 1];
+}
+void keepLeft(double* c, int n, double s) {
+  const double r = 1.0 - s;
+  for (int level = 1; level <= n; ++level)
+    for (int i = n; i >= level; --i) c[i] = r * c[i - 1] + s * c[i];
+}
+
 void restrictWithBound(std::vector<double>* c, std::vector<double>* cabs, double a, double b) {
-  std::vector<double> left, right;
+  const int n = static_cast<int>(c->size()) - 1;
   if (a > 0.0) {
-    detail::deCasteljauSplit(*c, a, &left, &right);
-    c->swap(right);
-    detail::deCasteljauSplit(*cabs, a, &left, &right);
-    cabs->swap(right);
+    keepRight(c->data(), n, a);
+    keepRight(cabs->data(), n, a);
   }
   if (b < 1.0) {
     const double s = (b - a) / (1.0 - a);
-    detail::deCasteljauSplit(*c, s, &left, &right);
-    c->swap(left);
-    detail::deCasteljauSplit(*cabs, s, &left, &right);
-    cabs->swap(left);
+    keepLeft(c->data(), n, s);
+    keepLeft(cabs->data(), n, s);
   }
 }
 
@@ -208,48 +217,75 @@ void restrictWithBound(std::vector<double>* c, std::vector<double>* cabs, double
 // [0, 1] is certified root-free; otherwise stops at the first sub-interval whose left value is
 // within its margin, or after kCcdMaxClipSteps steps, returning that left end.
 std::optional<double> firstRootLowerBound(std::vector<double> c, std::vector<double> cabs) {
-  struct Piece {
-    double lo, width;
-    std::vector<double> c, cabs;
-  };
   const int n = static_cast<int>(c.size()) - 1;
+  const std::size_t m = c.size();
   const double ulps = tolerance::kCcdClipMarginUlps * (n + 1) * tolerance::kUnitRoundoff;
-  std::vector<Piece> stack;  // back() is the leftmost pending piece
-  stack.push_back({0.0, 1.0, std::move(c), std::move(cabs)});
-  std::vector<double> left, right, left_abs, right_abs;
-  for (int step = 0; !stack.empty(); ++step) {
-    Piece& p = stack.back();
-    if (step >= tolerance::kCcdMaxClipSteps) return p.lo;
-    const double c0 = p.c[0] - ulps * p.cabs[0];
-    if (!(c0 > 0.0)) return p.lo;
+  // Pending right halves, innermost last: their intervals and coefficients in flat buffers.
+  struct Pending {
+    double lo, width;
+  };
+  std::vector<Pending> pending;
+  std::vector<double> pool_c, pool_abs;
+  double lo = 0.0, width = 1.0;
+  for (int step = 0;; ++step) {
+    if (step >= tolerance::kCcdMaxClipSteps) return lo;
+    const double c0 = c[0] - ulps * cabs[0];
+    if (!(c0 > 0.0)) return lo;
     double s = 2.0;
+    int j_min = 0;
     bool positive = true;
     for (int j = 1; j <= n; ++j) {
-      const double cj = p.c[j] - ulps * p.cabs[j];
+      const double cj = c[j] - ulps * cabs[j];
       positive = positive && cj > 0.0;
-      if (cj < c0) s = std::min(s, (static_cast<double>(j) / n) * c0 / (c0 - cj));
+      if (cj < c0) {
+        const double sj = (static_cast<double>(j) / n) * c0 / (c0 - cj);
+        if (sj < s) {
+          s = sj;
+          j_min = j;
+        }
+      }
     }
-    if (positive) {  // root-free piece
-      stack.pop_back();
+    if (positive) {  // root-free piece: continue with the next pending one, if any
+      if (pending.empty()) return std::nullopt;
+      lo = pending.back().lo;
+      width = pending.back().width;
+      pending.pop_back();
+      std::copy(pool_c.end() - m, pool_c.end(), c.begin());
+      std::copy(pool_abs.end() - m, pool_abs.end(), cabs.begin());
+      pool_c.resize(pool_c.size() - m);
+      pool_abs.resize(pool_abs.size() - m);
       continue;
     }
     s = std::min(s, 1.0) * (1.0 - 8.0 * tolerance::kUnitRoundoff);
-    if (s >= 0.5) {
-      const double next = p.lo + p.width * s;
-      if (!(next > p.lo)) return p.lo;
-      restrictWithBound(&p.c, &p.cabs, s, 1.0);
-      p.lo = next;
-      p.width *= 1.0 - s;
+    // Clip to [s, 1] when the bound is strong (s >= 1/2) or set by the tangent at the left end
+    // (j = 1: repeated clipping is then Newton's method from the left, quadratic near a simple
+    // root); a weak bound set by a distant large coefficient is replaced by a split.
+    if (s >= 0.5 || j_min == 1) {
+      const double next = lo + width * s;
+      if (!(next > lo)) return lo;
+      keepRight(c.data(), n, s);
+      keepRight(cabs.data(), n, s);
+      lo = next;
+      width *= 1.0 - s;
       continue;
     }
-    if (!(p.lo + 0.5 * p.width > p.lo)) return p.lo;
-    detail::deCasteljauSplit(p.c, 0.5, &left, &right);
-    detail::deCasteljauSplit(p.cabs, 0.5, &left_abs, &right_abs);
-    const double lo = p.lo, half = 0.5 * p.width;
-    p = Piece{lo + half, half, right, right_abs};  // the right half waits below the left one
-    stack.push_back(Piece{lo, half, left, left_abs});
+    // Split: the right part waits, the left one is examined first. The split point is 1/2, or
+    // four times the tangent estimate c_0 / (n (c_0 - c_1)) of the root when that is smaller, so
+    // that a small value at the left end (a shoot close to contact) is reached in a few splits
+    // rather than by repeated halving.
+    double split = 0.5;
+    if (c[1] < c[0]) split = std::clamp(4.0 * c[0] / (n * (c[0] - c[1])), 1.0 / 64.0, 0.5);
+    const double left_width = width * split;
+    if (!(lo + left_width > lo)) return lo;
+    pending.push_back({lo + left_width, width - left_width});
+    pool_c.insert(pool_c.end(), c.begin(), c.end());
+    pool_abs.insert(pool_abs.end(), cabs.begin(), cabs.end());
+    keepRight(pool_c.data() + pool_c.size() - m, n, split);
+    keepRight(pool_abs.data() + pool_abs.size() - m, n, split);
+    keepLeft(c.data(), n, split);
+    keepLeft(cabs.data(), n, split);
+    width = left_width;
   }
-  return std::nullopt;
 }
 
 struct QuarticMax {

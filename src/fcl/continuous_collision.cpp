@@ -531,6 +531,25 @@ void requireFinite(double v, const char* which, const char* what) {
   }
 }
 
+// The control points of an fcl::SplineMotion (protected members, read through a derived type's
+// member pointers: no copy of FCL's code).
+struct SplineControlPoints {
+  Eigen::Vector3d T[4], R[4];
+};
+struct SplineAccess : fcl::SplineMotion<double> {
+  static SplineControlPoints get(const fcl::SplineMotion<double>& m) {
+    SplineControlPoints c;
+    const auto& Td = m.*(&SplineAccess::Td);
+    const auto& Rd = m.*(&SplineAccess::Rd);
+    for (int i = 0; i < 4; ++i) {
+      c.T[i] = Td[i];
+      c.R[i] = Rd[i];
+    }
+    return c;
+  }
+};
+SplineControlPoints splineControlPoints(const fcl::SplineMotion<double>& m) { return SplineAccess::get(m); }
+
 // Certified speed bound of every point of the solid (body ball of radius max radius around the
 // origin) over [0, 1], from the motion's parameters.
 double solidSpeedBound(const AdvancingSolid& s) {
@@ -580,6 +599,38 @@ double solidSpeedBound(const AdvancingSolid& s) {
       const double an = axis.norm();
       const double perp = an > 0.0 ? (axis.cross(y)).norm() / an : y.norm();
       return (an * std::abs(lv) + std::abs(omega) * (perp + r)) * (1.0 + 1e-12);
+    }
+    case MotionKind::Spline: {
+      // spline_motion-inl.h: T(t) = sum_i Td_i w_i(t), rotation = exp of w(t) = sum_i Rd_i w_i(t)
+      // with the uniform cubic B-spline weights w_i. |dx/dt| <= |T'(t)| + |omega(t)| |x_b| and
+      // |omega| = |J(w) w'| <= |w'| (the SO(3) Jacobian has norm <= 1: eigenvalues 1 along w
+      // and |sin(theta/2)| / (theta/2) across). Each component of T' and w' is a quadratic in t:
+      // its maximum modulus on [0, 1] is at the ends or the vertex.
+      const auto* m = static_cast<const fcl::SplineMotion<double>*>(s.motion);
+      const SplineControlPoints cp = splineControlPoints(*m);
+      auto maxDerivative = [&](const Eigen::Vector3d* d) {
+        // w_i'(t) = (a_i + b_i t + c_i t^2) / 6 (derivatives of the weights above).
+        static constexpr double a[4] = {-3, 0, 3, 0}, b[4] = {6, -12, 6, 0}, c[4] = {-3, 9, -9, 3};
+        double sum = 0.0;
+        for (int k = 0; k < 3; ++k) {
+          double q0 = 0, q1 = 0, q2 = 0;
+          for (int i = 0; i < 4; ++i) {
+            requireFinite(d[i][k], s.which, "spline control point");
+            q0 += a[i] * d[i][k] / 6;
+            q1 += b[i] * d[i][k] / 6;
+            q2 += c[i] * d[i][k] / 6;
+          }
+          auto q = [&](double t) { return std::abs(q0 + t * (q1 + t * q2)); };
+          double mx = std::max(q(0.0), q(1.0));
+          if (q2 != 0.0) {
+            const double tv = -q1 / (2 * q2);
+            if (tv > 0.0 && tv < 1.0) mx = std::max(mx, q(tv));
+          }
+          sum += mx * mx;
+        }
+        return std::sqrt(sum);
+      };
+      return (maxDerivative(cp.T) + maxDerivative(cp.R) * r) * (1.0 + 1e-12);
     }
     default: return std::numeric_limits<double>::infinity();
   }
@@ -661,7 +712,9 @@ S continuousCollide(const fcl::CollisionGeometry<S>* o1, const fcl::MotionBase<S
   if (r1 && r2) {
     const Ellipsoid a = bodyEllipsoid(*r1, "o1"), b = bodyEllipsoid(*r2, "o2");
     auto rational = [](MotionKind k) { return k == MotionKind::Rational || k == MotionKind::Translation; };
-    auto certified = [&](MotionKind k) { return rational(k) || k == MotionKind::Interp || k == MotionKind::Screw; };
+    auto certified = [&](MotionKind k) {
+      return rational(k) || k == MotionKind::Interp || k == MotionKind::Screw || k == MotionKind::Spline;
+    };
     if (rational(k1) && rational(k2)) return exactPair(a, motion1, k1, b, motion2, k2, result);
     if (certified(k1) && certified(k2)) {
       auto solid = [](const fcl::MotionBase<double>* m, MotionKind k, const char* which, const Eigen::Vector3d& radii) {
@@ -675,7 +728,7 @@ S continuousCollide(const fcl::CollisionGeometry<S>* o1, const fcl::MotionBase<S
       };
       return advancementPair(solid(motion1, k1, "motion1", *r1), solid(motion2, k2, "motion2", *r2), result);
     }
-    // SplineMotion or an unknown motion: no certified bound; FCL's answer (not certified).
+    // An unknown motion type: no certified bound; FCL's answer (not certified).
   }
 
   // Delegated pairs: FCL's narrow phase needs rigid poses.
@@ -715,7 +768,13 @@ S continuousCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S
       case fcl::CCDM_TRANS: return std::make_unique<fcl::TranslationMotion<S>>(beg, end);
       case fcl::CCDM_LINEAR: return std::make_unique<OriginInterpMotion>(beg, end);
       case fcl::CCDM_SCREW: return std::make_unique<fcl::ScrewMotion<S>>(beg, end);
-      case fcl::CCDM_SPLINE: return std::make_unique<fcl::SplineMotion<S>>(beg, end);
+      case fcl::CCDM_SPLINE:
+        // FCL 0.7's SplineMotion(tf1, tf2) is an empty TODO: its control points stay
+        // uninitialised, so no answer could be trusted. Build a SplineMotion from control points.
+        throw std::invalid_argument(std::string(kWhere) +
+                                    ": request.ccd_motion_type CCDM_SPLINE is not implemented by FCL 0.7 for two poses "
+                                    "(SplineMotion(tf1, tf2) leaves its control points uninitialised); pass "
+                                    "fcl::SplineMotion objects built from control points");
     }
     std::ostringstream os;
     os << kWhere << ": request.ccd_motion_type " << static_cast<int>(request.ccd_motion_type) << " is not a CCDMotionType";

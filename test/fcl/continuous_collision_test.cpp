@@ -420,7 +420,7 @@ TEST(ContinuousCollide, ConservativeAdvancementIsNeverLateAgainstADenseOracle) {
   std::uniform_real_distribution<double> ur(0.3, 1.5);
   int pairs = 0, colliding = 0, ca_only = 0, step_caps = 0, total_steps = 0;
   double max_gap = 0.0, t_ca = 0.0;
-  for (int kind = 0; kind < 2; ++kind) {  // 0: InterpMotion, 1: ScrewMotion
+  for (int kind = 0; kind < 3; ++kind) {  // 0: InterpMotion, 1: ScrewMotion, 2: SplineMotion
     for (int k = 0; k < 40; ++k) {
       const Eigen::Vector3d ra(ur(rng), ur(rng), ur(rng)), rb(ur(rng), ur(rng), ur(rng));
       const fcl::Transform3d a0 = randomPose(rng, 3.0), a1 = randomPose(rng, 3.0);
@@ -429,7 +429,13 @@ TEST(ContinuousCollide, ConservativeAdvancementIsNeverLateAgainstADenseOracle) {
       auto make = [&](const fcl::Transform3d& x0, const fcl::Transform3d& x1) {
         return [=]() -> Ptr {
           if (kind == 0) return std::make_shared<OriginInterp>(x0, x1);
-          return std::make_shared<fcl::ScrewMotion<double>>(x0, x1);
+          if (kind == 1) return std::make_shared<fcl::ScrewMotion<double>>(x0, x1);
+          // A cubic B-spline from x0 to x1 (control points doubled at the ends), rotation as a
+          // rotation vector.
+          const Eigen::AngleAxisd r0(x0.linear()), r1(x1.linear());
+          const Eigen::Vector3d w0 = r0.angle() * r0.axis(), w1 = r1.angle() * r1.axis();
+          return std::make_shared<fcl::SplineMotion<double>>(x0.translation(), x0.translation(), x1.translation(),
+                                                             x1.translation(), w0, w0, w1, w1);
         };
       };
       const auto make_a = make(a0, a1), make_b = make(b0, b1);
@@ -467,7 +473,7 @@ TEST(ContinuousCollide, ConservativeAdvancementIsNeverLateAgainstADenseOracle) {
     }
   }
   std::printf(
-      "[ info ] conservative advancement (InterpMotion, ScrewMotion): %d pairs, %d colliding by the oracle, %d "
+      "[ info ] conservative advancement (InterpMotion, ScrewMotion, SplineMotion): %d pairs, %d colliding by the oracle, %d "
       "more reported (near misses), max (t* - t) = %.2e, %.1f steps/pair, %d step caps, %.1f us/pair\n",
       pairs, colliding, ca_only, max_gap, static_cast<double>(total_steps) / pairs, step_caps, 1e6 * t_ca / pairs);
   EXPECT_GT(colliding, 10);
@@ -786,6 +792,10 @@ TEST(ContinuousCollide, BadInputThrowsNamingTheArgument) {
   fcl::ContinuousCollisionRequestd bad_type;
   bad_type.ccd_motion_type = static_cast<fcl::CCDMotionType>(17);
   expectInvalid([&] { fcl_quadric::continuousCollide(e.get(), I, I, e.get(), I, I, bad_type, res); }, "ccd_motion_type");
+  // FCL 0.7's SplineMotion(tf1, tf2) leaves its control points uninitialised: refused.
+  fcl::ContinuousCollisionRequestd spline;
+  spline.ccd_motion_type = fcl::CCDM_SPLINE;
+  expectInvalid([&] { fcl_quadric::continuousCollide(e.get(), I, I, e.get(), I, I, spline, res); }, "CCDM_SPLINE");
   expectInvalid([&] { m.speedBound(Eigen::Vector3d::Zero(), 1.0, 1.5); }, "t0");
   // Visitors whose bounding volume RationalMotion cannot read, and Taylor models.
   fcl::AABBd aabb(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());
