@@ -328,21 +328,26 @@ TEST(EllipsoidCcd, RandomAffineMotionsAgreeWithTheSampledStaticOracle) {
   EXPECT_GT(transversal, 3);
 }
 
-// Rigid motions of degree 5 given as explicit matrices: the product of two motions from poses
-// (a body rotating on a rotating arm), validated and inverted through the general adjugate path
-// (N = [[w adj L, -adj(L) v], [0, det L]] of degree 15, F of high degree in t).
+// Serial-chain motions (thesis §5.4.2): a link on a rotating arm (rotation of degree 4, motion of
+// degree 5), built by compose() (inverse = product of the factors' inverses) or given as an explicit
+// matrix (validated, rigid-aware inverse [[w L^T, -L^T v], [0, sigma]]), and a third joint
+// (rotation of degree 6, the thesis' fingers). F has degree 34 to 66 in t.
 TEST(EllipsoidCcd, HighDegreeComposedMotionsAgreeWithTheSampledStaticOracle) {
   std::mt19937_64 rng(404);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   int transversal = 0, colliding = 0;
-  for (int k = 0; k < 16; ++k) {
+  for (int k = 0; k < 18; ++k) {
     const MotionMatrix base = MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d(U(rng), U(rng), 0),
                                                       test::randomRotation(rng), Eigen::Vector3d(U(rng), U(rng), 0));
     const MotionMatrix arm = MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d(2.0, 0, 0),
                                                      test::randomRotation(rng), Eigen::Vector3d(2.0, 0.5, 0));
-    const MotionMatrix composed = (k % 2 == 0) ? MotionMatrix::compose(base, arm)
-                                               : MotionMatrix::fromPolynomialMatrix(base.matrix() * arm.matrix());
-    EXPECT_EQ(composed.degree(), 5);  // rotation 4, translation column 5, w 4
+    // k % 3 == 2: a third joint (the thesis' fingers, rotation of degree 6).
+    const MotionMatrix finger = MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d(0.5, 0, 0),
+                                                        test::randomRotation(rng), Eigen::Vector3d(0.5, 0, 0));
+    const MotionMatrix composed = (k % 3 == 0)   ? MotionMatrix::compose(base, arm)
+                                  : (k % 3 == 1) ? MotionMatrix::fromPolynomialMatrix(base.matrix() * arm.matrix())
+                                                 : MotionMatrix::compose(MotionMatrix::compose(base, arm), finger);
+    EXPECT_EQ(composed.degree(), k % 3 == 2 ? 7 : 5);  // rotation 4 (6 with the finger), translation 5 (7)
     EXPECT_TRUE(composed.isRigid());
     const MovingEllipsoid A{bodyEllipsoid(Eigen::Vector3d(0.8, 0.3, 0.3)), PiecewiseMotion(composed)};
     // An obstacle near the link's mid-motion position, so the link usually sweeps into it (or
