@@ -488,19 +488,49 @@ class IntervalSolver {
   // when on every u-slab either F <= band (convex hull) or F_t has one strict sign (then F is
   // monotone in t on each vertical line and cannot exceed its end values; no loop of the zero
   // set, thesis §5.3.1).
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
   bool overlapCertified(double t1, double t2, double band) {
-    const BivariateBernstein G = F_.restrict(0.0, 1.0, t1, t2);
-    return slabCertified(G, 0.0, 1.0, band, 0);
+    // F restricted to [t1, t2] in t, row by row in place (no allocation per row).
+    RowMajor G = F_.coefficients();
+    const int n = static_cast<int>(G.cols()) - 1;
+    const double w = F_.tUpper() - F_.tLower();
+    const double a = (t1 - F_.tLower()) / w, b = (t2 - F_.tLower()) / w;
+    for (Eigen::Index i = 0; i < G.rows(); ++i) {
+      if (a > 0.0) keepRight(G.row(i).data(), n, a);
+      if (b < 1.0) keepLeft(G.row(i).data(), n, (b - a) / (1.0 - a));
+    }
+    RowMajor S(G.rows(), G.cols());
+    return slabCertified(G, &S, 0.0, 1.0, band, 0);
   }
 
-  bool slabCertified(const BivariateBernstein& G, double ua, double ub, double band, int depth) {
-    const BivariateBernstein S = (ua == G.uLower() && ub == G.uUpper()) ? G : G.restrict(ua, ub, G.tLower(), G.tUpper());
-    if (S.maxCoefficient() <= band) return true;
-    const BivariateBernstein St = S.derivativeT();
-    if (St.minCoefficient() > 0.0 || St.maxCoefficient() < 0.0) return true;
+  // G on [0, 1] in u; S is scratch space of the same size.
+  bool slabCertified(const RowMajor& G, RowMajor* S, double ua, double ub, double band, int depth) {
+    const int m = static_cast<int>(G.rows()) - 1;
+    *S = G;
+    if (ua > 0.0 || ub < 1.0) {  // restrict every column (degree 4 in u) to [ua, ub]
+      double col[8];
+      for (Eigen::Index j = 0; j < G.cols(); ++j) {
+        for (int i = 0; i <= m; ++i) col[i] = G(i, j);
+        if (ua > 0.0) keepRight(col, m, ua);
+        if (ub < 1.0) keepLeft(col, m, (ub - ua) / (1.0 - ua));
+        for (int i = 0; i <= m; ++i) (*S)(i, j) = col[i];
+      }
+    }
+    if (S->maxCoeff() <= band) return true;
+    // The Bernstein coefficients of F_t are positive multiples of the differences along t.
+    bool increasing = true, decreasing = true;
+    for (Eigen::Index i = 0; i < S->rows() && (increasing || decreasing); ++i) {
+      for (Eigen::Index j = 0; j + 1 < S->cols(); ++j) {
+        const double d = (*S)(i, j + 1) - (*S)(i, j);
+        increasing = increasing && d > 0.0;
+        decreasing = decreasing && d < 0.0;
+      }
+    }
+    if (increasing || decreasing) return true;
     if (depth >= tolerance::kCcdMaxSlabDepth) return false;
     const double um = 0.5 * (ua + ub);
-    return slabCertified(G, ua, um, band, depth + 1) && slabCertified(G, um, ub, band, depth + 1);
+    return slabCertified(G, S, ua, um, band, depth + 1) && slabCertified(G, S, um, ub, band, depth + 1);
   }
 
   void process(double t1, State s1, double t2, State s2) {
