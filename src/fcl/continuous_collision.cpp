@@ -763,25 +763,34 @@ S continuousCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S
     g_stats.path = ContinuousCollideStats::Path::Delegated;
     return fcl::continuousCollide(o1, tf1_beg, tf1_end, o2, tf2_beg, tf2_end, request, result);
   }
-  auto make = [&](const fcl::Transform3<S>& beg, const fcl::Transform3<S>& end) -> std::unique_ptr<fcl::MotionBase<S>> {
-    switch (request.ccd_motion_type) {
-      case fcl::CCDM_TRANS: return std::make_unique<fcl::TranslationMotion<S>>(beg, end);
-      case fcl::CCDM_LINEAR: return std::make_unique<OriginInterpMotion>(beg, end);
-      case fcl::CCDM_SCREW: return std::make_unique<fcl::ScrewMotion<S>>(beg, end);
-      case fcl::CCDM_SPLINE:
-        // FCL 0.7's SplineMotion(tf1, tf2) is an empty TODO: its control points stay
-        // uninitialised, so no answer could be trusted. Build a SplineMotion from control points.
-        throw std::invalid_argument(std::string(kWhere) +
-                                    ": request.ccd_motion_type CCDM_SPLINE is not implemented by FCL 0.7 for two poses "
-                                    "(SplineMotion(tf1, tf2) leaves its control points uninitialised); pass "
-                                    "fcl::SplineMotion objects built from control points");
+  // The motions live on the stack: FCL's motion classes declare EIGEN_MAKE_ALIGNED_OPERATOR_NEW,
+  // which is empty in this C++17 code but a real class operator delete in libfcl (built as C++14),
+  // so a heap object allocated here would be freed there with a mismatched deallocation
+  // (AddressSanitizer: alloc-dealloc-mismatch).
+  switch (request.ccd_motion_type) {
+    case fcl::CCDM_TRANS: {
+      const fcl::TranslationMotion<S> m1(tf1_beg, tf1_end), m2(tf2_beg, tf2_end);
+      return fcl_quadric::continuousCollide(o1, &m1, o2, &m2, request, result);
     }
-    std::ostringstream os;
-    os << kWhere << ": request.ccd_motion_type " << static_cast<int>(request.ccd_motion_type) << " is not a CCDMotionType";
-    throw std::invalid_argument(os.str());
-  };
-  const std::unique_ptr<fcl::MotionBase<S>> m1 = make(tf1_beg, tf1_end), m2 = make(tf2_beg, tf2_end);
-  return fcl_quadric::continuousCollide(o1, m1.get(), o2, m2.get(), request, result);
+    case fcl::CCDM_LINEAR: {
+      const OriginInterpMotion m1(tf1_beg, tf1_end), m2(tf2_beg, tf2_end);
+      return fcl_quadric::continuousCollide(o1, &m1, o2, &m2, request, result);
+    }
+    case fcl::CCDM_SCREW: {
+      const fcl::ScrewMotion<S> m1(tf1_beg, tf1_end), m2(tf2_beg, tf2_end);
+      return fcl_quadric::continuousCollide(o1, &m1, o2, &m2, request, result);
+    }
+    case fcl::CCDM_SPLINE:
+      // FCL 0.7's SplineMotion(tf1, tf2) is an empty TODO: its control points stay
+      // uninitialised, so no answer could be trusted. Build a SplineMotion from control points.
+      throw std::invalid_argument(std::string(kWhere) +
+                                  ": request.ccd_motion_type CCDM_SPLINE is not implemented by FCL 0.7 for two poses "
+                                  "(SplineMotion(tf1, tf2) leaves its control points uninitialised); pass "
+                                  "fcl::SplineMotion objects built from control points");
+  }
+  std::ostringstream os;
+  os << kWhere << ": request.ccd_motion_type " << static_cast<int>(request.ccd_motion_type) << " is not a CCDMotionType";
+  throw std::invalid_argument(os.str());
 }
 
 template <typename S>
