@@ -99,32 +99,6 @@ struct Settings {
   std::size_t random_pairs = 2000;
 };
 
-bool takeFlag(int* argc, char** argv, const char* name, const char* env) {
-  bool value = false;
-  if (const char* e = std::getenv(env)) value = e[0] != '\0' && std::strcmp(e, "0") != 0;
-  const std::string flag = std::string("--") + name;
-  int out = 1;
-  for (int i = 1; i < *argc; ++i) {
-    if (flag == argv[i]) {
-      value = true;
-    } else {
-      argv[out++] = argv[i];
-    }
-  }
-  *argc = out;
-  argv[out] = nullptr;
-  return value;
-}
-
-std::string loadAverage() {
-  std::ifstream f("/proc/loadavg");
-  double a = 0, b = 0, c = 0;
-  if (!(f >> a >> b >> c)) return "unknown";
-  char text[64];
-  std::snprintf(text, sizeof text, "%.2f %.2f %.2f", a, b, c);
-  return text;
-}
-
 double nowUs() {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }

@@ -99,24 +99,6 @@ struct Settings {
   int torus_nu = 64, torus_nv = 32;
 };
 
-/// Removes `--name` from argv; true if it was there or the environment variable is set (not "0").
-bool takeFlag(int* argc, char** argv, const char* name, const char* env) {
-  bool value = false;
-  if (const char* e = std::getenv(env)) value = e[0] != '\0' && std::strcmp(e, "0") != 0;
-  const std::string flag = std::string("--") + name;
-  int out = 1;
-  for (int i = 1; i < *argc; ++i) {
-    if (flag == argv[i]) {
-      value = true;
-    } else {
-      argv[out++] = argv[i];
-    }
-  }
-  *argc = out;
-  argv[out] = nullptr;
-  return value;
-}
-
 // ------------------------------------------------------------------------------------------------
 // (a) Moving ellipsoids
 

@@ -80,15 +80,6 @@ inline Eigen::Vector3d ellipsoidHalfExtents(const Ellipsoid& e) {
 }
 
 /// "1.23 0.98 0.75" from /proc/loadavg (1, 5 and 15 minute load averages), or "unknown".
-inline std::string loadAverage() {
-  std::ifstream f("/proc/loadavg");
-  double a = 0, b = 0, c = 0;
-  if (!(f >> a >> b >> c)) return "unknown";
-  char text[64];
-  std::snprintf(text, sizeof text, "%.2f %.2f %.2f", a, b, c);
-  return text;
-}
-
 // ------------------------------------------------------------------------------------------------
 // (a) Moving ellipsoids
 

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <random>
 #include <string>
@@ -65,6 +66,34 @@ inline PairSet anchorPairs(std::size_t n, std::uint64_t seed = 42) {
 
 /// Reads `--<name> N` or `--<name>=N` from argv and removes it (before benchmark::Initialize);
 /// else the environment variable `env`; else `fallback`.
+/// Removes `--name` from argv; true if it was there or the environment variable is set (not "0").
+inline bool takeFlag(int* argc, char** argv, const char* name, const char* env) {
+  bool value = false;
+  if (const char* e = std::getenv(env)) value = e[0] != '\0' && std::strcmp(e, "0") != 0;
+  const std::string flag = std::string("--") + name;
+  int out = 1;
+  for (int i = 1; i < *argc; ++i) {
+    if (flag == argv[i]) {
+      value = true;
+    } else {
+      argv[out++] = argv[i];
+    }
+  }
+  *argc = out;
+  argv[out] = nullptr;
+  return value;
+}
+
+/// The 1, 5 and 15 minute load averages ("unknown" if /proc/loadavg cannot be read).
+inline std::string loadAverage() {
+  std::ifstream f("/proc/loadavg");
+  double a = 0, b = 0, c = 0;
+  if (!(f >> a >> b >> c)) return "unknown";
+  char text[64];
+  std::snprintf(text, sizeof text, "%.2f %.2f %.2f", a, b, c);
+  return text;
+}
+
 inline std::size_t takeSizeOption(int* argc, char** argv, const char* name, const char* env,
                                   std::size_t fallback) {
   std::size_t value = fallback;

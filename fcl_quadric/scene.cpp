@@ -289,6 +289,15 @@ CcdSettings readCcdSettings(const json& node, const std::string& pointer) {
   return settings;
 }
 
+/// The object's non-empty "name".
+std::string readName(const json& node, const std::string& pointer) {
+  const json& name = requireField(node, pointer, "name");
+  requireType(name, child(pointer, "name"), json::value_t::string, "a string");
+  std::string text = name.get<std::string>();
+  if (text.empty()) fail(child(pointer, "name"), "object name must not be empty");
+  return text;
+}
+
 // --- Planar scenes (dimension 2) -------------------------------------------------------------
 
 Eigen::Matrix3d readPose2(const json& node, const std::string& pointer) {
@@ -369,10 +378,7 @@ SceneObject readObject2(const json& node, const std::string& pointer) {
   requireType(node, pointer, json::value_t::object, "an object");
   rejectUnknownFields(node, pointer, {"name", "shape", "pose", "motion"});
   SceneObject object;
-  const json& name = requireField(node, pointer, "name");
-  requireType(name, child(pointer, "name"), json::value_t::string, "a string");
-  object.name = name.get<std::string>();
-  if (object.name.empty()) fail(child(pointer, "name"), "object name must not be empty");
+  object.name = readName(node, pointer);
   const json& shape = requireField(node, pointer, "shape");
   const std::string sp = child(pointer, "shape");
   requireType(shape, sp, json::value_t::object, "an object");
@@ -401,10 +407,7 @@ SceneObject readObject(const json& node, const std::string& pointer) {
   requireType(node, pointer, json::value_t::object, "an object");
   rejectUnknownFields(node, pointer, {"name", "shape", "pose", "motion"});
   SceneObject object;
-  const json& name = requireField(node, pointer, "name");
-  requireType(name, child(pointer, "name"), json::value_t::string, "a string");
-  object.name = name.get<std::string>();
-  if (object.name.empty()) fail(child(pointer, "name"), "object name must not be empty");
+  object.name = readName(node, pointer);
   object.shape = readShape(requireField(node, pointer, "shape"), child(pointer, "shape"));
   if (const auto it = node.find("pose"); it != node.end()) object.pose = readPose(*it, child(pointer, "pose"));
   if (const auto it = node.find("motion"); it != node.end()) {

@@ -15,6 +15,7 @@
 
 #include "fcl_quadric/algebra/root_isolation.h"
 #include "fcl_quadric/algebra/sturm_sequence.h"
+#include "fcl_quadric/continuous/motion_matrix.h"
 
 namespace fcl_quadric {
 namespace {
@@ -52,17 +53,10 @@ double maxAbsCoefficient(const PolynomialMatrix3& M) {
   return m;
 }
 
-/// Certifies that p has no root in [0, 1] (Bernstein root exclusion); throws naming `what`.
+/// Certifies that p has no root in [0, 1]; throws naming `where` and `what` (the motion layer's
+/// check, detail::checkNoRootOnUnitInterval: Bernstein root exclusion, a possible root counts).
 void requireRootFree(const char* where, const std::string& what, const Polynomial& p) {
-  if (p.isZero()) {
-    throw std::invalid_argument(std::string(where) + ": " + what + " is identically zero");
-  }
-  const BernsteinPolynomial bp = BernsteinPolynomial::fromPower(p, 0.0, 1.0);
-  const std::optional<double> r = firstRoot(bp, kEllipseValidationTolerance);
-  if (r) {
-    throw std::invalid_argument(std::string(where) + ": " + what + " may vanish in [0, 1] (near t = " + fmt(*r) +
-                                ")");
-  }
+  detail::checkNoRootOnUnitInterval(p, (std::string(where) + ": " + what).c_str());
 }
 
 /// det(lambda A - B) of numeric matrices, and the matching absolute scale: the coefficients of

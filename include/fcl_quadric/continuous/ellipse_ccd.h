@@ -74,9 +74,6 @@ constexpr int kMaxEllipseEvents = 4096;
 /// motions throw std::invalid_argument.
 constexpr int kMaxEllipseMotionDegree = 16;
 
-/// Tolerance (in t) for the validity checks of the motions (the certified root-exclusion of
-/// w(t) and det L(t) on [0, 1]; see root_isolation.h firstRoot()).
-constexpr double kEllipseValidationTolerance = 1e-12;
 
 /// Chapter 3: two containing planes are treated as parallel at time t when
 /// |n_A x n_B| <= this times |n_A| |n_B| (normals from the motions). Dimensionless.
