@@ -29,11 +29,12 @@ namespace fcl_quadric {
 
 /// F(u, t) = det((u - 1) A(t) - u B(t)) in the Bernstein basis of [0, 1] x [0, 1] (rows: u index
 /// 0..4, columns: t index). \throws std::invalid_argument if an entry has a non-finite
-/// coefficient.
+/// coefficient or the degree in t exceeds 400.
 BivariateBernstein ccdFunction(const PolynomialMatrix4& A, const PolynomialMatrix4& B);
 
 /// det M(t) of a polynomial matrix, computed in the scaled Bernstein basis as above and returned
-/// in the Bernstein basis of [0, 1] at its structural degree.
+/// in the Bernstein basis of [0, 1] at its structural degree. \throws std::invalid_argument if the
+/// degree exceeds the binomial table (400) or a coefficient is not finite.
 BernsteinPolynomial bernsteinDeterminant(const PolynomialMatrix4& M);
 
 }  // namespace fcl_quadric

@@ -103,7 +103,8 @@ struct EllipsoidCcdResult {
 EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const MovingEllipsoid& b,
                                                const CcdOptions& options = CcdOptions());
 
-/// The world ellipsoid of a moving ellipsoid at time t (affine image of the body ellipsoid).
+/// The world ellipsoid of a moving ellipsoid at time t (affine image of the body ellipsoid, thesis
+/// §5.1). \throws std::invalid_argument if t is not finite (t outside [0, 1] extrapolates).
 Ellipsoid ellipsoidAt(const MovingEllipsoid& m, double t);
 
 }  // namespace fcl_quadric

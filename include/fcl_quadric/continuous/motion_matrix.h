@@ -111,7 +111,9 @@ PolynomialMatrix4 movingQuadric(const Eigen::Matrix4d& Q_body, const MotionMatri
 
 /// (N(t) S)^T Q (N(t) S) for a polynomial matrix N and a constant S, symmetrised, computed on the
 /// coefficient matrices (N = sum_k N_k t^k gives sum_m t^m sum_{k+l=m} (N_k S)^T Q N_l S):
-/// fixed-size 4x4 products instead of per-entry polynomial arithmetic.
+/// fixed-size 4x4 products instead of per-entry polynomial arithmetic (thesis §5.1: the moving
+/// quadric A(t) = M^{-T} A M^{-1} up to c(t)^2). Inputs are taken as given (no validation; a
+/// non-finite entry yields a non-finite result, which the consumers' constructors reject).
 PolynomialMatrix4 congruence(const Eigen::Matrix4d& Q, const PolynomialMatrix4& N,
                              const Eigen::Matrix4d& S = Eigen::Matrix4d::Identity());
 /// The same from the coefficient matrices N_k (e.g. MotionMatrix::inverseCoefficients()).
@@ -119,7 +121,7 @@ PolynomialMatrix4 congruence(const Eigen::Matrix4d& Q, const std::vector<Eigen::
                              const Eigen::Matrix4d& S = Eigen::Matrix4d::Identity());
 
 /// The coefficient matrices of a polynomial matrix: M(t) = sum_k result[k] t^k (maxDegree() + 1
-/// of them).
+/// of them). No failure mode (PolynomialMatrix4 entries are finite by construction).
 std::vector<Eigen::Matrix4d> coefficientMatrices(const PolynomialMatrix4& M);
 
 /// A piecewise rational motion over [0, 1]: motion k is used on [breaks[k], breaks[k+1]] and is
