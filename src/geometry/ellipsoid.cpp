@@ -71,7 +71,6 @@ Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, 
        << p_WE.transpose() << "]";
     throw std::invalid_argument(os.str());
   }
-  inv_radii_ = radii_.cwiseInverse();  // after validation: radii are finite and > 0
 }
 
 Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Isometry3d& X_WE)

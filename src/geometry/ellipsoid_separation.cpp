@@ -65,14 +65,14 @@ bool sphereTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificate* o
     const double D = std::sqrt(D2);
     out->status = Separation::Separated;
     out->normal = d / D;
-    out->witness = a.center() + (0.5 * (D + a.maxRadius() - b.maxRadius())) * out->normal;
+    out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (a.maxRadius() - b.maxRadius())) * out->normal;
     out->precision_stage = -1;
     return true;
   }
   const double ra = a.radii().minCoeff(), rb = b.radii().minCoeff(), inner = ra + rb;
   if (D2 < inner * inner * (1.0 - tau)) {
     out->status = Separation::Overlapping;
-    out->witness = a.center() + (ra / inner) * d;  // inside both inscribed balls
+    out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (ra - rb) / inner) * d;  // inside both inscribed balls
     out->normal = D2 > 0.0 ? Eigen::Vector3d(d / std::sqrt(D2)) : Eigen::Vector3d::UnitX();
     out->precision_stage = -1;
     return true;
@@ -80,12 +80,49 @@ bool sphereTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificate* o
   return false;
 }
 
-/// Centre-line pre-test along n = (p_b - p_a)/|p_b - p_a|. Separated if the supports along n are
-/// disjoint: h_a(n) + h_b(-n) < n.(p_b - p_a), with h = n.p + |S R^T n|. Overlapping if the
-/// segment between the centres is covered: rho_a + rho_b > |p_b - p_a|, where
-/// rho = 1/|S^-1 R^T n| is the distance from the centre to the surface along n (exact for the
-/// ellipsoid's definition). Every term is a sum of non-negative quantities, so a relative margin
-/// of 2^-40 covers the rounding.
+/// Separation along a direction m (any length): h_a(m) + h_b(-m) < m.(p_b - p_a) with
+/// h(m) = m.p + |S R^T m| the support function. Every rounded quantity (m.d, |S R^T m|) is a sum
+/// or norm whose rounding is below 8 eps times its absolute evaluation sum|m_i d_i| + h_a + h_b,
+/// so the relative margin tau = 2^-40 covers it.
+bool separatedAlong(const Eigen::Vector3d& m, const Eigen::Vector3d& d, const Ellipsoid& a,
+                    const Ellipsoid& b, double tau, SeparationCertificate* out) {
+  const double ha = (a.rotation().transpose() * m).cwiseProduct(a.radii()).norm();
+  const double hb = (b.rotation().transpose() * m).cwiseProduct(b.radii()).norm();
+  const double md = m.dot(d);
+  const double scale = m.cwiseAbs().dot(d.cwiseAbs()) + ha + hb;
+  if (!(md - ha - hb > tau * scale)) return false;
+  const double m2 = m.squaredNorm();
+  out->status = Separation::Separated;
+  out->normal = m / std::sqrt(m2);
+  out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (ha - hb) / m2) * m;  // on the mid-plane of the gap
+  out->precision_stage = -1;
+  return true;
+}
+
+/// x strictly inside e: q_e(x) = |S^-1 R^T (x - p)|^2 - 1 < -tau (1 + (|x|_1 + |p|_1) / r_min).
+/// The rounding of x - p is below eps (|x|_1 + |p|_1) per coordinate, that of the rotation and
+/// division a few eps of |S^-1 R^T (x - p)| <= 1 (otherwise the test fails anyway), so the
+/// margin covers the rounding of q_e(x) for any x with a relative factor of > 1000.
+bool strictlyInside(const Ellipsoid& e, const Eigen::Vector3d& x, double tau) {
+  const double q = (e.rotation().transpose() * (x - e.center())).cwiseProduct(e.inverseRadii()).squaredNorm() - 1.0;
+  const double spread = (x.cwiseAbs().sum() + e.center().cwiseAbs().sum()) / e.radii().minCoeff();
+  return q < -tau * (1.0 + spread);
+}
+
+/// Centre-line pre-tests along n = (p_b - p_a)/|p_b - p_a|, then two cheap follow-ups on the
+/// same data before the pencil (docs/algorithms.md §1, "Pre-tests"):
+///  1. Separated if the supports along n are disjoint: h_a(n) + h_b(-n) < n.(p_b - p_a), with
+///     h = n.p + |S R^T n|.
+///  2. Overlapping if the segment between the centres is covered: rho_a + rho_b > |p_b - p_a|,
+///     where rho = 1/|S^-1 R^T n| is the distance from the centre to the surface along n.
+///  3. Separated along m = n_a + n_b, the sum of the unit outward normals of a and -b at the
+///     points where the centre line leaves a and enters b (a Gauss-map step towards the common
+///     normal of Theorem 4.6's plane): certified by separatedAlong().
+///  4. Overlapping if the midpoint of the support points of a along n and of b along -n is
+///     strictly inside both (strictlyInside()).
+/// Every test is certified (a relative margin of 2^-40 over the absolute evaluation) and
+/// symmetric in (a, b) bit for bit: swapping negates d, n and m exactly, which leaves every norm,
+/// decision and witness (written about the midpoint of the centres) unchanged.
 bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificate* out) {
   const Eigen::Vector3d d = b.center() - a.center();
   const double D = d.norm();
@@ -93,20 +130,38 @@ bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificat
   const Eigen::Vector3d n = d / D;
   const Eigen::Vector3d ua = a.rotation().transpose() * n, ub = b.rotation().transpose() * n;
   const double tau = tolerance::kCertificateRelativeBoundDouble;
-  const double ha = ua.cwiseProduct(a.radii()).norm(), hb = ub.cwiseProduct(b.radii()).norm();
+  const Eigen::Vector3d sa = ua.cwiseProduct(a.radii()), sb = ub.cwiseProduct(b.radii());
+  const double ha = sa.norm(), hb = sb.norm();
   if (ha + hb < D * (1.0 - tau)) {
     out->status = Separation::Separated;
     out->normal = n;
-    out->witness = a.center() + (0.5 * (D + ha - hb)) * n;
+    out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (ha - hb)) * n;
     out->precision_stage = -1;
     return true;
   }
-  const double rho_a = 1.0 / ua.cwiseProduct(a.inverseRadii()).norm();
-  const double rho_b = 1.0 / ub.cwiseProduct(b.inverseRadii()).norm();
+  const Eigen::Vector3d ia = ua.cwiseProduct(a.inverseRadii()), ib = ub.cwiseProduct(b.inverseRadii());
+  const double rho_a = 1.0 / ia.norm();
+  const double rho_b = 1.0 / ib.norm();
   if (rho_a + rho_b > D * (1.0 + tau)) {
     out->status = Separation::Overlapping;
     out->normal = n;
-    out->witness = a.center() + (0.5 * (D - rho_b + rho_a)) * n;  // inside both
+    out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (rho_a - rho_b)) * n;  // inside both
+    out->precision_stage = -1;
+    return true;
+  }
+  // 3. Outward normal of a at p_a + rho_a n is R_a S_a^-1 (S_a^-1 R_a^T n) = R_a (ia ./ r_a); the
+  // outward normal of b at p_b - rho_b n is -R_b (ib ./ r_b), so -b's is +R_b (ib ./ r_b).
+  const Eigen::Vector3d na = a.rotation() * ia.cwiseProduct(a.inverseRadii());
+  const Eigen::Vector3d nb = b.rotation() * ib.cwiseProduct(b.inverseRadii());
+  const double la = na.norm(), lb = nb.norm();
+  if (la > 0.0 && lb > 0.0 && separatedAlong(na / la + nb / lb, d, a, b, tau, out)) return true;
+  // 4. Support points: p_a + R_a S_a (sa / ha) and p_b - R_b S_b (sb / hb).
+  const Eigen::Vector3d x = 0.5 * ((a.center() + a.rotation() * (sa.cwiseProduct(a.radii()) / ha)) +
+                                   (b.center() - b.rotation() * (sb.cwiseProduct(b.radii()) / hb)));
+  if (strictlyInside(a, x, tau) && strictlyInside(b, x, tau)) {
+    out->status = Separation::Overlapping;
+    out->normal = n;
+    out->witness = x;
     out->precision_stage = -1;
     return true;
   }
@@ -117,13 +172,12 @@ bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificat
 
 SeparationCertificate classifyEllipsoids(const Ellipsoid& a, const Ellipsoid& b) {
   SeparationCertificate cert;
+  // The pre-tests are symmetric in (a, b) by construction, so only the pencil needs the
+  // canonical order.
+  if (sphereTest(a, b, &cert) || centreLineTest(a, b, &cert)) return cert;
   const bool swap = detail::swapForCanonicalOrder(a, b);
   const Ellipsoid& A = swap ? b : a;
   const Ellipsoid& B = swap ? a : b;
-  if (sphereTest(A, B, &cert) || centreLineTest(A, B, &cert)) {
-    if (swap) cert.normal = -cert.normal;
-    return cert;
-  }
 
   // Stage 0: double.
   detail::Pencil<double> p = detail::makePencil<double>(A, B);
