@@ -1,6 +1,7 @@
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 
 #include <array>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -141,6 +142,34 @@ Separation ellipsoidBoxStatus(const Ellipsoid& e, const Eigen::Vector3d& half_ex
     const double glen = std::sqrt(g2);
     if (glen > 0.0) {
       const double lowest = glen - (G.transpose() * (g / glen)).cwiseAbs().sum();
+      if (lowest > 1.0 + tau * (1.0 + scale)) return Separation::Separated;
+    }
+    // Near the surface (the OcTree leaves that survive FCL's bounding-volume tests): approximate
+    // the point of the parallelepiped nearest the centre, u = g + G s, s in [-1,1]^3, by
+    // kBoxNearestPointSweeps sweeps of exact coordinate descent on |g + G s|^2 (each step is the
+    // clamped 1-D minimiser). Any such u is a point of the box, and the box's lowest point along
+    // n = u/|u| bounds it from below, so the same two certificates apply: u strictly inside the
+    // unit ball (overlap), or the whole box beyond the plane u.n = 1 (separation). Undecided
+    // pairs (within about the descent's error of tangency) go to the full test.
+    constexpr int kBoxNearestPointSweeps = 3;
+    Eigen::Vector3d sv = Eigen::Vector3d::Zero();
+    Eigen::Vector3d u = g;
+    for (int sweep = 0; sweep < kBoxNearestPointSweeps; ++sweep) {
+      for (int j = 0; j < 3; ++j) {
+        const double gj2 = G.col(j).squaredNorm();
+        if (!(gj2 > 0.0)) continue;
+        const double sj = std::clamp(sv[j] - G.col(j).dot(u) / gj2, -1.0, 1.0);
+        u += (sj - sv[j]) * G.col(j);
+        sv[j] = sj;
+      }
+    }
+    u = g + G * sv;  // recomputed from s: the point of the box the certificates speak about
+    const double u2 = u.squaredNorm();
+    if (u2 < 1.0 - tau * (1.0 + scale * scale)) return Separation::Overlapping;
+    const double ulen = std::sqrt(u2);
+    if (ulen > 0.0) {
+      const Eigen::Vector3d n = u / ulen;
+      const double lowest = n.dot(g) - (G.transpose() * n).cwiseAbs().sum();
       if (lowest > 1.0 + tau * (1.0 + scale)) return Separation::Separated;
     }
   }

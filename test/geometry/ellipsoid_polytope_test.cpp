@@ -85,6 +85,37 @@ TEST(EllipsoidBox, AgreesWithProjectedGradientOracle) {
   EXPECT_GT(counts[2], 100);  // overlapping
 }
 
+// The OcTree regime: small axis-aligned boxes whose corner touches the ellipsoid at a support
+// point P (outward normal d), moved by a relative gap along d. The box lies in d.x >= d.P + delta
+// and the ellipsoid in d.x <= d.P, so delta > 0 separates; for delta < 0 the corner P + delta d is
+// inside. The fast status (whose descent pre-test decides most such boxes) and the full test must
+// both give that answer at every gap down to 1e-9.
+TEST(EllipsoidBox, SmallBoxesAtTheSurfaceAreDecidedOnTheRightSide) {
+  std::mt19937_64 rng(103);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), uh(0.005, 0.05);
+  int cases = 0;
+  for (int i = 0; i < 400; ++i) {
+    const Ellipsoid e(test::randomRadii(rng, 0.2, 5.0), test::randomRotation(rng), {u(rng), u(rng), u(rng)});
+    Eigen::Vector3d d(u(rng), u(rng), u(rng));
+    if (!(d.norm() > 0.1)) continue;
+    d.normalize();
+    const Eigen::Vector3d P = e.supportPoint(d);
+    const Eigen::Vector3d h(uh(rng), uh(rng), uh(rng));
+    const Eigen::Vector3d corner_offset = h.cwiseProduct(d.cwiseSign());
+    const double scale = e.maxRadius() + e.center().norm();
+    for (double gap : {1e-3, 1e-5, 1e-7, 1e-9}) {
+      for (double sign : {1.0, -1.0}) {
+        const Eigen::Vector3d c = P + corner_offset + (sign * gap * scale) * d;
+        const Separation expected = sign > 0 ? Separation::Separated : Separation::Overlapping;
+        ASSERT_EQ(ellipsoidBoxStatus(e, h, Eigen::Matrix3d::Identity(), c), expected) << "case " << i << " gap " << sign * gap;
+        ASSERT_EQ(classifyEllipsoidBox(e, h, Eigen::Matrix3d::Identity(), c).status, expected) << "case " << i;
+        ++cases;
+      }
+    }
+  }
+  EXPECT_GT(cases, 2500);
+}
+
 TEST(EllipsoidBox, TangencyConstructionsAreDecidedOnTheRightSide) {
   const Ellipsoid e({1, 2, 3}, Eigen::Matrix3d::Identity(), {0, 0, 0});
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
