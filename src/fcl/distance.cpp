@@ -41,6 +41,20 @@ double distance<fcl_quadric::QuadricSolver<double>>(const CollisionGeometry<doub
   const NarrowPhaseSolver* nsolver = nsolver_;
   if (!nsolver_) nsolver = new NarrowPhaseSolver();
 
+  // fcl_quadric: FCL 0.7's table has no (Halfspace, Ellipsoid) entry (distance_func_matrix-inl.h
+  // lists every other half-space pair); QuadricSolver answers that order exactly, so the entry is
+  // added once, thread-safely (a function-local static), before the first lookup. Every lookup
+  // in this table goes through this function.
+  static const bool halfspace_ellipsoid_added = [] {
+    auto& table = getDistanceFunctionLookTable<NarrowPhaseSolver>();
+    if (!table.distance_matrix[GEOM_HALFSPACE][GEOM_ELLIPSOID]) {
+      table.distance_matrix[GEOM_HALFSPACE][GEOM_ELLIPSOID] =
+          &detail::ShapeShapeDistance<Halfspace<S>, Ellipsoid<S>, NarrowPhaseSolver>;
+    }
+    return true;
+  }();
+  (void)halfspace_ellipsoid_added;
+
   const auto& looktable = getDistanceFunctionLookTable<NarrowPhaseSolver>();
 
   OBJECT_TYPE object_type1 = o1->getObjectType();

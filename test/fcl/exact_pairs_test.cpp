@@ -222,8 +222,8 @@ TEST(ExactEllipsoidHalfspace, ContactsMatchFclClosedFormInBothOrders) {
 /// Distances (FCL 0.7 has no closed form for these pairs; libccd would be called with a null
 /// support function): the exact support-function distance, with p1 on the ellipsoid and p2 on the
 /// plane; -1 and a common point when they overlap (unsigned); minus the penetration depth with
-/// the deepest point and its projection (signed). Both orders; (Halfspace, Ellipsoid) is missing
-/// from FCL's distance table, so that order is checked through the solver only.
+/// the deepest point and its projection (signed). Both orders; (Halfspace, Ellipsoid), missing
+/// from FCL's own distance table, is added to QuadricSolver's by fcl_quadric (distance.cpp).
 template <typename PlaneShape>
 void planeDistances(bool halfspace) {
   const std::vector<PlaneConfig> configs = planeConfigs(halfspace);
@@ -252,11 +252,12 @@ void planeDistances(bool halfspace) {
       const fcl::Ellipsoidd& ell = *static_cast<const fcl::Ellipsoidd*>(oe.collisionGeometry().get());
       if (signed_distance) solver.shapeSignedDistance(local, op.getTransform(), ell, oe.getTransform(), &d21, &q1, &q2);
       else solver.shapeDistance(local, op.getTransform(), ell, oe.getTransform(), &d21, &q1, &q2);
-      if (!halfspace) {  // (Plane, Ellipsoid) is in FCL's table: the same answer through it
+      {  // The front door in this order gives the solver's answer (through the lookup table).
         fcl::DistanceResultd via_fcl;
         fcl_quadric::distance(&op, &oe, request, via_fcl);
         EXPECT_EQ(via_fcl.min_distance, d21);
         EXPECT_EQ(via_fcl.nearest_points[0], q1);
+        EXPECT_EQ(via_fcl.nearest_points[1], q2);
       }
       // Swapped order: same value, points exchanged.
       EXPECT_EQ(d21, r12.min_distance) << "case " << i;
