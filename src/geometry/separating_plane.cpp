@@ -1,5 +1,6 @@
 #include "fcl_quadric/geometry/separating_plane.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
@@ -85,19 +86,36 @@ Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellips
 }
 
 namespace {
-/// True when e lies strictly on the negative side of { n.x = off }: off - n.p > |S R^T n|, with a
-/// relative margin covering the rounding; compared in squares (no square root).
-inline bool strictlyBelow(const Eigen::Vector3d& n, double off, const Ellipsoid& e, double tau) {
-  const Eigen::Vector3d m = (e.rotation().transpose() * n).cwiseProduct(e.radii());
-  const double gap = off - n.dot(e.center()) - tau * (std::fabs(off) + n.cwiseAbs().dot(e.center().cwiseAbs()));
-  return gap > 0.0 && gap * gap > m.squaredNorm() * (1.0 + 4.0 * tau);
+/// The certified gap of e below the plane { n.x = off } (sgn = +1) or above it (sgn = -1):
+/// returns g = sgn (off - n.p) - tau (|off| + n_max |p|_1) and m2 = |S R^T n|^2, and e lies
+/// strictly on that side iff g > 0 and g^2 > m2 (1 + 4 tau) (compared in squares: no square
+/// root). n_max = max_i |n_i|, so |off| + n_max |p|_1 bounds the absolute evaluation of off - n.p
+/// and tau = 2^-40 covers its rounding with a wide margin. Written out by hand: this is the whole
+/// cost of a cached-plane query.
+inline double sideGap(const Eigen::Vector3d& n, double n_max, double off, const Ellipsoid& e, double tau, double sgn,
+                      double* m2) {
+  const Eigen::Matrix3d& R = e.rotation();
+  const Eigen::Vector3d& r = e.radii();
+  const Eigen::Vector3d& c = e.center();
+  const double m0 = (R(0, 0) * n[0] + R(1, 0) * n[1] + R(2, 0) * n[2]) * r[0];
+  const double m1 = (R(0, 1) * n[0] + R(1, 1) * n[1] + R(2, 1) * n[2]) * r[1];
+  const double m3 = (R(0, 2) * n[0] + R(1, 2) * n[1] + R(2, 2) * n[2]) * r[2];
+  *m2 = m0 * m0 + m1 * m1 + m3 * m3;
+  const double nc = n[0] * c[0] + n[1] * c[1] + n[2] * c[2];
+  return sgn * (off - nc) - tau * (std::fabs(off) + n_max * (std::fabs(c[0]) + std::fabs(c[1]) + std::fabs(c[2])));
 }
 }  // namespace
 
 bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
-  // a below the plane, b above it (i.e. below the negated plane).
+  // a below the plane, b above it.
   const double tau = tolerance::kCertificateRelativeBoundDouble;
-  return strictlyBelow(plane.normal, plane.offset, a, tau) && strictlyBelow(-plane.normal, -plane.offset, b, tau);
+  const Eigen::Vector3d& n = plane.normal;
+  const double n_max = std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
+  double ma2, mb2;
+  const double ga = sideGap(n, n_max, plane.offset, a, tau, 1.0, &ma2);
+  if (!(ga > 0.0 && ga * ga > ma2 * (1.0 + 4.0 * tau))) return false;
+  const double gb = sideGap(n, n_max, plane.offset, b, tau, -1.0, &mb2);
+  return gb > 0.0 && gb * gb > mb2 * (1.0 + 4.0 * tau);
 }
 
 std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipsoid& b) {
