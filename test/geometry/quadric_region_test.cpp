@@ -293,6 +293,11 @@ TEST(QuadricRegionInput, BadMatricesAndTreesThrowNamingTheValue) {
 
 // --- Static classification ------------------------------------------------------------------------
 
+RegionRelation collideWorldBoxes(const QuadricRegion& solid, const Box3& box, const QuadricRegion& sphere) {
+  return collideRegions(solid, box, sphere, regionAabb(sphere), Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero())
+      .relation;
+}
+
 /// Analytic AABB of an ellipsoid: centre +- sqrt(sum_j R_ij^2 r_j^2).
 Box3 ellipsoidBox(const Ellipsoid& e) {
   Eigen::Vector3d h;
@@ -432,6 +437,58 @@ TEST(QuadricRegionCollision, DegenerateContactsAreTouchingAndSmallGapsAreDecided
       EXPECT_EQ(collideRegions(cyl, box, cyl, box, I, k.p0 - gap * dir).relation, RegionRelation::Overlapping)
           << k.name << " penetration " << gap;
     }
+  }
+}
+
+TEST(QuadricRegionCollision, SphereAgainstEachQuadricKindAtAnalyticTangency) {
+  // Each case: a quadric solid (clipped to be bounded) and a sphere whose tangency radius rho0 is
+  // known in closed form; radii rho0 -+ 1e-6 must be Separated / Overlapping, rho0 itself within
+  // the band (Touching) or decided either way.
+  struct Case {
+    const char* name;
+    QuadricRegion solid;
+    Eigen::Vector3d centre;
+    double rho0;
+  };
+  auto clip = [](QuadricRegion q, std::vector<QuadricRegion> planes) {
+    planes.insert(planes.begin(), std::move(q));
+    return QuadricRegion::combine(Op::Intersection, planes);
+  };
+  const QuadricRegion zTop = QuadricRegion::halfspace({0, 0, 1}, 3.0);
+  const std::vector<QuadricRegion> box2 = {QuadricRegion::halfspace({1, 0, 0}, 2.0), QuadricRegion::halfspace({-1, 0, 0}, 2.0),
+                                           QuadricRegion::halfspace({0, 1, 0}, 2.0), QuadricRegion::halfspace({0, -1, 0}, 2.0),
+                                           QuadricRegion::halfspace({0, 0, 1}, 2.0)};
+  const double x0 = 2.0, z0 = 1.0, d = 1.0;
+  const std::vector<Case> cases = {
+      // Cone nappe x^2 + y^2 <= z^2, 0 <= z <= 3: a point (x0, 0, z0) outside is at distance
+      // (x0 - z0)/sqrt(2) from the generator x = z (the nearest, by convexity and symmetry).
+      {"elliptic cone", clip(QuadricRegion::atom(quadric::ellipticCone(1, 1, 1)), {zTop, QuadricRegion::halfspace({0, 0, -1}, 0.0)}),
+       Eigen::Vector3d(x0, 0, z0), (x0 - z0) / std::sqrt(2.0)},
+      // Slab |z| <= 0.5 (plane pair), clipped to a box: distance from z = 1.7 is 1.2.
+      {"plane pair", clip(QuadricRegion::atom(quadric::planePair({0, 0, 1}, 0.0, 0.5)), box2), Eigen::Vector3d(0.1, 0.2, 1.7), 1.2},
+      // Saddle z >= x^2 - y^2: from (0, 0, -d), d >= 1/2, the nearest points are (0, +-y, -y^2) with
+      // y^2 = d - 1/2, at distance sqrt(d - 1/4).
+      {"hyperbolic paraboloid",
+       clip(QuadricRegion::atom(quadric::hyperbolicParaboloid(1, 1)),
+            {QuadricRegion::halfspace({1, 0, 0}, 2.0), QuadricRegion::halfspace({-1, 0, 0}, 2.0),
+             QuadricRegion::halfspace({0, 1, 0}, 2.0), QuadricRegion::halfspace({0, -1, 0}, 2.0),
+             QuadricRegion::halfspace({0, 0, 1}, 2.0)}),
+       Eigen::Vector3d(0, 0, -d), std::sqrt(d - 0.25)},
+      // Elliptic cylinder x^2/4 + y^2 <= 1 (|z| <= 2): from (0, 2, 0) the side is 1 away.
+      {"elliptic cylinder", cappedCylinder(2.0, 1.0, 4.0), Eigen::Vector3d(0, 2, 0), 1.0},
+      // Ellipsoid (2, 1, 1) from (0, 0, 2.5): the pole (0, 0, 1) is nearest, distance 1.5 (on the
+      // x-z ellipse, |p|^2 = x^2 + (sqrt(1 - x^2/4) - 2.5)^2 >= 2.25 + 11/8 x^2; the y-z section
+      // is a unit circle).
+      {"ellipsoid", QuadricRegion::atom(quadric::ellipsoid({2, 1, 1})), Eigen::Vector3d(0, 0, 2.5), 1.5},
+  };
+  for (const Case& k : cases) {
+    const Box3 box = regionAabb(k.solid);
+    for (double delta : {1e-3, 1e-6}) {
+      const QuadricRegion small = ball(k.rho0 - delta, k.centre), big = ball(k.rho0 + delta, k.centre);
+      EXPECT_EQ(collideWorldBoxes(k.solid, box, small), RegionRelation::Separated) << k.name << " delta " << delta;
+      EXPECT_EQ(collideWorldBoxes(k.solid, box, big), RegionRelation::Overlapping) << k.name << " delta " << delta;
+    }
+    EXPECT_NE(collideWorldBoxes(k.solid, box, ball(k.rho0, k.centre)), RegionRelation::Separated) << k.name;
   }
 }
 
