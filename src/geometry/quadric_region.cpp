@@ -660,6 +660,10 @@ bool treeHint(const QuadricRegion& r, Box3* out) {
   switch (r.op()) {
     case QuadricRegion::Op::Atom: {
       const Eigen::Matrix3d A = r.matrix().topLeftCorner<3, 3>();
+      // Only well-conditioned positive definite parts: a cylinder rotated in floating point can
+      // have a tiny positive eigenvalue, and its "ellipsoid" box must not hide unboundedness.
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(A, Eigen::EigenvaluesOnly);
+      if (!(eig.eigenvalues()[0] > 1e-10 * eig.eigenvalues()[2])) return false;
       Eigen::LLT<Eigen::Matrix3d> llt(A);
       if (llt.info() != Eigen::Success) return false;
       const Eigen::Vector3d b = r.matrix().topRightCorner<3, 1>();
@@ -670,7 +674,7 @@ bool treeHint(const QuadricRegion& r, Box3* out) {
       const Eigen::Vector3d h = (k * Ainv.diagonal()).cwiseSqrt();
       const Eigen::Vector3d pad = 1e-9 * (h + m.cwiseAbs());
       *out = Box3{m - h - pad, m + h + pad};
-      return out->lo.allFinite() && out->hi.allFinite();
+      return out->lo.allFinite() && out->hi.allFinite() && (out->hi - out->lo).maxCoeff() < kRegionMaxExtent;
     }
     case QuadricRegion::Op::Intersection: {
       bool any = false;

@@ -125,6 +125,11 @@ TEST(QuadricRegionAabb, UnboundedAndEmptyRegionsThrowNamingTheProblem) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("unbounded"), std::string::npos) << e.what();
   }
+  // A cylinder rotated in floating point (its 3x3 part may get a tiny positive eigenvalue) is
+  // still unbounded.
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  EXPECT_THROW(regionAabb(QuadricRegion::atom(quadric::ellipticCylinder(1, 2)).transformed(R, Eigen::Vector3d(1, 0, 0))),
+               std::invalid_argument);
   // A clip that removes the whole ellipsoid.
   const QuadricRegion empty = QuadricRegion::combine(
       Op::Intersection, {ball(1.0, Eigen::Vector3d::Zero()), QuadricRegion::halfspace({1, 0, 0}, -2.0)});
