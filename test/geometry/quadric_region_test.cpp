@@ -8,6 +8,7 @@
 #include <gmpxx.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
 
@@ -495,6 +496,50 @@ TEST(QuadricRegionCollision, SphereAgainstEachQuadricKindAtAnalyticTangency) {
     }
     EXPECT_NE(collideWorldBoxes(k.solid, box, ball(k.rho0, k.centre)), RegionRelation::Separated) << k.name;
   }
+}
+
+TEST(QuadricRegionCollision, EllipticCylinderPairsVsDenseExactSampling) {
+  // Capped elliptic cylinders (random semi-axes and lengths) at random relative poses. Oracle as
+  // in CsgPairsNeverContradictDenseExactSampling, on a 48^3 grid of the first cylinder's box:
+  // Separated must have no common grid point; an Overlapping witness must be exactly interior to
+  // both; Touching (the band) must not occur at random poses.
+  std::mt19937_64 rng(2024);
+  std::uniform_real_distribution<double> s(0.2, 1.0), u(-1.8, 1.8);
+  int sep = 0, ovl = 0, tch = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double a1 = s(rng), b1 = s(rng), L1 = 2 * s(rng), a2 = s(rng), b2 = s(rng), L2 = 2 * s(rng);
+    const QuadricRegion c1 = cappedCylinder(a1, b1, L1), c2 = cappedCylinder(a2, b2, L2);
+    const Box3 box1{Eigen::Vector3d(-a1, -b1, -L1 / 2), Eigen::Vector3d(a1, b1, L1 / 2)};
+    const Box3 box2{Eigen::Vector3d(-a2, -b2, -L2 / 2), Eigen::Vector3d(a2, b2, L2 / 2)};
+    const Eigen::Matrix3d R = test::randomRotation(rng);
+    const Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    const RegionCollision rc = collideRegions(c1, box1, c2, box2, R, p);
+    const QuadricRegion posed = c2.transformed(R, p);
+    if (rc.relation == RegionRelation::Overlapping) {
+      ++ovl;
+      EXPECT_TRUE(exactInside(c1, rc.point, true) && exactInside(posed, rc.point, true)) << "trial " << trial;
+      continue;
+    }
+    if (rc.relation == RegionRelation::Touching) {
+      ++tch;
+      continue;
+    }
+    ++sep;
+    const int n = 48;
+    bool common = false;
+    for (int i = 0; i <= n && !common; ++i)
+      for (int j = 0; j <= n && !common; ++j)
+        for (int k = 0; k <= n && !common; ++k) {
+          const Eigen::Vector3d t(double(i) / n, double(j) / n, double(k) / n);
+          const Eigen::Vector3d x = box1.lo + t.cwiseProduct(box1.hi - box1.lo);
+          common = exactInside(c1, x, false) && exactInside(posed, x, false);
+        }
+    EXPECT_FALSE(common) << "trial " << trial << " reported separated";
+  }
+  EXPECT_EQ(tch, 0);
+  EXPECT_GT(sep, 30);
+  EXPECT_GT(ovl, 30);
+  std::printf("elliptic cylinder pairs: %d separated, %d overlapping, %d touching\n", sep, ovl, tch);
 }
 
 }  // namespace
