@@ -8,7 +8,10 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/octree/octree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cone.h>
@@ -16,6 +19,12 @@
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/halfspace.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/AABB.h>
+#include <fcl/math/bv/OBB.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/math/bv/RSS.h>
+#include <fcl/math/bv/kDOP.h>
+#include <fcl/math/bv/kIOS.h>
 #include <fcl/narrowphase/contact.h>
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
@@ -33,11 +42,69 @@ namespace {
 
 using Op = QuadricRegion::Op;
 
-/// A solid in its local frame with its local AABB (none: unbounded).
+/// A solid in its local frame with its local AABB (none: unbounded). `thin`: no interior (a
+/// triangle), so the search stops at the first undecided box (contact within the band).
 struct LocalSolid {
   QuadricRegion region;
   std::optional<Box3> box;
+  bool thin = false;
 };
+
+/// A triangle as the region {n.x = d} intersected with its three edge half-spaces (in-plane),
+/// with its AABB; none for a zero-area triangle (skipped: documented).
+std::optional<LocalSolid> triangleSolid(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+  const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
+  const double scale = (p1 - p0).norm() * (p2 - p0).norm();
+  if (!(n.norm() > 1e-14 * scale)) return std::nullopt;
+  const Eigen::Vector3d u = n.normalized();
+  std::vector<QuadricRegion> parts{QuadricRegion::halfspace(u, u.dot(p0)), QuadricRegion::halfspace(-u, -u.dot(p0))};
+  const Eigen::Vector3d pts[3] = {p0, p1, p2};
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d& a = pts[i];
+    const Eigen::Vector3d& b = pts[(i + 1) % 3];
+    const Eigen::Vector3d inward = u.cross(b - a);  // counter-clockwise about u: points inside
+    parts.push_back(QuadricRegion::halfspace(-inward, -inward.dot(a)));
+  }
+  const Eigen::Vector3d lo = p0.cwiseMin(p1).cwiseMin(p2), hi = p0.cwiseMax(p1).cwiseMax(p2);
+  const Eigen::Vector3d pad = 1e-12 * (hi - lo).cwiseAbs().maxCoeff() * Eigen::Vector3d::Ones();
+  return LocalSolid{QuadricRegion::combine(QuadricRegion::Op::Intersection, parts), Box3{lo - pad, hi + pad}, true};
+}
+
+template <typename BV>
+bool meshPieces(const fcl::CollisionGeometry<double>* g, std::vector<LocalSolid>* out) {
+  const auto* m = dynamic_cast<const fcl::BVHModel<BV>*>(g);
+  if (m == nullptr) return false;
+  for (int t = 0; t < m->num_tris; ++t) {
+    const fcl::Triangle& tri = m->tri_indices[t];
+    if (auto s = triangleSolid(m->vertices[tri[0]], m->vertices[tri[1]], m->vertices[tri[2]])) out->push_back(*s);
+  }
+  return true;
+}
+
+/// BVH meshes (every triangle) and OcTrees (every occupied leaf box) as pieces; false otherwise.
+bool compositePieces(const fcl::CollisionGeometry<double>* g, std::vector<LocalSolid>* out) {
+  if (meshPieces<fcl::OBBRSS<double>>(g, out) || meshPieces<fcl::OBB<double>>(g, out) ||
+      meshPieces<fcl::RSS<double>>(g, out) || meshPieces<fcl::AABB<double>>(g, out) ||
+      meshPieces<fcl::kIOS<double>>(g, out) || meshPieces<fcl::KDOP<double, 16>>(g, out) ||
+      meshPieces<fcl::KDOP<double, 18>>(g, out) || meshPieces<fcl::KDOP<double, 24>>(g, out))
+    return true;
+  if (const auto* tree = dynamic_cast<const fcl::OcTree<double>*>(g)) {
+    for (const std::array<double, 6>& b : tree->toBoxes()) {
+      const Eigen::Vector3d c(b[0], b[1], b[2]);
+      const Eigen::Vector3d h = Eigen::Vector3d::Constant(0.5 * b[3]);
+      std::vector<QuadricRegion> planes;
+      for (int i = 0; i < 3; ++i) {
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
+        n[i] = 1.0;
+        planes.push_back(QuadricRegion::halfspace(n, c[i] + h[i]));
+        planes.push_back(QuadricRegion::halfspace(-n, -(c[i] - h[i])));
+      }
+      out->push_back(LocalSolid{QuadricRegion::combine(QuadricRegion::Op::Intersection, planes), Box3{c - h, c + h}, false});
+    }
+    return true;
+  }
+  return false;
+}
 
 Box3 symmetricBox(const Eigen::Vector3d& h) { return Box3{-h, h}; }
 
@@ -114,17 +181,43 @@ LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which
   std::ostringstream os;
   os << "fcl_quadric::collide: " << which << " has node type " << g->getNodeType()
      << ", which is not supported against fcl_quadric quadric shapes (supported: quadric shapes, Sphere, "
-        "Ellipsoid, Box, Cylinder, Cone, Capsule, Halfspace)";
+        "Ellipsoid, Box, Cylinder, Cone, Capsule, Halfspace, BVH meshes, OcTree)";
   throw std::invalid_argument(os.str());
 }
+
+void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
+                 const fcl::Transform3<double>& tf2, const fcl::CollisionGeometry<double>* o1,
+                 const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
+                 fcl::CollisionResult<double>& result);
 
 }  // namespace
 
 std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
                                  const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
                                  const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result) {
-  const LocalSolid a = localSolid(o1, "o1");
-  const LocalSolid b = localSolid(o2, "o2");
+  // Meshes and octrees: the pieces (triangles / occupied leaves) one by one, the first contact
+  // wins (docs/fcl_integration.md section 9).
+  std::vector<LocalSolid> pieces;
+  if (compositePieces(o1, &pieces) || compositePieces(o2, &pieces)) {
+    const bool pieces_first = !isQuadricShape(o1);
+    const LocalSolid shape = pieces_first ? localSolid(o2, "o2") : localSolid(o1, "o1");
+    const std::size_t before = result.numContacts();
+    for (const LocalSolid& piece : pieces) {
+      collidePair(pieces_first ? piece : shape, tf1, pieces_first ? shape : piece, tf2, o1, o2, request, result);
+      if (result.numContacts() > before || result.numContacts() >= request.num_max_contacts) break;
+    }
+    return result.numContacts();
+  }
+  collidePair(localSolid(o1, "o1"), tf1, localSolid(o2, "o2"), tf2, o1, o2, request, result);
+  return result.numContacts();
+}
+
+namespace {
+
+void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
+                 const fcl::Transform3<double>& tf2, const fcl::CollisionGeometry<double>* o1,
+                 const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
+                 fcl::CollisionResult<double>& result) {
   const Eigen::Matrix3d R1 = tf1.linear(), R2 = tf2.linear();
   const Eigen::Vector3d p1 = tf1.translation(), p2 = tf2.translation();
   const QuadricRegion wa = a.region.transformed(R1, p1);
@@ -143,9 +236,10 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
   }
   if (!box)
     throw std::invalid_argument("fcl_quadric::collide: both operands are unbounded (half-spaces or unclipped quadrics)");
-  if (box->empty()) return result.numContacts();
-  const PointSearchResult s = findPoint(QuadricRegion::combine(Op::Intersection, {wa, wb}), *box);
-  if (s.status == PointSearch::Empty) return result.numContacts();
+  if (box->empty()) return;
+  const PointSearchResult s = findPoint(QuadricRegion::combine(Op::Intersection, {wa, wb}), *box,
+                                        a.thin || b.thin ? 0 : tolerance_region::kRegionExtraBoxesAfterUndecided);
+  if (s.status == PointSearch::Empty) return;
   if (result.numContacts() < request.num_max_contacts) {
     // Normal: o1's atom with the smallest |f| / |grad f| at the point, outward (as used).
     Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
@@ -165,8 +259,9 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
     result.addContact(fcl::Contact<double>(o1, o2, fcl::Contact<double>::NONE, fcl::Contact<double>::NONE, s.point,
                                            normal, 0.0));
   }
-  return result.numContacts();
 }
+
+}  // namespace
 
 }  // namespace detail
 }  // namespace fcl_quadric

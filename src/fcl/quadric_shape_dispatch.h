@@ -16,13 +16,17 @@ namespace detail {
 bool isQuadricShape(const fcl::CollisionGeometry<double>* g);
 
 /// Static collision of o1 (posed tf1) and o2 (posed tf2), at least one a QuadricShape, the other
-/// a QuadricShape or an fcl Sphere / Ellipsoid / Box / Cylinder / Cone / Capsule / Halfspace:
-/// collideRegions' certified classification (Touching counts as contact). On contact one
+/// a QuadricShape, an fcl Sphere / Ellipsoid / Box / Cylinder / Cone / Capsule / Halfspace, a BVH
+/// mesh (each non-degenerate triangle; zero-area triangles are skipped) or an OcTree (each
+/// occupied leaf box): collideRegions' certified classification (Touching counts as contact;
+/// a triangle has no interior, so a crossing triangle is found as an undecided box: contact).
+/// Meshes and octrees are walked piece by piece with AABB culling, not through FCL's BVH
+/// traversal nodes (cost linear in the pieces). On contact one
 /// fcl::Contact is added (if request.num_max_contacts allows): pos = the witness point (world),
 /// normal = unit outward normal of o1's nearest surface there, penetration_depth = 0 (not
 /// computed for these shapes). \return the number of contacts in result.
-/// \throws std::invalid_argument for any other geometry (BVH meshes, OcTrees, planes, convex
-/// meshes, triangles: not yet supported with quadric shapes; the message names the node type),
+/// \throws std::invalid_argument for any other geometry (planes, convex meshes, TriangleP: not
+/// supported with quadric shapes; the message names the node type),
 /// or an unbounded pair (two half-spaces / unbounded quadrics).
 std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
                                  const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,

@@ -6,6 +6,7 @@
 // crash) and the documented unsupported cases.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -19,6 +20,8 @@
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/octree/octree.h>
+#include <fcl/geometry/shape/plane.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/sphere.h>
@@ -31,6 +34,8 @@
 #include "fcl_quadric/fcl/quadric_shapes.h"
 #include "fcl_quadric/geometry/ellipsoid_cylinder.h"
 #include "support/random_ellipsoids.h"
+
+#include <octomap/OcTree.h>
 
 namespace fcl_quadric {
 namespace {
@@ -234,17 +239,54 @@ TEST(QuadricShapeDispatch, PlainFclCollideWithStockSolverDoesNotCrashAndReportsN
 
 TEST(QuadricShapeDispatch, UnsupportedPartnersThrowNamingTheNodeType) {
   EllipticCylinder<double> cyl(1.0, 0.5, 2.0);
-  fcl::BVHModel<fcl::OBBRSS<double>> mesh;
-  mesh.beginModel();
-  mesh.addTriangle(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0));
-  mesh.endModel();
+  fcl::Plane<double> plane(Eigen::Vector3d(0, 0, 1), 0.0);
   fcl::CollisionRequest<double> req;
   fcl::CollisionResult<double> res;
   try {
-    fcl_quadric::collide(&cyl, Transform::Identity(), &mesh, Transform::Identity(), req, res);
-    FAIL() << "mesh accepted";
+    fcl_quadric::collide(&cyl, Transform::Identity(), &plane, Transform::Identity(), req, res);
+    FAIL() << "plane accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("node type"), std::string::npos) << e.what();
+  }
+}
+
+TEST(QuadricShapeDispatch, MeshTrianglesAgainstAnEllipticCylinderAtAnalyticPositions) {
+  // A square plate (two triangles) of side 4 in the plane z = h above a capped elliptic cylinder
+  // (top cap at z = 1), and the same plate standing vertically at x = c beside its side (x <= 1.5).
+  fcl::BVHModel<fcl::OBBRSS<double>> plate;
+  plate.beginModel();
+  plate.addTriangle(Eigen::Vector3d(-2, -2, 0), Eigen::Vector3d(2, -2, 0), Eigen::Vector3d(2, 2, 0));
+  plate.addTriangle(Eigen::Vector3d(-2, -2, 0), Eigen::Vector3d(2, 2, 0), Eigen::Vector3d(-2, 2, 0));
+  plate.endModel();
+  EllipticCylinder<double> cyl(1.5, 0.5, 2.0);
+  const Transform I = Transform::Identity();
+  for (double gap : {1e-3, 1e-6}) {
+    EXPECT_FALSE(collides(plate, pose(Eigen::Matrix3d::Identity(), {0.3, 0.1, 1.0 + gap}), cyl, I)) << gap;
+    EXPECT_TRUE(collides(plate, pose(Eigen::Matrix3d::Identity(), {0.3, 0.1, 1.0 - gap}), cyl, I)) << gap;
+    const Eigen::Matrix3d Ry = Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    EXPECT_FALSE(collides(cyl, I, plate, pose(Ry, {1.5 + gap, 0, 0}))) << gap;
+    EXPECT_TRUE(collides(cyl, I, plate, pose(Ry, {1.5 - gap, 0, 0}))) << gap;
+  }
+}
+
+TEST(QuadricShapeDispatch, OcTreeLeavesAgainstAQuadricShapeAtAnalyticPositions) {
+  // One occupied leaf of side 0.1 near (1, 0, 0), and a ball Quadric of radius 0.2 whose centre
+  // is 0.2 -+ gap beyond the middle of the leaf's +x face.
+  auto tree = std::make_shared<octomap::OcTree>(0.1);
+  tree->updateNode(octomap::point3d(1.02f, 0.02f, 0.02f), true);
+  auto fcl_tree = std::make_shared<fcl::OcTree<double>>(tree);
+  const std::vector<std::array<double, 6>> leaves = fcl_tree->toBoxes();
+  ASSERT_EQ(leaves.size(), 1u);
+  const Eigen::Vector3d c(leaves[0][0], leaves[0][1], leaves[0][2]);
+  const double h = 0.5 * leaves[0][3];
+  const Quadric<double> probe = Quadric<double>::ellipsoid(0.2, 0.2, 0.2);
+  for (double gap : {1e-3, 1e-6}) {
+    EXPECT_FALSE(collides(*fcl_tree, Transform::Identity(), probe,
+                          pose(Eigen::Matrix3d::Identity(), c + Eigen::Vector3d(h + 0.2 + gap, 0, 0))))
+        << gap;
+    EXPECT_TRUE(collides(*fcl_tree, Transform::Identity(), probe,
+                         pose(Eigen::Matrix3d::Identity(), c + Eigen::Vector3d(h + 0.2 - gap, 0, 0))))
+        << gap;
   }
 }
 
