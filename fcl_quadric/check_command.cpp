@@ -1,6 +1,15 @@
 #include "fcl_quadric/check_command.h"
 
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/fcl_fallback.h"
+#include "fcl_quadric/geometry/quadric_region.h"
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "fcl_quadric/geometry/signed_distance.h"
 
@@ -44,7 +53,72 @@ PairReport exactBoxReport(const Ellipsoid& e, const SceneObject& box, bool box_f
   return report;
 }
 
+namespace {
+
+/// Any 3D scene shape as a region in its body frame with its local AABB (none: unbounded).
+std::pair<QuadricRegion, std::optional<Box3>> asRegion(const Shape& shape) {
+  if (shape.region) return {*shape.region, shape.box};
+  if (shape.type == ShapeType::Box) {
+    const Eigen::Vector3d h = 0.5 * shape.dimensions;
+    std::vector<QuadricRegion> planes;
+    for (int k = 0; k < 3; ++k) {
+      Eigen::Vector3d n = Eigen::Vector3d::Zero();
+      n[k] = 1.0;
+      planes.push_back(QuadricRegion::halfspace(n, h[k]));
+      planes.push_back(QuadricRegion::halfspace(-n, h[k]));
+    }
+    return {QuadricRegion::combine(QuadricRegion::Op::Intersection, planes), Box3{-h, h}};
+  }
+  return {QuadricRegion::atom(quadric::ellipsoid(shape.dimensions)), Box3{-shape.dimensions, shape.dimensions}};
+}
+
+}  // namespace
+
+PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
+  const auto [ra, ba] = asRegion(a.shape);
+  const auto [rb, bb] = asRegion(b.shape);
+  const QuadricRegion wa = ra.transformed(a.pose.linear(), a.pose.translation());
+  const QuadricRegion wb = rb.transformed(b.pose.linear(), b.pose.translation());
+  std::optional<Box3> box;
+  for (const auto& [local, X] : {std::pair(ba, a.pose), std::pair(bb, b.pose)}) {
+    if (!local) continue;
+    const Box3 w = transformBox(*local, X.linear(), X.translation());
+    box = box ? Box3{box->lo.cwiseMax(w.lo), box->hi.cwiseMin(w.hi)} : w;
+  }
+  if (!box) throw std::invalid_argument("objects " + a.name + " and " + b.name + " are both unbounded (half-spaces)");
+  PairReport report;
+  report.method = PairMethod::QuadricRegion;
+  report.signed_distance = std::numeric_limits<double>::quiet_NaN();
+  PointSearchResult s;
+  if (box->empty()) {
+    s.status = PointSearch::Empty;
+  } else {
+    s = findPoint(QuadricRegion::combine(QuadricRegion::Op::Intersection, {wa, wb}), *box);
+  }
+  switch (s.status) {
+    case PointSearch::Empty: report.status = Separation::Separated; break;
+    case PointSearch::Found: report.status = Separation::Overlapping; break;
+    case PointSearch::Undecided: report.status = Separation::Touching; break;
+  }
+  report.collide = report.status != Separation::Separated;
+  report.point_a = report.point_b = s.point;
+  // Normal: a's surface nearest to the point (outward), as the FCL front door reports it.
+  double best = std::numeric_limits<double>::infinity();
+  for (const Eigen::Matrix4d& Q : wa.signedAtoms()) {
+    const Eigen::Vector4d X(s.point[0], s.point[1], s.point[2], 1.0);
+    const Eigen::Vector4d QX = Q * X;
+    const double gn = 2.0 * QX.head<3>().norm();
+    if (!(gn > 0.0)) continue;
+    if (std::fabs(X.dot(QX)) / gn < best) {
+      best = std::fabs(X.dot(QX)) / gn;
+      report.normal = 2.0 * QX.head<3>() / gn;
+    }
+  }
+  return report;
+}
+
 PairReport evaluatePair(const SceneObject& a, const SceneObject& b) {
+  if (isQuadricShape(a.shape) || isQuadricShape(b.shape)) return quadricRegionReport(a, b);
   const bool ea = isEllipsoidal(a.shape), eb = isEllipsoidal(b.shape);
   if (ea && eb) return exactPairReport(toEllipsoid(a), toEllipsoid(b));
   if (ea) return exactBoxReport(toEllipsoid(a), b, /*box_first=*/false);
@@ -63,9 +137,17 @@ nlohmann::ordered_json checkScene(const Scene& scene) {
     entry["b"] = b.name;
     entry["status"] = toString(r.status);
     entry["collide"] = r.collide;
-    entry["signed_distance"] = r.signed_distance;
-    entry["points"] = nlohmann::ordered_json::array({toJson(r.point_a), toJson(r.point_b)});
-    entry["normal"] = toJson(r.normal);
+    if (r.method == PairMethod::QuadricRegion) {
+      // No distance for quadric shapes; a witness (contact point) and normal only on contact.
+      entry["signed_distance"] = nullptr;
+      entry["points"] = r.collide ? nlohmann::ordered_json::array({toJson(r.point_a), toJson(r.point_b)})
+                                  : nlohmann::ordered_json(nullptr);
+      entry["normal"] = r.collide ? toJson(r.normal) : nlohmann::ordered_json(nullptr);
+    } else {
+      entry["signed_distance"] = r.signed_distance;
+      entry["points"] = nlohmann::ordered_json::array({toJson(r.point_a), toJson(r.point_b)});
+      entry["normal"] = toJson(r.normal);
+    }
     entry["method"] = toString(r.method);
     pairs.push_back(std::move(entry));
   }

@@ -22,6 +22,14 @@ PairReport exactPairReport(const Ellipsoid& a, const Ellipsoid& b);
 /// box is the first object of the pair (`box_first`). `method` is PairMethod::Exact.
 PairReport exactBoxReport(const Ellipsoid& e, const SceneObject& box, bool box_first);
 
+/// Report for a pair with at least one quadric shape (elliptic_cylinder, cylinder, halfspace,
+/// quadric, csg; the other may be any 3D shape): the certified classification of the composite-
+/// quadric engine (findPoint on the intersection, quadric_region.h): Separated / Overlapping
+/// certified, Touching within the tolerance band. No signed distance (NaN); point_a = point_b =
+/// the witness (world), normal = outward normal of a's nearest surface there.
+/// \throws std::invalid_argument if both objects are unbounded (half-spaces).
+PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b);
+
 /// The report for two scene objects: exact for every pair with an ellipsoid or sphere, FCL
 /// (libccd) for box-box pairs.
 PairReport evaluatePair(const SceneObject& a, const SceneObject& b);

@@ -22,6 +22,11 @@ std::shared_ptr<fcl::CollisionGeometryd> makeGeometry(const Shape& shape) {
     case ShapeType::Sphere: return std::make_shared<fcl::Sphered>(d[0]);
     case ShapeType::Box: return std::make_shared<fcl::Boxd>(d[0], d[1], d[2]);
     case ShapeType::Ellipse: break;  // 2D scenes never reach FCL (check rejects them)
+    case ShapeType::EllipticCylinder:
+    case ShapeType::Cylinder:
+    case ShapeType::Halfspace:
+    case ShapeType::Quadric:
+    case ShapeType::Csg: break;  // quadric shapes go to quadricRegionReport, never to FCL
   }
   return nullptr;
 }

@@ -7,6 +7,7 @@ const char* toString(PairMethod method) {
   switch (method) {
     case PairMethod::Exact: return "exact";
     case PairMethod::Fcl: return "fcl";
+    case PairMethod::QuadricRegion: return "quadric_region";
   }
   return "unknown";
 }

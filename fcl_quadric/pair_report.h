@@ -11,9 +11,12 @@ namespace cli {
 
 /// How a pair was computed: by the exact ellipsoid library or by FCL's own GJK/EPA (pairs with a
 /// box, until exact ellipsoid-box lands).
-enum class PairMethod { Exact, Fcl };
+/// QuadricRegion: pairs with a quadric shape (elliptic_cylinder, cylinder, halfspace, quadric,
+/// csg), classified by the certified composite-quadric engine (quadric_region.h); no signed
+/// distance (the report has NaN, printed as null), witness point only on contact.
+enum class PairMethod { Exact, Fcl, QuadricRegion };
 
-/// "exact" or "fcl" (the JSON spelling).
+/// "exact", "fcl" or "quadric_region" (the JSON spelling).
 const char* toString(PairMethod method);
 
 struct PairReport {

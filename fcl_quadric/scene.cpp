@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/continuous/ellipse_ccd.h"
 #include "fcl_quadric/tolerances.h"
 
@@ -29,9 +30,16 @@ const char* toString(ShapeType type) {
     case ShapeType::Sphere: return "sphere";
     case ShapeType::Box: return "box";
     case ShapeType::Ellipse: return "ellipse";
+    case ShapeType::EllipticCylinder: return "elliptic_cylinder";
+    case ShapeType::Cylinder: return "cylinder";
+    case ShapeType::Halfspace: return "halfspace";
+    case ShapeType::Quadric: return "quadric";
+    case ShapeType::Csg: return "csg";
   }
   return "unknown";
 }
+
+bool isQuadricShape(const Shape& shape) { return static_cast<bool>(shape.region); }
 
 bool isEllipsoidal(const Shape& shape) {
   return shape.type == ShapeType::Ellipsoid || shape.type == ShapeType::Sphere;
@@ -151,13 +159,204 @@ Eigen::Vector3d readPositive3(const json& node, const std::string& pointer, cons
   return v;
 }
 
-Shape readShape(const json& node, const std::string& pointer) {
+Eigen::Isometry3d readPose(const json& node, const std::string& pointer);
+Shape readShape(const json& node, const std::string& pointer, bool allow_pose = false);
+
+Eigen::Vector3d readVector3(const json& node, const std::string& pointer, const char* what) {
+  requireArray(node, pointer, 3, "an array of 3 numbers");
+  Eigen::Vector3d v;
+  for (std::size_t i = 0; i < 3; ++i) v[static_cast<Eigen::Index>(i)] = readNumber(node[i], child(pointer, i), what);
+  return v;
+}
+
+/// {"type": "halfspace" (optional inside "clip"), "normal": [3], "offset": d}: n.x <= d.
+QuadricRegion readHalfspace(const json& node, const std::string& pointer, bool type_optional) {
+  requireType(node, pointer, json::value_t::object, "an object");
+  rejectUnknownFields(node, pointer, {"type", "normal", "offset"});
+  if (!type_optional || node.find("type") != node.end()) {
+    const json& type = requireField(node, pointer, "type");
+    if (!type.is_string() || type.get<std::string>() != "halfspace")
+      fail(child(pointer, "type"), "a clip must be {\"type\": \"halfspace\", ...}");
+  }
+  const std::string np = child(pointer, "normal");
+  const Eigen::Vector3d n = readVector3(requireField(node, pointer, "normal"), np, "normal component");
+  if (!(n.norm() > 0.0)) fail(np, "normal must be non-zero");
+  const double d = readNumber(requireField(node, pointer, "offset"), child(pointer, "offset"), "offset");
+  return QuadricRegion::halfspace(n, d);
+}
+
+/// Local AABB of a region read from the scene; unbounded / empty regions are scene errors.
+Box3 boundedBox(const QuadricRegion& region, const std::string& pointer, const Box3* hint) {
+  try {
+    return regionAabb(region, hint);
+  } catch (const std::invalid_argument& e) {
+    fail(pointer, e.what());
+  }
+}
+
+Shape readQuadricShape(const json& node, const std::string& pointer, const std::string& name, bool allow_pose) {
+  auto allowed = [&](std::initializer_list<const char*> fields) {
+    std::vector<const char*> v(fields);
+    if (allow_pose) v.push_back("pose");
+    for (const auto& item : node.items()) {
+      bool known = false;
+      for (const char* a : v) known = known || item.key() == a;
+      if (!known) {
+        std::string list;
+        for (const char* a : v) list += std::string(list.empty() ? "" : ", ") + a;
+        fail(child(pointer, item.key()), "unknown field (allowed here: " + list + ")");
+      }
+    }
+  };
+  using Op = QuadricRegion::Op;
+  Shape shape;
+  if (name == "elliptic_cylinder" || name == "cylinder") {
+    double a, b;
+    if (name == "elliptic_cylinder") {
+      allowed({"type", "radii", "length"});
+      shape.type = ShapeType::EllipticCylinder;
+      const std::string rp = child(pointer, "radii");
+      const json& radii = requireField(node, pointer, "radii");
+      requireArray(radii, rp, 2, "an array of 2 numbers");
+      a = readPositive(radii[0], child(rp, 0), "radius");
+      b = readPositive(radii[1], child(rp, 1), "radius");
+    } else {
+      allowed({"type", "radius", "length"});
+      shape.type = ShapeType::Cylinder;
+      a = b = readPositive(requireField(node, pointer, "radius"), child(pointer, "radius"), "radius");
+    }
+    const double h = readPositive(requireField(node, pointer, "length"), child(pointer, "length"), "length");
+    shape.dimensions = Eigen::Vector3d(a, b, h);
+    shape.region = std::make_shared<const QuadricRegion>(QuadricRegion::combine(
+        Op::Intersection, {QuadricRegion::atom(quadric::ellipticCylinder(a, b)),
+                           QuadricRegion::halfspace({0, 0, 1}, 0.5 * h), QuadricRegion::halfspace({0, 0, -1}, 0.5 * h)}));
+    shape.box = Box3{Eigen::Vector3d(-a, -b, -0.5 * h), Eigen::Vector3d(a, b, 0.5 * h)};
+  } else if (name == "halfspace") {
+    allowed({"type", "normal", "offset"});
+    shape.type = ShapeType::Halfspace;
+    json copy = node;
+    copy.erase("pose");
+    shape.region = std::make_shared<const QuadricRegion>(readHalfspace(copy, pointer, false));
+  } else if (name == "quadric") {
+    allowed({"type", "matrix", "clip"});
+    shape.type = ShapeType::Quadric;
+    const std::string mp = child(pointer, "matrix");
+    const json& m = requireField(node, pointer, "matrix");
+    requireArray(m, mp, 4, "a 4x4 array of numbers");
+    Eigen::Matrix4d Q;
+    for (std::size_t i = 0; i < 4; ++i) {
+      requireArray(m[i], child(mp, i), 4, "an array of 4 numbers");
+      for (std::size_t j = 0; j < 4; ++j)
+        Q(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = readNumber(m[i][j], child(child(mp, i), j), "matrix entry");
+    }
+    std::vector<QuadricRegion> parts;
+    try {
+      parts.push_back(QuadricRegion::atom(Q));
+    } catch (const std::invalid_argument& e) {
+      fail(mp, e.what());
+    }
+    if (const auto it = node.find("clip"); it != node.end()) {
+      const std::string cp = child(pointer, "clip");
+      requireType(*it, cp, json::value_t::array, "an array of half-spaces");
+      for (std::size_t i = 0; i < it->size(); ++i) parts.push_back(readHalfspace((*it)[i], child(cp, i), true));
+    }
+    const QuadricRegion region = parts.size() == 1 ? parts[0] : QuadricRegion::combine(Op::Intersection, parts);
+    shape.box = boundedBox(region, pointer, nullptr);
+    shape.region = std::make_shared<const QuadricRegion>(region);
+  } else {  // csg
+    allowed({"type", "op", "children"});
+    shape.type = ShapeType::Csg;
+    const std::string op_pointer = child(pointer, "op");
+    const json& op_node = requireField(node, pointer, "op");
+    requireType(op_node, op_pointer, json::value_t::string, "a string");
+    const std::string op_name = op_node.get<std::string>();
+    Op op;
+    if (op_name == "union") {
+      op = Op::Union;
+    } else if (op_name == "intersection") {
+      op = Op::Intersection;
+    } else if (op_name == "difference") {
+      op = Op::Difference;
+    } else {
+      fail(op_pointer, "unknown CSG op " + jsonQuoted(op_name) + " (expected \"union\", \"intersection\" or \"difference\")");
+    }
+    const std::string cp = child(pointer, "children");
+    const json& children = requireField(node, pointer, "children");
+    requireType(children, cp, json::value_t::array, "an array of shapes");
+    if (children.empty()) fail(cp, "a CSG operation needs at least one child");
+    std::vector<QuadricRegion> parts;
+    std::optional<Box3> hint;
+    bool all_bounded = true;
+    for (std::size_t i = 0; i < children.size(); ++i) {
+      const std::string ip = child(cp, i);
+      const Shape c = readShape(children[i], ip, /*allow_pose=*/true);
+      Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+      if (const auto it = children[i].find("pose"); it != children[i].end()) X = readPose(*it, child(ip, "pose"));
+      std::optional<QuadricRegion> r;
+      std::optional<Box3> box;
+      if (c.region) {
+        r = *c.region;
+        box = c.box;
+      } else {  // ellipsoid, sphere, box as regions
+        if (c.type == ShapeType::Box) {
+          const Eigen::Vector3d hh = 0.5 * c.dimensions;
+          std::vector<QuadricRegion> planes;
+          for (int k = 0; k < 3; ++k) {
+            Eigen::Vector3d n = Eigen::Vector3d::Zero();
+            n[k] = 1.0;
+            planes.push_back(QuadricRegion::halfspace(n, hh[k]));
+            planes.push_back(QuadricRegion::halfspace(-n, hh[k]));
+          }
+          r = QuadricRegion::combine(Op::Intersection, planes);
+          box = Box3{-hh, hh};
+        } else {
+          r = QuadricRegion::atom(quadric::ellipsoid(c.dimensions));
+          box = Box3{-c.dimensions, c.dimensions};
+        }
+      }
+      parts.push_back(r->transformed(X.linear(), X.translation()));
+      const std::optional<Box3> wb = box ? std::optional<Box3>(transformBox(*box, X.linear(), X.translation())) : std::nullopt;
+      // Hint for the AABB search: as QuadricCSG (union: all bounded; intersection: any; difference: first).
+      if (op == Op::Union) {
+        all_bounded = all_bounded && wb.has_value();
+        if (wb) hint = hint ? Box3{hint->lo.cwiseMin(wb->lo), hint->hi.cwiseMax(wb->hi)} : *wb;
+      } else if (op == Op::Intersection) {
+        if (wb) hint = hint ? Box3{hint->lo.cwiseMax(wb->lo), hint->hi.cwiseMin(wb->hi)} : *wb;
+      } else if (i == 0) {
+        hint = wb;
+      }
+    }
+    if (op == Op::Union && !all_bounded) hint.reset();
+    if (hint && hint->empty()) fail(pointer, "quadric region is empty (its bounding pieces do not meet)");
+    const QuadricRegion region = QuadricRegion::combine(op, parts);
+    shape.box = boundedBox(region, pointer, hint ? &*hint : nullptr);
+    shape.region = std::make_shared<const QuadricRegion>(region);
+  }
+  return shape;
+}
+
+Shape readShape(const json& node, const std::string& pointer, bool allow_pose) {
   requireType(node, pointer, json::value_t::object, "an object");
   const json& type = requireField(node, pointer, "type");
   const std::string type_pointer = child(pointer, "type");
   requireType(type, type_pointer, json::value_t::string, "a string");
   const std::string name = type.get<std::string>();
+  if (name == "elliptic_cylinder" || name == "cylinder" || name == "halfspace" || name == "quadric" || name == "csg")
+    return readQuadricShape(node, pointer, name, allow_pose);
   Shape shape;
+  auto rejectUnknownFields = [&](const json& n, const std::string& p, std::initializer_list<const char*> fields) {
+    std::vector<const char*> v(fields);
+    if (allow_pose) v.push_back("pose");
+    for (const auto& item : n.items()) {
+      bool known = false;
+      for (const char* a : v) known = known || item.key() == a;
+      if (!known) {
+        std::string list;
+        for (const char* a : v) list += std::string(list.empty() ? "" : ", ") + a;
+        fail(child(p, item.key()), "unknown field (allowed here: " + list + ")");
+      }
+    }
+  };
   if (name == "ellipsoid") {
     rejectUnknownFields(node, pointer, {"type", "radii"});
     shape.type = ShapeType::Ellipsoid;
@@ -172,7 +371,9 @@ Shape readShape(const json& node, const std::string& pointer) {
     shape.type = ShapeType::Box;
     shape.dimensions = readPositive3(requireField(node, pointer, "size"), child(pointer, "size"), "box size");
   } else {
-    fail(type_pointer, "unknown shape type " + jsonQuoted(name) + " (expected \"ellipsoid\", \"sphere\" or \"box\")");
+    fail(type_pointer, "unknown shape type " + jsonQuoted(name) +
+                           " (expected \"ellipsoid\", \"sphere\", \"box\", \"elliptic_cylinder\", \"cylinder\", "
+                           "\"halfspace\", \"quadric\" or \"csg\")");
   }
   return shape;
 }

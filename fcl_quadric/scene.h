@@ -7,7 +7,14 @@
 /// {"objects": [{"name": "A",
 ///               "shape": {"type": "ellipsoid", "radii": [a, b, c]}   // semi-axes
 ///                      | {"type": "sphere", "radius": r}
-///                      | {"type": "box", "size": [x, y, z]},         // full side lengths (fcl::Box)
+///                      | {"type": "box", "size": [x, y, z]}          // full side lengths (fcl::Box)
+///                      | {"type": "elliptic_cylinder", "radii": [a, b], "length": h}  // capped, axis z
+///                      | {"type": "cylinder", "radius": r, "length": h}              // as fcl::Cylinder
+///                      | {"type": "halfspace", "normal": [nx, ny, nz], "offset": d}  // n.x <= d
+///                      | {"type": "quadric", "matrix": [[4 numbers] x 4],  // X^T Q X <= 0, X = (x, 1)
+///                         "clip": [{"type": "halfspace", ...}, ...]}    // optional; must be bounded
+///                      | {"type": "csg", "op": "union" | "intersection" | "difference",
+///                         "children": [SHAPE (+ optional "pose"), ...]},  // difference: first - rest
 ///               "pose": {"translation": [x, y, z], "quaternion": [w, x, y, z]}},  // optional
 ///              ...],
 ///  "pairs": [["A", "B"], ...],                                       // optional
@@ -35,6 +42,7 @@
 /// (relative) and is then normalised.
 
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -48,6 +56,7 @@
 #include "fcl_quadric/algebra/polynomial_matrix3.h"
 #include "fcl_quadric/continuous/motion_matrix.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
+#include "fcl_quadric/geometry/quadric_region.h"
 
 namespace fcl_quadric {
 namespace cli {
@@ -67,9 +76,10 @@ class SceneError : public std::runtime_error {
   std::string message_;
 };
 
-enum class ShapeType { Ellipsoid, Sphere, Box, Ellipse };
+enum class ShapeType { Ellipsoid, Sphere, Box, Ellipse, EllipticCylinder, Cylinder, Halfspace, Quadric, Csg };
 
-/// "ellipsoid", "sphere", "box" or "ellipse" (the JSON spelling).
+/// The JSON spelling ("ellipsoid", "sphere", "box", "ellipse", "elliptic_cylinder", "cylinder",
+/// "halfspace", "quadric", "csg").
 const char* toString(ShapeType type);
 
 /// A primitive shape in its body frame, centred at the body origin.
@@ -78,7 +88,14 @@ struct Shape {
   /// Ellipsoid: semi-axes (a, b, c). Sphere: (r, r, r). Box: full side lengths, as fcl::Box.
   /// Ellipse (2D scenes): semi-axes (a, b, 0).
   Eigen::Vector3d dimensions = Eigen::Vector3d::Ones();
+  /// Quadric shapes (elliptic_cylinder, cylinder, halfspace, quadric, csg): the solid in the body
+  /// frame (quadric_region.h) and its certified local AABB (none for a half-space).
+  std::shared_ptr<const QuadricRegion> region;
+  std::optional<Box3> box;
 };
+
+/// True for the shapes answered by the composite-quadric engine (quadric_region.h).
+bool isQuadricShape(const Shape& shape);
 
 /// A named, posed shape. `pose` is X_WB: body frame to world frame, a proper rigid transform.
 struct SceneObject {

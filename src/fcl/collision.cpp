@@ -5,6 +5,7 @@
 
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/narrowphase/collision.h>
@@ -12,6 +13,7 @@
 #include "fcl_quadric/fcl/quadric_solver.h"
 #include "fcl/collision_pieces.h"
 #include "fcl/input_checks.h"
+#include "fcl/quadric_shape_dispatch.h"
 
 // --- FCL templates for QuadricSolver<double> (declared extern in quadric_solver.h) ------------
 namespace fcl {
@@ -40,8 +42,12 @@ std::size_t collide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S
   detail::checkPosedPair(o1, tf1, o2, tf2, "fcl_quadric::collide");
   QuadricSolver<S> solver;
   solver.libccd().collision_tolerance = request.gjk_tolerance;
-  // Dispatch point for fcl_quadric's own shape types (a later issue): they are not in FCL's
-  // NODE_TYPE table, so they will be recognised here before FCL's lookup table is consulted.
+  // fcl_quadric's quadric shapes report fcl::BV_UNKNOWN (FCL's NODE_TYPE is closed): they are
+  // recognised here, before FCL's lookup table is consulted (docs/fcl_integration.md).
+  if constexpr (std::is_same_v<S, double>) {
+    if (detail::isQuadricShape(o1) || detail::isQuadricShape(o2))
+      return detail::collideQuadricShapes(o1, tf1, o2, tf2, request, result);
+  }
   return fcl::collide(o1, tf1, o2, tf2, &solver, request, result);
 }
 

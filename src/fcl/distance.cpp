@@ -8,11 +8,13 @@
 #include <iostream>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/narrowphase/distance.h>
 
 #include "fcl/input_checks.h"
+#include "fcl/quadric_shape_dispatch.h"
 #include "fcl_quadric/fcl/quadric_solver.h"
 
 // --- FCL templates for QuadricSolver<double> (declared in quadric_solver.h) -------------------
@@ -134,7 +136,14 @@ S distance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1, c
   detail::checkPosedPair(o1, tf1, o2, tf2, "fcl_quadric::distance");
   QuadricSolver<S> solver;
   solver.libccd().distance_tolerance = request.distance_tolerance;
-  // Dispatch point for fcl_quadric's own shape types (a later issue), as in collide().
+  // fcl_quadric's quadric shapes (BV_UNKNOWN for FCL): distance is not implemented for them yet;
+  // say so rather than let FCL print "not supported" and return a meaningless value.
+  if constexpr (std::is_same_v<S, double>) {
+    if (detail::isQuadricShape(o1) || detail::isQuadricShape(o2))
+      throw std::invalid_argument(
+          "fcl_quadric::distance: distance queries on EllipticCylinder / Quadric / QuadricCSG are not supported "
+          "yet (use fcl_quadric::collide)");
+  }
   return fcl::distance(o1, tf1, o2, tf2, &solver, request, result);
 }
 

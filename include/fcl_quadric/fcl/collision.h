@@ -12,6 +12,11 @@
 ///  - bad input throws std::invalid_argument instead of crashing: a null object or geometry
 ///    pointer, a non-finite transform (and, from QuadricSolver, an ellipsoid whose pose is not
 ///    rigid or whose radii are invalid).
+///  - fcl_quadric's quadric shapes (EllipticCylinder, Quadric, QuadricCSG; quadric_shapes.h),
+///    which FCL's tables do not know (BV_UNKNOWN), are answered here against each other, FCL's
+///    Sphere / Ellipsoid / Box / Cylinder / Cone / Capsule / Halfspace, BVH meshes and OcTrees
+///    (certified region engine, docs/fcl_integration.md section 9): one contact, depth 0; other
+///    partners throw std::invalid_argument.
 /// Kept from FCL: request.num_max_contacts == 0 and pairs of node types FCL has no function for
 /// (e.g. fcl::TriangleP) print FCL's warning on std::cerr and return 0 contacts.
 ///

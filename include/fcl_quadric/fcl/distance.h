@@ -13,7 +13,9 @@
 ///    for BVH / OcTree operands FCL's workaround applies (both points = a contact position).
 ///  - the libccd fallback gets distance_tolerance = request.distance_tolerance, as fcl::distance
 ///    does for GST_LIBCCD; request.gjk_solver_type is ignored.
-///  - bad input (null object / geometry, non-finite transform) throws std::invalid_argument.
+///  - bad input (null object / geometry, non-finite transform) throws std::invalid_argument;
+///  - so does a quadric shape (EllipticCylinder, Quadric, QuadricCSG): distance is not
+///    implemented for them yet (fcl_quadric::collide is).
 /// Kept from FCL: pairs FCL has no function for print FCL's warning and return
 /// std::numeric_limits<S>::max() with `result` untouched.
 ///

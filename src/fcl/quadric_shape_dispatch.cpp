@@ -1,0 +1,267 @@
+// Front-door dispatch for the quadric shapes: FCL primitives are converted to QuadricRegions and
+// the pair is classified by collideRegions-style certified search (docs/algorithms.md section 9).
+#include "fcl/quadric_shape_dispatch.h"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/octree/octree.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/AABB.h>
+#include <fcl/math/bv/OBB.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/math/bv/RSS.h>
+#include <fcl/math/bv/kDOP.h>
+#include <fcl/math/bv/kIOS.h>
+#include <fcl/narrowphase/contact.h>
+
+#include "fcl_quadric/algebra/quadric_matrix.h"
+#include "fcl_quadric/fcl/quadric_shapes.h"
+#include "fcl_quadric/geometry/quadric_region.h"
+
+namespace fcl_quadric {
+namespace detail {
+
+bool isQuadricShape(const fcl::CollisionGeometry<double>* g) {
+  return dynamic_cast<const QuadricShape<double>*>(g) != nullptr;
+}
+
+namespace {
+
+using Op = QuadricRegion::Op;
+
+/// A solid in its local frame with its local AABB (none: unbounded). `thin`: no interior (a
+/// triangle), so the search stops at the first undecided box (contact within the band).
+struct LocalSolid {
+  QuadricRegion region;
+  std::optional<Box3> box;
+  bool thin = false;
+};
+
+/// A triangle as the region {n.x = d} intersected with its three edge half-spaces (in-plane),
+/// with its AABB; none for a zero-area triangle (skipped: documented).
+std::optional<LocalSolid> triangleSolid(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+  const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
+  const double scale = (p1 - p0).norm() * (p2 - p0).norm();
+  if (!(n.norm() > 1e-14 * scale)) return std::nullopt;
+  const Eigen::Vector3d u = n.normalized();
+  std::vector<QuadricRegion> parts{QuadricRegion::halfspace(u, u.dot(p0)), QuadricRegion::halfspace(-u, -u.dot(p0))};
+  const Eigen::Vector3d pts[3] = {p0, p1, p2};
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d& a = pts[i];
+    const Eigen::Vector3d& b = pts[(i + 1) % 3];
+    const Eigen::Vector3d inward = u.cross(b - a);  // counter-clockwise about u: points inside
+    parts.push_back(QuadricRegion::halfspace(-inward, -inward.dot(a)));
+  }
+  const Eigen::Vector3d lo = p0.cwiseMin(p1).cwiseMin(p2), hi = p0.cwiseMax(p1).cwiseMax(p2);
+  const Eigen::Vector3d pad = 1e-12 * (hi - lo).cwiseAbs().maxCoeff() * Eigen::Vector3d::Ones();
+  return LocalSolid{QuadricRegion::combine(QuadricRegion::Op::Intersection, parts), Box3{lo - pad, hi + pad}, true};
+}
+
+template <typename BV>
+bool meshPieces(const fcl::CollisionGeometry<double>* g, std::vector<LocalSolid>* out) {
+  const auto* m = dynamic_cast<const fcl::BVHModel<BV>*>(g);
+  if (m == nullptr) return false;
+  for (int t = 0; t < m->num_tris; ++t) {
+    const fcl::Triangle& tri = m->tri_indices[t];
+    if (auto s = triangleSolid(m->vertices[tri[0]], m->vertices[tri[1]], m->vertices[tri[2]])) out->push_back(*s);
+  }
+  return true;
+}
+
+/// BVH meshes (every triangle) and OcTrees (every occupied leaf box) as pieces; false otherwise.
+bool compositePieces(const fcl::CollisionGeometry<double>* g, std::vector<LocalSolid>* out) {
+  if (meshPieces<fcl::OBBRSS<double>>(g, out) || meshPieces<fcl::OBB<double>>(g, out) ||
+      meshPieces<fcl::RSS<double>>(g, out) || meshPieces<fcl::AABB<double>>(g, out) ||
+      meshPieces<fcl::kIOS<double>>(g, out) || meshPieces<fcl::KDOP<double, 16>>(g, out) ||
+      meshPieces<fcl::KDOP<double, 18>>(g, out) || meshPieces<fcl::KDOP<double, 24>>(g, out))
+    return true;
+  if (const auto* tree = dynamic_cast<const fcl::OcTree<double>*>(g)) {
+    for (const std::array<double, 6>& b : tree->toBoxes()) {
+      const Eigen::Vector3d c(b[0], b[1], b[2]);
+      const Eigen::Vector3d h = Eigen::Vector3d::Constant(0.5 * b[3]);
+      std::vector<QuadricRegion> planes;
+      for (int i = 0; i < 3; ++i) {
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
+        n[i] = 1.0;
+        planes.push_back(QuadricRegion::halfspace(n, c[i] + h[i]));
+        planes.push_back(QuadricRegion::halfspace(-n, -(c[i] - h[i])));
+      }
+      out->push_back(LocalSolid{QuadricRegion::combine(QuadricRegion::Op::Intersection, planes), Box3{c - h, c + h}, false});
+    }
+    return true;
+  }
+  return false;
+}
+
+Box3 symmetricBox(const Eigen::Vector3d& h) { return Box3{-h, h}; }
+
+QuadricRegion slab(double half) {
+  return QuadricRegion::combine(Op::Intersection, {QuadricRegion::halfspace({0, 0, 1}, half),
+                                                   QuadricRegion::halfspace({0, 0, -1}, half)});
+}
+
+/// FCL's primitives as quadric regions (FCL's local conventions, fcl/geometry/shape/*.h).
+LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which) {
+  if (const auto* q = dynamic_cast<const QuadricShape<double>*>(g)) {
+    if (!q->bounded()) return {q->region(), std::nullopt};
+    return {q->region(), q->localBox()};
+  }
+  switch (g->getNodeType()) {
+    case fcl::GEOM_SPHERE: {
+      const double r = static_cast<const fcl::Sphere<double>*>(g)->radius;
+      return {QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(r))),
+              symmetricBox(Eigen::Vector3d::Constant(r))};
+    }
+    case fcl::GEOM_ELLIPSOID: {
+      const Eigen::Vector3d r = static_cast<const fcl::Ellipsoid<double>*>(g)->radii;
+      return {QuadricRegion::atom(quadric::ellipsoid(r)), symmetricBox(r)};
+    }
+    case fcl::GEOM_BOX: {
+      const Eigen::Vector3d h = 0.5 * static_cast<const fcl::Box<double>*>(g)->side;
+      std::vector<QuadricRegion> planes;
+      for (int i = 0; i < 3; ++i) {
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
+        n[i] = 1.0;
+        planes.push_back(QuadricRegion::halfspace(n, h[i]));
+        planes.push_back(QuadricRegion::halfspace(-n, h[i]));
+      }
+      return {QuadricRegion::combine(Op::Intersection, planes), symmetricBox(h)};
+    }
+    case fcl::GEOM_CYLINDER: {
+      const auto* c = static_cast<const fcl::Cylinder<double>*>(g);
+      return {QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticCylinder(c->radius, c->radius)),
+                                                        slab(0.5 * c->lz)}),
+              symmetricBox(Eigen::Vector3d(c->radius, c->radius, 0.5 * c->lz))};
+    }
+    case fcl::GEOM_CONE: {
+      // Base disk of radius r at z = -L/2, apex at +L/2: x^2 + y^2 <= (r/L)^2 (z - L/2)^2 with
+      // |z| <= L/2 selecting the nappe.
+      const auto* c = static_cast<const fcl::Cone<double>*>(g);
+      const double k = c->radius / c->lz, h = 0.5 * c->lz;
+      Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
+      Q(0, 0) = 1.0;
+      Q(1, 1) = 1.0;
+      Q(2, 2) = -k * k;
+      Q(2, 3) = Q(3, 2) = k * k * h;
+      Q(3, 3) = -k * k * h * h;
+      return {QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(Q), slab(h)}),
+              symmetricBox(Eigen::Vector3d(c->radius, c->radius, h))};
+    }
+    case fcl::GEOM_CAPSULE: {
+      const auto* c = static_cast<const fcl::Capsule<double>*>(g);
+      const double r = c->radius, h = 0.5 * c->lz;
+      const Eigen::Vector3d rr = Eigen::Vector3d::Constant(r);
+      return {QuadricRegion::combine(
+                  Op::Union,
+                  {QuadricRegion::combine(Op::Intersection,
+                                          {QuadricRegion::atom(quadric::ellipticCylinder(r, r)), slab(h)}),
+                   QuadricRegion::atom(quadric::posedEllipsoid(rr, Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, h))),
+                   QuadricRegion::atom(quadric::posedEllipsoid(rr, Eigen::Matrix3d::Identity(), Eigen::Vector3d(0, 0, -h)))}),
+              symmetricBox(Eigen::Vector3d(r, r, h + r))};
+    }
+    case fcl::GEOM_HALFSPACE: {
+      const auto* hs = static_cast<const fcl::Halfspace<double>*>(g);
+      return {QuadricRegion::halfspace(hs->n, hs->d), std::nullopt};
+    }
+    default: break;
+  }
+  std::ostringstream os;
+  os << "fcl_quadric::collide: " << which << " has node type " << g->getNodeType()
+     << ", which is not supported against fcl_quadric quadric shapes (supported: quadric shapes, Sphere, "
+        "Ellipsoid, Box, Cylinder, Cone, Capsule, Halfspace, BVH meshes, OcTree)";
+  throw std::invalid_argument(os.str());
+}
+
+void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
+                 const fcl::Transform3<double>& tf2, const fcl::CollisionGeometry<double>* o1,
+                 const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
+                 fcl::CollisionResult<double>& result);
+
+}  // namespace
+
+std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
+                                 const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
+                                 const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result) {
+  // Meshes and octrees: the pieces (triangles / occupied leaves) one by one, the first contact
+  // wins (docs/fcl_integration.md section 9).
+  std::vector<LocalSolid> pieces;
+  if (compositePieces(o1, &pieces) || compositePieces(o2, &pieces)) {
+    const bool pieces_first = !isQuadricShape(o1);
+    const LocalSolid shape = pieces_first ? localSolid(o2, "o2") : localSolid(o1, "o1");
+    const std::size_t before = result.numContacts();
+    for (const LocalSolid& piece : pieces) {
+      collidePair(pieces_first ? piece : shape, tf1, pieces_first ? shape : piece, tf2, o1, o2, request, result);
+      if (result.numContacts() > before || result.numContacts() >= request.num_max_contacts) break;
+    }
+    return result.numContacts();
+  }
+  collidePair(localSolid(o1, "o1"), tf1, localSolid(o2, "o2"), tf2, o1, o2, request, result);
+  return result.numContacts();
+}
+
+namespace {
+
+void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
+                 const fcl::Transform3<double>& tf2, const fcl::CollisionGeometry<double>* o1,
+                 const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
+                 fcl::CollisionResult<double>& result) {
+  const Eigen::Matrix3d R1 = tf1.linear(), R2 = tf2.linear();
+  const Eigen::Vector3d p1 = tf1.translation(), p2 = tf2.translation();
+  const QuadricRegion wa = a.region.transformed(R1, p1);
+  const QuadricRegion wb = b.region.transformed(R2, p2);
+  // Search box: the intersection of the world AABBs of the bounded operands.
+  std::optional<Box3> box;
+  for (const auto& [solid, R, p] : {std::tuple(&a, R1, p1), std::tuple(&b, R2, p2)}) {
+    if (!solid->box) continue;
+    const Box3 w = transformBox(*solid->box, R, p);
+    if (!box) {
+      box = w;
+    } else {
+      box->lo = box->lo.cwiseMax(w.lo);
+      box->hi = box->hi.cwiseMin(w.hi);
+    }
+  }
+  if (!box)
+    throw std::invalid_argument("fcl_quadric::collide: both operands are unbounded (half-spaces or unclipped quadrics)");
+  if (box->empty()) return;
+  const PointSearchResult s = findPoint(QuadricRegion::combine(Op::Intersection, {wa, wb}), *box,
+                                        a.thin || b.thin ? 0 : tolerance_region::kRegionExtraBoxesAfterUndecided);
+  if (s.status == PointSearch::Empty) return;
+  if (result.numContacts() < request.num_max_contacts) {
+    // Normal: o1's atom with the smallest |f| / |grad f| at the point, outward (as used).
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+    double best = std::numeric_limits<double>::infinity();
+    for (const Eigen::Matrix4d& Q : wa.signedAtoms()) {
+      const Eigen::Vector4d X(s.point[0], s.point[1], s.point[2], 1.0);
+      const Eigen::Vector4d QX = Q * X;
+      const Eigen::Vector3d g = 2.0 * QX.head<3>();
+      const double gn = g.norm();
+      if (!(gn > 0.0)) continue;
+      const double dist = std::fabs(X.dot(QX)) / gn;
+      if (dist < best) {
+        best = dist;
+        normal = g / gn;
+      }
+    }
+    result.addContact(fcl::Contact<double>(o1, o2, fcl::Contact<double>::NONE, fcl::Contact<double>::NONE, s.point,
+                                           normal, 0.0));
+  }
+}
+
+}  // namespace
+
+}  // namespace detail
+}  // namespace fcl_quadric

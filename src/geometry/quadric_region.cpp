@@ -1,0 +1,1085 @@
+// Composite quadric models: CSG trees of quadric atoms and the certified box-subdivision engine
+// (docs/algorithms.md section 9; Choi 2008 ch.6 for the boundary elements and Figure 29 for the
+// CSG membership predicates).
+#include "fcl_quadric/geometry/quadric_region.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "fcl_quadric/algebra/quadric_matrix.h"
+#include "fcl_quadric/geometry/ellipsoid.h"
+
+namespace fcl_quadric {
+
+using namespace tolerance_region;
+
+const char* toString(FaceShape s) {
+  switch (s) {
+    case FaceShape::Planar: return "planar";
+    case FaceShape::Convex: return "convex";
+    case FaceShape::Concave: return "concave";
+  }
+  return "?";
+}
+
+const char* toString(RegionRelation r) {
+  switch (r) {
+    case RegionRelation::Separated: return "separated";
+    case RegionRelation::Touching: return "touching";
+    case RegionRelation::Overlapping: return "overlapping";
+  }
+  return "?";
+}
+
+// Definition 6.1 (§6.2.1). For a non-degenerate quadric the Gaussian curvature has the sign of
+// -det Q: det Q > 0 is a saddle (one negative principal curvature everywhere: concave). For
+// det Q < 0 both curvatures have one sign, that of A on the tangent plane, which is definite: a
+// 2D subspace where A is positive definite needs two positive eigenvalues (convex), negative
+// definite two negative ones (concave). Degenerate quadrics (cylinders, cones, plane pairs): the
+// non-zero curvature follows the same inertia rule; a pair of planes is planar.
+FaceShape classifyFace(const Eigen::Matrix4d& Q) {
+  const Eigen::Matrix3d A = Q.topLeftCorner<3, 3>();
+  const double scale = Q.cwiseAbs().maxCoeff();
+  const double a_scale = A.cwiseAbs().maxCoeff();
+  if (a_scale <= 1e-12 * scale) return FaceShape::Planar;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(A, Eigen::EigenvaluesOnly);
+  int np = 0, nn = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (eig.eigenvalues()[i] > 1e-12 * a_scale) ++np;
+    if (eig.eigenvalues()[i] < -1e-12 * a_scale) ++nn;
+  }
+  const double det = Q.determinant();
+  const double det_scale = std::pow(scale, 4);
+  if (det > 1e-12 * det_scale) return FaceShape::Concave;  // saddle: hyperboloid of one sheet, ...
+  if (nn == 0) return FaceShape::Convex;
+  if (np == 0) return FaceShape::Concave;
+  if (np == 1 && nn == 1 && std::fabs(det) <= 1e-12 * det_scale) return FaceShape::Planar;  // plane pair
+  return np >= 2 ? FaceShape::Convex : FaceShape::Concave;
+}
+
+// --- QuadricRegion ------------------------------------------------------------------------------
+
+QuadricRegion QuadricRegion::atom(const Eigen::Matrix4d& Q) {
+  if (!Q.allFinite()) {
+    std::ostringstream os;
+    os << "quadric matrix must be finite, got\n" << Q;
+    throw std::invalid_argument(os.str());
+  }
+  const double scale = Q.cwiseAbs().maxCoeff();
+  if (!(scale > 0.0)) throw std::invalid_argument("quadric matrix must not be zero");
+  const double asym = (Q - Q.transpose()).cwiseAbs().maxCoeff();
+  if (asym > 1e-12 * scale) {
+    std::ostringstream os;
+    os << "quadric matrix must be symmetric (max |Q - Q^T| = " << asym << ", relative tolerance 1e-12), got\n" << Q;
+    throw std::invalid_argument(os.str());
+  }
+  QuadricRegion r;
+  r.op_ = Op::Atom;
+  r.Q_ = 0.5 * (Q + Q.transpose());
+  return r;
+}
+
+QuadricRegion QuadricRegion::halfspace(const Eigen::Vector3d& n, double d) {
+  if (!n.allFinite() || !std::isfinite(d)) {
+    std::ostringstream os;
+    os << "half-space normal and offset must be finite, got n = [" << n.transpose() << "], d = " << d;
+    throw std::invalid_argument(os.str());
+  }
+  const double len = n.norm();
+  if (!(len > 0.0)) throw std::invalid_argument("half-space normal must be non-zero");
+  const Eigen::Vector3d u = n / len;
+  Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
+  Q.topRightCorner<3, 1>() = 0.5 * u;
+  Q.bottomLeftCorner<1, 3>() = 0.5 * u.transpose();
+  Q(3, 3) = -d / len;
+  QuadricRegion r;
+  r.op_ = Op::Atom;
+  r.Q_ = Q;
+  return r;
+}
+
+QuadricRegion QuadricRegion::combine(Op op, std::vector<QuadricRegion> children) {
+  if (op == Op::Atom) throw std::invalid_argument("QuadricRegion::combine: op must be union, intersection or difference");
+  if (children.empty()) throw std::invalid_argument("QuadricRegion::combine: a CSG operation needs at least one child");
+  QuadricRegion r;
+  r.op_ = op;
+  r.children_ = std::move(children);
+  return r;
+}
+
+QuadricRegion QuadricRegion::transformedAffine(const Eigen::Matrix3d& M, const Eigen::Vector3d& p) const {
+  return transformedHomogeneous(quadric::affineTransform(M, p));
+}
+
+QuadricRegion QuadricRegion::transformed(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) const {
+  detail::checkRotation(R, "CSG pose rotation");
+  detail::checkFinite(p, "CSG pose translation");
+  // T^-1 = [R^T, -R^T p] exactly (rigid), so Q' = T^-T Q T^-1 needs no inversion.
+  Eigen::Matrix4d Tinv = Eigen::Matrix4d::Identity();
+  Tinv.topLeftCorner<3, 3>() = R.transpose();
+  Tinv.topRightCorner<3, 1>() = -R.transpose() * p;
+  return transformedByInverse(Tinv);
+}
+
+QuadricRegion QuadricRegion::transformedHomogeneous(const Eigen::Matrix4d& T) const {
+  const Eigen::Matrix4d Tinv = T.inverse();
+  if (!Tinv.allFinite()) throw std::invalid_argument("CSG pose must be invertible");
+  return transformedByInverse(Tinv);
+}
+
+QuadricRegion QuadricRegion::transformedByInverse(const Eigen::Matrix4d& Tinv) const {
+  QuadricRegion r;
+  r.op_ = op_;
+  if (op_ == Op::Atom) {
+    const Eigen::Matrix4d Q = Tinv.transpose() * Q_ * Tinv;
+    r.Q_ = 0.5 * (Q + Q.transpose());
+  }
+  r.children_.reserve(children_.size());
+  for (const QuadricRegion& c : children_) r.children_.push_back(c.transformedByInverse(Tinv));
+  return r;
+}
+
+namespace {
+
+// Sign of X^T Q X at x with the rounding pad: -1 certified < 0, +1 certified > 0, 0 otherwise.
+int atomPointSign(const Eigen::Matrix4d& Q, const Eigen::Vector3d& x) {
+  const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
+  const double v = X.dot(Q * X);
+  const Eigen::Vector4d Xa = X.cwiseAbs();
+  const double pad = kRegionSignRelative * Xa.dot(Q.cwiseAbs() * Xa);
+  if (v > pad) return 1;
+  if (v < -pad) return -1;
+  return 0;
+}
+
+}  // namespace
+
+int QuadricRegion::classifyPoint(const Eigen::Vector3d& x) const {
+  // Figure 29 (§6.1): interior / boundary predicates through the tree, three-valued.
+  switch (op_) {
+    case Op::Atom: return -atomPointSign(Q_, x);
+    case Op::Union: {
+      int best = -1;
+      for (const QuadricRegion& c : children_) best = std::max(best, c.classifyPoint(x));
+      return best;
+    }
+    case Op::Intersection: {
+      int worst = 1;
+      for (const QuadricRegion& c : children_) worst = std::min(worst, c.classifyPoint(x));
+      return worst;
+    }
+    case Op::Difference: {
+      int v = children_[0].classifyPoint(x);
+      for (std::size_t i = 1; i < children_.size(); ++i) v = std::min(v, -children_[i].classifyPoint(x));
+      return v;
+    }
+  }
+  return 0;
+}
+
+namespace {
+void collectSignedAtoms(const QuadricRegion& r, bool neg, std::vector<Eigen::Matrix4d>* out) {
+  if (r.op() == QuadricRegion::Op::Atom) {
+    out->push_back(neg ? Eigen::Matrix4d(-r.matrix()) : r.matrix());
+    return;
+  }
+  for (std::size_t i = 0; i < r.children().size(); ++i) {
+    const bool sub = r.op() == QuadricRegion::Op::Difference && i > 0;
+    collectSignedAtoms(r.children()[i], neg != sub, out);
+  }
+}
+}  // namespace
+
+std::vector<Eigen::Matrix4d> QuadricRegion::signedAtoms() const {
+  std::vector<Eigen::Matrix4d> out;
+  collectSignedAtoms(*this, false, &out);
+  return out;
+}
+
+// --- Negation normal form -----------------------------------------------------------------------
+
+namespace {
+
+/// The region as an and/or formula over signed atoms (differences pushed to the atoms).
+struct Formula {
+  struct Node {
+    bool is_and = true;
+    std::vector<int> atoms;
+    std::vector<int> nodes;
+  };
+  std::vector<Eigen::Matrix4d> atoms;
+  std::vector<Node> nodes;
+  int root = 0;  // always a node
+
+  int addAtom(const Eigen::Matrix4d& Q) {
+    atoms.push_back(Q);
+    return static_cast<int>(atoms.size()) - 1;
+  }
+  // Adds the subtree of r (negated if neg) as children of node `parent`.
+  void addInto(int parent, const QuadricRegion& r, bool neg) {
+    using Op = QuadricRegion::Op;
+    if (r.op() == Op::Atom) {
+      const int a = addAtom(neg ? Eigen::Matrix4d(-r.matrix()) : r.matrix());
+      nodes[parent].atoms.push_back(a);
+      return;
+    }
+    bool is_and = r.op() != Op::Union;
+    if (neg) is_and = !is_and;
+    int target = parent;
+    if (nodes[parent].is_and != is_and) {
+      nodes.push_back(Node{is_and, {}, {}});
+      target = static_cast<int>(nodes.size()) - 1;
+      nodes[parent].nodes.push_back(target);
+    }
+    for (std::size_t i = 0; i < r.children().size(); ++i) {
+      const bool sub = r.op() == Op::Difference && i > 0;
+      addInto(target, r.children()[i], neg != sub);
+    }
+  }
+  explicit Formula(const QuadricRegion& r) {
+    nodes.push_back(Node{true, {}, {}});
+    root = 0;
+    addInto(0, r, false);
+  }
+};
+
+enum class Tri { In, Out, Unknown };
+
+struct Enclosure {
+  double lo, hi;
+};
+
+// Centred form of f(X) = X^T Q X on the box c + [-r, r]: f(c+h) = f(c) + g.h + h^T A h with
+// g = 2(A c + b); |g.h| <= |g|.r and h^T A h in [sum min(0,A_ii) r_i^2 - sum_{i!=j} |A_ij| r_i r_j,
+// sum max(0,A_ii) r_i^2 + sum_{i!=j} |A_ij| r_i r_j]. Padded by kRegionSignRelative times the
+// absolute-value expression (rounding of every term).
+// `Qabs` (>= |Q| entrywise) sizes the pad: for a pencil mu F + (1-mu) G it is
+// mu |F| + (1-mu) |G|, which also covers the cancellation in forming the combination.
+Enclosure enclose(const Eigen::Matrix4d& Q, const Eigen::Matrix4d& Qabs, const Eigen::Vector3d& c,
+                  const Eigen::Vector3d& r) {
+  const Eigen::Matrix3d A = Q.topLeftCorner<3, 3>();
+  const Eigen::Vector3d b = Q.topRightCorner<3, 1>();
+  const Eigen::Vector3d Ac = A * c;
+  const double fc = c.dot(Ac) + 2.0 * b.dot(c) + Q(3, 3);
+  const Eigen::Vector3d g = 2.0 * (Ac + b);
+  const double lin = g.cwiseAbs().dot(r);
+  double qlo = 0.0, qhi = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    qlo += std::min(0.0, A(i, i)) * r[i] * r[i];
+    qhi += std::max(0.0, A(i, i)) * r[i] * r[i];
+    for (int j = 0; j < 3; ++j) {
+      if (i == j) continue;
+      const double t = std::fabs(A(i, j)) * r[i] * r[j];
+      qlo -= t;
+      qhi += t;
+    }
+  }
+  const Eigen::Vector4d Xa((c.cwiseAbs() + r)[0], (c.cwiseAbs() + r)[1], (c.cwiseAbs() + r)[2], 1.0);
+  const double pad = kRegionSignRelative * Xa.dot(Qabs * Xa);
+  return {fc - lin + qlo - pad, fc + lin + qhi + pad};
+}
+
+Enclosure enclose(const Eigen::Matrix4d& Q, const Eigen::Vector3d& c, const Eigen::Vector3d& r) {
+  return enclose(Q, Q.cwiseAbs(), c, r);
+}
+
+Tri atomBox(const Eigen::Matrix4d& Q, const Eigen::Vector3d& c, const Eigen::Vector3d& r) {
+  const Enclosure e = enclose(Q, c, r);
+  if (e.lo > 0.0) return Tri::Out;
+  if (e.hi < 0.0) return Tri::In;
+  return Tri::Unknown;
+}
+
+/// Evaluates the formula on a box and keeps the atom / node states for the exclusion test.
+class BoxEval {
+ public:
+  BoxEval(const Formula& f, const Eigen::Vector3d& c, const Eigen::Vector3d& r)
+      : f_(f), c_(c), r_(r), atom_(f.atoms.size()), node_(f.nodes.size(), Tri::Unknown) {
+    for (std::size_t i = 0; i < f.atoms.size(); ++i) atom_[i] = atomBox(f.atoms[i], c, r);
+    root_ = eval(f.root);
+  }
+  Tri root() const { return root_; }
+
+  /// Heuristic depth of a point: the largest normalised value f / |grad f| of the undecided atoms
+  /// (an approximate signed distance to the deciding surface). Only orders the search.
+  double depth(const Eigen::Vector3d& x) const {
+    double worst = -std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < f_.atoms.size(); ++k) {
+      if (atom_[k] != Tri::Unknown) continue;
+      const Eigen::Matrix4d& Q = f_.atoms[k];
+      const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
+      const Eigen::Vector4d QX = Q * X;
+      const double g = 2.0 * QX.head<3>().norm();
+      worst = std::max(worst, X.dot(QX) / std::max(g, 1e-300));
+    }
+    return worst;
+  }
+
+  /// Axis to split: the one contributing most to the enclosure widths of the undecided atoms
+  /// (normalised atoms; first- and second-order terms of the centred form), among the axes whose
+  /// edge exceeds min_width. -1 when no such axis matters: the box is then within the band.
+  /// Splitting by contribution lets boxes stay long along a line of (near-)contact.
+  int splitAxis(double min_width, double max_aspect) const {
+    Eigen::Vector3d score = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < f_.atoms.size(); ++k) {
+      if (atom_[k] != Tri::Unknown) continue;
+      const Eigen::Matrix4d& Q = f_.atoms[k];
+      const double s = 1.0 / Q.cwiseAbs().maxCoeff();
+      const Eigen::Matrix3d A = Q.topLeftCorner<3, 3>();
+      const Eigen::Vector3d g = 2.0 * (A * c_ + Q.topRightCorner<3, 1>());
+      for (int i = 0; i < 3; ++i) {
+        double t = std::fabs(g[i]) * r_[i];
+        for (int j = 0; j < 3; ++j) t += std::fabs(A(i, j)) * r_[i] * r_[j];
+        score[i] += s * t;
+      }
+    }
+    int axis = -1;
+    double best = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      if (2.0 * r_[i] <= min_width) continue;
+      if (axis < 0 || score[i] > best) {
+        if (score[i] > 0.0 || axis < 0) {
+          axis = i;
+          best = score[i];
+        }
+      }
+    }
+    if (axis < 0) return axis;
+    // The longest edge when nothing depends on the others, or when the box would become more
+    // elongated than kMaxAspect (its centre must still be able to land inside thin lenses).
+    int longest = 0;
+    r_.maxCoeff(&longest);
+    if (best == 0.0 || r_[longest] > max_aspect * r_[axis]) axis = longest;
+    return axis;
+  }
+
+  /// True if the box provably holds no point of the formula: for each disjunctive branch of the
+  /// simplified formula, some atom pair has a certified-positive pencil (§4.2 analogue).
+  bool excluded() {
+    if (root_ == Tri::Out) return true;
+    if (root_ == Tri::In) return false;
+    work_ = 0;
+    std::vector<int> atoms;
+    std::vector<int> ors;
+    if (f_.nodes[f_.root].is_and) {
+      gather(f_.root, &atoms, &ors);
+    } else {
+      ors.push_back(f_.root);
+    }
+    return excludedConj(atoms, ors);
+  }
+
+ private:
+  static constexpr int kMaxBranches = 64;
+  static constexpr double kMaxAspect = 16.0;  // of split boxes (see splitAxis)  // disjunctive branches examined; beyond: not excluded
+
+  Tri eval(int n) {
+    const Formula::Node& node = f_.nodes[n];
+    bool any_unknown = false;
+    auto fold = [&](Tri t) -> bool {  // returns true when decided
+      if (node.is_and && t == Tri::Out) return true;
+      if (!node.is_and && t == Tri::In) return true;
+      if (t == Tri::Unknown) any_unknown = true;
+      return false;
+    };
+    for (int a : node.atoms)
+      if (fold(atom_[a])) return node_[n] = node.is_and ? Tri::Out : Tri::In;
+    for (int m : node.nodes)
+      if (fold(eval(m))) return node_[n] = node.is_and ? Tri::Out : Tri::In;
+    if (any_unknown) return node_[n] = Tri::Unknown;
+    return node_[n] = node.is_and ? Tri::In : Tri::Out;
+  }
+
+  void gather(int n, std::vector<int>* atoms, std::vector<int>* ors) const {
+    const Formula::Node& node = f_.nodes[n];
+    for (int a : node.atoms)
+      if (atom_[a] == Tri::Unknown) atoms->push_back(a);
+    for (int m : node.nodes) {
+      if (node_[m] != Tri::Unknown) continue;
+      if (f_.nodes[m].is_and) {
+        gather(m, atoms, ors);
+      } else {
+        ors->push_back(m);
+      }
+    }
+  }
+
+  bool excludedConj(const std::vector<int>& atoms, std::vector<int> ors) {
+    if (++work_ > kMaxBranches) return false;
+    if (ors.empty()) return pencilExcluded(atoms);
+    const int o = ors.back();
+    ors.pop_back();
+    const Formula::Node& node = f_.nodes[o];
+    for (int a : node.atoms) {
+      if (atom_[a] != Tri::Unknown) continue;  // Out branches are excluded already
+      std::vector<int> at = atoms;
+      at.push_back(a);
+      if (!excludedConj(at, ors)) return false;
+    }
+    for (int m : node.nodes) {
+      if (node_[m] != Tri::Unknown) continue;
+      std::vector<int> at = atoms;
+      std::vector<int> os = ors;
+      gather(m, &at, &os);
+      if (!excludedConj(at, os)) return false;
+    }
+    return true;
+  }
+
+  // Lower bound of the centred form of mu f + (1 - mu) g is concave in mu (a linear term minus
+  // absolute values of affine functions of mu), so golden section finds its maximum.
+  bool pencilExcluded(const std::vector<int>& atoms) const {
+    for (std::size_t i = 0; i < atoms.size(); ++i) {
+      for (std::size_t j = i + 1; j < atoms.size(); ++j) {
+        const Eigen::Matrix4d& F = f_.atoms[atoms[i]];
+        const Eigen::Matrix4d& G = f_.atoms[atoms[j]];
+        // Scale-balance the two atoms so mu is well spread.
+        const double sf = 1.0 / F.cwiseAbs().maxCoeff(), sg = 1.0 / G.cwiseAbs().maxCoeff();
+        const Eigen::Matrix4d Fa = sf * F.cwiseAbs(), Ga = sg * G.cwiseAbs();
+        auto lower = [&](double mu) {
+          return enclose(mu * sf * F + (1.0 - mu) * sg * G, mu * Fa + (1.0 - mu) * Ga, c_, r_).lo;
+        };
+        double a = 0.0, b = 1.0;
+        const double phi = 0.6180339887498949;
+        double x1 = b - phi * (b - a), x2 = a + phi * (b - a);
+        double f1 = lower(x1), f2 = lower(x2);
+        for (int k = 0; k < kRegionPencilSteps; ++k) {
+          if (f1 > 0.0 || f2 > 0.0) return true;
+          if (f1 < f2) {
+            a = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = a + phi * (b - a);
+            f2 = lower(x2);
+          } else {
+            b = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = b - phi * (b - a);
+            f1 = lower(x1);
+          }
+        }
+        if (f1 > 0.0 || f2 > 0.0) return true;
+      }
+    }
+    // Triples (an edge of the CQM against a third surface, e.g. a rim against a level plane):
+    // weights from the first-order condition at the box centre, sum mu_i grad f_i(c) ~ 0 with
+    // sum mu_i = 1 (least squares, KKT system); any weights give a valid certificate.
+    for (std::size_t i = 0; i < atoms.size(); ++i)
+      for (std::size_t j = i + 1; j < atoms.size(); ++j)
+        for (std::size_t k = j + 1; k < atoms.size(); ++k) {
+          const int ids[3] = {atoms[i], atoms[j], atoms[k]};
+          Eigen::Matrix4d Qs[3];
+          Eigen::Matrix3d G;
+          for (int m = 0; m < 3; ++m) {
+            const Eigen::Matrix4d& Q = f_.atoms[ids[m]];
+            Qs[m] = Q / Q.cwiseAbs().maxCoeff();
+            G.col(m) = 2.0 * (Qs[m].topLeftCorner<3, 3>() * c_ + Qs[m].topRightCorner<3, 1>());
+          }
+          Eigen::Matrix4d K = Eigen::Matrix4d::Zero();
+          K.topLeftCorner<3, 3>() = G.transpose() * G;
+          K.block<3, 1>(0, 3) = Eigen::Vector3d::Ones();
+          K.block<1, 3>(3, 0) = Eigen::RowVector3d::Ones();
+          const Eigen::Vector4d sol = K.fullPivLu().solve(Eigen::Vector4d(0, 0, 0, 1));
+          if (!sol.allFinite()) continue;
+          const Eigen::Vector3d mu = sol.head<3>();
+          if ((mu.array() < 0.0).any()) continue;
+          const Eigen::Matrix4d Q = mu[0] * Qs[0] + mu[1] * Qs[1] + mu[2] * Qs[2];
+          const Eigen::Matrix4d Qa = mu[0] * Qs[0].cwiseAbs() + mu[1] * Qs[1].cwiseAbs() + mu[2] * Qs[2].cwiseAbs();
+          if (enclose(Q, Qa, c_, r_).lo > 0.0) return true;
+        }
+    return false;
+  }
+
+  const Formula& f_;
+  Eigen::Vector3d c_, r_;
+  std::vector<Tri> atom_;
+  std::vector<Tri> node_;
+  Tri root_ = Tri::Unknown;
+  int work_ = 0;
+};
+
+// Point membership of the formula with certified atom signs: In only if certified.
+Tri pointEval(const Formula& f, int n, const Eigen::Vector3d& x) {
+  const Formula::Node& node = f.nodes[n];
+  bool any_unknown = false;
+  for (int a : node.atoms) {
+    const int s = atomPointSign(f.atoms[a], x);
+    const Tri t = s < 0 ? Tri::In : (s > 0 ? Tri::Out : Tri::Unknown);
+    if (node.is_and && t == Tri::Out) return Tri::Out;
+    if (!node.is_and && t == Tri::In) return Tri::In;
+    if (t == Tri::Unknown) any_unknown = true;
+  }
+  for (int m : node.nodes) {
+    const Tri t = pointEval(f, m, x);
+    if (node.is_and && t == Tri::Out) return Tri::Out;
+    if (!node.is_and && t == Tri::In) return Tri::In;
+    if (t == Tri::Unknown) any_unknown = true;
+  }
+  if (any_unknown) return Tri::Unknown;
+  return node.is_and ? Tri::In : Tri::Out;
+}
+
+double maxEdge(const Box3& b) { return (b.hi - b.lo).maxCoeff(); }
+
+void split(const Box3& b, int axis, Box3* l, Box3* h) {
+  const double mid = 0.5 * (b.lo[axis] + b.hi[axis]);
+  *l = b;
+  *h = b;
+  l->hi[axis] = mid;
+  h->lo[axis] = mid;
+}
+
+PointSearchResult findPointFormula(const Formula& f, const Box3& box, int extra_after_undecided, double max_aspect) {
+  PointSearchResult res;
+  if (box.empty()) {
+    res.status = PointSearch::Empty;
+    return res;
+  }
+  const double min_width = kRegionMinBoxRelative * maxEdge(box);
+  int undecided_at = -1;
+  std::vector<Box3> stack{box};
+  while (!stack.empty()) {
+    const Box3 b = stack.back();
+    stack.pop_back();
+    ++res.boxes;
+    const Eigen::Vector3d c = b.center(), r = b.halfWidth();
+    BoxEval ev(f, c, r);
+    if (ev.root() == Tri::Out) continue;
+    if (ev.root() == Tri::In || pointEval(f, f.root, c) == Tri::In) {
+      res.status = PointSearch::Found;
+      res.point = c;
+      return res;
+    }
+    if (ev.excluded()) continue;
+    if (res.boxes >= kRegionMaxBoxes) {
+      res.status = PointSearch::Undecided;
+      if (undecided_at < 0) res.point = c;
+      res.capped = true;
+      return res;
+    }
+    const int axis = ev.splitAxis(min_width, max_aspect);
+    if (axis < 0) {
+      // Undecided within the band. Keep looking for an interior point for a bounded number of
+      // boxes (a touching pair with a line or surface of contact would otherwise visit ~1/width).
+      if (undecided_at < 0) {
+        undecided_at = res.boxes;
+        res.point = c;
+      }
+      if (res.boxes - undecided_at >= extra_after_undecided) {
+        res.status = PointSearch::Undecided;
+        return res;
+      }
+      continue;
+    }
+    Box3 lo, hi;
+    split(b, axis, &lo, &hi);
+    // The child whose centre looks deeper inside is searched first.
+    if (ev.depth(lo.center()) <= ev.depth(hi.center())) {
+      stack.push_back(hi);
+      stack.push_back(lo);
+    } else {
+      stack.push_back(lo);
+      stack.push_back(hi);
+    }
+  }
+  res.status = undecided_at < 0 ? PointSearch::Empty : PointSearch::Undecided;
+  return res;
+}
+
+}  // namespace
+
+PointSearchResult findPoint(const QuadricRegion& region, const Box3& box, int extra_after_undecided) {
+  return findPointFormula(Formula(region), box, extra_after_undecided, kRegionMaxAspect);
+}
+
+QuadricRegion intersectionInFrame(const QuadricRegion& a, const QuadricRegion& b, const Eigen::Matrix3d& R_AB,
+                                  const Eigen::Vector3d& p_AB) {
+  return QuadricRegion::combine(QuadricRegion::Op::Intersection, {a, b.transformed(R_AB, p_AB)});
+}
+
+Box3 transformBox(const Box3& box, const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d c = R * box.center() + p;
+  const Eigen::Vector3d r = R.cwiseAbs() * box.halfWidth();
+  // Outward rounding: one relative ulp-scale pad on the radius.
+  const Eigen::Vector3d pad = 1e-15 * (c.cwiseAbs() + r) + Eigen::Vector3d::Constant(1e-300);
+  return Box3{c - r - pad, c + r + pad};
+}
+
+// --- maxLinear ----------------------------------------------------------------------------------
+
+namespace {
+// Bisection on the level U: findPoint(region AND d.x >= U). Empty certifies U as an upper bound;
+// Found gives a point with d.x >= U; Undecided (within the band) raises the lower end only. The
+// pencil exclusion of the level half-space against the atoms (the Lagrange bound
+// U - d.x + lambda f >= 0) keeps each search short near the tangent point.
+bool maxLinearFormula(const QuadricRegion& region, const Eigen::Vector3d& d, const Box3& box, double* upper) {
+  const PointSearchResult any = findPointFormula(Formula(region), box, 0, kRegionMaxAspect);
+  if (any.status == PointSearch::Empty) return false;
+  const double reach = d.cwiseAbs().dot(box.halfWidth());
+  double hi = d.dot(box.center()) + reach;  // certified: the box bound
+  double lo = any.status == PointSearch::Found ? d.dot(any.point) : d.dot(box.center()) - reach;
+  const double tol = kRegionAabbRelative * 2.0 * reach;
+  for (int k = 0; k < kRegionMaxAabbBisections && hi - lo > tol; ++k) {
+    const double U = 0.5 * (lo + hi);
+    const QuadricRegion level = QuadricRegion::halfspace(-d, -U);
+    const PointSearchResult s =
+        findPointFormula(Formula(QuadricRegion::combine(QuadricRegion::Op::Intersection, {region, level})), box, 0,
+                         std::numeric_limits<double>::infinity());
+    switch (s.status) {
+      case PointSearch::Empty: hi = U; break;
+      case PointSearch::Found: lo = std::max(U, d.dot(s.point)); break;
+      case PointSearch::Undecided: lo = U; break;
+    }
+  }
+  *upper = hi;
+  return true;
+}
+}  // namespace
+
+bool maxLinear(const QuadricRegion& region, const Eigen::Vector3d& d, const Box3& box, double* upper) {
+  return maxLinearFormula(region, d, box, upper);
+}
+
+namespace {
+// A box containing the region, from the tree: an ellipsoid atom (3x3 part positive definite,
+// X^T Q X = (x - m)^T A (x - m) - k with m = -A^-1 b, k = b^T A^-1 b - c) has the extents
+// sqrt(k (A^-1)_ii); intersections intersect, unions unite, differences keep the first. The
+// boxes are widened by a relative 1e-9 (covers the rounding of the inverse); none if unknown.
+bool treeHint(const QuadricRegion& r, Box3* out) {
+  switch (r.op()) {
+    case QuadricRegion::Op::Atom: {
+      const Eigen::Matrix3d A = r.matrix().topLeftCorner<3, 3>();
+      // Only well-conditioned positive definite parts: a cylinder rotated in floating point can
+      // have a tiny positive eigenvalue, and its "ellipsoid" box must not hide unboundedness.
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(A, Eigen::EigenvaluesOnly);
+      if (!(eig.eigenvalues()[0] > 1e-10 * eig.eigenvalues()[2])) return false;
+      Eigen::LLT<Eigen::Matrix3d> llt(A);
+      if (llt.info() != Eigen::Success) return false;
+      const Eigen::Vector3d b = r.matrix().topRightCorner<3, 1>();
+      const Eigen::Matrix3d Ainv = llt.solve(Eigen::Matrix3d::Identity());
+      const Eigen::Vector3d m = -Ainv * b;
+      const double k = b.dot(Ainv * b) - r.matrix()(3, 3);
+      if (!(k > 0.0) || !Ainv.allFinite()) return false;
+      const Eigen::Vector3d h = (k * Ainv.diagonal()).cwiseSqrt();
+      const Eigen::Vector3d pad = 1e-9 * (h + m.cwiseAbs());
+      *out = Box3{m - h - pad, m + h + pad};
+      return out->lo.allFinite() && out->hi.allFinite() && (out->hi - out->lo).maxCoeff() < kRegionMaxExtent;
+    }
+    case QuadricRegion::Op::Intersection: {
+      bool any = false;
+      for (const QuadricRegion& c : r.children()) {
+        Box3 b;
+        if (!treeHint(c, &b)) continue;
+        if (!any) {
+          *out = b;
+          any = true;
+        } else {
+          out->lo = out->lo.cwiseMax(b.lo);
+          out->hi = out->hi.cwiseMin(b.hi);
+        }
+      }
+      return any;
+    }
+    case QuadricRegion::Op::Union: {
+      for (std::size_t i = 0; i < r.children().size(); ++i) {
+        Box3 b;
+        if (!treeHint(r.children()[i], &b)) return false;
+        if (i == 0) {
+          *out = b;
+        } else {
+          out->lo = out->lo.cwiseMin(b.lo);
+          out->hi = out->hi.cwiseMax(b.hi);
+        }
+      }
+      return true;
+    }
+    case QuadricRegion::Op::Difference: return treeHint(r.children()[0], out);
+  }
+  return false;
+}
+}  // namespace
+
+Box3 regionAabb(const QuadricRegion& region, const Box3* hint) {
+  const QuadricRegion& f = region;
+  Box3 tree_box;
+  if (hint == nullptr && treeHint(region, &tree_box)) {
+    if (tree_box.empty()) throw std::invalid_argument("quadric region is empty (its bounding pieces do not meet)");
+    if (region.op() == QuadricRegion::Op::Atom) return tree_box;  // an ellipsoid: analytic
+    hint = &tree_box;
+  }
+  const bool have_hint = hint != nullptr && !hint->empty();
+  Box3 search;
+  if (have_hint) {
+    search = *hint;
+  } else {
+    search.lo = Eigen::Vector3d::Constant(-kRegionMaxExtent);
+    search.hi = Eigen::Vector3d::Constant(kRegionMaxExtent);
+  }
+  // Stages: each stage's certified bounds give a smaller search box for the next, so the final
+  // tolerance is relative to the region's own size, not to the initial search box.
+  constexpr int kMaxStages = 6;
+  for (int stage = 0; stage < kMaxStages; ++stage) {
+    Box3 next;
+    for (int i = 0; i < 3; ++i) {
+      Eigen::Vector3d e = Eigen::Vector3d::Zero();
+      e[i] = 1.0;
+      double up = 0.0, down = 0.0;
+      if (!maxLinearFormula(f, e, search, &up) || !maxLinearFormula(f, -e, search, &down))
+        throw std::invalid_argument("quadric region is empty (e.g. the clipping half-spaces exclude the whole solid)");
+      next.hi[i] = std::min(up, search.hi[i]);
+      next.lo[i] = std::max(-down, search.lo[i]);
+      if (!have_hint && stage == 0) {
+        const double reach = kRegionMaxExtent * (1.0 - 1e-3);
+        if (up >= reach || down >= reach) {
+          std::ostringstream os;
+          os << "quadric region is unbounded (reaches |x_" << i << "| >= " << kRegionMaxExtent
+             << "); clip it with half-spaces to make it bounded";
+          throw std::invalid_argument(os.str());
+        }
+      }
+    }
+    const bool shrunk = maxEdge(next) < 0.5 * maxEdge(search);
+    // Widen by the stage tolerance so the next stage's box still contains the region.
+    const Eigen::Vector3d pad = Eigen::Vector3d::Constant(2.0 * kRegionAabbRelative * maxEdge(search));
+    search = Box3{next.lo - pad, next.hi + pad};
+    if (!shrunk) break;
+  }
+  return search;
+}
+
+// --- Mass properties: exact chords, adaptive Gauss-Kronrod in y and x ----------------------
+
+namespace {
+
+// The z-chord of the formula at (x, y) inside [zlo, zhi]: each atom restricted to the line is
+// alpha z^2 + 2 beta z + gamma, whose real roots are breakpoints; between breakpoints membership
+// is constant and read at the midpoint. Returns the integrals of 1, z, z^2 over the chord.
+Eigen::Vector3d chordMoments(const Formula& f, double x, double y, double zlo, double zhi) {
+  std::vector<double> bp{zlo, zhi};
+  for (const Eigen::Matrix4d& Q : f.atoms) {
+    const double alpha = Q(2, 2);
+    const double beta = Q(2, 0) * x + Q(2, 1) * y + Q(2, 3);
+    const double gamma = Q(0, 0) * x * x + Q(1, 1) * y * y + 2.0 * Q(0, 1) * x * y + 2.0 * Q(0, 3) * x +
+                         2.0 * Q(1, 3) * y + Q(3, 3);
+    if (alpha == 0.0) {
+      if (beta != 0.0) bp.push_back(-gamma / (2.0 * beta));
+      continue;
+    }
+    const double disc = beta * beta - alpha * gamma;
+    if (disc < 0.0) continue;
+    const double s = std::sqrt(disc);
+    const double q = -(beta + std::copysign(s, beta));
+    if (q != 0.0) {
+      bp.push_back(q / alpha);
+      bp.push_back(gamma / q);
+    } else {
+      bp.push_back(0.0);
+    }
+  }
+  std::sort(bp.begin(), bp.end());
+  Eigen::Vector3d m = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k + 1 < bp.size(); ++k) {
+    const double a = std::max(bp[k], zlo), b = std::min(bp[k + 1], zhi);
+    if (!(b > a)) continue;
+    const Eigen::Vector3d mid(x, y, 0.5 * (a + b));
+    // Plain sign at the midpoint: membership is constant on the open sub-interval.
+    bool inside;
+    {
+      std::function<bool(int)> ev = [&](int n) -> bool {
+        const Formula::Node& node = f.nodes[n];
+        for (int at : node.atoms) {
+          const Eigen::Vector4d X(mid[0], mid[1], mid[2], 1.0);
+          const bool in = X.dot(f.atoms[at] * X) <= 0.0;
+          if (node.is_and && !in) return false;
+          if (!node.is_and && in) return true;
+        }
+        for (int sub : node.nodes) {
+          const bool in = ev(sub);
+          if (node.is_and && !in) return false;
+          if (!node.is_and && in) return true;
+        }
+        return node.is_and;
+      };
+      inside = ev(f.root);
+    }
+    if (!inside) continue;
+    m[0] += b - a;
+    m[1] += 0.5 * (b * b - a * a);
+    m[2] += (b * b * b - a * a * a) / 3.0;
+  }
+  return m;
+}
+
+// Adaptive Gauss-Kronrod (7-15) of a vector-valued function on [a, b].
+template <typename Fn, typename V>
+V gaussKronrod(const Fn& fn, double a, double b, double tol, int depth, double* err) {
+  static const double xk[8] = {0.991455371120812639, 0.949107912342758525, 0.864864423359769073,
+                               0.741531185599394440, 0.586087235467691130, 0.405845151377397167,
+                               0.207784955007898468, 0.0};
+  static const double wk[8] = {0.022935322010529225, 0.063092092629978553, 0.104790010322250184,
+                               0.140653259715525919, 0.169004726639267903, 0.190350578064785410,
+                               0.204432940075298892, 0.209482141084727828};
+  static const double wg[4] = {0.129484966168869693, 0.279705391489276668, 0.381830050505118945,
+                               0.417959183673469388};
+  const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+  V k = wk[7] * fn(c);
+  V g = wg[3] * fn(c);
+  for (int i = 0; i < 7; ++i) {
+    const V s = fn(c - h * xk[i]) + fn(c + h * xk[i]);
+    k += wk[i] * s;
+    if (i % 2 == 1) g += wg[i / 2] * s;
+  }
+  k *= h;
+  g *= h;
+  const double e = (k - g).cwiseAbs().maxCoeff();
+  if (e <= tol || depth <= 0) {
+    *err += e;
+    return k;
+  }
+  return gaussKronrod<Fn, V>(fn, a, c, 0.5 * tol, depth - 1, err) + gaussKronrod<Fn, V>(fn, c, b, 0.5 * tol, depth - 1, err);
+}
+
+// Real roots of a t^2 + 2 b t + c = 0 (linear when a = 0), appended to out.
+void quadraticRoots(double a, double b, double c, std::vector<double>* out) {
+  if (a == 0.0) {
+    if (b != 0.0) out->push_back(-c / (2.0 * b));
+    return;
+  }
+  const double disc = b * b - a * c;
+  if (disc < 0.0) return;
+  const double q = -(b + std::copysign(std::sqrt(disc), b));
+  if (q != 0.0) {
+    out->push_back(q / a);
+    out->push_back(c / q);
+  } else {
+    out->push_back(0.0);
+  }
+}
+
+// Where the z-chord of an atom changes non-smoothly over the (x, y) plane: the conic
+// disc(x, y) = beta^2 - alpha gamma = X^T (l l^T - alpha Q') X (X = (x, y, 1), beta = l.X,
+// gamma = X^T Q' X, Q' = Q without its z row and column): the silhouette; for a vertical atom
+// (alpha = 0 = l) the atom itself, X^T Q' X = 0: a wall where the chord jumps.
+std::vector<Eigen::Matrix3d> silhouetteConics(const Formula& f) {
+  std::vector<Eigen::Matrix3d> out;
+  for (const Eigen::Matrix4d& Q : f.atoms) {
+    const int idx[3] = {0, 1, 3};
+    Eigen::Matrix3d Qp;
+    Eigen::Vector3d l;
+    for (int i = 0; i < 3; ++i) {
+      l[i] = Q(2, idx[i]);
+      for (int j = 0; j < 3; ++j) Qp(i, j) = Q(idx[i], idx[j]);
+    }
+    const double alpha = Q(2, 2);
+    if (alpha == 0.0 && l.isZero(0.0)) {
+      out.push_back(Qp);
+    } else {
+      out.push_back(l * l.transpose() - alpha * Qp);
+    }
+  }
+  // Kinks: the projection of (plane atom) x (any other atom) onto the (x, y) plane, z eliminated
+  // with the plane: X = M (x, y, 1), conic M^T Q M. (Quadric x quadric curves project to
+  // quartics and are left to the adaptive rule.)
+  for (std::size_t p = 0; p < f.atoms.size(); ++p) {
+    const Eigen::Matrix4d& P = f.atoms[p];
+    if (!P.topLeftCorner<3, 3>().isZero(0.0) || P(2, 3) == 0.0) continue;  // non-vertical planes only
+    const Eigen::Vector3d n2 = 2.0 * P.topRightCorner<3, 1>();             // n2.x + P33 = 0
+    Eigen::Matrix<double, 4, 3> M = Eigen::Matrix<double, 4, 3>::Zero();
+    M(0, 0) = 1.0;
+    M(1, 1) = 1.0;
+    M(2, 0) = -n2[0] / n2[2];
+    M(2, 1) = -n2[1] / n2[2];
+    M(2, 2) = -P(3, 3) / n2[2];
+    M(3, 2) = 1.0;
+    for (std::size_t q = 0; q < f.atoms.size(); ++q) {
+      if (q == p) continue;
+      out.push_back(M.transpose() * f.atoms[q] * M);
+    }
+  }
+  return out;
+}
+
+// Sorted breakpoints of [a, b]: a, b and the roots inside.
+std::vector<double> breakpoints(std::vector<double> roots, double a, double b) {
+  std::vector<double> bp{a, b};
+  for (double r : roots)
+    if (r > a && r < b) bp.push_back(r);
+  std::sort(bp.begin(), bp.end());
+  return bp;
+}
+
+}  // namespace
+
+MassProperties regionMassProperties(const QuadricRegion& region, const Box3& box) {
+  const Formula f(region);
+  const double vol_box = (box.hi - box.lo).prod();
+  const double tol = kRegionVolumeRelative * vol_box;
+  constexpr int kMaxDepth = 18;  // bisections per Gauss-Kronrod panel (cap; error still reported)
+  using V = Eigen::Matrix<double, 10, 1>;  // 1, x, y, z, xx, yy, zz, xy, xz, yz
+  const std::vector<Eigen::Matrix3d> conics = silhouetteConics(f);
+  double err_inner = 0.0;
+  int inner_calls = 0;
+  auto inner = [&](double x) -> V {
+    ++inner_calls;
+    auto fy = [&](double y) -> V {
+      const Eigen::Vector3d m = chordMoments(f, x, y, box.lo[2], box.hi[2]);
+      V v;
+      v << m[0], x * m[0], y * m[0], m[1], x * x * m[0], y * y * m[0], m[2], x * y * m[0], x * m[1], y * m[1];
+      return v;
+    };
+    // Split at the silhouettes / walls crossing this x (the chord is smooth in between).
+    std::vector<double> roots;
+    for (const Eigen::Matrix3d& C : conics)
+      quadraticRoots(C(1, 1), C(0, 1) * x + C(1, 2), C(0, 0) * x * x + 2.0 * C(0, 2) * x + C(2, 2), &roots);
+    const std::vector<double> bp = breakpoints(roots, box.lo[1], box.hi[1]);
+    V sum = V::Zero();
+    for (std::size_t k = 0; k + 1 < bp.size(); ++k)
+      sum += gaussKronrod<decltype(fy), V>(fy, bp[k], bp[k + 1], tol / (box.hi[0] - box.lo[0]) / (bp.size() - 1),
+                                           kMaxDepth, &err_inner);
+    return sum;
+  };
+  // Outer breakpoints: x where a silhouette conic has a vertical tangent (double root in y).
+  std::vector<double> xroots;
+  for (const Eigen::Matrix3d& C : conics) {
+    // (c01 x + c12)^2 - c11 (c00 x^2 + 2 c02 x + c22) = 0
+    const double a = C(0, 1) * C(0, 1) - C(1, 1) * C(0, 0);
+    const double b = C(0, 1) * C(1, 2) - C(1, 1) * C(0, 2);
+    const double c = C(1, 2) * C(1, 2) - C(1, 1) * C(2, 2);
+    quadraticRoots(a, b, c, &xroots);
+    if (C(1, 1) == 0.0 && C(0, 1) == 0.0 && C(1, 2) == 0.0) {  // conic independent of y: x-walls
+      quadraticRoots(C(0, 0), C(0, 2), C(2, 2), &xroots);
+    }
+  }
+  const std::vector<double> xbp = breakpoints(xroots, box.lo[0], box.hi[0]);
+  double err_outer = 0.0;
+  V I = V::Zero();
+  for (std::size_t k = 0; k + 1 < xbp.size(); ++k)
+    I += gaussKronrod<decltype(inner), V>(inner, xbp[k], xbp[k + 1], tol / (xbp.size() - 1), kMaxDepth, &err_outer);
+  MassProperties mp;
+  mp.volume = I[0];
+  // Estimated (not certified): the outer Kronrod-Gauss differences plus the mean inner one times
+  // the x-width (the weights of the outer rule sum to that width).
+  mp.volume_error = err_outer + (box.hi[0] - box.lo[0]) * err_inner / std::max(1, inner_calls);
+  if (mp.volume > 0.0) mp.centroid = Eigen::Vector3d(I[1], I[2], I[3]) / mp.volume;
+  Eigen::Matrix3d second;
+  second << I[4], I[7], I[8], I[7], I[5], I[9], I[8], I[9], I[6];
+  mp.inertia = second.trace() * Eigen::Matrix3d::Identity() - second;
+  return mp;
+}
+
+// --- Boundary elements ----------------------------------------------------------------------
+
+BoundaryElements boundaryElements(const QuadricRegion& region, const Box3& box) {
+  BoundaryElements out;
+  const std::vector<Eigen::Matrix4d> atoms = region.signedAtoms();
+  // A face / edge / vertex exists unless the region intersected with the equalities of its
+  // surfaces is certified empty (findPoint). Equality f = 0 is f <= 0 and -f <= 0.
+  auto mayMeet = [&](const std::vector<int>& ids) {
+    std::vector<QuadricRegion> parts{region};
+    for (int i : ids) {
+      parts.push_back(QuadricRegion::atom(atoms[i]));
+      parts.push_back(QuadricRegion::atom(-atoms[i]));
+    }
+    return findPoint(QuadricRegion::combine(QuadricRegion::Op::Intersection, parts), box).status != PointSearch::Empty;
+  };
+  for (std::size_t i = 0; i < atoms.size(); ++i) {
+    if (!mayMeet({static_cast<int>(i)})) continue;
+    out.faces.push_back(BoundaryFace{static_cast<int>(i), classifyFace(atoms[i])});
+  }
+  const int nf = static_cast<int>(out.faces.size());
+  for (int i = 0; i < nf; ++i) {
+    for (int j = i + 1; j < nf; ++j) {
+      const BoundaryFace &fi = out.faces[i], &fj = out.faces[j];
+      if (!mayMeet({fi.atom, fj.atom})) continue;
+      BoundaryEdge e;
+      e.face0 = i;
+      e.face1 = j;
+      if (fi.planar() && fj.planar()) {
+        e.kind = EdgeKind::Line;
+      } else if (fi.planar() || fj.planar()) {
+        // The quadric restricted to the plane: point o + s u + t v, value [s t 1] C [s t 1]^T.
+        const Eigen::Matrix4d& P = atoms[fi.planar() ? fi.atom : fj.atom];
+        const Eigen::Matrix4d& Q = atoms[fi.planar() ? fj.atom : fi.atom];
+        const Eigen::Vector3d n2 = 2.0 * P.topRightCorner<3, 1>();  // plane: n2.x + P33 = 0
+        const Eigen::Vector3d n = n2.normalized();
+        const Eigen::Vector3d o = -P(3, 3) / n2.squaredNorm() * n2;
+        const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
+        Eigen::Matrix<double, 4, 3> M = Eigen::Matrix<double, 4, 3>::Zero();
+        M.block<3, 1>(0, 0) = u;
+        M.block<3, 1>(0, 1) = v;
+        M.block<3, 1>(0, 2) = o;
+        M(3, 2) = 1.0;
+        const Eigen::Matrix3d C = M.transpose() * Q * M;
+        const double a11 = C(0, 0), a12 = C(0, 1), a22 = C(1, 1);
+        const double hyp = std::hypot(0.5 * (a11 - a22), a12);
+        const double min_eig = 0.5 * (a11 + a22) - hyp, max_eig = 0.5 * (a11 + a22) + hyp;
+        const double eps = 1e-12 * Q.cwiseAbs().maxCoeff();
+        bool lines = false;
+        if (std::fabs(max_eig) <= eps && std::fabs(min_eig) <= eps) {
+          lines = true;  // the quadric is affine on the plane: a line
+        } else if (std::fabs(min_eig) <= eps || std::fabs(max_eig) <= eps) {
+          // Rank 1: a pair of parallel lines unless the null direction carries a linear term
+          // (a parabola).
+          Eigen::Vector2d null_dir = (std::fabs(a11) >= std::fabs(a22)) ? Eigen::Vector2d(-a12, a11)
+                                                                      : Eigen::Vector2d(a22, -a12);
+          null_dir.normalize();
+          const double lin = C(2, 0) * null_dir[0] + C(2, 1) * null_dir[1];
+          lines = std::fabs(lin) <= eps * (1.0 + o.norm());
+        }
+        e.kind = lines ? EdgeKind::Line : EdgeKind::Conic;
+        // Definition 6.1: a conic edge on a planar face is concave when the chord of two of its
+        // points leaves the face, i.e. the quadric as used, restricted to the plane, has a
+        // negative eigenvalue (complement of an ellipse, a hyperbola). Line edges never are.
+        e.concave = !lines && min_eig < -eps;
+      } else {
+        e.kind = EdgeKind::Curve;
+      }
+      out.edges.push_back(e);
+    }
+  }
+  for (int i = 0; i < nf; ++i)
+    for (int j = i + 1; j < nf; ++j)
+      for (int k = j + 1; k < nf; ++k) {
+        const int planes = out.faces[i].planar() + out.faces[j].planar() + out.faces[k].planar();
+        if (planes < 2) continue;  // vertices of CQMs with conic / line edges (§6.2)
+        if (mayMeet({out.faces[i].atom, out.faces[j].atom, out.faces[k].atom}))
+          out.vertices.push_back(BoundaryVertex{i, j, k});
+      }
+  return out;
+}
+
+// --- Static collision -------------------------------------------------------------------------
+
+RegionCollision collideRegions(const QuadricRegion& a, const Box3& aabb_a, const QuadricRegion& b,
+                               const Box3& aabb_b, const Eigen::Matrix3d& R_AB, const Eigen::Vector3d& p_AB) {
+  RegionCollision res;
+  const Box3 bb = transformBox(aabb_b, R_AB, p_AB);
+  Box3 box{aabb_a.lo.cwiseMax(bb.lo), aabb_a.hi.cwiseMin(bb.hi)};
+  if (box.empty()) {
+    res.relation = RegionRelation::Separated;
+    return res;
+  }
+  const PointSearchResult s = findPoint(intersectionInFrame(a, b, R_AB, p_AB), box);
+  res.boxes = s.boxes;
+  res.capped = s.capped;
+  res.point = s.point;
+  switch (s.status) {
+    case PointSearch::Empty: res.relation = RegionRelation::Separated; break;
+    case PointSearch::Found: res.relation = RegionRelation::Overlapping; break;
+    case PointSearch::Undecided: res.relation = RegionRelation::Touching; break;
+  }
+  return res;
+}
+
+}  // namespace fcl_quadric

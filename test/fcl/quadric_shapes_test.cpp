@@ -1,0 +1,337 @@
+// FCL-facing quadric shapes (quadric_shapes.h): the circular EllipticCylinder against
+// fcl::Cylinder (local AABB, volume, inertia, and collisions against ellipsoids agreeing with the
+// exact ellipsoid-cylinder kernel on random poses), analytic pairs for Quadric and QuadricCSG,
+// bad input, the dispatch (fcl_quadric::collide, broad-phase managers through
+// defaultCollisionFunction; a plain fcl::collide / fcl::distance with FCL's stock solver must not
+// crash) and the documented unsupported cases.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/broadphase/default_broadphase_callbacks.h>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/octree/octree.h>
+#include <fcl/geometry/shape/plane.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include "fcl_quadric/fcl/collision.h"
+#include "fcl_quadric/fcl/distance.h"
+#include "fcl_quadric/fcl/quadric_shapes.h"
+#include "fcl_quadric/geometry/ellipsoid_cylinder.h"
+#include "support/random_ellipsoids.h"
+
+#include <octomap/OcTree.h>
+
+namespace fcl_quadric {
+namespace {
+
+using Transform = fcl::Transform3<double>;
+using Csg = QuadricCSG<double>;
+using Op = QuadricRegion::Op;
+constexpr double kPi = 3.14159265358979323846;
+
+Transform pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
+  Transform tf = Transform::Identity();
+  tf.linear() = R;
+  tf.translation() = p;
+  return tf;
+}
+
+bool collides(const fcl::CollisionGeometry<double>& a, const Transform& ta, const fcl::CollisionGeometry<double>& b,
+              const Transform& tb) {
+  fcl::CollisionRequest<double> req;
+  fcl::CollisionResult<double> res;
+  return fcl_quadric::collide(&a, ta, &b, tb, req, res) > 0;
+}
+
+TEST(EllipticCylinderShape, CircularCaseAgreesWithFclCylinderOnAabbVolumeAndInertia) {
+  for (const auto& [r, L] : {std::pair(0.5, 2.0), std::pair(1.3, 0.4), std::pair(2.0, 2.0)}) {
+    EllipticCylinder<double> ours(r, r, L);
+    fcl::Cylinder<double> theirs(r, L);
+    ours.computeLocalAABB();
+    theirs.computeLocalAABB();
+    EXPECT_TRUE(ours.aabb_local.min_.isApprox(theirs.aabb_local.min_, 1e-15));
+    EXPECT_TRUE(ours.aabb_local.max_.isApprox(theirs.aabb_local.max_, 1e-15));
+    EXPECT_NEAR(ours.aabb_radius, theirs.aabb_radius, 1e-14);
+    EXPECT_NEAR(ours.computeVolume(), theirs.computeVolume(), 1e-14 * theirs.computeVolume());
+    EXPECT_TRUE(ours.computeMomentofInertia().isApprox(theirs.computeMomentofInertia(), 1e-14));
+    EXPECT_TRUE(ours.computeCOM().isZero(0.0));
+    // The closed forms agree with the generic quadrature of the same region.
+    const MassProperties mp = regionMassProperties(ours.region(), ours.localBox());
+    EXPECT_NEAR(mp.volume, ours.computeVolume(), 1e-7 * mp.volume);
+    EXPECT_TRUE(mp.inertia.isApprox(ours.computeMomentofInertia(), 1e-6));
+  }
+}
+
+TEST(EllipticCylinderShape, CircularCaseCollidesLikeTheExactEllipsoidCylinderKernelOnRandomPoses) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1.8, 1.8), s(0.3, 1.2);
+  int decided = 0, hits = 0;
+  for (int trial = 0; trial < 150; ++trial) {
+    const double r = s(rng), L = 2 * s(rng);
+    const Eigen::Vector3d radii = test::randomRadii(rng, 0.8, 3.0);
+    const Transform tc = pose(test::randomRotation(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const Transform te = pose(test::randomRotation(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const Ellipsoid e(radii, te.linear(), te.translation());
+    const SignedDistanceResult ref = signedDistanceEllipsoidCylinder(e, r, L, tc.linear(), tc.translation());
+    if (std::fabs(ref.distance) < 1e-6) continue;  // tolerance band
+    ++decided;
+    EllipticCylinder<double> ours(r, r, L);
+    fcl::Cylinder<double> theirs(r, L);
+    fcl::Ellipsoid<double> ell(radii);
+    const bool expected = ref.distance < 0;
+    hits += expected;
+    EXPECT_EQ(collides(ours, tc, ell, te), expected) << "trial " << trial << " d = " << ref.distance;
+    EXPECT_EQ(collides(ell, te, ours, tc), expected) << "trial " << trial << " (swapped)";
+    EXPECT_EQ(collides(theirs, tc, ell, te), expected) << "trial " << trial << " (fcl::Cylinder path)";
+  }
+  EXPECT_GT(decided, 120);
+  EXPECT_GT(hits, 10);  // both answers well represented
+  EXPECT_LT(hits, decided - 10);
+}
+
+TEST(EllipticCylinderShape, AnalyticSphereContactsAlongEachAxis) {
+  const double a = 1.5, b = 0.5, L = 3.0, rs = 0.25;
+  EllipticCylinder<double> cyl(a, b, L);
+  fcl::Sphere<double> sphere(rs);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Transform tc = pose(R, Eigen::Vector3d(0.3, -1.0, 2.0));
+  // Extremes of the solid along its local axes: a, b (side), L/2 (cap).
+  for (const Eigen::Vector3d& d : {Eigen::Vector3d(a, 0, 0), Eigen::Vector3d(0, -b, 0), Eigen::Vector3d(0, 0, L / 2)}) {
+    const Eigen::Vector3d n = d.normalized();
+    for (double gap : {1e-3, 1e-7}) {
+      EXPECT_FALSE(collides(cyl, tc, sphere, pose(Eigen::Matrix3d::Identity(), tc * (d + (rs + gap) * n))))
+          << d.transpose() << " gap " << gap;
+      EXPECT_TRUE(collides(cyl, tc, sphere, pose(Eigen::Matrix3d::Identity(), tc * (d + (rs - gap) * n))))
+          << d.transpose() << " penetration " << gap;
+    }
+  }
+}
+
+TEST(QuadricShapeTypes, NamedQuadricsHaveAnalyticExtentsAndContacts) {
+  using Clip = HalfspaceClip<double>;
+  const double h = 2.0;
+  // Paraboloid cap x^2 + y^2 <= z <= h: a sphere on the axis below the apex, above the cap.
+  const Quadric<double> par = Quadric<double>::ellipticParaboloid(1.0, 1.0, {Clip{{0, 0, 1}, h}});
+  EXPECT_TRUE(par.bounded());
+  // Certified outward, tight to ~1e-6 of the extent (tolerance_region::kRegionAabbRelative per stage).
+  EXPECT_GE(par.localBox().hi[0], std::sqrt(h));
+  EXPECT_NEAR(par.localBox().hi[0], std::sqrt(h), 4e-6);
+  EXPECT_NEAR(par.computeVolume(), kPi * h * h / 2, 1e-6);
+  EXPECT_NEAR(par.computeCOM()[2], 2 * h / 3, 1e-6);
+  fcl::Sphere<double> s(0.2);
+  const Transform I = Transform::Identity();
+  EXPECT_FALSE(collides(par, I, s, pose(Eigen::Matrix3d::Identity(), {0, 0, -0.2 - 1e-4})));
+  EXPECT_TRUE(collides(par, I, s, pose(Eigen::Matrix3d::Identity(), {0, 0, -0.2 + 1e-4})));
+  EXPECT_FALSE(collides(par, I, s, pose(Eigen::Matrix3d::Identity(), {0, 0, h + 0.2 + 1e-4})));
+  // Beside the wall: the nearest point of x^2 = z (y = 0) to (x0, 0, z0) is at distance 0.2.
+  // Take the foot point (t, 0, t^2) and move along the outward normal (2t, 0, -1)/|.|.
+  const double t = 1.0;
+  const Eigen::Vector3d foot(t, 0, t * t), nrm = Eigen::Vector3d(2 * t, 0, -1).normalized();
+  EXPECT_FALSE(collides(par, I, s, pose(Eigen::Matrix3d::Identity(), foot + (0.2 + 1e-5) * nrm)));
+  EXPECT_TRUE(collides(par, I, s, pose(Eigen::Matrix3d::Identity(), foot + (0.2 - 1e-5) * nrm)));
+
+  // Hyperboloid of one sheet (waist radius 1) clipped |z| <= 1: a sphere of radius 0.5 at the
+  // waist's centre is inside; a ring-shaped gap: a sphere at (1 + 0.5 + gap, 0, 0) is outside.
+  const Quadric<double> hyp =
+      Quadric<double>::hyperboloidOneSheet(1.0, 1.0, 1.0, {Clip{{0, 0, 1}, 1.0}, Clip{{0, 0, -1}, 1.0}});
+  fcl::Sphere<double> s5(0.5);
+  EXPECT_TRUE(collides(hyp, I, s5, I));
+  EXPECT_FALSE(collides(hyp, I, s5, pose(Eigen::Matrix3d::Identity(), {1.5 + 1e-4, 0, 0})));
+  EXPECT_TRUE(collides(hyp, I, s5, pose(Eigen::Matrix3d::Identity(), {1.5 - 1e-4, 0, 0})));
+  // Two-sheet hyperboloid, upper cap 1 <= z <= 3 (vertex at z = 1).
+  const Quadric<double> two = Quadric<double>::hyperboloidTwoSheets(1.0, 1.0, 1.0, {Clip{{0, 0, -1}, 0.0}, Clip{{0, 0, 1}, 3.0}});
+  EXPECT_LE(two.localBox().lo[2], 1.0);
+  EXPECT_NEAR(two.localBox().lo[2], 1.0, 4e-6);
+  EXPECT_FALSE(collides(two, I, s5, pose(Eigen::Matrix3d::Identity(), {0, 0, 0.5 - 1e-4})));
+  EXPECT_TRUE(collides(two, I, s5, pose(Eigen::Matrix3d::Identity(), {0, 0, 0.5 + 1e-4})));
+}
+
+TEST(QuadricShapeTypes, RingLetsASmallBallThroughItsBore) {
+  // Ring = ball of radius 1 minus a coaxial cylinder of radius 0.6 (thesis Example 6.1 (a)).
+  auto ballShape = std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(1.0, 1.0, 1.0));
+  auto bore = std::make_shared<Quadric<double>>(Quadric<double>::ellipticCylinder(0.6, 0.6));
+  EXPECT_FALSE(bore->bounded());
+  const Csg ring(Op::Difference, {{ballShape, Transform::Identity()}, {bore, Transform::Identity()}});
+  EXPECT_NEAR(ring.computeVolume(), 4.0 / 3.0 * kPi * std::pow(1 - 0.36, 1.5), 1e-6);
+  const Transform I = Transform::Identity();
+  fcl::Sphere<double> small(0.6 - 1e-4), big(0.6 + 1e-4);
+  EXPECT_FALSE(collides(ring, I, small, I));
+  EXPECT_TRUE(collides(ring, I, big, I));
+  // Poses on CSG children: the same ring built from a cylinder posed along x and rotated back.
+  const Eigen::Matrix3d Ry = Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Csg ring_x(Op::Difference, {{ballShape, I}, {bore, pose(Ry, Eigen::Vector3d::Zero())}});
+  EXPECT_FALSE(collides(ring_x, pose(Ry.transpose(), Eigen::Vector3d::Zero()), small, I));
+  EXPECT_FALSE(collides(ring_x, I, fcl::Sphere<double>(0.3), pose(Eigen::Matrix3d::Identity(), {0.5, 0, 0})));
+  EXPECT_TRUE(collides(ring_x, I, fcl::Sphere<double>(0.3), pose(Eigen::Matrix3d::Identity(), {0, 0.5, 0})));
+}
+
+TEST(QuadricShapeTypes, BadInputThrowsNamingTheValue) {
+  auto expectThrow = [](auto fn, const char* word) {
+    try {
+      fn();
+      ADD_FAILURE() << "no exception, expected one mentioning '" << word << "'";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+    }
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  expectThrow([] { EllipticCylinder<double>(0.0, 1.0, 1.0); }, "semi-axis a");
+  expectThrow([] { EllipticCylinder<double>(1.0, -1.0, 1.0); }, "semi-axis b");
+  expectThrow([&] { EllipticCylinder<double>(1.0, 1.0, nan); }, "length lz");
+  Eigen::Matrix4d Q = Eigen::Vector4d(1, 1, 1, -1).asDiagonal();
+  Q(0, 3) = 0.3;
+  expectThrow([&] { Quadric<double>{Q}; }, "symmetric");
+  expectThrow([] { Quadric<double>::ellipsoid(1.0, 1.0, 1.0, {HalfspaceClip<double>{{1, 0, 0}, -1.5}}); }, "empty");
+  expectThrow([] { Quadric<double>::ellipsoid(1.0, 1.0, 1.0, {HalfspaceClip<double>{{0, 0, 0}, 1.0}}); }, "non-zero");
+  expectThrow([] { Quadric<double>::ellipticCone(1.0, 0.0, 1.0); }, "b");
+  auto ballShape = std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(1.0, 1.0, 1.0));
+  auto par = std::make_shared<Quadric<double>>(Quadric<double>::ellipticParaboloid(1.0, 1.0));
+  expectThrow([&] { par->localBox(); }, "unbounded");
+  expectThrow([&] { fcl::CollisionObject<double> obj(par); }, "unbounded");
+  expectThrow([&] { Csg(Op::Union, {}); }, "at least one child");
+  expectThrow([&] { Csg(Op::Union, {{nullptr, Transform::Identity()}}); }, "child 0 is null");
+  expectThrow([&] { Csg(Op::Union, {{ballShape, Transform::Identity()}, {par, Transform::Identity()}}); }, "unbounded");
+  Transform skew = Transform::Identity();
+  skew.linear()(0, 1) = 0.5;
+  expectThrow([&] { Csg(Op::Union, {{ballShape, skew}}); }, "child 0 pose");
+  expectThrow([&] { Csg(Op::Intersection, {{ballShape, pose(Eigen::Matrix3d::Identity(), {5, 0, 0})}, {ballShape, Transform::Identity()}}); },
+              "empty");
+}
+
+TEST(QuadricShapeDispatch, PlainFclCollideWithStockSolverDoesNotCrashAndReportsNothing) {
+  // Documented: FCL's own tables have no entry for BV_UNKNOWN; FCL prints a warning and returns
+  // 0. Only fcl_quadric::collide answers these shapes.
+  auto cyl = std::make_shared<EllipticCylinder<double>>(1.0, 0.5, 2.0);
+  auto sph = std::make_shared<fcl::Sphere<double>>(0.5);
+  fcl::CollisionObject<double> a(cyl), b(sph);
+  fcl::CollisionRequest<double> req;
+  fcl::CollisionResult<double> res;
+  EXPECT_EQ(fcl::collide(&a, &b, req, res), 0u);
+  req.gjk_solver_type = fcl::GST_INDEP;
+  EXPECT_EQ(fcl::collide(&a, &b, req, res), 0u);
+  fcl::DistanceRequest<double> dreq;
+  fcl::DistanceResult<double> dres;
+  fcl::distance(&a, &b, dreq, dres);  // must return (value unspecified by FCL)
+  // The front door answers: the sphere's centre is inside the cylinder.
+  fcl::CollisionResult<double> ours;
+  EXPECT_EQ(fcl_quadric::collide(&a, &b, fcl::CollisionRequest<double>(), ours), 1u);
+  ASSERT_EQ(ours.numContacts(), 1u);
+  EXPECT_NEAR(ours.getContact(0).normal.norm(), 1.0, 1e-12);
+  // Distance on quadric shapes is refused, not silently wrong.
+  EXPECT_THROW(fcl_quadric::distance(&a, &b, dreq, dres), std::invalid_argument);
+}
+
+TEST(QuadricShapeDispatch, UnsupportedPartnersThrowNamingTheNodeType) {
+  EllipticCylinder<double> cyl(1.0, 0.5, 2.0);
+  fcl::Plane<double> plane(Eigen::Vector3d(0, 0, 1), 0.0);
+  fcl::CollisionRequest<double> req;
+  fcl::CollisionResult<double> res;
+  try {
+    fcl_quadric::collide(&cyl, Transform::Identity(), &plane, Transform::Identity(), req, res);
+    FAIL() << "plane accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("node type"), std::string::npos) << e.what();
+  }
+}
+
+TEST(QuadricShapeDispatch, MeshTrianglesAgainstAnEllipticCylinderAtAnalyticPositions) {
+  // A square plate (two triangles) of side 4 in the plane z = h above a capped elliptic cylinder
+  // (top cap at z = 1), and the same plate standing vertically at x = c beside its side (x <= 1.5).
+  fcl::BVHModel<fcl::OBBRSS<double>> plate;
+  plate.beginModel();
+  plate.addTriangle(Eigen::Vector3d(-2, -2, 0), Eigen::Vector3d(2, -2, 0), Eigen::Vector3d(2, 2, 0));
+  plate.addTriangle(Eigen::Vector3d(-2, -2, 0), Eigen::Vector3d(2, 2, 0), Eigen::Vector3d(-2, 2, 0));
+  plate.endModel();
+  EllipticCylinder<double> cyl(1.5, 0.5, 2.0);
+  const Transform I = Transform::Identity();
+  for (double gap : {1e-3, 1e-6}) {
+    EXPECT_FALSE(collides(plate, pose(Eigen::Matrix3d::Identity(), {0.3, 0.1, 1.0 + gap}), cyl, I)) << gap;
+    EXPECT_TRUE(collides(plate, pose(Eigen::Matrix3d::Identity(), {0.3, 0.1, 1.0 - gap}), cyl, I)) << gap;
+    const Eigen::Matrix3d Ry = Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    EXPECT_FALSE(collides(cyl, I, plate, pose(Ry, {1.5 + gap, 0, 0}))) << gap;
+    EXPECT_TRUE(collides(cyl, I, plate, pose(Ry, {1.5 - gap, 0, 0}))) << gap;
+  }
+}
+
+TEST(QuadricShapeDispatch, OcTreeLeavesAgainstAQuadricShapeAtAnalyticPositions) {
+  // One occupied leaf of side 0.1 near (1, 0, 0), and a ball Quadric of radius 0.2 whose centre
+  // is 0.2 -+ gap beyond the middle of the leaf's +x face.
+  auto tree = std::make_shared<octomap::OcTree>(0.1);
+  tree->updateNode(octomap::point3d(1.02f, 0.02f, 0.02f), true);
+  auto fcl_tree = std::make_shared<fcl::OcTree<double>>(tree);
+  const std::vector<std::array<double, 6>> leaves = fcl_tree->toBoxes();
+  ASSERT_EQ(leaves.size(), 1u);
+  const Eigen::Vector3d c(leaves[0][0], leaves[0][1], leaves[0][2]);
+  const double h = 0.5 * leaves[0][3];
+  const Quadric<double> probe = Quadric<double>::ellipsoid(0.2, 0.2, 0.2);
+  for (double gap : {1e-3, 1e-6}) {
+    EXPECT_FALSE(collides(*fcl_tree, Transform::Identity(), probe,
+                          pose(Eigen::Matrix3d::Identity(), c + Eigen::Vector3d(h + 0.2 + gap, 0, 0))))
+        << gap;
+    EXPECT_TRUE(collides(*fcl_tree, Transform::Identity(), probe,
+                         pose(Eigen::Matrix3d::Identity(), c + Eigen::Vector3d(h + 0.2 - gap, 0, 0))))
+        << gap;
+  }
+}
+
+TEST(QuadricShapeDispatch, BroadPhaseManagerFindsExactlyThePairwiseContacts) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  std::vector<std::shared_ptr<fcl::CollisionGeometry<double>>> geoms;
+  auto ballShape = std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(0.8, 0.8, 0.8));
+  auto bore = std::make_shared<Quadric<double>>(Quadric<double>::ellipticCylinder(0.4, 0.4));
+  geoms.push_back(std::make_shared<Csg>(Op::Difference, std::vector<Csg::Child>{{ballShape, Transform::Identity()},
+                                                                                 {bore, Transform::Identity()}}));
+  geoms.push_back(std::make_shared<EllipticCylinder<double>>(0.9, 0.4, 1.5));
+  geoms.push_back(std::make_shared<Quadric<double>>(
+      Quadric<double>::ellipticParaboloid(0.7, 0.7, {HalfspaceClip<double>{{0, 0, 1}, 1.0}})));
+  geoms.push_back(std::make_shared<fcl::Sphere<double>>(0.6));
+  geoms.push_back(std::make_shared<fcl::Ellipsoid<double>>(Eigen::Vector3d(0.9, 0.5, 0.3)));
+  std::vector<std::unique_ptr<fcl::CollisionObject<double>>> objects;
+  for (int i = 0; i < 12; ++i) {
+    objects.push_back(std::make_unique<fcl::CollisionObject<double>>(
+        geoms[i % geoms.size()], pose(test::randomRotation(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)))));
+  }
+  std::set<std::pair<const void*, const void*>> expected;
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    for (std::size_t j = i + 1; j < objects.size(); ++j) {
+      fcl::CollisionResult<double> res;
+      if (fcl_quadric::collide(objects[i].get(), objects[j].get(), fcl::CollisionRequest<double>(), res) > 0)
+        expected.insert(std::minmax<const void*>(objects[i].get(), objects[j].get()));
+    }
+  EXPECT_GE(expected.size(), 2u);
+  fcl::DynamicAABBTreeCollisionManager<double> manager;
+  for (auto& o : objects) manager.registerObject(o.get());
+  manager.setup();
+  std::set<std::pair<const void*, const void*>> found;
+  struct Data {
+    std::set<std::pair<const void*, const void*>>* found;
+  } data{&found};
+  manager.collide(&data, [](fcl::CollisionObject<double>* o1, fcl::CollisionObject<double>* o2, void* d) {
+    fcl::DefaultCollisionData<double> cd;
+    fcl_quadric::defaultCollisionFunction<double>(o1, o2, &cd);
+    if (cd.result.isCollision())
+      static_cast<Data*>(d)->found->insert(std::minmax<const void*>(o1, o2));
+    return false;
+  });
+  EXPECT_EQ(found, expected);
+}
+
+}  // namespace
+}  // namespace fcl_quadric

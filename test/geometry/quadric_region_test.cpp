@@ -1,0 +1,546 @@
+// Composite quadric models (quadric_region.h): local AABBs against analytic extents, volumes /
+// centroids / inertia against closed forms, Definition 6.1 face classes, boundary elements of
+// simple CQMs, bad input, and the static classification against independent oracles (the exact
+// GMP ellipsoid oracle, the exact ellipsoid-cylinder kernel, exact-rational witness checks and
+// dense sampling with exact membership for CSG pairs), plus degenerate contacts.
+#include <gtest/gtest.h>
+
+#include <gmpxx.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "fcl_quadric/algebra/quadric_matrix.h"
+#include "fcl_quadric/geometry/ellipsoid_cylinder.h"
+#include "fcl_quadric/geometry/quadric_region.h"
+#include "support/exact_oracle.h"
+#include "support/random_ellipsoids.h"
+
+namespace fcl_quadric {
+namespace {
+
+using Op = QuadricRegion::Op;
+constexpr double kPi = 3.14159265358979323846;
+
+QuadricRegion cappedCylinder(double a, double b, double L) {
+  return QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticCylinder(a, b)),
+                                                   QuadricRegion::halfspace({0, 0, 1}, 0.5 * L),
+                                                   QuadricRegion::halfspace({0, 0, -1}, 0.5 * L)});
+}
+
+QuadricRegion ball(double r, const Eigen::Vector3d& c) {
+  return QuadricRegion::atom(quadric::posedEllipsoid(Eigen::Vector3d::Constant(r), Eigen::Matrix3d::Identity(), c));
+}
+
+/// Exact closed membership of x (X^T Q X <= 0 in rationals from the doubles), through the tree.
+/// strict: interior (< 0) for every atom instead.
+bool exactInside(const QuadricRegion& r, const Eigen::Vector3d& x, bool strict) {
+  switch (r.op()) {
+    case Op::Atom: {
+      // Filter: a double value far from 0 (relative 1e-10 of |X|^T |Q| |X|, far above rounding)
+      // has the exact sign; otherwise evaluate in rationals.
+      const Eigen::Vector4d Xd(x[0], x[1], x[2], 1.0);
+      const double vd = Xd.dot(r.matrix() * Xd);
+      const double scale = Xd.cwiseAbs().dot(r.matrix().cwiseAbs() * Xd.cwiseAbs());
+      if (std::fabs(vd) > 1e-10 * scale) return vd < 0;
+      const mpq_class X[4] = {x[0], x[1], x[2], 1.0};
+      mpq_class v = 0;
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) v += X[i] * mpq_class(r.matrix()(i, j)) * X[j];
+      return strict ? v < 0 : v <= 0;
+    }
+    case Op::Union:
+      for (const auto& c : r.children())
+        if (exactInside(c, x, strict)) return true;
+      return false;
+    case Op::Intersection:
+      for (const auto& c : r.children())
+        if (!exactInside(c, x, strict)) return false;
+      return true;
+    case Op::Difference:
+      if (!exactInside(r.children()[0], x, strict)) return false;
+      for (std::size_t i = 1; i < r.children().size(); ++i)
+        if (exactInside(r.children()[i], x, !strict)) return false;  // closure of the complement
+      return true;
+  }
+  return false;
+}
+
+// --- AABB ---------------------------------------------------------------------------------------
+
+TEST(QuadricRegionAabb, RotatedEllipsoidContainsAndMatchesAnalyticExtents) {
+  std::mt19937_64 rng(11);
+  for (int trial = 0; trial < 4; ++trial) {
+    const Eigen::Vector3d radii = test::randomRadii(rng, 1.0, 4.0);
+    const Eigen::Matrix3d R = test::randomRotation(rng);
+    const Eigen::Vector3d p(0.3, -0.2, 0.7);
+    const QuadricRegion e = QuadricRegion::atom(quadric::posedEllipsoid(radii, R, p));
+    const Box3 box = regionAabb(e);
+    for (int i = 0; i < 3; ++i) {
+      // Support of an ellipsoid along e_i: sqrt(sum_j R_ij^2 r_j^2).
+      double h = 0;
+      for (int j = 0; j < 3; ++j) h += R(i, j) * R(i, j) * radii[j] * radii[j];
+      h = std::sqrt(h);
+      const double tol = 3e-9 * (radii.maxCoeff() + 1.0);  // analytic box, widened by 1e-9 (relative)
+      EXPECT_LE(box.lo[i], p[i] - h) << "axis " << i;  // outward (certified)
+      EXPECT_GE(box.hi[i], p[i] + h) << "axis " << i;
+      EXPECT_NEAR(box.lo[i], p[i] - h, tol);
+      EXPECT_NEAR(box.hi[i], p[i] + h, tol);
+    }
+  }
+}
+
+TEST(QuadricRegionAabb, ClippedParaboloidConeAndHyperboloidAreTight) {
+  const double h = 2.0, a = 1.5, b = 0.5, c = 2.0;
+  const QuadricRegion par = QuadricRegion::combine(
+      Op::Intersection, {QuadricRegion::atom(quadric::ellipticParaboloid(a, b)), QuadricRegion::halfspace({0, 0, 1}, h)});
+  Box3 box = regionAabb(par);
+  EXPECT_NEAR(box.hi[0], a * std::sqrt(h), 2e-6);
+  EXPECT_NEAR(box.hi[1], b * std::sqrt(h), 2e-6);
+  EXPECT_NEAR(box.lo[2], 0.0, 2e-6);
+  EXPECT_NEAR(box.hi[2], h, 2e-6);
+  // One nappe of the cone, 0 <= z <= h: the base ellipse has semi-axes a h / c, b h / c.
+  const QuadricRegion cone = QuadricRegion::combine(
+      Op::Intersection, {QuadricRegion::atom(quadric::ellipticCone(a, b, c)), QuadricRegion::halfspace({0, 0, 1}, h),
+                         QuadricRegion::halfspace({0, 0, -1}, 0.0)});
+  box = regionAabb(cone);
+  EXPECT_NEAR(box.hi[0], a * h / c, 2e-6);
+  EXPECT_NEAR(box.lo[1], -b * h / c, 2e-6);
+  EXPECT_NEAR(box.lo[2], 0.0, 2e-6);
+  // Hyperboloid of one sheet in |z| <= h: widest at the caps, a sqrt(1 + h^2/c^2).
+  const QuadricRegion hyp = QuadricRegion::combine(
+      Op::Intersection, {QuadricRegion::atom(quadric::hyperboloidOneSheet(a, b, c)),
+                         QuadricRegion::halfspace({0, 0, 1}, h), QuadricRegion::halfspace({0, 0, -1}, h)});
+  box = regionAabb(hyp);
+  EXPECT_NEAR(box.hi[0], a * std::sqrt(1 + h * h / (c * c)), 2e-6);
+  EXPECT_NEAR(box.hi[2], h, 2e-6);
+}
+
+TEST(QuadricRegionAabb, UnboundedAndEmptyRegionsThrowNamingTheProblem) {
+  const QuadricRegion par = QuadricRegion::atom(quadric::ellipticParaboloid(1, 1));
+  try {
+    regionAabb(par);
+    FAIL() << "unbounded paraboloid accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("unbounded"), std::string::npos) << e.what();
+  }
+  // A cylinder rotated in floating point (its 3x3 part may get a tiny positive eigenvalue) is
+  // still unbounded.
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  EXPECT_THROW(regionAabb(QuadricRegion::atom(quadric::ellipticCylinder(1, 2)).transformed(R, Eigen::Vector3d(1, 0, 0))),
+               std::invalid_argument);
+  // A clip that removes the whole ellipsoid.
+  const QuadricRegion empty = QuadricRegion::combine(
+      Op::Intersection, {ball(1.0, Eigen::Vector3d::Zero()), QuadricRegion::halfspace({1, 0, 0}, -2.0)});
+  try {
+    regionAabb(empty);
+    FAIL() << "empty region accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("empty"), std::string::npos) << e.what();
+  }
+}
+
+// --- Mass properties ----------------------------------------------------------------------------
+
+TEST(QuadricRegionMass, VolumesAndCentroidsMatchClosedForms) {
+  struct Case {
+    const char* name;
+    QuadricRegion region;
+    double volume;
+    Eigen::Vector3d centroid;
+  };
+  const double a = 1.5, b = 0.5, c = 2.0, h = 1.2, rho = 0.6, d = 0.8;
+  const std::vector<Case> cases = {
+      {"ellipsoid", QuadricRegion::atom(quadric::ellipsoid({a, b, c})), 4.0 / 3.0 * kPi * a * b * c,
+       Eigen::Vector3d::Zero()},
+      {"capped elliptic cylinder", cappedCylinder(a, b, 2 * h), kPi * a * b * 2 * h, Eigen::Vector3d::Zero()},
+      {"paraboloid cap",
+       QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticParaboloid(a, b)),
+                                                 QuadricRegion::halfspace({0, 0, 1}, h)}),
+       kPi * a * b * h * h / 2, Eigen::Vector3d(0, 0, 2 * h / 3)},
+      {"cone nappe",
+       QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticCone(a, b, c)),
+                                                 QuadricRegion::halfspace({0, 0, 1}, h),
+                                                 QuadricRegion::halfspace({0, 0, -1}, 0.0)}),
+       kPi * a * b * h * h * h / (3 * c * c), Eigen::Vector3d(0, 0, 0.75 * h)},
+      {"hyperboloid slab",
+       QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::hyperboloidOneSheet(a, b, c)),
+                                                 QuadricRegion::halfspace({0, 0, 1}, h),
+                                                 QuadricRegion::halfspace({0, 0, -1}, h)}),
+       kPi * a * b * (2 * h + 2 * h * h * h / (3 * c * c)), Eigen::Vector3d::Zero()},
+      // Napkin ring: unit ball minus a coaxial cylinder of radius rho.
+      {"ring (ball minus cylinder)",
+       QuadricRegion::combine(Op::Difference, {ball(1.0, Eigen::Vector3d::Zero()),
+                                               QuadricRegion::atom(quadric::ellipticCylinder(rho, rho))}),
+       4.0 / 3.0 * kPi * std::pow(1 - rho * rho, 1.5), Eigen::Vector3d::Zero()},
+      // Lens: two unit balls with centres d apart.
+      {"lens (intersection)",
+       QuadricRegion::combine(Op::Intersection, {ball(1.0, Eigen::Vector3d::Zero()), ball(1.0, Eigen::Vector3d(d, 0, 0))}),
+       kPi * (4 + d) * (2 - d) * (2 - d) / 12, Eigen::Vector3d(d / 2, 0, 0)},
+      {"union of two balls",
+       QuadricRegion::combine(Op::Union, {ball(1.0, Eigen::Vector3d::Zero()), ball(1.0, Eigen::Vector3d(d, 0, 0))}),
+       2 * 4.0 / 3.0 * kPi - kPi * (4 + d) * (2 - d) * (2 - d) / 12, Eigen::Vector3d(d / 2, 0, 0)},
+  };
+  for (const Case& k : cases) {
+    const Box3 box = regionAabb(k.region);
+    const MassProperties mp = regionMassProperties(k.region, box);
+    EXPECT_NEAR(mp.volume, k.volume, 1e-6 * k.volume) << k.name;
+    EXPECT_LE(mp.volume_error, 1e-5 * k.volume) << k.name;
+    EXPECT_LE((mp.centroid - k.centroid).norm(), 1e-6) << k.name << ": " << mp.centroid.transpose();
+  }
+}
+
+TEST(QuadricRegionMass, EllipsoidInertiaMatchesClosedForm) {
+  const double a = 1.0, b = 2.0, c = 0.5;
+  const QuadricRegion e = QuadricRegion::atom(quadric::ellipsoid({a, b, c}));
+  const MassProperties mp = regionMassProperties(e, regionAabb(e));
+  const double m = 4.0 / 3.0 * kPi * a * b * c;
+  const Eigen::Vector3d expected(m * (b * b + c * c) / 5, m * (a * a + c * c) / 5, m * (a * a + b * b) / 5);
+  EXPECT_LE((mp.inertia.diagonal() - expected).cwiseAbs().maxCoeff(), 1e-6 * expected.maxCoeff());
+  EXPECT_LE((mp.inertia - Eigen::Matrix3d(mp.inertia.diagonal().asDiagonal())).cwiseAbs().maxCoeff(), 1e-6);
+}
+
+// --- Definition 6.1 and boundary elements --------------------------------------------------------
+
+TEST(QuadricFaceShape, Definition61ClassifiesEveryQuadricKind) {
+  EXPECT_EQ(classifyFace(quadric::ellipsoid({1, 2, 3})), FaceShape::Convex);
+  EXPECT_EQ(classifyFace(-quadric::ellipsoid({1, 2, 3})), FaceShape::Concave);  // cavity
+  EXPECT_EQ(classifyFace(quadric::ellipticCylinder(1, 2)), FaceShape::Convex);
+  EXPECT_EQ(classifyFace(-quadric::ellipticCylinder(1, 2)), FaceShape::Concave);  // bore of a ring
+  EXPECT_EQ(classifyFace(quadric::ellipticParaboloid(1, 2)), FaceShape::Convex);
+  EXPECT_EQ(classifyFace(quadric::hyperbolicParaboloid(1, 2)), FaceShape::Concave);  // saddle
+  EXPECT_EQ(classifyFace(quadric::hyperboloidOneSheet(1, 2, 3)), FaceShape::Concave);  // saddle
+  EXPECT_EQ(classifyFace(quadric::hyperboloidTwoSheets(1, 2, 3)), FaceShape::Convex);
+  EXPECT_EQ(classifyFace(-quadric::hyperboloidTwoSheets(1, 2, 3)), FaceShape::Concave);
+  EXPECT_EQ(classifyFace(quadric::ellipticCone(1, 2, 3)), FaceShape::Convex);
+  EXPECT_EQ(classifyFace(QuadricRegion::halfspace({1, 2, 3}, 0.5).matrix()), FaceShape::Planar);
+  EXPECT_EQ(classifyFace(quadric::planePair({0, 0, 1}, 0.0, 1.0)), FaceShape::Convex);  // slab: (z)^2 <= 1
+}
+
+TEST(QuadricBoundaryElements, CappedCylinderHasSideTwoCapsAndTwoEllipses) {
+  const QuadricRegion cyl = cappedCylinder(1.0, 2.0, 3.0);
+  const BoundaryElements be = boundaryElements(cyl, regionAabb(cyl));
+  ASSERT_EQ(be.faces.size(), 3u);
+  EXPECT_EQ(be.faces[0].shape, FaceShape::Convex);
+  EXPECT_TRUE(be.faces[1].planar());
+  EXPECT_TRUE(be.faces[2].planar());
+  ASSERT_EQ(be.edges.size(), 2u);  // the caps are parallel: no cap-cap edge
+  for (const BoundaryEdge& e : be.edges) {
+    EXPECT_EQ(e.kind, EdgeKind::Conic);
+    EXPECT_FALSE(e.concave);
+  }
+  EXPECT_TRUE(be.vertices.empty());
+}
+
+TEST(QuadricBoundaryElements, BoxHasSixFacesTwelveLineEdgesEightVertices) {
+  std::vector<QuadricRegion> planes;
+  for (int i = 0; i < 3; ++i) {
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    n[i] = 1;
+    planes.push_back(QuadricRegion::halfspace(n, 1.0 + i));
+    planes.push_back(QuadricRegion::halfspace(-n, 1.0 + i));
+  }
+  const QuadricRegion box = QuadricRegion::combine(Op::Intersection, planes);
+  const BoundaryElements be = boundaryElements(box, regionAabb(box));
+  EXPECT_EQ(be.faces.size(), 6u);
+  EXPECT_EQ(be.edges.size(), 12u);
+  for (const BoundaryEdge& e : be.edges) EXPECT_EQ(e.kind, EdgeKind::Line);
+  EXPECT_EQ(be.vertices.size(), 8u);
+}
+
+TEST(QuadricBoundaryElements, WedgeHasConcaveBoreAndConcaveEdges) {
+  // Thesis Example 6.1 (b): elliptic cylinder minus a half-space minus a circular cylinder.
+  const QuadricRegion wedge = QuadricRegion::combine(
+      Op::Difference, {cappedCylinder(2.0, 1.5, 1.0), QuadricRegion::halfspace({0, 1, 0}, 0.0),
+                       QuadricRegion::atom(quadric::ellipticCylinder(0.5, 0.5))});
+  const BoundaryElements be = boundaryElements(wedge, regionAabb(wedge));
+  int concave_faces = 0, concave_edges = 0, conic = 0, line = 0;
+  for (const BoundaryFace& f : be.faces) concave_faces += f.concave();
+  for (const BoundaryEdge& e : be.edges) {
+    concave_edges += e.concave;
+    conic += e.kind == EdgeKind::Conic;
+    line += e.kind == EdgeKind::Line;
+  }
+  EXPECT_EQ(be.faces.size(), 5u);  // outer side, two caps, cut plane, bore
+  EXPECT_EQ(concave_faces, 1);     // the bore
+  EXPECT_EQ(concave_edges, 2);     // the bore's arcs on the two caps
+  EXPECT_EQ(conic, 4);             // outer side x caps, bore x caps (ellipse / circle arcs)
+  EXPECT_EQ(line, 4);              // cut x caps; cut x outer side and cut x bore (line pairs)
+}
+
+// --- Bad input ----------------------------------------------------------------------------------
+
+TEST(QuadricRegionInput, BadMatricesAndTreesThrowNamingTheValue) {
+  Eigen::Matrix4d Q = quadric::ellipsoid({1, 1, 1});
+  Q(0, 1) = 0.5;  // not symmetric
+  auto expectThrow = [](auto fn, const char* word) {
+    try {
+      fn();
+      ADD_FAILURE() << "no exception for " << word;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+    }
+  };
+  expectThrow([&] { QuadricRegion::atom(Q); }, "symmetric");
+  Eigen::Matrix4d N = quadric::ellipsoid({1, 1, 1});
+  N(2, 2) = std::numeric_limits<double>::quiet_NaN();
+  expectThrow([&] { QuadricRegion::atom(N); }, "finite");
+  expectThrow([&] { QuadricRegion::atom(Eigen::Matrix4d::Zero()); }, "zero");
+  expectThrow([&] { QuadricRegion::halfspace(Eigen::Vector3d::Zero(), 1.0); }, "non-zero");
+  expectThrow([&] { QuadricRegion::halfspace({1, 0, 0}, std::numeric_limits<double>::infinity()); }, "finite");
+  expectThrow([&] { QuadricRegion::combine(Op::Union, {}); }, "at least one child");
+  expectThrow([&] { QuadricRegion::combine(Op::Atom, {ball(1, Eigen::Vector3d::Zero())}); }, "op must be");
+  Eigen::Matrix3d notR = Eigen::Matrix3d::Identity();
+  notR(0, 0) = 2.0;
+  expectThrow([&] { ball(1, Eigen::Vector3d::Zero()).transformed(notR, Eigen::Vector3d::Zero()); }, "rotation");
+}
+
+// --- Static classification ------------------------------------------------------------------------
+
+RegionRelation collideWorldBoxes(const QuadricRegion& solid, const Box3& box, const QuadricRegion& sphere) {
+  return collideRegions(solid, box, sphere, regionAabb(sphere), Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero())
+      .relation;
+}
+
+/// Analytic AABB of an ellipsoid: centre +- sqrt(sum_j R_ij^2 r_j^2).
+Box3 ellipsoidBox(const Ellipsoid& e) {
+  Eigen::Vector3d h;
+  for (int i = 0; i < 3; ++i) h[i] = (e.rotation().row(i).transpose().cwiseProduct(e.radii())).norm();
+  return Box3{e.center() - h, e.center() + h};
+}
+
+TEST(QuadricRegionCollision, EllipsoidPairsAgreeWithTheExactOracle) {
+  // Band: a pair reported Touching must be within 1e-6 (relative) of contact by the independent
+  // signed distance; Separated / Overlapping must equal the exact rational classification.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-2.5, 2.5);
+  int touching = 0, separated = 0, overlapping = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Ellipsoid ea(test::randomRadii(rng, 1.0, 3.0), test::randomRotation(rng), Eigen::Vector3d::Zero());
+    const Ellipsoid eb(test::randomRadii(rng, 1.0, 3.0), test::randomRotation(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const QuadricRegion a = QuadricRegion::atom(ea.quadricMatrix());
+    const QuadricRegion b = QuadricRegion::atom(eb.quadricMatrix());
+    const RegionCollision rc = collideRegions(a, ellipsoidBox(ea), b, ellipsoidBox(eb), Eigen::Matrix3d::Identity(),
+                                              Eigen::Vector3d::Zero());
+    const Separation exact = test::exactClassify(ea, eb);
+    switch (rc.relation) {
+      case RegionRelation::Separated:
+        ++separated;
+        EXPECT_EQ(exact, Separation::Separated) << "trial " << trial;
+        break;
+      case RegionRelation::Overlapping:
+        ++overlapping;
+        EXPECT_EQ(exact, Separation::Overlapping) << "trial " << trial;
+        EXPECT_TRUE(exactInside(a, rc.point, true) && exactInside(b, rc.point, true)) << "trial " << trial;
+        break;
+      case RegionRelation::Touching:
+        ++touching;
+        EXPECT_TRUE(exact == Separation::Touching || std::fabs(signedDistance(ea, eb).distance) < 1e-6)
+            << "trial " << trial;
+        break;
+    }
+  }
+  EXPECT_GT(separated, 30);
+  EXPECT_GT(overlapping, 10);
+  EXPECT_EQ(touching, 0);  // random poses are not tangent
+}
+
+TEST(QuadricRegionCollision, CircularCappedCylinderAgreesWithExactEllipsoidCylinder) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-2.0, 2.0), s(0.3, 1.5);
+  int disagreements = 0, decided = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const double r = s(rng), L = 2 * s(rng);
+    const Eigen::Matrix3d Rc = test::randomRotation(rng);
+    const Eigen::Vector3d pc(u(rng), u(rng), u(rng));
+    const Ellipsoid e(test::randomRadii(rng, 0.8, 3.0), test::randomRotation(rng), Eigen::Vector3d::Zero());
+    const QuadricRegion cyl = cappedCylinder(r, r, L);
+    const QuadricRegion ell = QuadricRegion::atom(e.quadricMatrix());
+    // Cylinder posed at (Rc, pc) in the ellipsoid's (world) frame.
+    const Box3 cyl_box{Eigen::Vector3d(-r, -r, -L / 2), Eigen::Vector3d(r, r, L / 2)};
+    const RegionCollision rc = collideRegions(ell, ellipsoidBox(e), cyl, cyl_box, Rc, pc);
+    const SignedDistanceResult ref = signedDistanceEllipsoidCylinder(e, r, L, Rc, pc);
+    if (std::fabs(ref.distance) < 1e-6) continue;  // band
+    ++decided;
+    const bool ours = rc.relation != RegionRelation::Separated;
+    if (ours != (ref.distance < 0)) ++disagreements;
+    EXPECT_NE(rc.relation, RegionRelation::Touching) << "trial " << trial << " d = " << ref.distance;
+  }
+  EXPECT_EQ(disagreements, 0);
+  EXPECT_GT(decided, 150);
+}
+
+TEST(QuadricRegionCollision, CsgPairsNeverContradictDenseExactSampling) {
+  // Ring (ball minus bore) against wedge (elliptic cylinder minus half-space minus cylinder) at
+  // random poses. Oracle: a dense grid of points with exact rational membership. A common grid
+  // point contradicts Separated; an Overlapping witness must be exactly interior to both.
+  const QuadricRegion ring = QuadricRegion::combine(
+      Op::Difference, {QuadricRegion::atom(quadric::ellipsoid({1.2, 1.2, 0.6})),
+                       QuadricRegion::atom(quadric::ellipticCylinder(0.6, 0.6))});
+  const QuadricRegion wedge = QuadricRegion::combine(
+      Op::Difference, {cappedCylinder(1.0, 0.7, 0.8), QuadricRegion::halfspace({0, 1, 0}, 0.0),
+                       QuadricRegion::atom(quadric::ellipticCylinder(0.3, 0.3))});
+  const Box3 ring_box = regionAabb(ring), wedge_box = regionAabb(wedge);
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  int sep = 0, ovl = 0, tch = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const Eigen::Matrix3d R = test::randomRotation(rng);
+    const Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    const RegionCollision rc = collideRegions(ring, ring_box, wedge, wedge_box, R, p);
+    const QuadricRegion posed = wedge.transformed(R, p);
+    if (rc.relation == RegionRelation::Overlapping) {
+      ++ovl;
+      EXPECT_TRUE(exactInside(ring, rc.point, true) && exactInside(posed, rc.point, true)) << "trial " << trial;
+      continue;
+    }
+    if (rc.relation == RegionRelation::Touching) {
+      ++tch;
+      continue;
+    }
+    ++sep;
+    const int n = 40;
+    bool common = false;
+    for (int i = 0; i <= n && !common; ++i)
+      for (int j = 0; j <= n && !common; ++j)
+        for (int k = 0; k <= n && !common; ++k) {
+          const Eigen::Vector3d t(double(i) / n, double(j) / n, double(k) / n);
+          const Eigen::Vector3d x = ring_box.lo + t.cwiseProduct(ring_box.hi - ring_box.lo);
+          common = exactInside(ring, x, false) && exactInside(posed, x, false);
+        }
+    EXPECT_FALSE(common) << "trial " << trial << " reported separated";
+  }
+  EXPECT_EQ(tch, 0);
+  EXPECT_GT(sep, 3);
+  EXPECT_GT(ovl, 3);
+}
+
+TEST(QuadricRegionCollision, DegenerateContactsAreTouchingAndSmallGapsAreDecided) {
+  // Capped elliptic cylinder (semi-axes 1, 0.5; length 2) against a translated copy.
+  const double L = 2.0;
+  const QuadricRegion cyl = cappedCylinder(1.0, 0.5, L);
+  const Box3 box = regionAabb(cyl);
+  struct Case {
+    const char* name;
+    Eigen::Vector3d p0;   // pose of the copy at contact
+    Eigen::Vector3d dir;  // +dir separates, -dir penetrates
+  };
+  const std::vector<Case> cases = {
+      {"coplanar caps (stacked, offset)", Eigen::Vector3d(0.4, 0.2, L), Eigen::Vector3d(0.2, 0.1, 1.0)},
+      {"parallel axes, sides in line contact", Eigen::Vector3d(2.0, 0.0, 0.0), Eigen::Vector3d(1, 0, 0)},
+      {"rims tangent at one point, caps coplanar (edge on edge)", Eigen::Vector3d(2.0, 0.0, L),
+       Eigen::Vector3d(1, 0, 1)},
+  };
+  for (const Case& k : cases) {
+    const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d dir = k.dir.normalized();
+    EXPECT_EQ(collideRegions(cyl, box, cyl, box, I, k.p0).relation, RegionRelation::Touching) << k.name;
+    for (double gap : {1e-3, 1e-6}) {
+      EXPECT_EQ(collideRegions(cyl, box, cyl, box, I, k.p0 + gap * dir).relation, RegionRelation::Separated)
+          << k.name << " gap " << gap;
+      EXPECT_EQ(collideRegions(cyl, box, cyl, box, I, k.p0 - gap * dir).relation, RegionRelation::Overlapping)
+          << k.name << " penetration " << gap;
+    }
+  }
+}
+
+TEST(QuadricRegionCollision, SphereAgainstEachQuadricKindAtAnalyticTangency) {
+  // Each case: a quadric solid (clipped to be bounded) and a sphere whose tangency radius rho0 is
+  // known in closed form; radii rho0 -+ 1e-6 must be Separated / Overlapping, rho0 itself within
+  // the band (Touching) or decided either way.
+  struct Case {
+    const char* name;
+    QuadricRegion solid;
+    Eigen::Vector3d centre;
+    double rho0;
+  };
+  auto clip = [](QuadricRegion q, std::vector<QuadricRegion> planes) {
+    planes.insert(planes.begin(), std::move(q));
+    return QuadricRegion::combine(Op::Intersection, planes);
+  };
+  const QuadricRegion zTop = QuadricRegion::halfspace({0, 0, 1}, 3.0);
+  const std::vector<QuadricRegion> box2 = {QuadricRegion::halfspace({1, 0, 0}, 2.0), QuadricRegion::halfspace({-1, 0, 0}, 2.0),
+                                           QuadricRegion::halfspace({0, 1, 0}, 2.0), QuadricRegion::halfspace({0, -1, 0}, 2.0),
+                                           QuadricRegion::halfspace({0, 0, 1}, 2.0)};
+  const double x0 = 2.0, z0 = 1.0, d = 1.0;
+  const std::vector<Case> cases = {
+      // Cone nappe x^2 + y^2 <= z^2, 0 <= z <= 3: a point (x0, 0, z0) outside is at distance
+      // (x0 - z0)/sqrt(2) from the generator x = z (the nearest, by convexity and symmetry).
+      {"elliptic cone", clip(QuadricRegion::atom(quadric::ellipticCone(1, 1, 1)), {zTop, QuadricRegion::halfspace({0, 0, -1}, 0.0)}),
+       Eigen::Vector3d(x0, 0, z0), (x0 - z0) / std::sqrt(2.0)},
+      // Slab |z| <= 0.5 (plane pair), clipped to a box: distance from z = 1.7 is 1.2.
+      {"plane pair", clip(QuadricRegion::atom(quadric::planePair({0, 0, 1}, 0.0, 0.5)), box2), Eigen::Vector3d(0.1, 0.2, 1.7), 1.2},
+      // Saddle z >= x^2 - y^2: from (0, 0, -d), d >= 1/2, the nearest points are (0, +-y, -y^2) with
+      // y^2 = d - 1/2, at distance sqrt(d - 1/4).
+      {"hyperbolic paraboloid",
+       clip(QuadricRegion::atom(quadric::hyperbolicParaboloid(1, 1)),
+            {QuadricRegion::halfspace({1, 0, 0}, 2.0), QuadricRegion::halfspace({-1, 0, 0}, 2.0),
+             QuadricRegion::halfspace({0, 1, 0}, 2.0), QuadricRegion::halfspace({0, -1, 0}, 2.0),
+             QuadricRegion::halfspace({0, 0, 1}, 2.0)}),
+       Eigen::Vector3d(0, 0, -d), std::sqrt(d - 0.25)},
+      // Elliptic cylinder x^2/4 + y^2 <= 1 (|z| <= 2): from (0, 2, 0) the side is 1 away.
+      {"elliptic cylinder", cappedCylinder(2.0, 1.0, 4.0), Eigen::Vector3d(0, 2, 0), 1.0},
+      // Ellipsoid (2, 1, 1) from (0, 0, 2.5): the pole (0, 0, 1) is nearest, distance 1.5 (on the
+      // x-z ellipse, |p|^2 = x^2 + (sqrt(1 - x^2/4) - 2.5)^2 >= 2.25 + 11/8 x^2; the y-z section
+      // is a unit circle).
+      {"ellipsoid", QuadricRegion::atom(quadric::ellipsoid({2, 1, 1})), Eigen::Vector3d(0, 0, 2.5), 1.5},
+  };
+  for (const Case& k : cases) {
+    const Box3 box = regionAabb(k.solid);
+    for (double delta : {1e-3, 1e-6}) {
+      const QuadricRegion small = ball(k.rho0 - delta, k.centre), big = ball(k.rho0 + delta, k.centre);
+      EXPECT_EQ(collideWorldBoxes(k.solid, box, small), RegionRelation::Separated) << k.name << " delta " << delta;
+      EXPECT_EQ(collideWorldBoxes(k.solid, box, big), RegionRelation::Overlapping) << k.name << " delta " << delta;
+    }
+    EXPECT_NE(collideWorldBoxes(k.solid, box, ball(k.rho0, k.centre)), RegionRelation::Separated) << k.name;
+  }
+}
+
+TEST(QuadricRegionCollision, EllipticCylinderPairsVsDenseExactSampling) {
+  // Capped elliptic cylinders (random semi-axes and lengths) at random relative poses. Oracle as
+  // in CsgPairsNeverContradictDenseExactSampling, on a 48^3 grid of the first cylinder's box:
+  // Separated must have no common grid point; an Overlapping witness must be exactly interior to
+  // both; Touching (the band) must not occur at random poses.
+  std::mt19937_64 rng(2024);
+  std::uniform_real_distribution<double> s(0.2, 1.0), u(-1.8, 1.8);
+  int sep = 0, ovl = 0, tch = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double a1 = s(rng), b1 = s(rng), L1 = 2 * s(rng), a2 = s(rng), b2 = s(rng), L2 = 2 * s(rng);
+    const QuadricRegion c1 = cappedCylinder(a1, b1, L1), c2 = cappedCylinder(a2, b2, L2);
+    const Box3 box1{Eigen::Vector3d(-a1, -b1, -L1 / 2), Eigen::Vector3d(a1, b1, L1 / 2)};
+    const Box3 box2{Eigen::Vector3d(-a2, -b2, -L2 / 2), Eigen::Vector3d(a2, b2, L2 / 2)};
+    const Eigen::Matrix3d R = test::randomRotation(rng);
+    const Eigen::Vector3d p(u(rng), u(rng), u(rng));
+    const RegionCollision rc = collideRegions(c1, box1, c2, box2, R, p);
+    const QuadricRegion posed = c2.transformed(R, p);
+    if (rc.relation == RegionRelation::Overlapping) {
+      ++ovl;
+      EXPECT_TRUE(exactInside(c1, rc.point, true) && exactInside(posed, rc.point, true)) << "trial " << trial;
+      continue;
+    }
+    if (rc.relation == RegionRelation::Touching) {
+      ++tch;
+      continue;
+    }
+    ++sep;
+    const int n = 48;
+    bool common = false;
+    for (int i = 0; i <= n && !common; ++i)
+      for (int j = 0; j <= n && !common; ++j)
+        for (int k = 0; k <= n && !common; ++k) {
+          const Eigen::Vector3d t(double(i) / n, double(j) / n, double(k) / n);
+          const Eigen::Vector3d x = box1.lo + t.cwiseProduct(box1.hi - box1.lo);
+          common = exactInside(c1, x, false) && exactInside(posed, x, false);
+        }
+    EXPECT_FALSE(common) << "trial " << trial << " reported separated";
+  }
+  EXPECT_EQ(tch, 0);
+  EXPECT_GT(sep, 30);
+  EXPECT_GT(ovl, 30);
+  std::printf("elliptic cylinder pairs: %d separated, %d overlapping, %d touching\n", sep, ovl, tch);
+}
+
+}  // namespace
+}  // namespace fcl_quadric
