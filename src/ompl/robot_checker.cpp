@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <fcl/broadphase/default_broadphase_callbacks.h>
+#include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/sphere.h>
 
@@ -54,25 +55,69 @@ struct DistanceData {
   bool skip_ellipsoidal = false;
 };
 
+/// A cheap lower bound of the distance between an ellipsoid and a box (both posed): the largest
+/// support gap min_{x in box} n.x - h_E(n) over the unit directions n = centre to centre and the
+/// box axes facing the ellipsoid (a separating-axis gap never exceeds the distance).
+double ellipsoidBoxGapBound(const fcl::Ellipsoid<double>& e, const fcl::Transform3<double>& Xe, const fcl::Box<double>& b,
+                            const fcl::Transform3<double>& Xb) {
+  const Eigen::Vector3d c = Xe.translation(), cb = Xb.translation();
+  const Eigen::Matrix3d Re = Xe.linear(), Rb = Xb.linear();
+  const Eigen::Vector3d half = 0.5 * b.side;
+  auto gap = [&](const Eigen::Vector3d& n) {
+    const double box_min = n.dot(cb) - (half.array() * (Rb.transpose() * n).array().abs()).sum();
+    const double support = n.dot(c) + (e.radii.array() * (Re.transpose() * n).array()).matrix().norm();
+    return box_min - support;
+  };
+  const Eigen::Vector3d dc = cb - c;
+  double best = -kInf;
+  const double len = dc.norm();
+  if (len > 0.0) best = gap(dc / len);
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d axis = Rb.col(i);
+    best = std::max(best, gap(axis.dot(dc) >= 0.0 ? Eigen::Vector3d(axis) : Eigen::Vector3d(-axis)));
+  }
+  return best;
+}
+
 bool distanceCallback(fcl::CollisionObject<double>* o1, fcl::CollisionObject<double>* o2, void* data, double& dist) {
   auto* d = static_cast<DistanceData*>(data);
-  if (d->skip_ellipsoidal && isEllipsoidal(o1->collisionGeometry().get()) &&
-      isEllipsoidal(o2->collisionGeometry().get())) {
+  const fcl::CollisionGeometry<double>* g1 = o1->collisionGeometry().get();
+  const fcl::CollisionGeometry<double>* g2 = o2->collisionGeometry().get();
+  if (d->skip_ellipsoidal && isEllipsoidal(g1) && isEllipsoidal(g2)) {
     dist = d->base.result.min_distance;
     return d->base.done;
+  }
+  // Skip the exact (costly) ellipsoid-box distance when a cheap lower bound already exceeds the
+  // running minimum (OcTree leaves next to a body: most of them); 1e-12 covers rounding.
+  if (!d->base.request.enable_signed_distance) {
+    const auto* e1 = dynamic_cast<const fcl::Ellipsoid<double>*>(g1);
+    const auto* e2 = dynamic_cast<const fcl::Ellipsoid<double>*>(g2);
+    const auto* b1 = dynamic_cast<const fcl::Box<double>*>(g1);
+    const auto* b2 = dynamic_cast<const fcl::Box<double>*>(g2);
+    double bound = -kInf;
+    if (e1 && b2) bound = ellipsoidBoxGapBound(*e1, o1->getTransform(), *b2, o2->getTransform());
+    if (e2 && b1) bound = ellipsoidBoxGapBound(*e2, o2->getTransform(), *b1, o1->getTransform());
+    if (bound - 1e-12 >= d->base.result.min_distance) {
+      dist = d->base.result.min_distance;
+      return d->base.done;
+    }
   }
   return fcl_quadric::defaultDistanceFunction<double>(o1, o2, &d->base, dist);
 }
 
 /// Lower bound of the distance of a posed body to the environment (<= 0 on contact; +inf if the
-/// environment is empty or every obstacle is skipped).
+/// environment is empty or every obstacle is skipped), or `cap` if nothing is closer than cap:
+/// the broad phase and FCL's OcTree traversal prune every subtree farther than the running
+/// minimum, which starts at cap (the advancement needs no distance beyond the one that finishes
+/// the motion).
 double environmentDistance(const Environment& env, const Body& body, const Eigen::Isometry3d& X, bool signed_distance,
-                           bool skip_ellipsoidal) {
+                           bool skip_ellipsoidal, double cap = std::numeric_limits<double>::max()) {
   if (env.size() == 0) return kInf;
   fcl::CollisionObject<double> obj(body.geometry, toFcl(X));
   obj.computeAABB();
   DistanceData data;
   data.base.request.enable_signed_distance = signed_distance;
+  data.base.result.min_distance = cap;
   data.skip_ellipsoidal = skip_ellipsoidal;
   env.manager().distance(&obj, &data, distanceCallback);
   const double d = data.base.result.min_distance;
@@ -237,13 +282,16 @@ MotionCheckResult RobotCollisionChecker::checkMotion(const Configuration& from, 
   }
   first_of_link[r.linkCount()] = bodies.size();
 
-  // Conservative advancement of one distance function with speed bound `speed`.
-  auto advance = [&](double speed, const std::function<double()>& distanceNow) {
+  // Conservative advancement of one distance function with speed bound `speed`. distanceNow(cap)
+  // returns a lower bound of the distance, or a value >= cap when nothing is closer than cap.
+  auto advance = [&](double speed, const std::function<double(double)>& distanceNow) {
     double t = 0.0;
     for (int step = 0;; ++step) {
       if (found && t >= T) return;  // cannot improve the earliest contact
       poseAt(t);
-      const double d = distanceNow();
+      // A distance of 2 speed (1 - t) already carries the advancement past t = 1.
+      const double cap = speed > 0.0 ? 2.0 * speed * (1.0 - t) + 2.0 * options.contact_distance + 1e-9 : kInf;
+      const double d = distanceNow(std::min(cap, std::numeric_limits<double>::max()));
       ++res.advancement_steps;
       if (d <= options.contact_distance || step >= options.max_steps) {
         report(t);
@@ -287,7 +335,9 @@ MotionCheckResult RobotCollisionChecker::checkMotion(const Configuration& from, 
   for (std::size_t i = 0; i < bodies.size() && !(found && stop_at_first); ++i) {
     const Ref& ref = bodies[i];
     const bool skip = exact && isEllipsoidal(ref.body->geometry.get());
-    advance(V[i], [&] { return environmentDistance(*env_, *ref.body, links[ref.link] * ref.body->offset, false, skip); });
+    advance(V[i], [&](double cap) {
+      return environmentDistance(*env_, *ref.body, links[ref.link] * ref.body->offset, false, skip, cap);
+    });
   }
 
   // 3. Self-collision pairs.
@@ -297,7 +347,7 @@ MotionCheckResult RobotCollisionChecker::checkMotion(const Configuration& from, 
         if (found && stop_at_first) break;
         const Ref& a = bodies[ia];
         const Ref& b = bodies[ib];
-        advance(V[ia] + V[ib], [&] {
+        advance(V[ia] + V[ib], [&](double) {
           return pairDistance(*a.body, links[a.link] * a.body->offset, *b.body, links[b.link] * b.body->offset, false);
         });
       }

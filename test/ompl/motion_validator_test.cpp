@@ -6,6 +6,7 @@
 #include <random>
 
 #include <gtest/gtest.h>
+#include <octomap/OcTree.h>
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/geometric/planners/prm/PRM.h>
@@ -347,6 +348,50 @@ TEST(StateValidityChecker, AgreesWithPairwiseExactCollideAndClearanceWithPairwis
   }
   EXPECT_GT(colliding, 20);
   EXPECT_LT(colliding, 280);
+}
+
+TEST(Environment, OcTreeLeafBoxesAgreeWithTheFclOcTreeAndStopATunnellingMotion) {
+  // A one-voxel (5 cm) wall of an octomap with a window; the same tree as leaf boxes (default)
+  // and as one fcl::OcTree must give the same validity and clearance.
+  auto tree = std::make_shared<octomap::OcTree>(0.05);
+  for (double y = -0.975; y < 1.0; y += 0.05)
+    for (double z = -0.975; z < 1.0; z += 0.05)
+      if (!(std::abs(y) < 0.2 && std::abs(z) < 0.2)) tree->updateNode(octomap::point3d(0.025f, float(y), float(z)), true);
+  tree->updateInnerOccupancy();
+  auto boxes = std::make_shared<Environment>();
+  auto whole = std::make_shared<Environment>();
+  EXPECT_GT(boxes->addOcTree(tree), 1000u);
+  EXPECT_EQ(whole->addOcTree(tree, Eigen::Isometry3d::Identity(), false), 1u);
+  auto robot = rigidRobot(RobotModel::Base::Free, 0.5);
+  RobotCollisionChecker a(robot, boxes), b(robot, whole);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> pos(-0.6, 0.6);
+  int colliding = 0;
+  for (int i = 0; i < 200; ++i) {
+    Configuration q;
+    q.base.linear() = randomQuaternion(rng).toRotationMatrix();
+    q.base.translation() = Eigen::Vector3d(0.3 * pos(rng), pos(rng), pos(rng));
+    const bool valid = a.isValid(q);
+    colliding += !valid;
+    EXPECT_EQ(valid, b.isValid(q)) << i;
+    EXPECT_EQ(valid, !oracleCollides(*robot, *whole, q)) << i;
+    if (valid) {
+      EXPECT_NEAR(a.clearance(q), b.clearance(q), 1e-12) << i;
+    }
+  }
+  EXPECT_GT(colliding, 10);
+  EXPECT_LT(colliding, 190);
+  // Through the wall beside the window: rejected; through the window: accepted.
+  auto space = makeStateSpace(*robot, Eigen::Vector3d::Constant(-2), Eigen::Vector3d::Constant(2));
+  auto si = makeSi(space, robot, boxes);
+  ob::ScopedState<> s1(space), s2(space);
+  setSE3(s1.get(), {-0.5, 0.6, 0}, Eigen::Quaterniond::Identity());
+  setSE3(s2.get(), {0.5, 0.6, 0}, Eigen::Quaterniond::Identity());
+  EXPECT_FALSE(si->checkMotion(s1.get(), s2.get()));
+  setSE3(s1.get(), {-0.5, 0, 0}, Eigen::Quaterniond::Identity());
+  setSE3(s2.get(), {0.5, 0, 0}, Eigen::Quaterniond::Identity());
+  EXPECT_TRUE(si->checkMotion(s1.get(), s2.get()));
+  EXPECT_LT(oracleFirstCollidingSample(*si, *robot, *whole, s1.get(), s2.get(), 500), 0.0);
 }
 
 // ---------------------------------------------------------------------------------------------
