@@ -4,7 +4,10 @@
 // accepted with the certified continuous check (docs/ompl.md).
 //
 // Usage: fcl_quadric_ompl_plan [--planner rrtconnect|rrtstar|prm] [--time SECONDS] [--seed N]
-//                              [--robot ROBOT.json] [--out PATH.json]
+//                              [--range R] [--robot ROBOT.json] [--out PATH.json]
+// --validator picks the runs; --resolution sets the discrete validator's resolution (fraction of
+// the space's extent, OMPL's default 0.01). --time bounds each planning run (RRTConnect and PRM stop at the first solution, RRT* uses it
+// all); --range is the planner's maximum edge length (RRTConnect / RRT*; 0 = OMPL's default).
 // Prints one line per run and writes the continuous run's path (and the statistics) as JSON.
 #include <chrono>
 #include <cstdio>
@@ -106,14 +109,22 @@ struct RunStats {
   std::vector<std::vector<double>> path;
 };
 
-ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPtr& si) {
-  if (name == "rrtconnect") return std::make_shared<og::RRTConnect>(si);
-  if (name == "rrtstar") return std::make_shared<og::RRTstar>(si);
+ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPtr& si, double range) {
+  if (name == "rrtconnect") {
+    auto p = std::make_shared<og::RRTConnect>(si);
+    if (range > 0.0) p->setRange(range);
+    return p;
+  }
+  if (name == "rrtstar") {
+    auto p = std::make_shared<og::RRTstar>(si);
+    if (range > 0.0) p->setRange(range);
+    return p;
+  }
   if (name == "prm") return std::make_shared<og::PRM>(si);
   throw std::invalid_argument("--planner: expected rrtconnect, rrtstar or prm, got " + name);
 }
 
-RunStats run(bool continuous, const std::string& planner, double time_limit,
+RunStats run(bool continuous, const std::string& planner, double time_limit, double range, double resolution,
              const std::shared_ptr<RobotCollisionChecker>& checker) {
   auto space = makeStateSpace(checker->robot(), Eigen::Vector3d(-3, -2, 0), Eigen::Vector3d(3, 2, 2), true);
   og::SimpleSetup ss(space);
@@ -124,6 +135,8 @@ RunStats run(bool continuous, const std::string& planner, double time_limit,
     inner = std::make_shared<ContinuousMotionValidator>(si, checker);
   else
     inner = std::make_shared<ob::DiscreteMotionValidator>(si);
+  // The discrete validator's resolution, as a fraction of the space's extent (OMPL: 0.01).
+  if (!continuous && resolution > 0.0) si->setStateValidityCheckingResolution(resolution);
   auto recorder = std::make_shared<RecordingMotionValidator>(si, inner);
   si->setMotionValidator(recorder);
   ob::ScopedState<ob::SE3StateSpace> start(space), goal(space);
@@ -132,7 +145,7 @@ RunStats run(bool continuous, const std::string& planner, double time_limit,
   goal->setXYZ(2.5, 1.0, 1.4);
   goal->rotation().setIdentity();
   ss.setStartAndGoalStates(start, goal);
-  ss.setPlanner(makePlanner(planner, si));
+  ss.setPlanner(makePlanner(planner, si, range));
   ss.setup();
   const auto t0 = std::chrono::steady_clock::now();
   const ob::PlannerStatus status = ss.solve(time_limit);
@@ -165,7 +178,8 @@ RunStats run(bool continuous, const std::string& planner, double time_limit,
 
 int main(int argc, char** argv) {
   std::string planner = "rrtconnect", out_path = "ompl_plan_path.json", robot_path;
-  double time_limit = 10.0;
+  double time_limit = 60.0, range = 0.5, resolution = 0.0;
+  std::string which = "both";
   unsigned long seed = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -181,6 +195,12 @@ int main(int argc, char** argv) {
         planner = value();
       else if (a == "--time")
         time_limit = std::stod(value());
+      else if (a == "--validator")
+        which = value();
+      else if (a == "--resolution")
+        resolution = std::stod(value());
+      else if (a == "--range")
+        range = std::stod(value());
       else if (a == "--seed")
         seed = std::stoul(value());
       else if (a == "--out")
@@ -189,8 +209,8 @@ int main(int argc, char** argv) {
         robot_path = value();
       else {
         std::fprintf(stderr,
-                     "usage: fcl_quadric_ompl_plan [--planner rrtconnect|rrtstar|prm] [--time S] [--seed N] "
-                     "[--robot ROBOT.json] [--out PATH.json]\n");
+                     "usage: fcl_quadric_ompl_plan [--planner rrtconnect|rrtstar|prm] [--time S] [--range R] [--seed N] "
+                     "[--validator both|continuous|discrete] [--resolution F] [--robot ROBOT.json] [--out PATH.json]\n");
         return 2;
       }
     } catch (const std::exception&) {
@@ -221,14 +241,17 @@ int main(int argc, char** argv) {
     auto room = makeRoom(0.05);
     env->addOcTree(room);
     auto checker = std::make_shared<RobotCollisionChecker>(robot, env);
-    std::printf("environment: OctoMap %zu leaves (5 cm), walls 5 cm thick with 0.2 m windows; planner %s, %.1f s, seed %lu\n",
-                room->getNumLeafNodes(), planner.c_str(), time_limit, seed);
+    std::printf("environment: OctoMap, %zu occupied 5 cm leaves, walls 5 cm thick with 0.2 m windows; planner %s, "
+                "%.1f s, range %.2f, seed %lu\n",
+                env->size(), planner.c_str(), time_limit, range, seed);
     nlohmann::ordered_json doc;
     doc["planner"] = planner;
     doc["seed"] = seed;
+    doc["range"] = range;
     doc["state_space"] = "RationalSE3 (x, y, z, qx, qy, qz, qw)";
     for (bool continuous : {true, false}) {
-      const RunStats s = run(continuous, planner, time_limit, checker);
+      if (which != "both" && which != (continuous ? "continuous" : "discrete")) continue;
+      const RunStats s = run(continuous, planner, time_limit, range, resolution, checker);
       std::printf("%-10s solved=%d time=%.3f s path_length=%.4f path_edges=%zu motion_checks=%u accepted_motions=%zu "
                   "accepted_but_colliding=%zu path_edges_colliding=%zu\n",
                   s.validator.c_str(), s.solved, s.time, s.length, s.path_edges, s.checks, s.accepted,
