@@ -1,7 +1,9 @@
 // RobotModel: forward kinematics against hand computation, self-collision pairs, the speed bound
 // against finite differences, JSON, and bad input.
 #include <cmath>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -106,6 +108,27 @@ TEST(RobotModel, JsonReadsTheDocumentedFormat) {
   EXPECT_TRUE(m.selfCollisionPairs().empty());
   EXPECT_DOUBLE_EQ(m.bodies(1)[0].ball_radius, 0.5);
   EXPECT_DOUBLE_EQ(m.chainLength(0, 2), 1.5);  // |origin of joint b| + its prismatic extent
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(RobotModel, ExampleJsonRobotsLoad) {
+  const RobotModel drone = robotModelFromJson(readFile(FCL_QUADRIC_SOURCE_DIR "/examples/ompl_drone.json"));
+  EXPECT_EQ(drone.base(), RobotModel::Base::Free);
+  EXPECT_EQ(drone.bodies(0).size(), 2u);
+  const RobotModel arm = robotModelFromJson(readFile(FCL_QUADRIC_SOURCE_DIR "/examples/ompl_arm.json"));
+  EXPECT_EQ(arm.jointCount(), 4u);
+  EXPECT_EQ(arm.joint(2).type, JointType::Prismatic);
+  // Links 0..4; non-adjacent pairs (0,2) (0,3) (0,4) (1,3) (1,4) (2,4) minus the allowed (2,4).
+  EXPECT_EQ(arm.selfCollisionPairs().size(), 5u);
+  EXPECT_DOUBLE_EQ(arm.fixedBasePose().translation().z(), 0.1);
+  // The sphere body is stored as an ellipsoid with equal radii (exact pairs everywhere).
+  EXPECT_EQ(arm.bodies(3)[0].geometry->getNodeType(), fcl::GEOM_ELLIPSOID);
 }
 
 template <typename F>

@@ -19,7 +19,7 @@
 ///                                 Eigen::Vector3d::UnitZ(), -M_PI, M_PI);
 ///   arm.addBody(l1, std::make_shared<fcl::Ellipsoidd>(0.5, 0.08, 0.08), translation(0.5, 0, 0));
 ///   std::size_t l2 = arm.addJoint("elbow", JointType::Revolute, translation(1, 0, 0), ...);
-/// examples/robot_arm.json shows the JSON form (robotModelFromJson).
+/// examples/ompl_arm.json and examples/ompl_drone.json show the JSON form (robotModelFromJson).
 
 #include <cstddef>
 #include <memory>
