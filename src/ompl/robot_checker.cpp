@@ -49,10 +49,23 @@ Ellipsoid ellipsoidOf(const fcl::CollisionGeometry<double>* g, const Eigen::Isom
   return Ellipsoid(Eigen::Vector3d::Constant(s->radius), X);
 }
 
+/// An ellipsoid-box pair whose exact distance is deferred: best-first evaluation by `bound`.
+struct DeferredPair {
+  double bound;
+  fcl::CollisionObject<double>* o1;
+  fcl::CollisionObject<double>* o2;
+};
+
 struct DistanceData {
   fcl::DefaultDistanceData<double> base;
   /// Skip ellipsoid / sphere obstacles (they are decided by the exact CCD).
   bool skip_ellipsoidal = false;
+  /// Unsigned queries: ellipsoid-box pairs are collected with their cheap lower bound and
+  /// evaluated exactly afterwards, nearest bound first (see environmentDistance).
+  std::vector<DeferredPair> deferred;
+  /// Smallest cheap upper bound of a deferred pair's distance (clamped at 0): the broad phase
+  /// prunes against it.
+  double upper = std::numeric_limits<double>::max();
 };
 
 /// A cheap lower bound of the distance between an ellipsoid and a box (both posed): the largest
@@ -79,6 +92,17 @@ double ellipsoidBoxGapBound(const fcl::Ellipsoid<double>& e, const fcl::Transfor
   return best;
 }
 
+/// A cheap upper bound of max(0, distance) between an ellipsoid and a box: the ball of the
+/// smallest radius around the ellipsoid's centre c lies inside it, so the box point closest to c
+/// is within |x_b - c| - r_min of the ellipsoid.
+double ellipsoidBoxGapUpperBound(const fcl::Ellipsoid<double>& e, const fcl::Transform3<double>& Xe,
+                                 const fcl::Box<double>& b, const fcl::Transform3<double>& Xb) {
+  const Eigen::Vector3d c_local = Xb.linear().transpose() * (Xe.translation() - Xb.translation());
+  const Eigen::Vector3d half = 0.5 * b.side;
+  const Eigen::Vector3d closest = c_local.cwiseMax(-half).cwiseMin(half);
+  return std::max(0.0, (closest - c_local).norm() - e.radii.minCoeff());
+}
+
 bool distanceCallback(fcl::CollisionObject<double>* o1, fcl::CollisionObject<double>* o2, void* data, double& dist) {
   auto* d = static_cast<DistanceData*>(data);
   const fcl::CollisionGeometry<double>* g1 = o1->collisionGeometry().get();
@@ -94,11 +118,18 @@ bool distanceCallback(fcl::CollisionObject<double>* o1, fcl::CollisionObject<dou
     const auto* e2 = dynamic_cast<const fcl::Ellipsoid<double>*>(g2);
     const auto* b1 = dynamic_cast<const fcl::Box<double>*>(g1);
     const auto* b2 = dynamic_cast<const fcl::Box<double>*>(g2);
-    double bound = -kInf;
-    if (e1 && b2) bound = ellipsoidBoxGapBound(*e1, o1->getTransform(), *b2, o2->getTransform());
-    if (e2 && b1) bound = ellipsoidBoxGapBound(*e2, o2->getTransform(), *b1, o1->getTransform());
-    if (bound - 1e-12 >= d->base.result.min_distance) {
-      dist = d->base.result.min_distance;
+    if ((e1 && b2) || (e2 && b1)) {
+      const fcl::Ellipsoid<double>& e = e1 ? *e1 : *e2;
+      const fcl::Box<double>& b = b2 ? *b2 : *b1;
+      const fcl::Transform3<double>& Xe = e1 ? o1->getTransform() : o2->getTransform();
+      const fcl::Transform3<double>& Xb = b2 ? o2->getTransform() : o1->getTransform();
+      const double bound = ellipsoidBoxGapBound(e, Xe, b, Xb);
+      const double prune = std::min(d->base.result.min_distance, d->upper);
+      if (bound - 1e-12 < prune) {
+        d->deferred.push_back({bound, o1, o2});
+        d->upper = std::min(d->upper, ellipsoidBoxGapUpperBound(e, Xe, b, Xb));
+      }
+      dist = std::min(d->base.result.min_distance, d->upper);
       return d->base.done;
     }
   }
@@ -109,7 +140,11 @@ bool distanceCallback(fcl::CollisionObject<double>* o1, fcl::CollisionObject<dou
 /// environment is empty or every obstacle is skipped), or `cap` if nothing is closer than cap:
 /// the broad phase and FCL's OcTree traversal prune every subtree farther than the running
 /// minimum, which starts at cap (the advancement needs no distance beyond the one that finishes
-/// the motion).
+/// the motion). Unsigned queries evaluate ellipsoid-box pairs (OcTree leaves) best-first: the
+/// traversal only collects them with a certified lower bound (separating-axis gap) and prunes
+/// with their cheap upper bounds; then the exact distances are computed in increasing order of
+/// the lower bound until that bound reaches the smallest exact distance found (no pair left
+/// unevaluated can be closer). The result is the same minimum as evaluating every pair.
 double environmentDistance(const Environment& env, const Body& body, const Eigen::Isometry3d& X, bool signed_distance,
                            bool skip_ellipsoidal, double cap = std::numeric_limits<double>::max()) {
   if (env.size() == 0) return kInf;
@@ -120,6 +155,12 @@ double environmentDistance(const Environment& env, const Body& body, const Eigen
   data.base.result.min_distance = cap;
   data.skip_ellipsoidal = skip_ellipsoidal;
   env.manager().distance(&obj, &data, distanceCallback);
+  std::sort(data.deferred.begin(), data.deferred.end(),
+            [](const DeferredPair& a, const DeferredPair& b) { return a.bound < b.bound; });
+  for (const DeferredPair& p : data.deferred) {
+    if (data.base.result.min_distance <= 0.0 || p.bound - 1e-12 >= data.base.result.min_distance) break;
+    fcl_quadric::distance(p.o1, p.o2, data.base.request, data.base.result);
+  }
   const double d = data.base.result.min_distance;
   return d >= std::numeric_limits<double>::max() ? kInf : d;
 }

@@ -38,15 +38,24 @@ class Environment {
   /// that is not finite or not rigid.
   void add(std::shared_ptr<fcl::CollisionGeometry<double>> geometry,
            const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity());
-  /// Adds the occupied cells of an octomap at `pose`. With `as_leaf_boxes` (the default) every
-  /// occupied leaf (fcl::OcTree::toBoxes, FCL's occupancy test) is registered as its own fcl::Box:
-  /// the manager's distance traversal then visits the nearest leaves first and prunes the rest,
-  /// whereas FCL's OcTree-shape distance recursion visits children in a fixed order and runs the
-  /// (exact, costly) leaf test on far more leaves. Otherwise the tree goes in as one fcl::OcTree.
-  /// Both give the same collision and distance answers. Returns the number of objects added.
+  /// How addOcTree registers an octomap.
+  enum class OcTreeMode {
+    /// The occupied cells (FCL's occupancy test, fcl::OcTree::toBoxes) split into finest-level
+    /// voxels and greedily merged into maximal axis-aligned boxes (x, then y, then z runs): the
+    /// same solid as the occupied cells, so the same collisions and distances, with far fewer
+    /// objects (a one-voxel wall with a window becomes a handful of boxes).
+    MergedBoxes,
+    /// One fcl::Box per occupied leaf.
+    LeafBoxes,
+    /// One fcl::OcTree object. FCL's OcTree-shape distance recursion visits children in a fixed
+    /// order and runs the exact leaf distance on far more leaves: slow for the advancement.
+    WholeTree,
+  };
+  /// Adds the occupied cells of an octomap at `pose`; returns the number of objects added.
   /// \throws std::invalid_argument for a null tree or a bad pose.
   std::size_t addOcTree(std::shared_ptr<const octomap::OcTree> tree,
-                        const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity(), bool as_leaf_boxes = true);
+                        const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity(),
+                        OcTreeMode mode = OcTreeMode::MergedBoxes);
 
   std::size_t size() const { return objects_.size(); }
   const fcl::BroadPhaseCollisionManager<double>& manager() const { return *manager_; }
