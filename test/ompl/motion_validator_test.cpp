@@ -446,7 +446,7 @@ TEST(ContinuousMotionValidator, SelfCollisionOfNonAdjacentLinksHonoursAllowedPai
 // Planning through SimpleSetup with unchanged OMPL planners.
 // ---------------------------------------------------------------------------------------------
 
-TEST(Planning, PlannersSolveAThinWallGapProblemAndThePathIsDenselyCollisionFree) {
+TEST(Planning, PlannersSolveAThinWallGapProblemAndTheContinuousPathIsDenselyCollisionFree) {
   auto robot = rigidRobot(RobotModel::Base::Planar);
   auto env = std::make_shared<Environment>();
   // A wall at x = 0 (2 cm thick) with a 0.4 m gap around y = 0.8.
@@ -473,6 +473,18 @@ TEST(Planning, PlannersSolveAThinWallGapProblemAndThePathIsDenselyCollisionFree)
           << ss.getPlanner()->getName() << " edge " << i;
     EXPECT_GT(validatorOf(*si).getCheckedMotionCount(), 0u);
   }
+  // The same problem with OMPL's DiscreteMotionValidator (same validity checker) also solves.
+  og::SimpleSetup ss(space);
+  const auto& si = ss.getSpaceInformation();
+  si->setStateValidityChecker(
+      std::make_shared<StateValidityChecker>(si, std::make_shared<RobotCollisionChecker>(robot, env)));
+  ob::ScopedState<> start(space), goal(space);
+  setSE2(start.get(), -1.2, -1.0, 0.3);
+  setSE2(goal.get(), 1.2, -1.0, -0.4);
+  ss.setStartAndGoalStates(start, goal);
+  ss.setPlanner(std::make_shared<og::RRTConnect>(si));
+  ASSERT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);
+  EXPECT_NE(dynamic_cast<const ob::DiscreteMotionValidator*>(si->getMotionValidator().get()), nullptr);
 }
 
 }  // namespace
