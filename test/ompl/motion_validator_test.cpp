@@ -120,6 +120,41 @@ TEST(ContinuousMotionValidator, RejectsATunnelThroughAThinWallThatTheDiscreteVal
   }
 }
 
+TEST(ContinuousMotionValidator, RejectsAJointSweepThroughAThinPostThatTheDiscreteValidatorAccepts) {
+  // A one-link arm (ellipsoid of length 1, 4 cm thick) swinging about z; a 4 mm post at radius
+  // 0.9 placed halfway between two of the discrete validator's samples.
+  auto arm = std::make_shared<RobotModel>(RobotModel::Base::Fixed);
+  const std::size_t l =
+      arm->addJoint("swing", JointType::Revolute, Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitZ(), -3, 3);
+  arm->addBody(l, std::make_shared<fcl::Ellipsoid<double>>(0.5, 0.02, 0.02), translation(0.5, 0, 0));
+  auto space = makeStateSpace(*arm, {}, {});
+  ob::ScopedState<> a(space), b(space);
+  a[0] = -1.0;
+  b[0] = 1.0;
+  auto probe = std::make_shared<ob::SpaceInformation>(space);
+  probe->setStateValidityChecker(std::make_shared<ob::AllValidStateValidityChecker>(probe));
+  probe->setup();
+  const unsigned n = space->validSegmentCount(a.get(), b.get());
+  const double phi = -1.0 + (2.0 * std::floor(n / 2.0) + 1.0) / n;  // between two samples
+  ASSERT_GT(0.9 * std::sin(1.0 / n), 0.02 + 0.002 * std::sqrt(2.0)) << "samples must straddle the post";
+  auto env = std::make_shared<Environment>();
+  env->add(std::make_shared<fcl::Box<double>>(0.004, 0.004, 1.0), translation(0.9 * std::cos(phi), 0.9 * std::sin(phi), 0));
+  auto si = makeSi(space, arm, env);
+  auto discrete = std::make_shared<ob::SpaceInformation>(space);
+  discrete->setStateValidityChecker(si->getStateValidityChecker());
+  discrete->setup();
+  EXPECT_TRUE(discrete->checkMotion(a.get(), b.get())) << "the scene must defeat the discrete validator";
+  EXPECT_FALSE(si->checkMotion(a.get(), b.get()));
+  const double hit = oracleFirstContact(*si, *arm, *env, a.get(), b.get());
+  ASSERT_GT(hit, 0.0) << "the oracle must see the sweep hit the post";
+  std::pair<ob::State*, double> last(si->allocState(), -1.0);
+  EXPECT_FALSE(si->getMotionValidator()->checkMotion(a.get(), b.get(), last));
+  EXPECT_LE(last.second, hit);
+  EXPECT_GT(last.second, hit - 1e-6);
+  EXPECT_FALSE(oracleCollides(*arm, *env, toConfiguration(*space, last.first)));
+  si->freeState(last.first);
+}
+
 TEST(ContinuousMotionValidator, AcceptsAMotionPassingAMillimetreFromTheWall) {
   ThinWall w = thinWall(true);
   auto si = makeSi(w.space, w.robot, w.env);
