@@ -49,6 +49,9 @@ void Environment::add(std::shared_ptr<fcl::CollisionGeometry<double>> geometry, 
 
 namespace {
 
+/// Leaves wider than this many finest voxels are registered as they are, not split into voxels.
+constexpr long kMaxMergedLeafVoxels = 16;
+
 struct Key {
   long x, y, z;
   bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
@@ -121,6 +124,10 @@ std::size_t Environment::addOcTree(std::shared_ptr<const octomap::OcTree> tree, 
     std::vector<Key> voxels;
     for (const auto& b : leaves) {
       const long n = std::lround(b[3] / res);
+      if (n > kMaxMergedLeafVoxels) {  // a large pruned leaf is already a big box
+        addBox(Eigen::Vector3d(b[0], b[1], b[2]), Eigen::Vector3d::Constant(b[3]));
+        continue;
+      }
       const long x0 = std::lround((b[0] - 0.5 * b[3]) / res), y0 = std::lround((b[1] - 0.5 * b[3]) / res);
       const long z0 = std::lround((b[2] - 0.5 * b[3]) / res);
       for (long k = 0; k < n; ++k)

@@ -434,6 +434,43 @@ TEST(Environment, OcTreeMergedAndLeafBoxesAgreeWithTheFclOcTreeAndStopATunnellin
   EXPECT_LT(oracleFirstCollidingSample(*si, *robot, *whole, s1.get(), s2.get(), 500), 0.0);
 }
 
+TEST(Environment, PrunedOcTreeLeavesOfEverySizeMergeIntoTheSameSolid) {
+  // A 1.6 m occupied cube on the octree grid (pruned into one leaf of 32 voxels) plus a 0.4 m
+  // cube (leaves of 8 voxels, split and merged) and a few single voxels.
+  auto tree = std::make_shared<octomap::OcTree>(0.05);
+  for (double x = 0.025; x < 1.6; x += 0.05)
+    for (double y = 0.025; y < 1.6; y += 0.05)
+      for (double z = 0.025; z < 1.6; z += 0.05) tree->updateNode(octomap::point3d(float(x), float(y), float(z)), true);
+  for (double x = -0.375; x < 0.0; x += 0.05)
+    for (double y = -0.375; y < 0.0; y += 0.05)
+      for (double z = -0.375; z < 0.0; z += 0.05) tree->updateNode(octomap::point3d(float(x), float(y), float(z)), true);
+  for (double x : {-0.975, -0.575, 1.825}) tree->updateNode(octomap::point3d(float(x), 0.625f, 0.525f), true);
+  tree->updateInnerOccupancy();
+  tree->prune();
+  auto merged = std::make_shared<Environment>();
+  auto whole = std::make_shared<Environment>();
+  EXPECT_LE(merged->addOcTree(tree), 10u);
+  whole->addOcTree(tree, Eigen::Isometry3d::Identity(), Environment::OcTreeMode::WholeTree);
+  auto robot = rigidRobot(RobotModel::Base::Free, 0.5);
+  RobotCollisionChecker a(robot, merged), b(robot, whole);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> pos(-1.2, 2.2);
+  int colliding = 0;
+  for (int i = 0; i < 300; ++i) {
+    Configuration q;
+    q.base.linear() = randomQuaternion(rng).toRotationMatrix();
+    q.base.translation() = Eigen::Vector3d(pos(rng), pos(rng), pos(rng));
+    const bool valid = a.isValid(q);
+    colliding += !valid;
+    EXPECT_EQ(valid, b.isValid(q)) << i;
+    if (valid) {
+      EXPECT_NEAR(a.clearance(q), b.clearance(q), 1e-9) << i;
+    }
+  }
+  EXPECT_GT(colliding, 30);
+  EXPECT_LT(colliding, 270);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Self-collision with allowed pairs.
 // ---------------------------------------------------------------------------------------------

@@ -43,7 +43,8 @@ class Environment {
     /// The occupied cells (FCL's occupancy test, fcl::OcTree::toBoxes) split into finest-level
     /// voxels and greedily merged into maximal axis-aligned boxes (x, then y, then z runs): the
     /// same solid as the occupied cells, so the same collisions and distances, with far fewer
-    /// objects (a one-voxel wall with a window becomes a handful of boxes).
+    /// objects (a one-voxel wall with a window becomes a handful of boxes). Pruned leaves wider
+    /// than 16 voxels are kept as one box each (not split).
     MergedBoxes,
     /// One fcl::Box per occupied leaf.
     LeafBoxes,
