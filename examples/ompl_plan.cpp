@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -68,9 +69,12 @@ class RecordingMotionValidator : public ob::MotionValidator {
   const std::vector<std::pair<ob::State*, ob::State*>>& accepted() const { return accepted_; }
 
  private:
+  // PRM checks motions from two threads (roadmap growth and its solution thread's goal milestones).
   void record(const ob::State* a, const ob::State* b) const {
+    std::lock_guard<std::mutex> lock(mutex_);
     accepted_.emplace_back(si_->cloneState(a), si_->cloneState(b));
   }
+  mutable std::mutex mutex_;
   ob::MotionValidatorPtr inner_;
   mutable std::vector<std::pair<ob::State*, ob::State*>> accepted_;
 };
@@ -158,7 +162,14 @@ RunStats run(bool continuous, const std::string& planner, double time_limit, dou
   ContinuousMotionValidator exact(si, checker);
   s.accepted = recorder->accepted().size();
   for (const auto& e : recorder->accepted())
-    if (!exact.check(e.first, e.second, true).valid) ++s.accepted_colliding;
+    if (!exact.check(e.first, e.second, true).valid) {
+      ++s.accepted_colliding;
+      if (continuous) {  // cannot happen unless the validator is wrong: show the motion
+        std::fprintf(stderr, "continuous validator accepted a motion its replay rejects:\n");
+        si->printState(e.first, std::cerr);
+        si->printState(e.second, std::cerr);
+      }
+    }
   if (s.solved) {
     const og::PathGeometric& p = ss.getSolutionPath();
     s.length = p.length();

@@ -175,8 +175,29 @@ bool ContinuousMotionValidator::checkMotion(const ob::State* s1, const ob::State
     return true;
   }
   ++invalid_;
-  if (lastValid.first != nullptr) si_->getStateSpace()->interpolate(s1, s2, r.last_valid_time, lastValid.first);
-  lastValid.second = r.last_valid_time;
+  // Planners may connect s1 to the returned state directly (e.g. PRM's random bounce motions), and
+  // that direct motion is the prefix [0, f] of s1 -> s2 only if the interpolation is
+  // sub-path consistent (linear, shorter-arc yaw, slerp). The quaternion lerp of
+  // RationalSE3StateSpace is not (its angle is not uniform in t while the translation is), so
+  // the direct motion s1 -> state(f) is certified as well, halving f until it is.
+  double f = r.last_valid_time;
+  ob::State* candidate = si_->allocState();
+  const ob::StateSpace& space = *si_->getStateSpace();
+  if (kind_ == Interpolation::QuaternionLerp) {
+    for (int attempt = 0; f > 0.0; ++attempt) {
+      space.interpolate(s1, s2, f, candidate);
+      if (attempt == 8) {
+        f = 0.0;
+        break;
+      }
+      if (check(s1, candidate, true).valid) break;
+      f *= 0.5;
+    }
+  }
+  space.interpolate(s1, s2, f, candidate);
+  if (lastValid.first != nullptr) space.copyState(lastValid.first, candidate);  // may alias s2
+  si_->freeState(candidate);
+  lastValid.second = f;
   return false;
 }
 

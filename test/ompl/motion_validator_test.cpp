@@ -116,6 +116,8 @@ TEST(ContinuousMotionValidator, RejectsATunnelThroughAThinWallThatTheDiscreteVal
     EXPECT_GT(last.second, t_star - 1e-6);
     EXPECT_FALSE(oracleCollides(*w.robot, *w.env, toConfiguration(*w.space, last.first)));
     EXPECT_TRUE(si->isValid(last.first));
+    // Planners may add s1 -> lastValid as an edge: that direct motion must be valid too.
+    EXPECT_TRUE(si->checkMotion(a.get(), last.first));
     si->freeState(last.first);
   }
 }
@@ -193,6 +195,15 @@ TEST(ContinuousMotionValidator, LastValidOfTheExactEllipsoidPathIsWithin1e6OfThe
   EXPECT_LE(r.contact_time, t_star + 1e-10);
   EXPECT_LE(r.last_valid_time, t_star);
   EXPECT_GT(r.last_valid_time, t_star - 1e-6);
+  // Through the OMPL interface: lastValid is free, and so is the direct motion a -> lastValid
+  // (the quaternion lerp is not sub-path consistent, so that is checked separately).
+  std::pair<ob::State*, double> last(si->allocState(), -1.0);
+  EXPECT_FALSE(si->getMotionValidator()->checkMotion(a.get(), b.get(), last));
+  EXPECT_LE(last.second, t_star);
+  EXPECT_FALSE(oracleCollides(*robot, *env, toConfiguration(*space, last.first)));
+  EXPECT_TRUE(si->checkMotion(a.get(), last.first));
+  EXPECT_LT(oracleFirstCollidingSample(*si, *robot, *env, a.get(), last.first, 2000), 0.0);
+  si->freeState(last.first);
 }
 
 TEST(ContinuousMotionValidator, LastValidOfSE2AndJointMotionsIsCollisionFreeAndBeforeTheFirstContact) {

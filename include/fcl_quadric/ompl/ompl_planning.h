@@ -74,7 +74,10 @@ class StateValidityChecker : public ompl::base::StateValidityChecker {
 /// checkMotion(s1, s2): RobotCollisionChecker::checkMotion over the space's own interpolate()
 /// (certified: never accepts a motion that touches an obstacle or a self-collision partner).
 /// checkMotion(s1, s2, lastValid): on failure lastValid.second is a certified collision-free time
-/// <= the first contact time and lastValid.first (if non-null) the state there.
+/// <= the first contact time and lastValid.first (if non-null) the state there. With
+/// RationalSE3StateSpace the direct motion from s1 to that state (which planners such as PRM add
+/// as an edge) is certified too: the quaternion lerp is not sub-path consistent, so the direct
+/// motion is not the prefix of s1 -> s2; f is halved until the direct motion is valid.
 /// s2 outside the space's bounds is rejected (lastValid = s1, 0).
 class ContinuousMotionValidator : public ompl::base::MotionValidator {
  public:
