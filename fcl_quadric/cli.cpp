@@ -11,6 +11,7 @@
 #include "fcl_quadric/ccd_command.h"
 #include "fcl_quadric/check_command.h"
 #include "fcl_quadric/demo_command.h"
+#include "fcl_quadric/render_command.h"
 #include "fcl_quadric/scene.h"
 #include "fcl_quadric/version.h"
 
@@ -62,6 +63,16 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
              "\"motion\"): first contact time, contact point and every overlap interval of each pair, as JSON.");
   ccd->add_option("SCENE", ccd_scene_path, "Scene file (JSON with motions; see examples/README.md)")->required();
 
+  std::string render_scene_path, render_output;
+  double render_time = 0.0;
+  CLI::App* render = app.add_subcommand(
+      "render", "Draw a JSON scene to SVG or PNG in three orthographic views (top XY, front XZ, side YZ), "
+                "colliding objects in red, contact points and separating planes marked.");
+  render->add_option("SCENE", render_scene_path, "Scene file (JSON; see examples/README.md)")->required();
+  render->add_option("-o,--output", render_output, "Picture to write: a .svg or .png file")->required();
+  render->add_option("--time", render_time, "For scenes with motions: draw the poses at this time in [0, 1]")
+      ->capture_default_str();
+
   DemoOptions demo_options;
   CLI::App* demo = app.add_subcommand(
       "demo", "Simulate spinning ellipsoids and compare classification with and without "
@@ -77,6 +88,10 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
   demo->add_option("--seed", seed_text, "Seed of the scene generator (integer in [0, 2^64))")
       ->type_name("UINT")
       ->check([](const std::string& s) { return parseSeed(s) ? std::string() : "must be an integer in [0, 2^64), got " + s; })
+      ->capture_default_str();
+  std::string demo_pictures = "fcl_quadric_demo";
+  demo->add_option("--pictures", demo_pictures,
+                   "Directory for the pictures of the first and last frame (created if missing; \"\" for none)")
       ->capture_default_str();
 
   try {
@@ -104,7 +119,11 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
       runCcd(ccd_scene_path, result);
     } else if (demo->parsed()) {
       demo_options.seed = *parseSeed(seed_text);
-      runDemo(demo_options, result);
+      const DemoSummary summary = simulateDemo(demo_options);
+      printDemoSummary(summary, result);
+      if (!demo_pictures.empty()) result << "  pictures: " << writeDemoPictures(summary, demo_pictures) << "\n";
+    } else if (render->parsed()) {
+      runRender(render_scene_path, render_output, render_time);
     }
   } catch (const SceneError& e) {
     err << errorLine(e.what());

@@ -161,6 +161,8 @@ DemoSummary simulateDemo(const DemoOptions& options) {
     const double t = frame * kFrameTime;
     ellipsoids.clear();
     for (const Body& body : bodies) ellipsoids.push_back(poseAt(body, t));
+    if (frame == 0) summary.first_frame = ellipsoids;
+    if (frame == options.frames - 1) summary.last_frame = ellipsoids;
 
     // Broad phase: bounding spheres.
     candidates.clear();

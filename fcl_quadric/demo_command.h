@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "fcl_quadric/geometry/ellipsoid.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 
 namespace fcl_quadric {
@@ -42,6 +43,8 @@ struct DemoSummary {
   double coherent_ns = 0.0;       ///< total time of the PairCoherence queries
   double direct_ns = 0.0;         ///< total time of the plain classifyEllipsoids() calls
   std::vector<DemoContact> examples;  ///< the first few contact starts
+  std::vector<Ellipsoid> first_frame;  ///< the ellipsoids at the first frame (for the pictures)
+  std::vector<Ellipsoid> last_frame;   ///< the ellipsoids at the last frame
 };
 
 /// Thrown when coherent and direct classification disagree (a library bug).

@@ -6,7 +6,7 @@ PKGS=(
   build-essential cmake pkg-config
   libfcl-dev libccd-dev libeigen3-dev liboctomap-dev libompl-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
-  nlohmann-json3-dev libcli11-dev
+  nlohmann-json3-dev libcli11-dev libcairo2-dev
   libboost-dev libgmp-dev
 )
 SUDO=""

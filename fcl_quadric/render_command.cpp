@@ -1,0 +1,746 @@
+#include "fcl_quadric/render_command.h"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+
+#include <cairo-svg.h>
+#include <cairo.h>
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+
+#include "fcl_quadric/check_command.h"
+#include "fcl_quadric/geometry/separating_plane.h"
+
+namespace fcl_quadric {
+namespace cli {
+
+namespace {
+
+// --- Layout (pixels) ---------------------------------------------------------------------------
+constexpr int kPanel3 = 400;   // side of a view panel, 3D scenes
+constexpr int kPanel2 = 560;   // side of the one panel of a planar scene
+constexpr int kMarginX = 64;   // left/right margin (room for the tick labels of the v axis)
+constexpr int kGap = 64;       // between panels
+constexpr int kTop = 96;       // title, subtitle and panel titles
+constexpr int kBottom = 96;    // tick labels of the u axis and the legend
+
+struct Rgb {
+  double r, g, b;
+};
+constexpr Rgb kCollideFill{0.90, 0.16, 0.14};
+constexpr Rgb kCollideLine{0.62, 0.05, 0.04};
+constexpr std::array<Rgb, 5> kPalette{{{0.20, 0.45, 0.78}, {0.10, 0.58, 0.55}, {0.46, 0.36, 0.72},
+                                       {0.30, 0.56, 0.22}, {0.40, 0.45, 0.55}}};
+constexpr Rgb kPlaneColour{0.05, 0.50, 0.25};
+constexpr Rgb kText{0.12, 0.12, 0.14};
+
+/// An orthographic view: world axes u (right) and v (up).
+struct View {
+  int u, v;
+  const char* title;
+};
+constexpr std::array<View, 3> kViews3{{{0, 1, "Top view (XY)"}, {0, 2, "Front view (XZ)"}, {1, 2, "Side view (YZ)"}}};
+constexpr std::array<View, 1> kViews2{{{0, 1, "Plane (XY)"}}};
+constexpr const char* kAxisNames[3] = {"x", "y", "z"};
+
+/// A view panel on the surface: world (u, v) -> pixels.
+struct Panel {
+  View view;
+  double x0, y0, size;  // pixel rectangle
+  double cu, cv;        // world point at the panel centre
+  double scale;         // pixels per unit
+  double px(double u) const { return x0 + 0.5 * size + scale * (u - cu); }
+  double py(double v) const { return y0 + 0.5 * size - scale * (v - cv); }
+  double px(const Eigen::Vector3d& p) const { return px(p[view.u]); }
+  double py(const Eigen::Vector3d& p) const { return py(p[view.v]); }
+  void clip(cairo_t* cr) const {
+    cairo_rectangle(cr, x0, y0, size, size);
+    cairo_clip(cr);
+  }
+};
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string formatNumber(double v) {
+  if (std::fabs(v) < 1e-12) v = 0.0;
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", v);
+  return buffer;
+}
+
+/// The nearest rotation to A (polar factor), for rigid motions evaluated in floating point.
+Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& A) {
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d U = svd.matrixU();
+  if ((U * svd.matrixV().transpose()).determinant() < 0.0) U.col(2) = -U.col(2);
+  return U * svd.matrixV().transpose();
+}
+
+/// Sets an ellipsoid object to the affine image { M u + p : |u| <= 1 } (principal axes).
+void setEllipsoid(SceneObject* object, const Eigen::Matrix3d& M, const Eigen::Vector3d& p) {
+  const Ellipsoid e = Ellipsoid::fromAffine(M, p);
+  Eigen::Matrix3d R = e.rotation();
+  if (R.determinant() < 0.0) R.col(2) = -R.col(2);  // the solid is symmetric: keep a proper rotation
+  object->shape.type = ShapeType::Ellipsoid;
+  object->shape.dimensions = e.radii();
+  object->pose = Eigen::Isometry3d::Identity();
+  object->pose.linear() = R;
+  object->pose.translation() = p;
+}
+
+// --- Per-object geometry in a view ---------------------------------------------------------------
+
+bool isHalfspace(const SceneObject& o) { return o.shape.type == ShapeType::Halfspace || (o.shape.region && !o.shape.box); }
+
+/// World-space corners of the object's box (a box shape, or a quadric shape's local AABB).
+std::vector<Eigen::Vector3d> boxCorners(const SceneObject& o) {
+  Eigen::Vector3d lo, hi;
+  if (o.shape.type == ShapeType::Box) {
+    hi = 0.5 * o.shape.dimensions;
+    lo = -hi;
+  } else {
+    lo = o.shape.box->lo;
+    hi = o.shape.box->hi;
+  }
+  std::vector<Eigen::Vector3d> corners;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d c((k & 1) ? hi[0] : lo[0], (k & 2) ? hi[1] : lo[1], (k & 4) ? hi[2] : lo[2]);
+    corners.push_back(o.pose * c);
+  }
+  return corners;
+}
+
+/// Convex hull (Andrew's monotone chain) of 2D points, counter-clockwise.
+std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> p) {
+  std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]);
+  });
+  if (p.size() < 3) return p;
+  std::vector<Eigen::Vector2d> h(2 * p.size());
+  std::size_t k = 0;
+  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a - o)[0] * (b - o)[1] - (a - o)[1] * (b - o)[0];
+  };
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, t = k + 1; i > 0; --i) {
+    while (k >= t && cross(h[k - 2], h[k - 1], p[i - 1]) <= 0) --k;
+    h[k++] = p[i - 1];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+/// The half-space n.x <= d of a half-space object, in world coordinates.
+std::optional<std::pair<Eigen::Vector3d, double>> worldHalfspace(const SceneObject& o) {
+  if (!o.shape.region) return std::nullopt;
+  const QuadricRegion w = o.shape.region->transformed(o.pose.linear(), o.pose.translation());
+  const std::vector<Eigen::Matrix4d> atoms = w.signedAtoms();
+  if (atoms.size() != 1 || atoms[0].topLeftCorner<3, 3>().norm() > 1e-12) return std::nullopt;
+  // X^T Q X = 2 q.x + Q33 <= 0 with q = Q(0:3, 3).
+  const Eigen::Vector3d q = atoms[0].topRightCorner<3, 1>();
+  const double nq = q.norm();
+  if (!(nq > 0.0)) return std::nullopt;
+  return std::make_pair(Eigen::Vector3d(q / nq), -atoms[0](3, 3) / (2.0 * nq));
+}
+
+/// World AABB of a bounded object (none for a half-space).
+std::optional<Box3> worldBounds(const SceneObject& o) {
+  if (isEllipsoidal(o.shape)) {
+    const Eigen::Matrix3d M = o.pose.linear() * o.shape.dimensions.asDiagonal();
+    const Eigen::Vector3d half = (M * M.transpose()).diagonal().cwiseSqrt();
+    return Box3{o.pose.translation() - half, o.pose.translation() + half};
+  }
+  if (o.shape.type == ShapeType::Box || o.shape.box) {
+    Box3 b{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+           Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+    for (const Eigen::Vector3d& c : boxCorners(o)) {
+      b.lo = b.lo.cwiseMin(c);
+      b.hi = b.hi.cwiseMax(c);
+    }
+    return b;
+  }
+  return std::nullopt;
+}
+
+/// Appends the object's outline in the panel to the current path (device coordinates).
+/// Returns false when the object has no outline in this view (half-spaces).
+bool outlinePath(cairo_t* cr, const Panel& panel, const SceneObject& o) {
+  const int u = panel.view.u, v = panel.view.v;
+  if (isEllipsoidal(o.shape)) {
+    // The shadow of {p + M w : |w| <= 1} on the (u, v) plane is the ellipse with shape matrix
+    // K = [M M^T]_(u,v) (2x2 block): boundary c + V diag(sqrt(lambda)) (cos s, sin s).
+    const Eigen::Matrix3d M = o.pose.linear() * o.shape.dimensions.asDiagonal();
+    const Eigen::Matrix3d MMt = M * M.transpose();
+    Eigen::Matrix2d K;
+    K << MMt(u, u), MMt(u, v), MMt(v, u), MMt(v, v);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(K);
+    const Eigen::Vector2d l = eig.eigenvalues().cwiseMax(1e-18).cwiseSqrt();
+    const Eigen::Matrix2d A = eig.eigenvectors() * l.asDiagonal();
+    cairo_matrix_t m;
+    cairo_matrix_init(&m, panel.scale * A(0, 0), -panel.scale * A(1, 0), panel.scale * A(0, 1),
+                      -panel.scale * A(1, 1), panel.px(o.pose.translation()), panel.py(o.pose.translation()));
+    cairo_save(cr);
+    cairo_transform(cr, &m);
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, 0.0, 0.0, 1.0, 0.0, 2.0 * M_PI);
+    cairo_close_path(cr);
+    cairo_restore(cr);
+    return true;
+  }
+  if (o.shape.type == ShapeType::Box || o.shape.box) {
+    std::vector<Eigen::Vector2d> pts;
+    for (const Eigen::Vector3d& c : boxCorners(o)) pts.emplace_back(panel.px(c), panel.py(c));
+    const std::vector<Eigen::Vector2d> hull = convexHull(pts);
+    cairo_new_sub_path(cr);
+    for (const Eigen::Vector2d& q : hull) cairo_line_to(cr, q[0], q[1]);
+    cairo_close_path(cr);
+    return true;
+  }
+  return false;
+}
+
+/// The line {(a, b) : n_u a + n_v b = d'} clipped to the panel as a long segment, if the plane
+/// n.x = d is not parallel to the view plane; `depth` is the world coordinate along the view axis
+/// at which the trace is taken.
+std::optional<std::array<Eigen::Vector2d, 2>> traceLine(const Panel& panel, const Eigen::Vector3d& n, double d,
+                                                        double depth) {
+  const int u = panel.view.u, v = panel.view.v, w = 3 - u - v;
+  const Eigen::Vector2d n2(n[u], n[v]);
+  const double len = n2.norm();
+  if (len < 1e-6) return std::nullopt;
+  const double d2 = d - n[w] * depth;
+  const Eigen::Vector2d dir(-n2[1] / len, n2[0] / len);
+  const Eigen::Vector2d foot = n2 * (d2 / (len * len));  // closest point of the line to the origin
+  const Eigen::Vector2d centre(panel.cu, panel.cv);
+  const Eigen::Vector2d mid = foot + dir * dir.dot(centre - foot);
+  const double reach = 2.0 * panel.size / panel.scale;
+  const Eigen::Vector2d a = mid - reach * dir, b = mid + reach * dir;
+  return std::array<Eigen::Vector2d, 2>{Eigen::Vector2d(panel.px(a[0]), panel.py(a[1])),
+                                        Eigen::Vector2d(panel.px(b[0]), panel.py(b[1]))};
+}
+
+/// A "nice" grid step (1, 2 or 5 times a power of ten) near `raw`.
+double niceStep(double raw) {
+  const double p = std::pow(10.0, std::floor(std::log10(raw)));
+  const double f = raw / p;
+  return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * p;
+}
+
+void setColour(cairo_t* cr, const Rgb& c, double alpha = 1.0) { cairo_set_source_rgba(cr, c.r, c.g, c.b, alpha); }
+
+void setFont(cairo_t* cr, double size, bool bold = false) {
+  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, size);
+}
+
+/// Draws text with its reference point at (x, y): align 0 left, 0.5 centre, 1 right; baseline y.
+void text(cairo_t* cr, const std::string& s, double x, double y, double align = 0.0) {
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, s.c_str(), &e);
+  cairo_move_to(cr, x - align * e.x_advance, y);
+  cairo_show_text(cr, s.c_str());
+}
+
+/// Text with a white halo, for labels over the drawing.
+void haloText(cairo_t* cr, const std::string& s, double x, double y, const Rgb& colour) {
+  cairo_move_to(cr, x, y);
+  cairo_text_path(cr, s.c_str());
+  cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
+  cairo_set_line_width(cr, 3.0);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_stroke(cr);
+  setColour(cr, colour);
+  cairo_move_to(cr, x, y);
+  cairo_show_text(cr, s.c_str());
+}
+
+struct PairDrawing {
+  std::size_t a, b;
+  PairReport report;
+  std::optional<SeparatingPlane> plane;
+};
+
+struct Evaluated {
+  std::vector<PairDrawing> pairs;
+  std::vector<char> colliding;  // per object
+  int colliding_pairs = 0;
+  int separated_pairs = 0;
+  int skipped_pairs = 0;
+};
+
+Evaluated evaluate(const Scene& scene, const RenderOptions& options) {
+  Evaluated ev;
+  ev.colliding.assign(scene.objects.size(), 0);
+  for (const auto& [i, j] : scene.pairs) {
+    const SceneObject& a = scene.objects.at(i);
+    const SceneObject& b = scene.objects.at(j);
+    PairDrawing d{i, j, PairReport{}, std::nullopt};
+    try {
+      d.report = evaluatePair(a, b);
+    } catch (const std::invalid_argument&) {
+      ++ev.skipped_pairs;  // two half-spaces: no bounded region to classify in
+      continue;
+    }
+    if (d.report.collide) {
+      ++ev.colliding_pairs;
+      ev.colliding[i] = ev.colliding[j] = 1;
+    } else {
+      ++ev.separated_pairs;
+      if (options.separation_details && isEllipsoidal(a.shape) && isEllipsoidal(b.shape)) {
+        d.plane = separatingPlane(toEllipsoid(a), toEllipsoid(b));
+      }
+    }
+    ev.pairs.push_back(std::move(d));
+  }
+  return ev;
+}
+
+void drawPanel(cairo_t* cr, const Panel& panel, const Scene& scene, const Evaluated& ev, const RenderOptions& options,
+               const Eigen::Vector3d& scene_centre) {
+  const int u = panel.view.u, v = panel.view.v, w = 3 - u - v;
+  const double half_world = 0.5 * panel.size / panel.scale;
+  // Background and grid.
+  cairo_rectangle(cr, panel.x0, panel.y0, panel.size, panel.size);
+  cairo_set_source_rgb(cr, 0.985, 0.985, 0.98);
+  cairo_fill(cr);
+  const double step = niceStep(2.0 * half_world / 8.0);
+  setFont(cr, 10.5);
+  cairo_set_line_width(cr, 1.0);
+  for (int axis = 0; axis < 2; ++axis) {
+    const double c = axis == 0 ? panel.cu : panel.cv;
+    for (double g = std::ceil((c - half_world) / step) * step; g <= c + half_world + 1e-9 * step; g += step) {
+      const bool zero = std::fabs(g) < 1e-9 * step;
+      cairo_set_source_rgb(cr, zero ? 0.55 : 0.86, zero ? 0.55 : 0.86, zero ? 0.58 : 0.88);
+      cairo_set_line_width(cr, zero ? 1.3 : 0.8);
+      if (axis == 0) {
+        const double x = std::round(panel.px(g)) + 0.5;
+        cairo_move_to(cr, x, panel.y0);
+        cairo_line_to(cr, x, panel.y0 + panel.size);
+        cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0.35, 0.35, 0.38);
+        text(cr, formatNumber(g), x, panel.y0 + panel.size + 14, 0.5);
+      } else {
+        const double y = std::round(panel.py(g)) + 0.5;
+        cairo_move_to(cr, panel.x0, y);
+        cairo_line_to(cr, panel.x0 + panel.size, y);
+        cairo_stroke(cr);
+        cairo_set_source_rgb(cr, 0.35, 0.35, 0.38);
+        text(cr, formatNumber(g), panel.x0 - 5, y + 3.5, 1.0);
+      }
+    }
+  }
+  // Axis names and panel title.
+  setFont(cr, 12, true);
+  setColour(cr, kText);
+  text(cr, std::string(kAxisNames[u]) + " \u2192", panel.x0 + panel.size, panel.y0 + panel.size + 30, 1.0);
+  text(cr, std::string(kAxisNames[v]) + " \u2191", panel.x0 - 5, panel.y0 - 6, 1.0);
+  setFont(cr, 14, true);
+  text(cr, panel.view.title, panel.x0 + 0.5 * panel.size, panel.y0 - 8, 0.5);
+
+  cairo_save(cr);
+  panel.clip(cr);
+  // Half-spaces: shaded side and boundary trace.
+  for (std::size_t k = 0; k < scene.objects.size(); ++k) {
+    const SceneObject& o = scene.objects[k];
+    if (!isHalfspace(o)) continue;
+    const auto hs = worldHalfspace(o);
+    if (!hs) continue;
+    const auto line = traceLine(panel, hs->first, hs->second, scene_centre[w]);
+    if (!line) continue;
+    const Eigen::Vector2d n_px(hs->first[u], -hs->first[v]);  // outward normal in pixels
+    const Eigen::Vector2d back = -3.0 * panel.size * n_px.normalized();
+    cairo_move_to(cr, (*line)[0][0], (*line)[0][1]);
+    cairo_line_to(cr, (*line)[1][0], (*line)[1][1]);
+    cairo_line_to(cr, (*line)[1][0] + back[0], (*line)[1][1] + back[1]);
+    cairo_line_to(cr, (*line)[0][0] + back[0], (*line)[0][1] + back[1]);
+    cairo_close_path(cr);
+    const Rgb c = ev.colliding[k] ? kCollideFill : Rgb{0.55, 0.45, 0.30};
+    setColour(cr, c, 0.13);
+    cairo_fill(cr);
+    cairo_move_to(cr, (*line)[0][0], (*line)[0][1]);
+    cairo_line_to(cr, (*line)[1][0], (*line)[1][1]);
+    setColour(cr, ev.colliding[k] ? kCollideLine : Rgb{0.45, 0.35, 0.22});
+    cairo_set_line_width(cr, 2.0);
+    cairo_stroke(cr);
+    // Its name just inside, near the point of the boundary closest to the panel centre.
+    const Eigen::Vector2d a = (*line)[0], b = (*line)[1];
+    const Eigen::Vector2d mid_px(panel.x0 + 0.5 * panel.size, panel.y0 + 0.5 * panel.size);
+    const Eigen::Vector2d foot = a + (b - a) * std::clamp((mid_px - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    const Eigen::Vector2d at = foot - 16.0 * n_px.normalized() + Eigen::Vector2d(-0.3 * panel.size, 4.0);
+    if (at[0] > panel.x0 && at[0] < panel.x0 + panel.size && at[1] > panel.y0 && at[1] < panel.y0 + panel.size) {
+      setFont(cr, 12, true);
+      haloText(cr, o.name + " (half-space)", std::max(at[0], panel.x0 + 6.0), at[1],
+               ev.colliding[k] ? kCollideLine : Rgb{0.45, 0.35, 0.22});
+    }
+  }
+  // Fills, then outlines (so every outline stays visible through the translucent fills).
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t k = 0; k < scene.objects.size(); ++k) {
+      const SceneObject& o = scene.objects[k];
+      const bool hot = ev.colliding[k] != 0;
+      const Rgb fill = hot ? kCollideFill : kPalette[k % kPalette.size()];
+      const Rgb line = hot ? kCollideLine : Rgb{0.6 * fill.r, 0.6 * fill.g, 0.6 * fill.b};
+      cairo_new_path(cr);
+      if (!outlinePath(cr, panel, o)) continue;
+      if (pass == 0) {
+        setColour(cr, fill, hot ? 0.38 : 0.28);
+        cairo_fill(cr);
+      } else {
+        setColour(cr, line);
+        cairo_set_line_width(cr, hot ? 2.2 : 1.6);
+        const bool approximate = isQuadricShape(o.shape);  // drawn by its bounding box
+        const double dash[] = {6.0, 4.0};
+        cairo_set_dash(cr, dash, approximate ? 2 : 0, 0.0);
+        cairo_stroke(cr);
+        cairo_set_dash(cr, nullptr, 0, 0.0);
+      }
+    }
+  }
+  // Separating planes (trace through the midpoint of the two tangent points) and witness segments.
+  for (const PairDrawing& d : ev.pairs) {
+    if (!d.plane) continue;
+    const Eigen::Vector3d mid = 0.5 * (d.plane->tangent_a + d.plane->tangent_b);
+    const auto line = traceLine(panel, d.plane->plane.normal, d.plane->plane.offset, mid[w]);
+    if (!line) continue;
+    const double dash[] = {8.0, 5.0};
+    cairo_set_dash(cr, dash, 2, 0.0);
+    setColour(cr, kPlaneColour, 0.8);
+    cairo_set_line_width(cr, 1.4);
+    cairo_move_to(cr, (*line)[0][0], (*line)[0][1]);
+    cairo_line_to(cr, (*line)[1][0], (*line)[1][1]);
+    cairo_stroke(cr);
+    cairo_set_dash(cr, nullptr, 0, 0.0);
+  }
+  for (const PairDrawing& d : ev.pairs) {
+    const PairReport& r = d.report;
+    if (!r.point_a.allFinite() || !r.point_b.allFinite()) continue;
+    if (!r.collide) {
+      if (!options.separation_details || r.method == PairMethod::QuadricRegion) continue;
+      // Witness points of the distance, joined by a dotted segment.
+      const double dots[] = {2.0, 3.0};
+      cairo_set_dash(cr, dots, 2, 0.0);
+      cairo_set_source_rgba(cr, 0.25, 0.25, 0.3, 0.8);
+      cairo_set_line_width(cr, 1.2);
+      cairo_move_to(cr, panel.px(r.point_a), panel.py(r.point_a));
+      cairo_line_to(cr, panel.px(r.point_b), panel.py(r.point_b));
+      cairo_stroke(cr);
+      cairo_set_dash(cr, nullptr, 0, 0.0);
+      for (const Eigen::Vector3d& p : {r.point_a, r.point_b}) {
+        cairo_arc(cr, panel.px(p), panel.py(p), 3.0, 0.0, 2.0 * M_PI);
+        cairo_set_source_rgb(cr, 1, 1, 1);
+        cairo_fill_preserve(cr);
+        cairo_set_source_rgb(cr, 0.25, 0.25, 0.3);
+        cairo_set_line_width(cr, 1.3);
+        cairo_stroke(cr);
+      }
+    } else {
+      // Contact: the witness points (deepest points for an overlap), yellow with a dark rim.
+      for (const Eigen::Vector3d& p : {r.point_a, r.point_b}) {
+        cairo_arc(cr, panel.px(p), panel.py(p), 4.0, 0.0, 2.0 * M_PI);
+        cairo_set_source_rgb(cr, 1.0, 0.85, 0.1);
+        cairo_fill_preserve(cr);
+        cairo_set_source_rgb(cr, 0.2, 0.1, 0.0);
+        cairo_set_line_width(cr, 1.3);
+        cairo_stroke(cr);
+      }
+    }
+  }
+  // Labels: just above the object's centre (half-spaces: not labelled here), nudged down when
+  // they would overlap a label already placed.
+  setFont(cr, 12, true);
+  std::vector<std::array<double, 4>> placed;
+  for (std::size_t k = 0; k < scene.objects.size(); ++k) {
+    const SceneObject& o = scene.objects[k];
+    if (isHalfspace(o)) continue;
+    const std::string& label = o.name;
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, label.c_str(), &e);
+    double x = panel.px(o.pose.translation()) - 0.5 * e.x_advance;
+    double y = panel.py(o.pose.translation()) - 7.0;
+    for (int tries = 0; tries < 8; ++tries) {
+      bool clash = false;
+      for (const auto& r : placed) {
+        clash = clash || (x < r[0] + r[2] && r[0] < x + e.x_advance && y - 12 < r[1] && r[1] - 12 < y);
+      }
+      if (!clash) break;
+      y += 15.0;
+    }
+    placed.push_back({x, y, e.x_advance, 12});
+    haloText(cr, label, x, y, ev.colliding[k] ? kCollideLine : kText);
+  }
+  cairo_restore(cr);
+  cairo_rectangle(cr, panel.x0 + 0.5, panel.y0 + 0.5, panel.size - 1, panel.size - 1);
+  cairo_set_source_rgb(cr, 0.55, 0.55, 0.58);
+  cairo_set_line_width(cr, 1.0);
+  cairo_stroke(cr);
+}
+
+/// The legend: items left to right, wrapping onto a second row at `right`.
+void drawLegend(cairo_t* cr, double x0, double y, double right, bool details, bool approximations) {
+  setFont(cr, 12);
+  double x = x0;
+  // Each item: a symbol of width `symbol` drawn at (x, y) and its label.
+  auto item = [&](double symbol, const char* label, auto&& draw_symbol) {
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, label, &e);
+    if (x > x0 && x + symbol + 6 + e.x_advance > right) {
+      x = x0;
+      y += 20;
+    }
+    cairo_new_path(cr);
+    draw_symbol(x, y);
+    cairo_new_path(cr);
+    setColour(cr, kText);
+    text(cr, label, x + symbol + 6, y);
+    x += symbol + 6 + e.x_advance + 24;
+  };
+  auto swatch = [&](const Rgb& c, bool dashed) {
+    return [&cr, c, dashed](double sx, double sy) {
+      cairo_rectangle(cr, sx, sy - 10, 18, 12);
+      setColour(cr, c, 0.35);
+      cairo_fill_preserve(cr);
+      setColour(cr, {0.6 * c.r, 0.6 * c.g, 0.6 * c.b});
+      cairo_set_line_width(cr, 1.5);
+      const double dash[] = {4.0, 2.5};
+      cairo_set_dash(cr, dash, dashed ? 2 : 0, 0.0);
+      cairo_stroke(cr);
+      cairo_set_dash(cr, nullptr, 0, 0.0);
+    };
+  };
+  auto segment = [&cr](const Rgb& c, const double* dash, double width) {
+    return [&cr, c, dash, width](double sx, double sy) {
+      cairo_set_dash(cr, dash, 2, 0.0);
+      setColour(cr, c);
+      cairo_set_line_width(cr, width);
+      cairo_move_to(cr, sx, sy - 4);
+      cairo_line_to(cr, sx + 28, sy - 4);
+      cairo_stroke(cr);
+      cairo_set_dash(cr, nullptr, 0, 0.0);
+    };
+  };
+  item(18, "colliding (touching or overlapping)", swatch(kCollideFill, false));
+  item(18, "free (a colour per object)", swatch(kPalette[0], false));
+  item(10, "contact witness points", [&cr](double sx, double sy) {
+    cairo_arc(cr, sx + 5, sy - 4, 4.0, 0.0, 2.0 * M_PI);
+    cairo_set_source_rgb(cr, 1.0, 0.85, 0.1);
+    cairo_fill_preserve(cr);
+    cairo_set_source_rgb(cr, 0.2, 0.1, 0.0);
+    cairo_set_line_width(cr, 1.3);
+    cairo_stroke(cr);
+  });
+  static const double kPlaneDash[] = {8.0, 5.0};
+  static const double kDots[] = {2.0, 3.0};
+  if (details) {
+    item(28, "separating plane (trace)", segment(kPlaneColour, kPlaneDash, 1.4));
+    item(28, "closest points", segment({0.25, 0.25, 0.3}, kDots, 1.2));
+  }
+  if (approximations) item(18, "quadric shape, drawn as its bounding box", swatch({0.5, 0.5, 0.55}, true));
+}
+
+void draw(cairo_t* cr, const Scene& scene, const RenderOptions& options) {
+  const ImageSize size = renderImageSize(scene.dimension);
+  const bool planar = scene.dimension == 2;
+  const int panel_size = planar ? kPanel2 : kPanel3;
+  const std::vector<View> views = planar ? std::vector<View>(kViews2.begin(), kViews2.end())
+                                         : std::vector<View>(kViews3.begin(), kViews3.end());
+  const Evaluated ev = evaluate(scene, options);
+
+  // World bounds of everything drawn (bounded objects and marked points).
+  Box3 bounds{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+              Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+  for (const SceneObject& o : scene.objects) {
+    if (const auto b = worldBounds(o)) {
+      bounds.lo = bounds.lo.cwiseMin(b->lo);
+      bounds.hi = bounds.hi.cwiseMax(b->hi);
+    }
+  }
+  if (bounds.empty()) bounds = Box3{Eigen::Vector3d::Constant(-1.0), Eigen::Vector3d::Constant(1.0)};
+  const Eigen::Vector3d centre = bounds.center();
+  const Eigen::Vector3d half = (0.5 * (bounds.hi - bounds.lo)).cwiseMax(1e-3 * (bounds.hi - bounds.lo).maxCoeff() + 1e-9);
+  // One scale for all views, so that sizes compare across them; 10% padding.
+  double scale = std::numeric_limits<double>::infinity();
+  for (const View& view : views) {
+    scale = std::min(scale, 0.5 * panel_size / (1.1 * std::max(half[view.u], half[view.v])));
+  }
+
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  setFont(cr, 19, true);
+  setColour(cr, kText);
+  char time_text[64];
+  std::snprintf(time_text, sizeof time_text, "t = %g", options.time);
+  text(cr, options.title + "   \u00b7   " + time_text, kMarginX, 32);
+  setFont(cr, 13);
+  cairo_set_source_rgb(cr, 0.35, 0.35, 0.38);
+  std::string subtitle = std::to_string(scene.objects.size()) + " objects, " + std::to_string(ev.pairs.size()) +
+                         " pairs classified exactly: " + std::to_string(ev.colliding_pairs) + " colliding, " +
+                         std::to_string(ev.separated_pairs) + " separated";
+  if (ev.skipped_pairs > 0) subtitle += ", " + std::to_string(ev.skipped_pairs) + " not classified (two half-spaces)";
+  if (planar) subtitle += "  (planar scene)";
+  text(cr, subtitle, kMarginX, 54);
+
+  for (std::size_t k = 0; k < views.size(); ++k) {
+    Panel panel{views[k], static_cast<double>(kMarginX + static_cast<int>(k) * (panel_size + kGap)),
+                static_cast<double>(kTop), static_cast<double>(panel_size), centre[views[k].u], centre[views[k].v],
+                scale};
+    drawPanel(cr, panel, scene, ev, options, centre);
+  }
+  bool approximations = false;
+  for (const SceneObject& o : scene.objects) approximations = approximations || (isQuadricShape(o.shape) && !isHalfspace(o));
+  drawLegend(cr, kMarginX, size.height - 42, size.width - kMarginX, options.separation_details, approximations);
+}
+
+}  // namespace
+
+ImageSize renderImageSize(int dimension) {
+  if (dimension == 2) return {2 * kMarginX + kPanel2 + 160, kTop + kPanel2 + kBottom};
+  return {2 * kMarginX + 3 * kPanel3 + 2 * kGap, kTop + kPanel3 + kBottom};
+}
+
+Scene sceneAtTime(const Scene& scene, double t) {
+  if (!std::isfinite(t) || t < 0.0 || t > 1.0) {
+    throw SceneError("", "--time must be a number in [0, 1], got " + formatNumber(t));
+  }
+  Scene out = scene;
+  if (scene.dimension == 2) {
+    // Ellipses in z = 0 as ellipsoids with a common third semi-axis: two such ellipsoids meet
+    // exactly when the ellipses do (the best height is z = 0 for both).
+    for (SceneObject& o : out.objects) {
+      Eigen::Matrix3d H = o.motion2.evaluate(t);
+      H /= H(2, 2);
+      Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+      M.topLeftCorner<2, 2>() = H.topLeftCorner<2, 2>() * o.shape.dimensions.head<2>().asDiagonal();
+      M(2, 2) = 1.0;
+      setEllipsoid(&o, M, Eigen::Vector3d(H(0, 2), H(1, 2), 0.0));
+      o.motion.reset();
+    }
+    return out;
+  }
+  for (SceneObject& o : out.objects) {
+    if (!o.motion) continue;
+    Eigen::Matrix4d H = o.motion->evaluate(t);
+    H /= H(3, 3);
+    const Eigen::Matrix3d A = H.topLeftCorner<3, 3>();
+    const Eigen::Vector3d p = H.topRightCorner<3, 1>();
+    if (isEllipsoidal(o.shape)) {
+      setEllipsoid(&o, A * o.shape.dimensions.asDiagonal(), p);
+    } else {
+      o.pose = Eigen::Isometry3d::Identity();
+      o.pose.linear() = nearestRotation(A);
+      o.pose.translation() = p;
+    }
+    o.motion.reset();
+  }
+  return out;
+}
+
+void renderScene(const Scene& scene, const RenderOptions& options, const std::string& path) {
+  const std::string ext = lower(path);
+  const bool svg = endsWith(ext, ".svg"), png = endsWith(ext, ".png");
+  if (!svg && !png) throw SceneError("", "output file must end in .svg or .png: " + path);
+  const ImageSize size = renderImageSize(scene.dimension);
+  cairo_surface_t* surface = svg ? cairo_svg_surface_create(path.c_str(), size.width, size.height)
+                                 : cairo_image_surface_create(CAIRO_FORMAT_ARGB32, size.width, size.height);
+  cairo_t* cr = cairo_create(surface);
+  cairo_status_t status = cairo_status(cr);
+  if (status == CAIRO_STATUS_SUCCESS) {
+    try {
+      draw(cr, scene, options);
+    } catch (...) {
+      cairo_destroy(cr);
+      cairo_surface_destroy(surface);
+      throw;
+    }
+    status = cairo_status(cr);
+  }
+  cairo_destroy(cr);
+  if (status == CAIRO_STATUS_SUCCESS && png) status = cairo_surface_write_to_png(surface, path.c_str());
+  cairo_surface_finish(surface);
+  if (status == CAIRO_STATUS_SUCCESS) status = cairo_surface_status(surface);
+  cairo_surface_destroy(surface);
+  if (status != CAIRO_STATUS_SUCCESS) {
+    throw SceneError("", "cannot write " + path + ": " + cairo_status_to_string(status));
+  }
+}
+
+void runRender(const std::string& scene_path, const std::string& output, double time) {
+  const std::string ext = lower(output);
+  if (!endsWith(ext, ".svg") && !endsWith(ext, ".png")) {
+    throw SceneError("", "output file must end in .svg or .png: " + output);
+  }
+  if (!std::isfinite(time) || time < 0.0 || time > 1.0) {
+    throw SceneError("", "--time must be a number in [0, 1], got " + formatNumber(time));
+  }
+  const Scene scene = sceneAtTime(readSceneFile(scene_path), time);
+  RenderOptions options;
+  const std::size_t slash = scene_path.find_last_of('/');
+  options.title = slash == std::string::npos ? scene_path : scene_path.substr(slash + 1);
+  options.time = time;
+  renderScene(scene, options, output);
+}
+
+Scene ellipsoidScene(const std::vector<Ellipsoid>& ellipsoids) {
+  Scene scene;
+  const int n = static_cast<int>(ellipsoids.size());
+  for (int k = 0; k < n; ++k) {
+    const Ellipsoid& e = ellipsoids[static_cast<std::size_t>(k)];
+    SceneObject o;
+    int digits = 1;
+    for (int m = n - 1; m >= 10; m /= 10) ++digits;
+    std::string number = std::to_string(k);
+    number.insert(0, static_cast<std::size_t>(std::max(0, digits - static_cast<int>(number.size()))), '0');
+    o.name = "E" + number;
+    o.shape.type = ShapeType::Ellipsoid;
+    o.shape.dimensions = e.radii();
+    o.pose.linear() = e.rotation();
+    o.pose.translation() = e.center();
+    scene.objects.push_back(std::move(o));
+  }
+  for (std::size_t a = 0; a < ellipsoids.size(); ++a) {
+    for (std::size_t b = a + 1; b < ellipsoids.size(); ++b) {
+      const double reach = ellipsoids[a].maxRadius() + ellipsoids[b].maxRadius();
+      if ((ellipsoids[b].center() - ellipsoids[a].center()).squaredNorm() <= reach * reach) scene.pairs.emplace_back(a, b);
+    }
+  }
+  return scene;
+}
+
+std::string writeDemoPictures(const DemoSummary& summary, const std::string& directory) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  if (ec) throw SceneError("", "cannot create the pictures directory " + directory + ": " + ec.message());
+  const std::filesystem::path dir(directory);
+  RenderOptions options;
+  options.separation_details = false;  // dozens of pairs: planes would only clutter the picture
+  const double frame_time = 1.0 / 60.0;
+  const std::pair<const std::vector<Ellipsoid>*, const char*> frames[] = {{&summary.first_frame, "demo_first_frame.png"},
+                                                                          {&summary.last_frame, "demo_last_frame.png"}};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const int frame = k == 0 ? 0 : summary.options.frames - 1;
+    options.title = "fcl_quadric demo, frame " + std::to_string(frame);
+    options.time = frame * frame_time;
+    renderScene(ellipsoidScene(*frames[k].first), options, (dir / frames[k].second).string());
+  }
+  return (dir / "demo_first_frame.png").string() + ", " + (dir / "demo_last_frame.png").string();
+}
+
+}  // namespace cli
+}  // namespace fcl_quadric
