@@ -77,7 +77,7 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 }
 
 std::string formatNumber(double v) {
-  if (std::fabs(v) < 1e-12) v = 0.0;
+  if (std::isfinite(v) && std::fabs(v) < 1e-12) v = 0.0;
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%g", v);
   return buffer;
@@ -555,15 +555,13 @@ void drawLegend(cairo_t* cr, double x0, double y, double right, bool details, bo
   if (approximations) item(18, "quadric shape, drawn as its bounding box", swatch({0.5, 0.5, 0.55}, true));
 }
 
-void draw(cairo_t* cr, const Scene& scene, const RenderOptions& options) {
-  const ImageSize size = renderImageSize(scene.dimension);
+/// The view panels of a scene: one scale for all views (so sizes compare across them), each view
+/// centred on the bounds of the bounded objects, 10% padding.
+std::vector<Panel> layoutPanels(const Scene& scene) {
   const bool planar = scene.dimension == 2;
   const int panel_size = planar ? kPanel2 : kPanel3;
   const std::vector<View> views = planar ? std::vector<View>(kViews2.begin(), kViews2.end())
                                          : std::vector<View>(kViews3.begin(), kViews3.end());
-  const Evaluated ev = evaluate(scene, options);
-
-  // World bounds of everything drawn (bounded objects and marked points).
   Box3 bounds{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
               Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
   for (const SceneObject& o : scene.objects) {
@@ -575,11 +573,26 @@ void draw(cairo_t* cr, const Scene& scene, const RenderOptions& options) {
   if (bounds.empty()) bounds = Box3{Eigen::Vector3d::Constant(-1.0), Eigen::Vector3d::Constant(1.0)};
   const Eigen::Vector3d centre = bounds.center();
   const Eigen::Vector3d half = (0.5 * (bounds.hi - bounds.lo)).cwiseMax(1e-3 * (bounds.hi - bounds.lo).maxCoeff() + 1e-9);
-  // One scale for all views, so that sizes compare across them; 10% padding.
   double scale = std::numeric_limits<double>::infinity();
   for (const View& view : views) {
     scale = std::min(scale, 0.5 * panel_size / (1.1 * std::max(half[view.u], half[view.v])));
   }
+  std::vector<Panel> panels;
+  for (std::size_t k = 0; k < views.size(); ++k) {
+    panels.push_back(Panel{views[k], static_cast<double>(kMarginX + static_cast<int>(k) * (panel_size + kGap)),
+                           static_cast<double>(kTop), static_cast<double>(panel_size), centre[views[k].u],
+                           centre[views[k].v], scale});
+  }
+  return panels;
+}
+
+void draw(cairo_t* cr, const Scene& scene, const RenderOptions& options) {
+  const ImageSize size = renderImageSize(scene.dimension);
+  const bool planar = scene.dimension == 2;
+  const Evaluated ev = evaluate(scene, options);
+  const std::vector<Panel> panels = layoutPanels(scene);
+  // Depth at which half-space traces are taken: the middle of the drawn region.
+  const Eigen::Vector3d centre(panels[0].cu, panels[0].cv, planar ? 0.0 : panels[1].cv);
 
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
@@ -597,18 +610,19 @@ void draw(cairo_t* cr, const Scene& scene, const RenderOptions& options) {
   if (planar) subtitle += "  (planar scene)";
   text(cr, subtitle, kMarginX, 54);
 
-  for (std::size_t k = 0; k < views.size(); ++k) {
-    Panel panel{views[k], static_cast<double>(kMarginX + static_cast<int>(k) * (panel_size + kGap)),
-                static_cast<double>(kTop), static_cast<double>(panel_size), centre[views[k].u], centre[views[k].v],
-                scale};
-    drawPanel(cr, panel, scene, ev, options, centre);
-  }
+  for (const Panel& panel : panels) drawPanel(cr, panel, scene, ev, options, centre);
   bool approximations = false;
   for (const SceneObject& o : scene.objects) approximations = approximations || (isQuadricShape(o.shape) && !isHalfspace(o));
   drawLegend(cr, kMarginX, size.height - 42, size.width - kMarginX, options.separation_details, approximations);
 }
 
 }  // namespace
+
+Eigen::Vector2d pixelOf(const Scene& scene, int view, const Eigen::Vector3d& world) {
+  const std::vector<Panel> panels = layoutPanels(scene);
+  const Panel& panel = panels.at(static_cast<std::size_t>(view));
+  return Eigen::Vector2d(panel.px(world), panel.py(world));
+}
 
 ImageSize renderImageSize(int dimension) {
   if (dimension == 2) return {2 * kMarginX + kPanel2 + 160, kTop + kPanel2 + kBottom};

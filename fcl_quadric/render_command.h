@@ -31,6 +31,11 @@ struct ImageSize {
 };
 ImageSize renderImageSize(int dimension);
 
+/// Where the world point appears in the picture of `scene` (pixels from the top-left corner) in
+/// view `view`: 0 top (XY), 1 front (XZ), 2 side (YZ); a planar scene has view 0 only.
+/// \throws std::out_of_range for a view the picture does not have.
+Eigen::Vector2d pixelOf(const Scene& scene, int view, const Eigen::Vector3d& world);
+
 /// The scene with every moving object placed at its pose at time t (motion code of `ccd`:
 /// PiecewiseMotion::evaluate / PolynomialMatrix3::evaluate); a planar scene's ellipses become
 /// ellipsoids in the plane z = 0 with a common third semi-axis (their pairs classify as the
