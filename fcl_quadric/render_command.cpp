@@ -600,7 +600,8 @@ void draw(cairo_t* cr, const Scene& scene, const RenderOptions& options) {
   setColour(cr, kText);
   char time_text[64];
   std::snprintf(time_text, sizeof time_text, "t = %g", options.time);
-  text(cr, options.title + "   \u00b7   " + time_text, kMarginX, 32);
+  text(cr, options.title + "   \u00b7   " + (options.time_text.empty() ? std::string(time_text) : options.time_text),
+       kMarginX, 32);
   setFont(cr, 13);
   cairo_set_source_rgb(cr, 0.35, 0.35, 0.38);
   std::string subtitle = std::to_string(scene.objects.size()) + " objects, " + std::to_string(ev.pairs.size()) +
@@ -608,6 +609,7 @@ void draw(cairo_t* cr, const Scene& scene, const RenderOptions& options) {
                          std::to_string(ev.separated_pairs) + " separated";
   if (ev.skipped_pairs > 0) subtitle += ", " + std::to_string(ev.skipped_pairs) + " not classified (two half-spaces)";
   if (planar) subtitle += "  (planar scene)";
+  if (!options.pairs_note.empty()) subtitle += "  " + options.pairs_note;
   text(cr, subtitle, kMarginX, 54);
 
   for (const Panel& panel : panels) drawPanel(cr, panel, scene, ev, options, centre);
@@ -751,6 +753,10 @@ std::string writeDemoPictures(const DemoSummary& summary, const std::string& dir
     const int frame = k == 0 ? 0 : summary.options.frames - 1;
     options.title = "fcl_quadric demo, frame " + std::to_string(frame);
     options.time = frame * frame_time;
+    char seconds[64];
+    std::snprintf(seconds, sizeof seconds, "%.2f s simulated", options.time);
+    options.time_text = seconds;
+    options.pairs_note = "(the pairs whose bounding spheres overlap, as in the demo)";
     renderScene(ellipsoidScene(*frames[k].first), options, (dir / frames[k].second).string());
   }
   return (dir / "demo_first_frame.png").string() + ", " + (dir / "demo_last_frame.png").string();

@@ -20,6 +20,10 @@ struct RenderOptions {
   /// Heading of the picture (e.g. the scene file name); the time is appended.
   std::string title = "scene";
   double time = 0.0;
+  /// Replaces "t = <time>" in the heading when not empty.
+  std::string time_text;
+  /// Appended to the subtitle (e.g. which pairs were classified).
+  std::string pairs_note;
   /// Draw separating planes and witness segments of separated pairs (off for crowded scenes).
   bool separation_details = true;
 };
