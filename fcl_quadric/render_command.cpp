@@ -180,6 +180,13 @@ std::optional<Box3> worldBounds(const SceneObject& o) {
   return std::nullopt;
 }
 
+bool isCylinder(const Shape& shape) {
+  return shape.type == ShapeType::EllipticCylinder || shape.type == ShapeType::Cylinder;
+}
+
+/// Quadric shapes drawn by their bounding box (general quadrics and CSG; not half-spaces).
+bool drawnByBox(const SceneObject& o) { return isQuadricShape(o.shape) && !isCylinder(o.shape) && !isHalfspace(o); }
+
 /// Appends the object's outline in the panel to the current path (device coordinates).
 /// Returns false when the object has no outline in this view (half-spaces).
 bool outlinePath(cairo_t* cr, const Panel& panel, const SceneObject& o) {
@@ -203,6 +210,25 @@ bool outlinePath(cairo_t* cr, const Panel& panel, const SceneObject& o) {
     cairo_arc(cr, 0.0, 0.0, 1.0, 0.0, 2.0 * M_PI);
     cairo_close_path(cr);
     cairo_restore(cr);
+    return true;
+  }
+  if (isCylinder(o.shape)) {
+    // A capped (elliptic) cylinder is the convex hull of its two end ellipses, so its shadow is the
+    // hull of theirs: both cap boundaries, finely sampled (256 points each), then the hull.
+    const double a = o.shape.dimensions[0], b = o.shape.dimensions[1], h = 0.5 * o.shape.dimensions[2];
+    std::vector<Eigen::Vector2d> pts;
+    constexpr int kSamples = 256;
+    for (int k = 0; k < kSamples; ++k) {
+      const double s = 2.0 * M_PI * k / kSamples;
+      for (const double z : {-h, h}) {
+        const Eigen::Vector3d c = o.pose * Eigen::Vector3d(a * std::cos(s), b * std::sin(s), z);
+        pts.emplace_back(panel.px(c), panel.py(c));
+      }
+    }
+    const std::vector<Eigen::Vector2d> hull = convexHull(pts);
+    cairo_new_sub_path(cr);
+    for (const Eigen::Vector2d& q : hull) cairo_line_to(cr, q[0], q[1]);
+    cairo_close_path(cr);
     return true;
   }
   if (o.shape.type == ShapeType::Box || o.shape.box) {
@@ -406,7 +432,7 @@ void drawPanel(cairo_t* cr, const Panel& panel, const Scene& scene, const Evalua
       } else {
         setColour(cr, line);
         cairo_set_line_width(cr, hot ? 2.2 : 1.6);
-        const bool approximate = isQuadricShape(o.shape);  // drawn by its bounding box
+        const bool approximate = drawnByBox(o);
         const double dash[] = {6.0, 4.0};
         cairo_set_dash(cr, dash, approximate ? 2 : 0, 0.0);
         cairo_stroke(cr);
@@ -552,7 +578,7 @@ void drawLegend(cairo_t* cr, double x0, double y, double right, bool details, bo
     item(28, "separating plane (trace)", segment(kPlaneColour, kPlaneDash, 1.4));
     item(28, "closest points", segment({0.25, 0.25, 0.3}, kDots, 1.2));
   }
-  if (approximations) item(18, "quadric shape, drawn as its bounding box", swatch({0.5, 0.5, 0.55}, true));
+  if (approximations) item(18, "quadric / CSG shape, drawn as its bounding box", swatch({0.5, 0.5, 0.55}, true));
 }
 
 /// The view panels of a scene: one scale for all views (so sizes compare across them), each view
@@ -614,7 +640,7 @@ void draw(cairo_t* cr, const Scene& scene, const RenderOptions& options) {
 
   for (const Panel& panel : panels) drawPanel(cr, panel, scene, ev, options, centre);
   bool approximations = false;
-  for (const SceneObject& o : scene.objects) approximations = approximations || (isQuadricShape(o.shape) && !isHalfspace(o));
+  for (const SceneObject& o : scene.objects) approximations = approximations || drawnByBox(o);
   drawLegend(cr, kMarginX, size.height - 42, size.width - kMarginX, options.separation_details, approximations);
 }
 
