@@ -67,16 +67,20 @@ fuzz() {
   mkdir "$scratch/new"
   # -seed fixes the mutation sequence; the committed corpus is the second (read-only) directory.
   set +e
-  "$prefix-asan/fuzz/$target" -seed=1 -runs="$fuzz_runs" -max_total_time="$fuzz_seconds" -max_len=4096 -timeout=30 -rss_limit_mb=4096 \
+  # One CCD solve of a degree-6 motion can take minutes under ASan on a slow machine (capped work,
+  # docs/reliability.md finding 9): fuzz_motion gets a long per-input timeout, the others 30 s.
+  local timeout=30
+  if [ "$target" = fuzz_motion ]; then timeout=300; fi
+  "$prefix-asan/fuzz/$target" -seed=1 -runs="$fuzz_runs" -max_total_time="$fuzz_seconds" -max_len=4096 -timeout="$timeout" -rss_limit_mb=4096 \
     -print_final_stats=1 "$scratch/new" "fuzz/corpus/$target" > "$scratch/log" 2>&1
   status=$?
   set -e
-  grep -E '^(stat::number_of_executed_units|stat::new_units_added|#[0-9]+ +(INITED|DONE))' "$scratch/log" || true
+  grep -E '^(stat::number_of_executed_units|stat::new_units_added|#[0-9]+[[:space:]]+(INITED|DONE))' "$scratch/log" || true
   if [ "$status" -ne 0 ]; then tail -n 80 "$scratch/log"; fi
   rm -rf "$scratch"
   return "$status"
 }
 for target in fuzz_scene fuzz_static fuzz_fcl fuzz_motion; do
-  step "fuzz $target ($fuzz_runs runs)" fuzz "$target"
+  step "fuzz $target (up to $fuzz_runs runs or $fuzz_seconds s)" fuzz "$target"
 done
 echo "ci-sanitizers: all sanitizer and fuzz steps passed"
