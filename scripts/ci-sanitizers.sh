@@ -71,7 +71,8 @@ fuzz() {
   # docs/reliability.md finding 9): fuzz_motion gets a long per-input timeout, the others 30 s.
   local timeout=30
   if [ "$target" = fuzz_motion ]; then timeout=300; fi
-  "$prefix-asan/fuzz/$target" -seed=1 -runs="$fuzz_runs" -max_total_time="$fuzz_seconds" -max_len=4096 -timeout="$timeout" -rss_limit_mb=4096 \
+  mkdir -p "$prefix-asan/fuzz-artifacts"
+  "$prefix-asan/fuzz/$target" -artifact_prefix="$prefix-asan/fuzz-artifacts/$target-" -seed=1 -runs="$fuzz_runs" -max_total_time="$fuzz_seconds" -max_len=4096 -timeout="$timeout" -rss_limit_mb=4096 \
     -print_final_stats=1 "$scratch/new" "fuzz/corpus/$target" > "$scratch/log" 2>&1
   status=$?
   set -e
