@@ -131,15 +131,24 @@ double readNumber(const json& node, const std::string& pointer, const char* what
   requireNumber(node, pointer);
   const double v = node.get<double>();
   if (!std::isfinite(v)) fail(pointer, std::string(what) + " must be finite, got " + describeNumber(node));
+  // A translation beyond the library's range would pass here and fail later as an internal error
+  // (found by fuzz_scene).
+  if (std::strcmp(what, "translation") == 0 && !(std::fabs(v) <= tolerance::kMaxLength)) {
+    fail(pointer, "translation must be within +-1e+100, got " + describeNumber(node));
+  }
   return v;
 }
 
-/// A finite number > 0.
+/// A finite number > 0; a radius also within the library's range [kMinRadius, kMaxLength] (an
+/// Ellipsoid rejects others: found by fuzz_scene, a radius of 1e-300 was an internal error).
 double readPositive(const json& node, const std::string& pointer, const char* what) {
   requireNumber(node, pointer);
   const double v = node.get<double>();
   if (!std::isfinite(v) || !(v > 0.0)) {
     fail(pointer, std::string(what) + " must be finite and > 0, got " + describeNumber(node));
+  }
+  if (std::strcmp(what, "radius") == 0 && !(v >= tolerance::kMinRadius && v <= tolerance::kMaxLength)) {
+    fail(pointer, "radius must be in [1e-100, 1e+100], got " + describeNumber(node));
   }
   return v;
 }

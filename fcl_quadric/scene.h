@@ -39,7 +39,9 @@
 /// "polynomial", "matrix": 3x3 entries, last row [0, 0, w]} (thesis ch.2).
 /// `pose` and both of its fields are optional (identity). `pairs` defaults to every unordered
 /// pair in object order. A quaternion must have unit norm within tolerance::kQuaternionNorm
-/// (relative) and is then normalised.
+/// (relative) and is then normalised. Radii must lie in [tolerance::kMinRadius,
+/// tolerance::kMaxLength] and translations within +-kMaxLength (the range Ellipsoid accepts), else
+/// a SceneError names the value.
 
 #include <cstddef>
 #include <memory>

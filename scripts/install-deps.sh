@@ -8,6 +8,9 @@ PKGS=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libcairo2-dev
   libboost-dev libgmp-dev
+  # Sanitizer and fuzz builds (scripts/ci-sanitizers.sh, docs/reliability.md): clang with its
+  # runtimes (libFuzzer, ASan/UBSan/TSan) and llvm-symbolizer for readable reports.
+  clang-14 libclang-rt-14-dev llvm-14
 )
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi

@@ -154,7 +154,21 @@ MotionMatrix MotionMatrix::fromPoses(const Eigen::Matrix3d& R0, const Eigen::Vec
   return m;
 }
 
-MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M) {
+MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M_given) {
+  // M and s M are the same motion for any s != 0. Far outside [2^-32, 2^32] the products below
+  // (det L, the adjugate, and the CCD function built from them) overflow to inf and NaN, and the
+  // root certificates would run on garbage (found by fuzz_motion: coefficients ~1e300 passed
+  // validation, then the CCD threw from deep inside). Rescale by a power of two: exact, and a
+  // no-op for ordinary motions.
+  double max_abs = 0.0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) max_abs = std::max(max_abs, M_given(i, j).maxAbsCoefficient());
+  PolynomialMatrix4 M = M_given;
+  if (max_abs > 0.0 && (max_abs > 0x1p32 || max_abs < 0x1p-32)) {
+    int e = 0;
+    (void)std::frexp(max_abs, &e);
+    M = M_given * std::ldexp(1.0, -e);
+  }
   for (int j = 0; j < 3; ++j) {
     if (!M(3, j).trimmed().isZero()) {
       std::ostringstream os;
@@ -182,6 +196,11 @@ MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M) {
         off = std::max(off, d.maxAbsCoefficient());
       }
     }
+    // ... and sigma = w^2, i.e. L / w is a rotation. Without it a similarity (L = s(t) R(t),
+    // s != w: a uniformly scaling body) was flagged rigid, and the rigid-only shortcuts (world
+    // ellipsoid without eigen-decomposition, bounding-sphere culls with the body radius) were
+    // wrong for it (found by fuzz_motion: "ellipsoid rotation is not a rotation").
+    off = std::max(off, (G(0, 0) - w * w).maxAbsCoefficient());
     if (scale > 0.0 && off <= 1e-13 * scale) {
       PolynomialMatrix4 N;
       for (int i = 0; i < 3; ++i) {

@@ -82,6 +82,14 @@ std::array<double, 5> characteristicPolynomialAffine(const Eigen::Matrix4d& M_A,
 }
 
 Separation classifyBySubresultants(const std::array<double, 5>& f) {
+  for (int i = 0; i < 5; ++i) {
+    if (!std::isfinite(f[i])) {
+      std::ostringstream os;
+      os << "classifyBySubresultants: coefficient f[" << i << "] must be finite, got " << f[i];
+      throw std::invalid_argument(os.str());
+    }
+  }
+  if (f[4] == 0.0) throw std::invalid_argument("classifyBySubresultants: leading coefficient f[4] is 0 (not a quartic)");
   // Thesis §4.5 uses f^(lambda) = det(lambda A + B) = f(-lambda); normalise to monic.
   const double c4 = f[4];
   const double a = -f[3] / c4, b = f[2] / c4, c = -f[1] / c4, d = f[0] / c4;

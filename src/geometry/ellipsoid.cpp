@@ -119,8 +119,15 @@ double Ellipsoid::support(const Eigen::Vector3d& n) const {
 
 Eigen::Vector3d Ellipsoid::supportPoint(const Eigen::Vector3d& n) const {
   // argmax: p + R S^2 R^T n / |S R^T n|
-  const Eigen::Vector3d m = (R_.transpose() * n).cwiseProduct(radii_);
-  return p_ + R_ * (m.cwiseProduct(radii_) / m.norm());
+  Eigen::Vector3d m = (R_.transpose() * n).cwiseProduct(radii_);
+  double norm = m.norm();
+  if (norm == 0.0 || std::isinf(norm)) {  // n = 0, or |m|^2 under/overflows: rescale m first
+    const double s = m.cwiseAbs().maxCoeff();
+    if (s == 0.0) return p_;  // n = 0: every point attains h(0) = 0 (was 0/0 = NaN)
+    m /= s;
+    norm = m.norm();
+  }
+  return p_ + R_ * (m.cwiseProduct(radii_) / norm);
 }
 
 }  // namespace fcl_quadric

@@ -219,9 +219,20 @@ SeparationCertificate classifyEllipsoids(const Ellipsoid& a, const Ellipsoid& b)
   DoubleDouble xd[3];
   decided = certify<DoubleDouble>(pd, mud, tolerance::kCertificateRelativeBoundDoubleDouble, &cert, xd);
   cert.precision_stage = decided ? 1 : 2;
-  if (!decided) cert.status = Separation::Touching;  // within the band: err toward contact
+  if (!decided) {
+    cert.status = Separation::Touching;  // within the band: err toward contact
+    // Sizes ~1e25 apart and more overflow the pencil (docs/tolerances.md); never hand out NaN
+    // (found by fuzz_static: radii 1e-100 against 1e100 gave psi = NaN).
+    if (std::isnan(cert.psi)) cert.psi = 0.0;
+    if (std::isnan(cert.mu)) cert.mu = 0.5;
+  }
   cert.witness = detail::unitFrameToWorld(A, Eigen::Vector3d(toDouble(xd[0]), toDouble(xd[1]), toDouble(xd[2])));
+  if (!cert.witness.allFinite()) cert.witness = A.supportPoint(B.center() - A.center());
   cert.normal = a.normalAt(cert.witness);
+  if (!cert.normal.allFinite() || cert.normal.squaredNorm() == 0.0) {
+    const Eigen::Vector3d d = b.center() - a.center();
+    cert.normal = d.allFinite() && d.squaredNorm() > 0.0 ? d.normalized() : Eigen::Vector3d::UnitX();
+  }
   return cert;
 }
 

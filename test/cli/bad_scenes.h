@@ -70,6 +70,12 @@ inline std::vector<BadScene> badScenes() {
       {"RadiusNegative", withObject(ellipsoid("[1,-1,3]")), "/objects/2/shape/radii/1", "radius must be finite and > 0, got -1"},
       {"RadiusZero", withObject(ellipsoid("[1,2,0.0]")), "/objects/2/shape/radii/2", "radius must be finite and > 0, got 0.0"},
       {"RadiusOverflow", withObject(ellipsoid("[1e999,2,3]")), "/objects/2/shape/radii/0", "1e999 is out of the range"},
+      // Finite radii and translations outside the library's range (fuzz_scene found these as
+      // internal errors, exit status 1).
+      {"RadiusBelowLibraryRange", withObject(ellipsoid("[1,1e-300,3]")), "/objects/2/shape/radii/1",
+       "radius must be in [1e-100, 1e+100], got 1e-300"},
+      {"SphereRadiusAboveLibraryRange", withObject(R"({"name":"S","shape":{"type":"sphere","radius":1e200}})"),
+       "/objects/2/shape/radius", "radius must be in [1e-100, 1e+100]"},
       {"EllipsoidWithRadius", withObject(R"({"name":"E","shape":{"type":"ellipsoid","radius":1}})"),
        "/objects/2/shape/radius", "unknown field (allowed here: type, radii)"},
       {"SphereRadiusMissing", withObject(R"({"name":"S","shape":{"type":"sphere"}})"), "/objects/2/shape/radius",
@@ -92,6 +98,8 @@ inline std::vector<BadScene> badScenes() {
       {"TranslationWrongLength", posed(R"({"translation":[0,0]})"), "/objects/0/pose/translation", "exactly 3 elements"},
       {"TranslationNull", posed(R"({"translation":[null,0,0]})"), "/objects/0/pose/translation/0", "must be a number, got null"},
       {"TranslationOverflow", posed(R"({"translation":[0,0,1e309]})"), "/objects/0/pose/translation/2", "out of the range"},
+      {"TranslationBeyondLibraryRange", posed(R"({"translation":[0,-1e150,0]})"), "/objects/0/pose/translation/1",
+       "translation must be within +-1e+100"},
       {"QuaternionWrongLength", posed(R"({"quaternion":[1,0,0]})"), "/objects/0/pose/quaternion", "exactly 4 elements, got 3"},
       {"QuaternionNotUnit", posed(R"({"quaternion":[1,0,0,0.1]})"), "/objects/0/pose/quaternion", "unit norm"},
       {"QuaternionZero", posed(R"({"quaternion":[0,0,0,0]})"), "/objects/0/pose/quaternion", "got norm 0"},

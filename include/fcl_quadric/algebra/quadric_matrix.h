@@ -12,6 +12,12 @@
 namespace fcl_quadric {
 namespace quadric {
 
+/// Bad input: every shape parameter (radius, semi-axis, half-width) must be finite and > 0,
+/// planePair's normal finite and unit (within 1e-12) and its offset finite; otherwise
+/// std::invalid_argument naming the function and the parameter. posedEllipsoid validates the
+/// radii the same way; affineEllipsoid throws as transform(); affineTransform and evaluate take
+/// their inputs as given (no validation: a non-finite input gives a non-finite result).
+
 /// Ellipsoid x^2/a^2 + y^2/b^2 + z^2/c^2 <= 1: diag(1/a^2, 1/b^2, 1/c^2, -1) (thesis (4.1)).
 Eigen::Matrix4d ellipsoid(const Eigen::Vector3d& radii);
 /// Elliptic cylinder along z: x^2/a^2 + y^2/b^2 <= 1.

@@ -163,8 +163,9 @@ class MovingEllipse2 {
   /// is the chain used by CD-DISC). Scaled by a positive power of two.
   const std::array<BernsteinPolynomial, 9>& conicBernstein() const { return conic_b_; }
   /// The conic matrix at time t computed numerically from N(t) (not from conic()).
+  /// \throws std::invalid_argument if t is not finite (t outside [0, 1] extrapolates).
   Eigen::Matrix3d conicAt(double t) const;
-  /// The centre of the ellipse at time t.
+  /// The centre of the ellipse at time t. \throws std::invalid_argument if t is not finite.
   Eigen::Vector2d centerAt(double t) const;
 
  private:
@@ -225,11 +226,13 @@ struct EllipseCcdResult {
 /// changes there. Near-tangent decisions therefore err toward reporting contact.
 ///
 /// Variant 1 and 2 stop at the first contact; Variant 3 processes all candidates.
+/// Never throws for valid MovingEllipse2 objects (they were validated on construction).
 EllipseCcdResult collideMovingEllipses(const MovingEllipse2& a, const MovingEllipse2& b,
                                        EllipseCcdQuery query = EllipseCcdQuery::FirstContact);
 
 /// Characteristic polynomial f(lambda; t) = det(lambda A(t) - B(t)) of two moving disks, P(k, j)
-/// = coefficient of lambda^k t^j (eq. 2.1; A(t), B(t) as MovingEllipse2::conic()).
+/// = coefficient of lambda^k t^j (eq. 2.1; A(t), B(t) as MovingEllipse2::conic()). No failure
+/// mode for valid MovingEllipse2 objects.
 Eigen::MatrixXd characteristicPolynomial2(const MovingEllipse2& a, const MovingEllipse2& b);
 
 /// The discriminant Delta(t) of f(lambda; t) with respect to lambda (eq. 2.2) in the Bernstein
@@ -239,6 +242,7 @@ Eigen::MatrixXd characteristicPolynomial2(const MovingEllipse2& a, const MovingE
 /// form loses Delta of Example 2.2 entirely to cancellation, so the conversion is done at the
 /// motion entries, where the degree is lowest). Positive scale factors aside:
 /// normalised so that its largest Bernstein coefficient is in [1/2, 1) in absolute value).
+/// No failure mode for valid MovingEllipse2 objects.
 BernsteinPolynomial ellipseDiscriminant(const MovingEllipse2& a, const MovingEllipse2& b);
 
 // ---------------------------------------------------------------------------------------------
@@ -257,6 +261,7 @@ class MovingEllipse3 {
   double b() const { return b_; }
   const PolynomialMatrix4& motion() const { return m_; }
 
+  /// Evaluated at t; each \throws std::invalid_argument if t is not finite.
   Eigen::Vector3d centerAt(double t) const;  ///< v(t) / w(t)
   Eigen::Vector3d axisUAt(double t) const;   ///< L(t) e_x / w(t)
   Eigen::Vector3d axisVAt(double t) const;   ///< L(t) e_y / w(t)
@@ -274,6 +279,7 @@ class MovingEllipse3 {
 /// line cuts from both disks: disjoint -> Separated, sharing only an end point -> Touching,
 /// overlapping -> Overlapping (the solids then intersect along a segment). The touching band is
 /// kEllipseTouchingRelativeBand relative to the chord scale.
+/// \throws std::invalid_argument if t is not finite.
 Separation classifyEllipses3(const MovingEllipse3& a, const MovingEllipse3& b, double t);
 
 /// Result of CD-DISC3D.

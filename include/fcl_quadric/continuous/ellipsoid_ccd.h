@@ -99,7 +99,9 @@ struct EllipsoidCcdResult {
 };
 
 /// Continuous collision of two moving ellipsoids over [0, options.t_max].
-/// \throws std::invalid_argument if t_max is not in (0, 1].
+/// \throws std::invalid_argument if t_max is not in (0, 1], or if an intermediate polynomial
+/// overflows (a non-finite coefficient; extreme magnitudes of radii or coordinates). The result
+/// never holds NaN.
 EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const MovingEllipsoid& b,
                                                const CcdOptions& options = CcdOptions());
 

@@ -20,7 +20,8 @@
 /// N = [[R~^T, -R~^T p(t)], [0, E(t)]], so N M = E^2 I: columns of N have degrees (2, 2, 2, 3) and
 /// the CCD function of two such motions has degree at most 2 (2+2+2+3) = 18 in t. A general
 /// affine motion uses N = [[w adj L, -adj(L) v], [0, det L]] (N M = w det(L) I); a rigid one
-/// (L^T L = sigma I as polynomials, detected to rounding) uses N = [[w L^T, -L^T v], [0, sigma]]
+/// (L^T L = sigma I with sigma = w^2 as polynomials, detected to rounding; a uniform scaling is
+/// not rigid) uses N = [[w L^T, -L^T v], [0, sigma]]
 /// (N M = w sigma I), of lower degree. Compositions keep the product of the factors' inverses.
 ///
 /// Part of the continuous-collision layer: standard library and Eigen only.
@@ -55,18 +56,23 @@ class MotionMatrix {
   /// \throws std::invalid_argument for a non-rotation or a non-finite entry, naming it.
   static MotionMatrix fromPoses(const Eigen::Matrix3d& R0, const Eigen::Vector3d& p0, const Eigen::Matrix3d& R1,
                                 const Eigen::Vector3d& p1);
+  /// The same from isometries. \throws std::invalid_argument as above.
   static MotionMatrix fromPoses(const Eigen::Isometry3d& X0, const Eigen::Isometry3d& X1);
 
   /// A motion given by its polynomial matrix (power basis in t, t in [0, 1]). Validated:
   /// entries (3,0), (3,1), (3,2) must be the zero polynomial; w(t) = M(3,3) and det L(t) must
   /// have no root in [0, 1] (certified by Bernstein root isolation; a root that cannot be
   /// excluded counts as a root). \throws std::invalid_argument naming the failed condition and
-  /// where in [0, 1] it fails.
+  /// where in [0, 1] it fails. M and s M are the same motion: when the largest coefficient is
+  /// outside [2^-32, 2^32] the matrix is first rescaled by a power of two (exact), so that huge or
+  /// tiny coefficients cannot overflow the validation or the CCD (matrix() returns the rescaled
+  /// matrix).
   static MotionMatrix fromPolynomialMatrix(const PolynomialMatrix4& M);
 
   /// The composition outer(inner(x)): M = M_outer M_inner with the polynomial inverse
   /// N = N_inner N_outer (no adjugate: the degrees of the factors add, e.g. a link of a serial
-  /// chain is the product of its joints' motions). Rigid if both are.
+  /// chain is the product of its joints' motions). Rigid if both are. No failure mode (both
+  /// factors are valid motions, so the product's w and inverse factor stay root-free).
   static MotionMatrix compose(const MotionMatrix& outer, const MotionMatrix& inner);
 
   /// M(t) (homogeneous, not normalised), built from the coefficient matrices.
@@ -143,7 +149,8 @@ class PiecewiseMotion {
   const std::vector<double>& breaks() const { return breaks_; }
   const std::vector<MotionMatrix>& pieces() const { return pieces_; }
   bool isRigid() const;
-  /// The affine map at global time t in [0, 1].
+  /// The affine map at global time t in [0, 1] (t outside extrapolates the first / last piece).
+  /// \throws std::invalid_argument if t is not finite.
   Eigen::Matrix4d evaluate(double t) const;
   /// The motion on [t0, t1] inside one piece, reparametrised to [0, 1].
   /// \throws std::invalid_argument if [t0, t1] is not inside a single piece.

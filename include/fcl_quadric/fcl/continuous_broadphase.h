@@ -50,6 +50,8 @@ namespace fcl_quadric {
 fcl::AABB<double> sweptAABB(const Ellipsoid& body, const PiecewiseMotion& motion);
 
 /// The same for a ball (centre, radius) in body coordinates (any geometry's bounding sphere).
+/// \throws std::invalid_argument for a negative or non-finite radius or a non-finite centre, and
+/// as above.
 fcl::AABB<double> sweptAABB(const Eigen::Vector3d& centre, double radius, const PiecewiseMotion& motion);
 
 /// A collision object whose AABB is the swept AABB of its geometry under `motion` over [0, 1]
@@ -63,7 +65,10 @@ class SweptCollisionObject : public fcl::CollisionObject<double> {
  public:
   SweptCollisionObject(const std::shared_ptr<fcl::CollisionGeometry<double>>& geometry, PiecewiseMotion motion);
   const PiecewiseMotion& motion() const { return motion_; }
+  /// Replaces the motion: the transform becomes the pose at t = 0 and the AABB the swept one.
+  /// \throws std::invalid_argument as the constructor.
   void setMotion(PiecewiseMotion motion);
+  /// Recomputes the swept AABB (after the geometry changed in place). \throws as the constructor.
   void refreshSweptAABB();
 
  private:
@@ -74,7 +79,7 @@ class SweptCollisionObject : public fcl::CollisionObject<double> {
 /// current transform.
 using MotionMap = std::unordered_map<const fcl::CollisionObject<double>*, PiecewiseMotion>;
 
-/// The motions of a set of SweptCollisionObjects.
+/// The motions of a set of SweptCollisionObjects (null entries are skipped).
 MotionMap motionMap(const std::vector<SweptCollisionObject*>& objects);
 
 struct ContinuousBroadPhaseRequest {

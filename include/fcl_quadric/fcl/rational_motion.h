@@ -101,6 +101,7 @@ class RationalMotion : public fcl::MotionBase<S> {
 
   /// Certified upper bound of the speed |dx/dt| of any point of the ball (centre, radius) (body
   /// frame) over t in [t0, 1]: sup |p'(t)| + radius sup ||L'(t)||_F, from Bernstein bounds.
+  /// \throws std::invalid_argument unless 0 <= t0 <= 1.
   double speedBound(const Eigen::Vector3d& centre, double radius, double t0 = 0.0) const;
 
  private:

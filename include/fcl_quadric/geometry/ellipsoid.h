@@ -22,7 +22,8 @@ class Ellipsoid {
   Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, const Eigen::Vector3d& p_WE);
   /// From an isometry X_WE (its linear part must be a rotation).
   Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Isometry3d& X_WE);
-  /// A sphere of radius r centred at p_WE.
+  /// A sphere of radius r centred at p_WE. \throws std::invalid_argument as the constructor (r
+  /// outside [kMinRadius, kMaxLength] or not finite, p_WE not finite or beyond kMaxLength).
   static Ellipsoid sphere(double r, const Eigen::Vector3d& p_WE);
   /// The affine image { M u + p : |u| <= 1 } of the unit ball (the ellipsoids of affine motions,
   /// thesis §4.1.2 and §5.2), converted to principal axes by the symmetric eigen-decomposition
@@ -41,12 +42,15 @@ class Ellipsoid {
   /// M = [R p; 0 1], with M^-1 formed as [R^T, -R^T p] (rigid).
   Eigen::Matrix4d quadricMatrix() const;
   /// Implicit value q(x) = |S^-1 R^T (x - p)|^2 - 1 (negative inside, zero on the surface).
+  /// No failure mode; a non-finite x gives a non-finite value.
   double implicit(const Eigen::Vector3d& x_W) const;
-  /// Outward unit normal of the level set of q through x (x != centre).
+  /// Outward unit normal of the level set of q through x. \pre x != centre (at the centre the
+  /// gradient vanishes and the zero vector is returned).
   Eigen::Vector3d normalAt(const Eigen::Vector3d& x_W) const;
-  /// Support function h(n) = max_{x in E} n.x, for any n != 0 (not necessarily unit).
+  /// Support function h(n) = max_{x in E} n.x, for any finite n (not necessarily unit; h(0) = 0).
   double support(const Eigen::Vector3d& n_W) const;
-  /// The point of E where the support in direction n is attained.
+  /// The point of E where the support in direction n is attained (n finite, not necessarily unit).
+  /// For n = 0 every point of E attains h(0) = 0 and the centre is returned (never NaN).
   Eigen::Vector3d supportPoint(const Eigen::Vector3d& n_W) const;
   /// Largest radius (a bound on the distance from the centre to any point of E).
   double maxRadius() const { return radii_.maxCoeff(); }
@@ -61,6 +65,7 @@ namespace detail {
 /// Throws std::invalid_argument if `R` is not a finite proper rotation within
 /// tolerance::kRotationOrthogonality. `what` names the value in the message.
 void checkRotation(const Eigen::Matrix3d& R, const char* what);
+/// Throws std::invalid_argument("<what> must be finite, ...") if v has a NaN or infinite entry.
 void checkFinite(const Eigen::Vector3d& v, const char* what);
 }  // namespace detail
 

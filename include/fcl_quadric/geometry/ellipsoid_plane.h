@@ -27,6 +27,8 @@ enum class PlaneRelation {
   Touching,      ///< tangent within the tolerance band (counts as contact)
   Transversal,   ///< the plane cuts the interior
 };
+/// "positive side", "negative side", "touching" or "transversal"; "unknown" for a value outside
+/// the enum.
 const char* toString(PlaneRelation r);
 
 struct EllipsoidPlaneResult {
@@ -42,6 +44,8 @@ struct EllipsoidPlaneResult {
 
 /// Coefficients {c0, c1, c2} of the quadratic factor c2 lambda^2 + c1 lambda + c0 of
 /// det(lambda A - P) / (-lambda^2) up to a positive factor: {|m|^2/4, -e, 1} (Corollary 14).
+/// \throws std::invalid_argument on a zero or non-finite normal or a non-finite offset (as
+/// classifyEllipsoidPlane).
 std::array<double, 3> ellipsoidPlaneQuadratic(const Ellipsoid& e, const Eigen::Vector3d& n, double d);
 
 /// Relative position of ellipsoid e and the plane n.x = d (n need not be unit, must be finite and
@@ -58,6 +62,8 @@ struct EllipsoidHalfspaceResult {
   double penetration_depth = 0.0;  ///< for unit n; < 0 means separated by that distance
   Eigen::Vector3d deepest_point = Eigen::Vector3d::Zero();
 };
+/// \throws std::invalid_argument on a zero or non-finite normal or a non-finite offset (as
+/// classifyEllipsoidPlane).
 EllipsoidHalfspaceResult ellipsoidHalfspace(const Ellipsoid& e, const Eigen::Vector3d& n, double d);
 
 }  // namespace fcl_quadric

@@ -60,6 +60,8 @@ EllipsoidPolytopeResult classifyEllipsoidTriangle(const Ellipsoid& e, const Eige
 /// the exact distance (to rounding); penetration depth takes the best of the same candidates
 /// (tested against dense direction sampling). The sign is the certified one of
 /// classifyEllipsoidBox / classifyEllipsoidTriangle.
+/// \throws std::invalid_argument as classifyEllipsoidBox / classifyEllipsoidTriangle (which
+/// validate the input first).
 SignedDistanceResult signedDistanceEllipsoidBox(const Ellipsoid& e, const Eigen::Vector3d& half_extents,
                                                 const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_WB);
 SignedDistanceResult signedDistanceEllipsoidTriangle(const Ellipsoid& e, const Eigen::Vector3d& a,

@@ -14,6 +14,7 @@ namespace fcl_quadric {
 /// contact (collision), so near tangency the library errs toward reporting contact.
 enum class Separation { Separated, Touching, Overlapping };
 
+/// "separate", "touching" or "overlapping"; "unknown" for a value outside the enum.
 const char* toString(Separation s);
 
 /// How a classification was decided (for tests, benchmarks and diagnostics).

@@ -20,6 +20,7 @@ class PairCoherence {
   ///  2. else run classifyEllipsoids(); if Separated, compute a new plane for the next frame.
   /// The answer is always identical to classifyEllipsoids(a, b).status except that a certified
   /// plane short-cuts the work (a plane is only trusted when it provably separates).
+  /// Never throws for valid Ellipsoid objects.
   Separation query(const Ellipsoid& a, const Ellipsoid& b);
 
   const std::optional<Plane>& candidate() const { return candidate_; }

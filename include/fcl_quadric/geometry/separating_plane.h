@@ -39,7 +39,7 @@ struct SeparatingPlane {
 /// V0 V1, so every positive combination separates). If the roots are too close to isolate in
 /// double (near tangency) or the plane fails certification, planeWithNormal() with the
 /// classification's normal is used instead. Returns std::nullopt unless classifyEllipsoids(a, b) is
-/// Separated.
+/// Separated. Never throws for valid Ellipsoid objects.
 std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipsoid& b);
 
 /// The plane with unit normal n (pointing from a to b) placed midway between the two solids:
@@ -48,18 +48,21 @@ std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipso
 /// grad q_b(x) = -mu/(1-mu) grad q_a(x), and convexity puts a in {n.(y-x) <= -q_a(x)/|grad q_a|}
 /// and b in {n.(y-x) >= (1-mu)/mu q_b(x)/|grad q_a|}; these are disjoint iff
 /// mu q_a(x) + (1-mu) q_b(x) = psi(mu) > 0, which is what the certificate proved.
+/// \pre n finite and non-zero (it is normalised). A zero n gives the degenerate plane (normal 0,
+/// offset 0), which planeSeparates() never certifies; no exception.
 Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellipsoid& b);
 
 /// Certified test that `plane` strictly separates a (negative side) from b (positive side):
 /// support(a, n) < offset < -support(b, -n), each with a relative margin covering rounding.
 /// A plane that cannot be certified is reported as not separating (the caller then runs the
-/// full algebraic test), so a stale plane can never hide a collision.
+/// full algebraic test), so a stale plane can never hide a collision. Never throws: a zero,
+/// non-unit or non-finite plane simply fails the certificate (returns false).
 bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
 
 /// Gap between the plane and the ellipsoid on its positive side: min over x in E of
 /// normal.x - offset = -offset - support(-normal). > 0 when E lies strictly on the positive side
 /// (the plane does not meet E); for a unit normal it is the Euclidean distance. Negate the plane to
-/// measure the negative side.
+/// measure the negative side. No failure mode; a non-finite plane gives a non-finite gap.
 double planeEllipsoidGap(const Plane& plane, const Ellipsoid& e);
 
 }  // namespace fcl_quadric
