@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # The one list of system packages fcl_quadric needs (Debian 12). README's commands and
 # .ci/run both call this script, so a fresh machine gets exactly what a developer has.
+#   scripts/install-deps.sh               build, tests, benchmarks, CLI, OMPL layer
+#   scripts/install-deps.sh --sanitizers  also clang-14 and its runtimes, for
+#                                         scripts/ci-sanitizers.sh and the fuzz targets
 set -euo pipefail
 PKGS=(
   build-essential cmake pkg-config
@@ -8,10 +11,16 @@ PKGS=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libcairo2-dev
   libboost-dev libgmp-dev
-  # Sanitizer and fuzz builds (scripts/ci-sanitizers.sh, docs/reliability.md): clang with its
-  # runtimes (libFuzzer, ASan/UBSan/TSan) and llvm-symbolizer for readable reports.
-  clang-14 libclang-rt-14-dev llvm-14
 )
+# Sanitizer and fuzz builds (scripts/ci-sanitizers.sh, docs/reliability.md): clang with its
+# runtimes (libFuzzer, ASan/UBSan/TSan) and llvm-symbolizer for readable reports.
+SANITIZER_PKGS=(clang-14 libclang-rt-14-dev llvm-14)
+for arg in "$@"; do
+  case "$arg" in
+    --sanitizers) PKGS+=("${SANITIZER_PKGS[@]}") ;;
+    *) echo "install-deps.sh: unknown option '$arg' (known: --sanitizers)" >&2; exit 2 ;;
+  esac
+done
 SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO=sudo; fi
 export DEBIAN_FRONTEND=noninteractive
