@@ -35,10 +35,14 @@ constexpr double kRotationOrthogonality = 1e-9;
 
 /// Accepted range of radii and of centre coordinates (absolute, in the user's length unit): keeps
 /// squares and the products formed by the pencil finite. Outside it the constructor throws.
-/// Pairs whose sizes differ by more than ~1e25 can overflow the pencil's determinants; the
-/// classifier then cannot certify and answers Touching (conservative).
+/// Pairs whose sizes differ by more than ~1e25 can overflow the pencil's determinants: pairs the
+/// pre-tests leave undecided whose radii (both ellipsoids together) span more than
+/// kPencilMaxSizeRatio are not given to the pencil and are reported Touching (conservative).
 constexpr double kMinRadius = 1e-100;
 constexpr double kMaxLength = 1e100;
+/// 2^64 ~ 1.8e19: below the ~1e25 where the pencil's products overflow, with margin; no
+/// floating-point exception is raised on the way (the tests run with FE_INVALID trapped).
+constexpr double kPencilMaxSizeRatio = 18446744073709551616.0;  // 2^64
 
 /// Scene input: |q| of a pose quaternion must be within this of 1 (relative). Dimensionless.
 constexpr double kQuaternionNorm = 1e-6;

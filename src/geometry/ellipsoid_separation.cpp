@@ -1,5 +1,6 @@
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "fcl_quadric/tolerances.h"
@@ -178,6 +179,21 @@ SeparationCertificate classifyEllipsoids(const Ellipsoid& a, const Ellipsoid& b)
   const bool swap = detail::swapForCanonicalOrder(a, b);
   const Ellipsoid& A = swap ? b : a;
   const Ellipsoid& B = swap ? a : b;
+  const double r_max = std::max(a.maxRadius(), b.maxRadius());
+  const double r_min = std::min(a.radii().minCoeff(), b.radii().minCoeff());
+  if (r_max > tolerance::kPencilMaxSizeRatio * r_min) {
+    // Sizes too far apart for the pencil's products (tolerances.h): conservative contact, with a
+    // finite witness (B's centre or A's support point towards it) and normal.
+    cert.status = Separation::Touching;
+    cert.precision_stage = 2;
+    cert.psi = 0.0;
+    cert.mu = 0.5;
+    cert.witness = A.supportPoint(B.center() - A.center());
+    const Eigen::Vector3d d = b.center() - a.center();
+    const double dn = d.norm();
+    cert.normal = (std::isfinite(dn) && dn > 0.0) ? Eigen::Vector3d(d / dn) : Eigen::Vector3d::UnitX();
+    return cert;
+  }
 
   // Stage 0: double.
   detail::Pencil<double> p = detail::makePencil<double>(A, B);

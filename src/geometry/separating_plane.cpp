@@ -110,6 +110,11 @@ bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) 
   // a below the plane, b above it.
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   const Eigen::Vector3d& n = plane.normal;
+  // A non-finite plane is never certified (std::isfinite raises no floating-point exception; the
+  // comparisons below would, on NaN).
+  if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2]) || !std::isfinite(plane.offset)) {
+    return false;
+  }
   const double n_max = std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
   double ma2, mb2;
   const double ga = sideGap(n, n_max, plane.offset, a, tau, 1.0, &ma2);
