@@ -146,8 +146,8 @@ MotionCheckResult ContinuousMotionValidator::check(const ob::State* s1, const ob
     throw;
   }
   si_->freeState(scratch);
-  total_steps_ += r.advancement_steps;
-  total_exact_ += r.exact_solves;
+  total_steps_.fetch_add(r.advancement_steps, std::memory_order_relaxed);
+  total_exact_.fetch_add(r.exact_solves, std::memory_order_relaxed);
   return r;
 }
 

@@ -20,6 +20,7 @@
 ///   installCollisionChecking(ss.getSpaceInformation(), checker);
 ///   ss.setPlanner(std::make_shared<ompl::geometric::RRTConnect>(ss.getSpaceInformation()));
 
+#include <atomic>
 #include <memory>
 
 #include <Eigen/Core>
@@ -90,16 +91,17 @@ class ContinuousMotionValidator : public ompl::base::MotionValidator {
 
   /// The full result of the last check (for tests and statistics).
   MotionCheckResult check(const ompl::base::State* s1, const ompl::base::State* s2, bool stop_at_first) const;
-  /// Advancement steps and exact solves summed over all checks.
-  std::size_t totalSteps() const { return total_steps_; }
-  std::size_t totalExactSolves() const { return total_exact_; }
+  /// Advancement steps and exact solves summed over all checks. Atomic: planners such as PRM call
+  /// checkMotion from several threads (OMPL's own valid/invalid counters are not atomic).
+  std::size_t totalSteps() const { return total_steps_.load(std::memory_order_relaxed); }
+  std::size_t totalExactSolves() const { return total_exact_.load(std::memory_order_relaxed); }
 
  private:
   std::shared_ptr<const RobotCollisionChecker> checker_;
   MotionCheckOptions options_;
   Interpolation kind_;
-  mutable std::size_t total_steps_ = 0;
-  mutable std::size_t total_exact_ = 0;
+  mutable std::atomic<std::size_t> total_steps_{0};
+  mutable std::atomic<std::size_t> total_exact_{0};
 };
 
 /// Installs StateValidityChecker and ContinuousMotionValidator on si and calls si->setup().
