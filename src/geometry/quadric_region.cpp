@@ -356,7 +356,8 @@ class BoxEval {
     }
     if (axis < 0) return axis;
     // The longest edge when nothing depends on the others, or when the box would become more
-    // elongated than kMaxAspect (its centre must still be able to land inside thin lenses).
+    // elongated than max_aspect (tolerance_region::kRegionMaxAspect for findPoint; its centre must
+    // still be able to land inside thin lenses).
     int longest = 0;
     r_.maxCoeff(&longest);
     if (best == 0.0 || r_[longest] > max_aspect * r_[axis]) axis = longest;
@@ -380,8 +381,7 @@ class BoxEval {
   }
 
  private:
-  static constexpr int kMaxBranches = 64;
-  static constexpr double kMaxAspect = 16.0;  // of split boxes (see splitAxis)  // disjunctive branches examined; beyond: not excluded
+  static constexpr int kMaxBranches = 64;  // disjunctive branches examined; beyond: not excluded
 
   Tri eval(int n) {
     const Formula::Node& node = f_.nodes[n];
