@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "support/expect_invalid.h"
 #include "fcl_quadric/algebra/bivariate_bernstein.h"
 #include "fcl_quadric/algebra/polynomial.h"
 #include "fcl_quadric/algebra/polynomial_matrix.h"
@@ -25,19 +26,10 @@
 namespace fcl_quadric {
 namespace {
 
+using test::expectInvalid;
+
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
-
-/// Runs f, which must throw std::invalid_argument whose message contains `needle`.
-template <typename F>
-void expectInvalid(F f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception, expected one containing '" << needle << "'";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
-}
 
 TEST(DocumentedErrors, AlgebraRejectsNonFiniteInputAndExcessiveDegree) {
   expectInvalid([] { (void)Polynomial({1.0, 2.0})(kNaN); }, "");

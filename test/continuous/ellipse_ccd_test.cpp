@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "support/expect_invalid.h"
 #include "fcl_quadric/continuous/ellipse_ccd.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
@@ -471,42 +472,32 @@ TEST(EllipseCcdConsistency, OverlapAtStartStartsAnIntervalAtZero) {
   EXPECT_NEAR(r3.contacts[0].point(1), 0.0, 1e-9);
 }
 
-template <typename F>
-void expectThrowContaining(F f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception, expected one containing '" << needle << "'";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
-}
-
 TEST(EllipseCcdBadInput, EachDocumentedErrorThrowsNamingTheItem) {
   const PolynomialMatrix3 id(Eigen::Matrix3d::Identity());
-  expectThrowContaining([&] { MovingEllipse2(0.0, 1.0, id); }, "radius a");
-  expectThrowContaining([&] { MovingEllipse2(1.0, std::nan(""), id); }, "radius b");
-  expectThrowContaining([&] { MovingEllipse2(1.0, -2.0, id); }, "radius b");
+  test::expectInvalid([&] { MovingEllipse2(0.0, 1.0, id); }, "radius a");
+  test::expectInvalid([&] { MovingEllipse2(1.0, std::nan(""), id); }, "radius b");
+  test::expectInvalid([&] { MovingEllipse2(1.0, -2.0, id); }, "radius b");
   PolynomialMatrix3 m = id;
   m(2, 0) = Polynomial{0.0, 1.0};
-  expectThrowContaining([&] { MovingEllipse2(1.0, 1.0, m); }, "last row");
+  test::expectInvalid([&] { MovingEllipse2(1.0, 1.0, m); }, "last row");
   m = id;
   m(2, 2) = Polynomial{1.0, -2.0};  // w(1/2) = 0
-  expectThrowContaining([&] { MovingEllipse2(1.0, 1.0, m); }, "w(t)");
+  test::expectInvalid([&] { MovingEllipse2(1.0, 1.0, m); }, "w(t)");
   m = id;
   m(0, 0) = Polynomial{1.0, -1.0};  // det L = 1 - t vanishes at t = 1
-  expectThrowContaining([&] { MovingEllipse2(1.0, 1.0, m); }, "det of the linear 2x2 part");
+  test::expectInvalid([&] { MovingEllipse2(1.0, 1.0, m); }, "det of the linear 2x2 part");
   m = id;
   m(0, 2) = Polynomial::monomial(kMaxEllipseMotionDegree + 1, 1.0);
-  expectThrowContaining([&] { MovingEllipse2(1.0, 1.0, m); }, "kMaxEllipseMotionDegree");
+  test::expectInvalid([&] { MovingEllipse2(1.0, 1.0, m); }, "kMaxEllipseMotionDegree");
   m = id;
   m(2, 2) = Polynomial{0.5, -1.0};  // inverse motion with w' vanishing at 1/2
-  expectThrowContaining([&] { (void)MovingEllipse2::fromInverseMotion(1.0, 1.0, m); }, "inverse motion N(t)");
+  test::expectInvalid([&] { (void)MovingEllipse2::fromInverseMotion(1.0, 1.0, m); }, "inverse motion N(t)");
   const Eigen::Matrix3d good = ellipseMatrix(1.0, 2.0, 0.3, Eigen::Vector2d(0.0, 0.0));
-  expectThrowContaining([&] { (void)classifyEllipses(good, Eigen::Matrix3d::Identity()); }, "B is not an ellipse");
+  test::expectInvalid([&] { (void)classifyEllipses(good, Eigen::Matrix3d::Identity()); }, "B is not an ellipse");
   Eigen::Matrix3d nan = good;
   nan(0, 1) = std::nan("");
-  expectThrowContaining([&] { (void)classifyEllipses(nan, good); }, "non-finite entry (0, 1) of A");
-  expectThrowContaining([&] { (void)ellipseMatrix(-1.0, 2.0, 0.0, Eigen::Vector2d::Zero()); }, "radius a");
+  test::expectInvalid([&] { (void)classifyEllipses(nan, good); }, "non-finite entry (0, 1) of A");
+  test::expectInvalid([&] { (void)ellipseMatrix(-1.0, 2.0, 0.0, Eigen::Vector2d::Zero()); }, "radius a");
 }
 
 TEST(EllipseCcdStatic, ClassifyEllipsesAgreesWithEllipsoidOracleOnRandomPairs) {
@@ -644,15 +635,15 @@ TEST(Ellipse3Ccd, ParallelDistinctPlanesNeverCollide) {
 
 TEST(Ellipse3Ccd, BadInputThrowsNamingTheItem) {
   PolynomialMatrix4 M(Eigen::Matrix4d::Identity());
-  expectThrowContaining([&] { MovingEllipse3(0.0, 1.0, M); }, "radius a");
+  test::expectInvalid([&] { MovingEllipse3(0.0, 1.0, M); }, "radius a");
   M(3, 1) = Polynomial{0.0, 1.0};
-  expectThrowContaining([&] { MovingEllipse3(1.0, 1.0, M); }, "last row");
+  test::expectInvalid([&] { MovingEllipse3(1.0, 1.0, M); }, "last row");
   M = PolynomialMatrix4(Eigen::Matrix4d::Identity());
   M(3, 3) = Polynomial{1.0, -1.5};
-  expectThrowContaining([&] { MovingEllipse3(1.0, 1.0, M); }, "w(t)");
+  test::expectInvalid([&] { MovingEllipse3(1.0, 1.0, M); }, "w(t)");
   M = PolynomialMatrix4(Eigen::Matrix4d::Identity());
   M(2, 2) = Polynomial{-0.5, 1.0};
-  expectThrowContaining([&] { MovingEllipse3(1.0, 1.0, M); }, "det of the linear 3x3 part");
+  test::expectInvalid([&] { MovingEllipse3(1.0, 1.0, M); }, "det of the linear 3x3 part");
 }
 
 }  // namespace

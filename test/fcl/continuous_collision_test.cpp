@@ -30,6 +30,7 @@
 #include <fcl/math/motion/triangle_motion_bound_visitor.h>
 #include <fcl/narrowphase/continuous_collision.h>
 
+#include "support/expect_invalid.h"
 #include "fcl_quadric/continuous/ellipsoid_ccd.h"
 #include "fcl_quadric/fcl/continuous_broadphase.h"
 #include "fcl_quadric/fcl/continuous_collision.h"
@@ -41,6 +42,8 @@
 
 namespace fcl_quadric {
 namespace {
+
+using test::expectInvalid;
 
 using Clock = std::chrono::steady_clock;
 
@@ -744,16 +747,6 @@ TEST(ContinuousBroadPhase, StaticAndNonEllipsoidObjectsAreHandled) {
 }
 
 // --- (g) bad input ----------------------------------------------------------------------------------
-
-template <typename F>
-void expectInvalid(F f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception, expected one naming " << needle;
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
-}
 
 TEST(ContinuousCollide, BadInputThrowsNamingTheArgument) {
   const auto e = std::make_shared<fcl::Ellipsoidd>(1.0, 0.5, 0.7);

@@ -8,21 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "support/expect_invalid.h"
 #include "fcl_quadric/fcl/continuous_broadphase.h"
 #include "fcl_quadric/fcl/rational_motion.h"
 
 namespace fcl_quadric {
 namespace {
 
-template <typename F>
-void expectInvalid(F f, const std::string& needle) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception, expected one containing '" << needle << "'";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
-}
+using test::expectInvalid;
 
 TEST(DocumentedErrors, RationalMotionRejectsAnInvalidMatrixAndTimesOutsideTheInterval) {
   PolynomialMatrix4 M(Eigen::Matrix4d::Identity());
