@@ -140,7 +140,8 @@ bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificat
     out->precision_stage = -1;
     return true;
   }
-  const Eigen::Vector3d ia = ua.cwiseProduct(a.inverseRadii()), ib = ub.cwiseProduct(b.inverseRadii());
+  const Eigen::Vector3d inv_ra = a.inverseRadii(), inv_rb = b.inverseRadii();  // computed on use: once
+  const Eigen::Vector3d ia = ua.cwiseProduct(inv_ra), ib = ub.cwiseProduct(inv_rb);
   const double rho_a = 1.0 / ia.norm();
   const double rho_b = 1.0 / ib.norm();
   if (rho_a + rho_b > D * (1.0 + tau)) {
@@ -152,8 +153,8 @@ bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificat
   }
   // 3. Outward normal of a at p_a + rho_a n is R_a S_a^-1 (S_a^-1 R_a^T n) = R_a (ia ./ r_a); the
   // outward normal of b at p_b - rho_b n is -R_b (ib ./ r_b), so -b's is +R_b (ib ./ r_b).
-  const Eigen::Vector3d na = a.rotation() * ia.cwiseProduct(a.inverseRadii());
-  const Eigen::Vector3d nb = b.rotation() * ib.cwiseProduct(b.inverseRadii());
+  const Eigen::Vector3d na = a.rotation() * ia.cwiseProduct(inv_ra);
+  const Eigen::Vector3d nb = b.rotation() * ib.cwiseProduct(inv_rb);
   const double la = na.norm(), lb = nb.norm();
   if (la > 0.0 && lb > 0.0 && separatedAlong(na / la + nb / lb, d, a, b, tau, out)) return true;
   // 4. Support points: p_a + R_a S_a (sa / ha) and p_b - R_b S_b (sb / hb).
