@@ -96,6 +96,20 @@ constexpr double kCcdMinIntervalWidth = 1.0 / 1073741824.0;  // 2^-30 ~ 9.3e-10
 /// unresolved (conservative fallback).
 constexpr int kCcdMaxWork = 20000;
 
+/// Precision check of the CCD function (docs/algorithms.md section 8): when the condition
+/// estimate (aspect ratio x condition of the motion's linear part)^2 of either moving quadric
+/// exceeds this, the double rounding of F(u, t) (about this many times u, times the growth of the
+/// determinant expansion) can exceed the touching band kCcdTouchingRelative, so F is rebuilt in
+/// extended precision and the difference of the two widens every margin. Rigid motions of bodies
+/// with aspect ratio below 100 never reach it.
+constexpr double kCcdCheckedCondition = 1e4;
+
+/// Beyond this condition estimate even the extended-precision F (64-bit significand) is mostly
+/// rounding noise: the CCD does not decide, it reports the pair colliding throughout [0, t_max]
+/// and flags the result unresolved (conservative fallback; e.g. a shear of condition 1e7 applied
+/// to an ellipsoid of aspect ratio 4, fuzz finding 8).
+constexpr double kCcdMaxCondition = 1e14;
+
 /// Depth of the u-slab subdivision of the overlap certificate (F <= 0 or F_t of one sign on each
 /// slab; docs/algorithms.md section 8).
 constexpr int kCcdMaxSlabDepth = 6;

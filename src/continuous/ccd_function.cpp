@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <Eigen/LU>
@@ -16,11 +17,13 @@ namespace fcl_quadric {
 namespace {
 
 // A polynomial in the scaled Bernstein basis of [0, 1]: p(t) = sum_i d[i] (1-t)^(n-i) t^i,
-// n = d.size() - 1.
+// n = d.size() - 1. In double, or in long double for the precision check.
 using Scaled = std::vector<double>;
+using ScaledL = std::vector<long double>;
 
-Scaled convolve(const Scaled& a, const Scaled& b) {
-  Scaled c(a.size() + b.size() - 1, 0.0);
+template <class V>
+V convolve(const V& a, const V& b) {
+  V c(a.size() + b.size() - 1, 0.0);
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i] == 0.0) continue;
     for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
@@ -46,16 +49,19 @@ const std::vector<double>& binomialRow(int r) {
 
 // Degree elevation to `degree`: multiplication by ((1-t) + t)^r, i.e. convolution with the
 // binomial row of r.
-Scaled elevate(const Scaled& a, int degree) {
+template <class V>
+V elevate(const V& a, int degree) {
   const int r = degree - (static_cast<int>(a.size()) - 1);
   if (r <= 0) return a;
-  return convolve(a, binomialRow(r));
+  const std::vector<double>& row = binomialRow(r);
+  return convolve(a, V(row.begin(), row.end()));
 }
 
-Scaled axpby(double alpha, const Scaled& a, double beta, const Scaled& b) {
+template <class V>
+V axpby(double alpha, const V& a, double beta, const V& b) {
   const int n = static_cast<int>(std::max(a.size(), b.size())) - 1;
-  const Scaled ea = elevate(a, n), eb = elevate(b, n);
-  Scaled c(n + 1);
+  const V ea = elevate(a, n), eb = elevate(b, n);
+  V c(n + 1);
   for (int i = 0; i <= n; ++i) c[i] = alpha * ea[i] + beta * eb[i];
   return c;
 }
@@ -67,12 +73,13 @@ Scaled toScaled(const Polynomial& p, int degree) {
 int structuralDegree(const Polynomial& p) { return std::max(p.effectiveDegree(), 0); }
 
 // det of a 4x4 matrix of scaled Bernstein polynomials by Laplace expansion along rows {0, 1}.
-Scaled determinant4(const std::array<Scaled, 16>& m) {
-  auto at = [&](int i, int j) -> const Scaled& { return m[4 * i + j]; };
+template <class V>
+V determinant4(const std::array<V, 16>& m) {
+  auto at = [&](int i, int j) -> const V& { return m[4 * i + j]; };
   auto minor2 = [&](int r0, int r1, int c0, int c1) {
     return axpby(1.0, convolve(at(r0, c0), at(r1, c1)), -1.0, convolve(at(r0, c1), at(r1, c0)));
   };
-  Scaled det{0.0};
+  V det{0.0};
   static constexpr int kPairs[6][4] = {{0, 1, 2, 3}, {0, 2, 1, 3}, {0, 3, 1, 2}, {1, 2, 0, 3}, {1, 3, 0, 2}, {2, 3, 0, 1}};
   for (const auto& pr : kPairs) {
     const double sign = ((1 + pr[0] + pr[1]) % 2 == 0) ? 1.0 : -1.0;  // (-1)^(0+1+c0+c1)
@@ -81,10 +88,11 @@ Scaled determinant4(const std::array<Scaled, 16>& m) {
   return det;
 }
 
-std::vector<double> scaledToBernstein(const Scaled& d) {
+template <class V>
+V scaledToBernstein(const V& d) {
   const int n = static_cast<int>(d.size()) - 1;
   const std::vector<double>& row = binomialRow(n);
-  std::vector<double> c(d.size());
+  V c(d.size());
   for (int i = 0; i <= n; ++i) c[i] = d[i] / row[i];
   return c;
 }
@@ -113,6 +121,59 @@ BernsteinPolynomial bernsteinDeterminant(const PolynomialMatrix4& M) {
   return BernsteinPolynomial(scaledToBernstein(determinant4(m)), 0.0, 1.0);
 }
 
+namespace {
+
+// Rows of F at the abscissae u = k / 4 (Bernstein in t, elevated to a common degree).
+template <class V>
+std::array<V, 5> rowsAtAbscissae(const std::array<V, 16>& a, const std::array<V, 16>& b) {
+  std::array<V, 5> rows;
+  int degree = 0;
+  for (int k = 0; k <= 4; ++k) {
+    const double u = k / 4.0;
+    std::array<V, 16> m;
+    for (int e = 0; e < 16; ++e) {
+      m[e].resize(a[e].size());
+      for (std::size_t i = 0; i < a[e].size(); ++i) m[e][i] = (u - 1.0) * a[e][i] - u * b[e][i];
+    }
+    rows[k] = determinant4(m);
+    degree = std::max(degree, static_cast<int>(rows[k].size()) - 1);
+  }
+  for (V& r : rows) r = scaledToBernstein(elevate(r, degree));
+  return rows;
+}
+
+template <class V>
+Eigen::MatrixXd interpolateInU(const std::array<V, 5>& rows) {
+  const Eigen::Index n = static_cast<Eigen::Index>(rows[0].size());
+  using MatrixL = Eigen::Matrix<typename V::value_type, Eigen::Dynamic, Eigen::Dynamic>;
+  MatrixL values(5, n);
+  for (int k = 0; k <= 4; ++k)
+    for (Eigen::Index j = 0; j < n; ++j) values(k, j) = rows[k][static_cast<std::size_t>(j)];
+  MatrixL coefficients = uInterpolation().cast<typename V::value_type>() * values;
+  coefficients.row(0) = values.row(0);  // exact: F(0, t) = det A(t)
+  coefficients.row(4) = values.row(4);  // exact: F(1, t) = det B(t)
+  return coefficients.template cast<double>();
+}
+
+// Power basis p_0..p_m to the scaled Bernstein basis of degree n on [0, 1]:
+// d_j = sum_{i <= j} C(n - i, j - i) p_i (positive integer weights).
+ScaledL toScaledExtended(const std::vector<long double>& p, int n) {
+  ScaledL d(static_cast<std::size_t>(n) + 1, 0.0L);
+  for (int i = 0; i < static_cast<int>(p.size()) && i <= n; ++i) {
+    const std::vector<double>& row = binomialRow(n - i);
+    for (int j = i; j <= n; ++j) d[j] += static_cast<long double>(row[j - i]) * p[i];
+  }
+  return d;
+}
+
+int structuralDegree(const std::vector<Matrix4ld>& C, int i, int j) {
+  for (int k = static_cast<int>(C.size()) - 1; k > 0; --k)
+    if (C[k](i, j) != 0.0L) return k;
+  return 0;
+}
+
+}  // namespace
+
 BivariateBernstein ccdFunction(const PolynomialMatrix4& A, const PolynomialMatrix4& B) {
   std::array<Scaled, 16> a, b;
   for (int i = 0; i < 4; ++i) {
@@ -122,27 +183,42 @@ BivariateBernstein ccdFunction(const PolynomialMatrix4& A, const PolynomialMatri
       b[4 * i + j] = toScaled(B(i, j).trimmed(), d);
     }
   }
-  std::array<std::vector<double>, 5> rows;
-  int degree = 0;
-  for (int k = 0; k <= 4; ++k) {
-    const double u = k / 4.0;
-    std::array<Scaled, 16> m;
-    for (int e = 0; e < 16; ++e) {
-      m[e].resize(a[e].size());
-      for (std::size_t i = 0; i < a[e].size(); ++i) m[e][i] = (u - 1.0) * a[e][i] - u * b[e][i];
+  return BivariateBernstein(interpolateInU(rowsAtAbscissae(a, b)));
+}
+
+CheckedCcdFunction ccdFunctionChecked(const PolynomialMatrix4& A, const PolynomialMatrix4& B,
+                                      const std::vector<Matrix4ld>& Ak, const std::vector<Matrix4ld>& Bk) {
+  std::array<Scaled, 16> a, b;
+  std::array<ScaledL, 16> al, bl;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const int d = std::max({structuralDegree(A(i, j)), structuralDegree(B(i, j)), structuralDegree(Ak, i, j),
+                              structuralDegree(Bk, i, j)});
+      const int e = 4 * i + j;
+      a[e] = toScaled(A(i, j).trimmed(), d);
+      b[e] = toScaled(B(i, j).trimmed(), d);
+      std::vector<long double> pa(Ak.size()), pb(Bk.size());
+      for (std::size_t k = 0; k < Ak.size(); ++k) pa[k] = Ak[k](i, j);
+      for (std::size_t k = 0; k < Bk.size(); ++k) pb[k] = Bk[k](i, j);
+      al[e] = toScaledExtended(pa, d);
+      bl[e] = toScaledExtended(pb, d);
     }
-    rows[k] = determinant4(m);
-    degree = std::max(degree, static_cast<int>(rows[k].size()) - 1);
   }
-  Eigen::MatrixXd values(5, degree + 1);
-  for (int k = 0; k <= 4; ++k) {
-    const std::vector<double> c = scaledToBernstein(elevate(rows[k], degree));
-    for (int j = 0; j <= degree; ++j) values(k, j) = c[j];
+  const Eigen::MatrixXd Fd = interpolateInU(rowsAtAbscissae(a, b));
+  Eigen::MatrixXd Fl = interpolateInU(rowsAtAbscissae(al, bl));
+  // The extended computation has 11 more significand bits: its error is estimated as 2^-11 of
+  // the difference, times 8 for safety, smoothed over neighbouring coefficients (a coefficient
+  // where the two happen to agree must not look exact), plus the final rounding to double.
+  const Eigen::MatrixXd diff = (Fd - Fl).cwiseAbs();
+  const Eigen::Index n = diff.cols();
+  Eigen::MatrixXd error(diff.rows(), n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Eigen::Index lo = std::max<Eigen::Index>(0, j - 2), hi = std::min<Eigen::Index>(n - 1, j + 2);
+    const double local = diff.middleCols(lo, hi - lo + 1).maxCoeff();
+    for (Eigen::Index i = 0; i < diff.rows(); ++i)
+      error(i, j) = local / 256.0 + 4.0 * std::numeric_limits<double>::epsilon() * std::abs(Fl(i, j));
   }
-  Eigen::MatrixXd coefficients = uInterpolation() * values;
-  coefficients.row(0) = values.row(0);  // exact: F(0, t) = det A(t)
-  coefficients.row(4) = values.row(4);  // exact: F(1, t) = det B(t)
-  return BivariateBernstein(std::move(coefficients));
+  return {BivariateBernstein(std::move(Fl)), std::move(error)};
 }
 
 }  // namespace fcl_quadric

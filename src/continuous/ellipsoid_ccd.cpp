@@ -55,17 +55,26 @@ Vec4P times(const PolynomialMatrix4& M, const Eigen::Vector4d& v) {  // M(t) v
 }
 
 
-// Certified sign of a polynomial on [0, 1] from its Bernstein coefficients, with a relative margin
-// for the rounding of the coefficients: +1 if all > margin, -1 if all < -margin, 0 otherwise.
-int certifiedSign(const Polynomial& p) {
+// Certified sign of a polynomial on [0, 1] from its Bernstein coefficients: +1 if all > margin,
+// -1 if all < -margin, 0 otherwise. The margin covers a relative 1e-10 of the coefficients and
+// the rounding of the formula that produced p: magnitude >= 0 is the same formula on absolute
+// values (its value at 1, the sum of its coefficients, bounds it on [0, 1]), `error` the relative
+// error bound per unit of magnitude.
+int certifiedSign(const Polynomial& p, const Polynomial& magnitude, double error) {
   const BernsteinPolynomial b = BernsteinPolynomial::fromPower(p.trimmed(), 0.0, 1.0);
   double scale = 0.0;
   for (double c : b.coefficients()) scale = std::max(scale, std::abs(c));
-  const double margin = 1e-10 * scale;
+  double mag = 0.0;
+  for (double c : magnitude.coefficients()) mag += c;
+  const double margin = 1e-10 * scale + error * mag;
   if (b.minCoefficient() > margin) return 1;
   if (b.maxCoefficient() < -margin) return -1;
   return 0;
 }
+
+// Rounding chain of the cull polynomials below (a few products and 4-term sums, convolutions of
+// <= 2 (degree + 1) terms), in unit roundoffs, for coefficient count n.
+double cullRoundingError(std::size_t n) { return 4.0 * (static_cast<double>(n) + 16.0) * tolerance::kUnitRoundoff; }
 
 // Thesis §5.4.1 bounding-sphere cull for rigid motions: |c_a(t) - c_b(t)|^2 > (r_a + r_b)^2 on
 // [0, 1], multiplied through by the squared homogeneous weights.
@@ -83,44 +92,66 @@ bool sphereCull(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEl
   }
   const Vec4P ca = times(ma.matrix(), a.body.center().homogeneous());
   const Vec4P cb = times(mb.matrix(), b.body.center().homogeneous());
+  const Vec4P ca_abs = times(coefficientMagnitudes(ma.matrix()), a.body.center().cwiseAbs().homogeneous());
+  const Vec4P cb_abs = times(coefficientMagnitudes(mb.matrix()), b.body.center().cwiseAbs().homogeneous());
   const double r = a.body.radii().maxCoeff() + b.body.radii().maxCoeff();
-  Polynomial g;
+  Polynomial g, g_abs;
   for (int i = 0; i < 3; ++i) {
     const Polynomial d = cb[3] * ca[i] - ca[3] * cb[i];
+    const Polynomial d_abs = cb_abs[3] * ca_abs[i] + ca_abs[3] * cb_abs[i];
     g += d * d;
+    g_abs += d_abs * d_abs;
   }
-  const Polynomial w = ca[3] * cb[3];
+  const Polynomial w = ca[3] * cb[3], w_abs = ca_abs[3] * cb_abs[3];
   g -= w * w * (r * r);
-  return certifiedSign(g) > 0;
+  g_abs += w_abs * w_abs * (r * r);
+  return certifiedSign(g, g_abs, cullRoundingError(g_abs.coefficients().size())) > 0;
 }
 
 // Thesis §5.4.1 separating-plane cull: the plane separating a(0) and b(0) moves with b; a never
 // reaches it iff q(t)^T Q_a^{-1} q(t) < 0 on [0, 1], q(t) = M_a(t)^T N_b(t)^T pi_b the plane in a's
-// body frame and Q_a^{-1} a's dual quadric (computed on coefficient matrices).
+// body frame and Q_a^{-1} a's dual quadric (in closed form: T diag(r^2, -1) T^T, T = [[R, c],
+// [0, 1]]; computed on coefficient matrices). Rounding: the products, as cullRoundingError, on
+// the same formula evaluated on absolute values (N_b of a rigid motion is exact to rounding).
 bool planeCull(const MovingEllipsoid& a, const MotionMatrix& ma, const MotionMatrix& mb, const Plane& plane) {
   const Eigen::Vector4d pi_world(plane.normal.x(), plane.normal.y(), plane.normal.z(), -plane.offset);
   const Eigen::Vector4d pi_body_b = mb.evaluate(0.0).transpose() * pi_world;  // scale irrelevant
   const std::vector<Eigen::Matrix4d>& Nb = mb.inverseCoefficients();
   const std::vector<Eigen::Matrix4d>& Ma = ma.matrixCoefficients();
-  std::vector<Eigen::Vector4d> q(Nb.size() + Ma.size() - 1, Eigen::Vector4d::Zero());
+  const std::size_t nq = Nb.size() + Ma.size() - 1;
+  std::vector<Eigen::Vector4d> q(nq, Eigen::Vector4d::Zero()), q_abs(nq, Eigen::Vector4d::Zero());
   for (std::size_t k = 0; k < Nb.size(); ++k) {
     const Eigen::Vector4d pk = Nb[k].transpose() * pi_body_b;
     for (std::size_t l = 0; l < Ma.size(); ++l) q[k + l].noalias() += Ma[l].transpose() * pk;
   }
-  const Eigen::Matrix4d dual = a.body.quadricMatrix().inverse();
-  std::vector<double> g(2 * q.size() - 1, 0.0);
-  for (std::size_t k = 0; k < q.size(); ++k) {
-    const Eigen::Vector4d dq = dual * q[k];
-    for (std::size_t l = 0; l < q.size(); ++l) g[k + l] += q[l].dot(dq);
+  for (std::size_t k = 0; k < Nb.size(); ++k) {
+    const Eigen::Vector4d pk = Nb[k].transpose().cwiseAbs() * pi_body_b.cwiseAbs();
+    for (std::size_t l = 0; l < Ma.size(); ++l) q_abs[k + l].noalias() += Ma[l].transpose().cwiseAbs() * pk;
   }
-  return certifiedSign(Polynomial(std::move(g))) < 0;
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() = a.body.rotation();
+  T.topRightCorner<3, 1>() = a.body.center();
+  const Eigen::Vector3d r2 = a.body.radii().cwiseProduct(a.body.radii());
+  const Eigen::Vector4d d(r2[0], r2[1], r2[2], -1.0);
+  const Eigen::Matrix4d dual = T * d.asDiagonal() * T.transpose();
+  const Eigen::Matrix4d dual_abs = T.cwiseAbs() * d.cwiseAbs().asDiagonal() * T.transpose().cwiseAbs();
+  std::vector<double> g(2 * nq - 1, 0.0), g_abs(2 * nq - 1, 0.0);
+  for (std::size_t k = 0; k < nq; ++k) {
+    const Eigen::Vector4d dq = dual * q[k], dq_abs = dual_abs * q_abs[k];
+    for (std::size_t l = 0; l < nq; ++l) {
+      g[k + l] += q[l].dot(dq);
+      g_abs[k + l] += q_abs[l].dot(dq_abs);
+    }
+  }
+  const double error = cullRoundingError(nq);
+  return certifiedSign(Polynomial(std::move(g)), Polynomial(std::move(g_abs)), error) < 0;
 }
 
-// Symmetrised and balanced: divided by |det Q(1/2)|^(1/4), so that det A and det B are both
-// about -1 in mid-motion. A positive factor changes no sign decision, but balancing keeps the
-// negative roots of det(lambda A - B) near lambda = -1, i.e. the maximiser of u -> F(u, t) away
-// from u = 0 and u = 1 where F = u^4 f(lambda) is flattened by the factor u^4.
-PolynomialMatrix4 balanced(const PolynomialMatrix4& Q) {
+// The balancing factor: |det Q(1/2)|^(1/4), so that det A and det B are both about -1 in
+// mid-motion. A positive factor changes no sign decision, but balancing keeps the negative roots
+// of det(lambda A - B) near lambda = -1, i.e. the maximiser of u -> F(u, t) away from u = 0 and
+// u = 1 where F = u^4 f(lambda) is flattened by the factor u^4.
+double balanceScale(const PolynomialMatrix4& Q) {
   const double det = std::abs(Q.evaluate(0.5).determinant());
   double scale = std::pow(det, 0.25);
   if (!(scale > 0.0) || !std::isfinite(scale)) {
@@ -128,6 +159,11 @@ PolynomialMatrix4 balanced(const PolynomialMatrix4& Q) {
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j) scale = std::max(scale, Q(i, j).maxAbsCoefficient());
   }
+  return scale;
+}
+
+// Symmetrised and divided by `scale`.
+PolynomialMatrix4 balanced(const PolynomialMatrix4& Q, double scale) {
   PolynomialMatrix4 R;
   for (int i = 0; i < 4; ++i) {
     R(i, i) = Q(i, i) * (1.0 / scale);
@@ -139,8 +175,42 @@ PolynomialMatrix4 balanced(const PolynomialMatrix4& Q) {
   return R;
 }
 
-PolynomialMatrix4 scaledQuadric(const Eigen::Matrix4d& Q_body, const std::vector<Eigen::Matrix4d>& N, const Eigen::Matrix4d& S) {
-  return balanced(congruence(Q_body, N, S));
+// Condition estimate of a moving ellipsoid's quadric matrix: (aspect ratio x condition of the
+// motion's linear part)^2 (tolerance::kCcdCheckedCondition).
+double quadricCondition(const Ellipsoid& body, const MotionMatrix& m) {
+  const double aspect = body.radii().maxCoeff() / body.radii().minCoeff();
+  const double linear = m.isRigid() ? 1.0 : m.linearCondition();
+  return (aspect * linear) * (aspect * linear);
+}
+
+// A moving quadric in the scaled frame, balanced (divided by `scale`).
+struct ScaledQuadric {
+  PolynomialMatrix4 Q;
+  double scale = 1.0;
+};
+
+// (N S)^T Q (N S), balanced.
+ScaledQuadric scaledQuadric(const Eigen::Matrix4d& Q_body, const std::vector<Eigen::Matrix4d>& N, const Eigen::Matrix4d& S) {
+  const PolynomialMatrix4 Q = congruence(Q_body, N, S);
+  const double scale = balanceScale(Q);
+  return {balanced(Q, scale), scale};
+}
+
+// The same in extended precision from N's extended coefficient matrices (the precision check):
+// coefficient matrices of the symmetrised (N S)^T Q (N S) / scale.
+std::vector<Matrix4ld> scaledQuadricExtended(const Eigen::Matrix4d& Q_body, const std::vector<Matrix4ld>& N,
+                                            const Eigen::Matrix4d& S, double scale) {
+  const Matrix4ld Sl = S.cast<long double>(), Ql = Q_body.cast<long double>();
+  std::vector<Matrix4ld> NS(N.size()), QNS(N.size());
+  for (std::size_t k = 0; k < N.size(); ++k) {
+    NS[k] = N[k] * Sl;
+    QNS[k] = Ql * NS[k];
+  }
+  std::vector<Matrix4ld> A(2 * N.size() - 1, Matrix4ld::Zero());
+  for (std::size_t k = 0; k < N.size(); ++k)
+    for (std::size_t l = 0; l < N.size(); ++l) A[k + l].noalias() += NS[k].transpose() * QNS[l];
+  for (Matrix4ld& m : A) m = ((m + m.transpose()) * (0.5L / scale)).eval();  // eval: no aliasing
+  return A;
 }
 
 // Thesis §5.2: the affine interpolant of b's state relative to a, in a's body frame.
@@ -174,9 +244,10 @@ PolynomialMatrix4 affineInterpolant(const Eigen::Matrix3d B0, const Eigen::Vecto
 }
 
 // de Casteljau restriction of Bernstein coefficients on [0, 1] to [a, b] (0 <= a < b <= 1),
-// applied alike to |c| so that the rounding of every restricted coefficient is bounded by a few
-// (n + 1) ulps of the matching restricted |c| (all weights are convex: the standard running error
-// bound of de Casteljau's algorithm).
+// applied alike to the margins (every weight is convex, so restricted margins bound the
+// restricted errors: a margin of the form ulps |c| + e covers the rounding of the restriction,
+// a few (n + 1) ulps of the restricted |c| by the standard running error bound of de
+// Casteljau's algorithm, plus the restricted input error e).
 // In place, no allocation: the de Casteljau triangle keeps P_j^(n-j) (the coefficients on [s, 1])
 // when updated from the left, and P_0^j (those on [0, s]) when updated from the right.
 void keepRight(double* c, int n, double s) {
@@ -190,16 +261,16 @@ void keepLeft(double* c, int n, double s) {
     for (int i = n; i >= level; --i) c[i] = r * c[i - 1] + s * c[i];
 }
 
-void restrictWithBound(std::vector<double>* c, std::vector<double>* cabs, double a, double b) {
+void restrictWithBound(std::vector<double>* c, std::vector<double>* margin, double a, double b) {
   const int n = static_cast<int>(c->size()) - 1;
   if (a > 0.0) {
     keepRight(c->data(), n, a);
-    keepRight(cabs->data(), n, a);
+    keepRight(margin->data(), n, a);
   }
   if (b < 1.0) {
     const double s = (b - a) / (1.0 - a);
     keepLeft(c->data(), n, s);
-    keepLeft(cabs->data(), n, s);
+    keepLeft(margin->data(), n, s);
   }
 }
 
@@ -211,15 +282,15 @@ void restrictWithBound(std::vector<double>* c, std::vector<double>* cabs, double
 // the hull bound weak) it is halved and the left half examined first, a half whose coefficients
 // all exceed their margins being certified root-free. Sub-intervals are visited left to right, so
 // the left end of the current one is always a lower bound of the first root. Each coefficient is
-// lowered by its own rounding margin, kCcdClipMarginUlps (n + 1) ulps of the matching coefficient of
-// the restricted |c| (cabs, carried along): local margins stay meaningful where the polynomial is
-// small (F varies by orders of magnitude along t for high-degree motions). Returns nullopt when
-// [0, 1] is certified root-free; otherwise stops at the first sub-interval whose left value is
-// within its margin, or after kCcdMaxClipSteps steps, returning that left end.
-std::optional<double> firstRootLowerBound(std::vector<double> c, std::vector<double> cabs) {
+// lowered by its own margin (carried along through every restriction): the caller's margins are
+// kCcdClipMarginUlps (n + 1) ulps of |c| (the rounding of the restrictions) plus the coefficients'
+// own error bound; local margins stay meaningful where the polynomial is small (F varies by
+// orders of magnitude along t for high-degree motions). Returns nullopt when [0, 1] is certified
+// root-free; otherwise stops at the first sub-interval whose left value is within its margin, or
+// after kCcdMaxClipSteps steps, returning that left end.
+std::optional<double> firstRootLowerBound(std::vector<double> c, std::vector<double> margin) {
   const int n = static_cast<int>(c.size()) - 1;
   const std::size_t m = c.size();
-  const double ulps = tolerance::kCcdClipMarginUlps * (n + 1) * tolerance::kUnitRoundoff;
   // Pending right halves, innermost last: their intervals and coefficients in flat buffers.
   struct Pending {
     double lo, width;
@@ -229,13 +300,13 @@ std::optional<double> firstRootLowerBound(std::vector<double> c, std::vector<dou
   double lo = 0.0, width = 1.0;
   for (int step = 0;; ++step) {
     if (step >= tolerance::kCcdMaxClipSteps) return lo;
-    const double c0 = c[0] - ulps * cabs[0];
+    const double c0 = c[0] - margin[0];
     if (!(c0 > 0.0)) return lo;
     double s = 2.0;
     int j_min = 0;
     bool positive = true;
     for (int j = 1; j <= n; ++j) {
-      const double cj = c[j] - ulps * cabs[j];
+      const double cj = c[j] - margin[j];
       positive = positive && cj > 0.0;
       if (cj < c0) {
         const double sj = (static_cast<double>(j) / n) * c0 / (c0 - cj);
@@ -251,7 +322,7 @@ std::optional<double> firstRootLowerBound(std::vector<double> c, std::vector<dou
       width = pending.back().width;
       pending.pop_back();
       std::copy(pool_c.end() - m, pool_c.end(), c.begin());
-      std::copy(pool_abs.end() - m, pool_abs.end(), cabs.begin());
+      std::copy(pool_abs.end() - m, pool_abs.end(), margin.begin());
       pool_c.resize(pool_c.size() - m);
       pool_abs.resize(pool_abs.size() - m);
       continue;
@@ -264,7 +335,7 @@ std::optional<double> firstRootLowerBound(std::vector<double> c, std::vector<dou
       const double next = lo + width * s;
       if (!(next > lo)) return lo;
       keepRight(c.data(), n, s);
-      keepRight(cabs.data(), n, s);
+      keepRight(margin.data(), n, s);
       lo = next;
       width *= 1.0 - s;
       continue;
@@ -279,11 +350,11 @@ std::optional<double> firstRootLowerBound(std::vector<double> c, std::vector<dou
     if (!(lo + left_width > lo)) return lo;
     pending.push_back({lo + left_width, width - left_width});
     pool_c.insert(pool_c.end(), c.begin(), c.end());
-    pool_abs.insert(pool_abs.end(), cabs.begin(), cabs.end());
+    pool_abs.insert(pool_abs.end(), margin.begin(), margin.end());
     keepRight(pool_c.data() + pool_c.size() - m, n, split);
     keepRight(pool_abs.data() + pool_abs.size() - m, n, split);
     keepLeft(c.data(), n, split);
-    keepLeft(cabs.data(), n, split);
+    keepLeft(margin.data(), n, split);
     width = left_width;
   }
 }
@@ -356,7 +427,10 @@ enum class ChainEnd { Reached, Contact, Stalled };
 
 class IntervalSolver {
  public:
-  IntervalSolver(const BivariateBernstein& F, EllipsoidCcdResult* result) : F_(F), result_(result) {
+  // E: entry-wise bound of the error of F's coefficients (every decision below widens its margin
+  // by the matching combination of E).
+  IntervalSolver(const BivariateBernstein& F, const Eigen::MatrixXd& E, EllipsoidCcdResult* result)
+      : F_(F), E_(E), result_(result) {
     const int n = F.degreeT();
     binomial_t_.resize(n + 1);
     for (int j = 0; j <= n; ++j) binomial_t_[j] = detail::binomial(n, j);
@@ -373,12 +447,17 @@ class IntervalSolver {
   // The Bernstein coefficients in u of F(., t): rows of F dotted with the degree-n Bernstein
   // basis at t (all terms of one sign: relative accuracy ~ n ulps).
   // t -> F(u, t) in the Bernstein basis of [t0, t1]: the rows combined with B_i^4(u).
-  BernsteinPolynomial atU(double u) const {
+  // *error: the matching combination of E (the coefficients' error bound).
+  BernsteinPolynomial atU(double u, std::vector<double>* error) const {
     const double v = 1.0 - u;
     const double w[5] = {v * v * v * v, 4 * u * v * v * v, 6 * u * u * v * v, 4 * u * u * u * v, u * u * u * u};
     const Eigen::MatrixXd& C = F_.coefficients();
     std::vector<double> g(C.cols());
-    for (Eigen::Index j = 0; j < C.cols(); ++j) g[j] = w[0] * C(0, j) + w[1] * C(1, j) + w[2] * C(2, j) + w[3] * C(3, j) + w[4] * C(4, j);
+    error->resize(C.cols());
+    for (Eigen::Index j = 0; j < C.cols(); ++j) {
+      g[j] = w[0] * C(0, j) + w[1] * C(1, j) + w[2] * C(2, j) + w[3] * C(3, j) + w[4] * C(4, j);
+      (*error)[j] = w[0] * E_(0, j) + w[1] * E_(1, j) + w[2] * E_(2, j) + w[3] * E_(3, j) + w[4] * E_(4, j);
+    }
     return BernsteinPolynomial(std::move(g), F_.tLower(), F_.tUpper());
   }
 
@@ -391,10 +470,15 @@ class IntervalSolver {
     for (int j = n; j >= 0; --j, yp *= y) basis_[j] *= yp;
     std::array<double, 5> c{};
     const Eigen::MatrixXd& C = F_.coefficients();
+    error_at_t_ = 0.0;
     for (int i = 0; i <= 4; ++i) {
-      double v = 0.0;
-      for (int j = 0; j <= n; ++j) v += C(i, j) * basis_[j];
+      double v = 0.0, e = 0.0;
+      for (int j = 0; j <= n; ++j) {
+        v += C(i, j) * basis_[j];
+        e += E_(i, j) * basis_[j];
+      }
       c[i] = v;
+      error_at_t_ = std::max(error_at_t_, e);
     }
     return c;
   }
@@ -409,7 +493,18 @@ class IntervalSolver {
       scale = std::max(scale, std::abs(c[i]));
       if (c[i] > c[best]) best = i;
     }
-    s.band = tolerance::kCcdTouchingRelative * scale;
+    // The band also covers the coefficients' error bound: F(u, t) is a convex combination of the
+    // c_i, so its error is at most max_i of theirs (an ill-conditioned motion widens the band
+    // instead of certifying rounding noise).
+    s.band = std::max(tolerance::kCcdTouchingRelative * scale, 2.0 * error_at_t_);
+    // Theorem 5.1 needs F(0, t) = det A(t) < 0 and F(1, t) = det B(t) < 0 (two ellipsoids). A
+    // computed end value not clearly negative means F is rounding noise here: not separate.
+    if (!(c[0] < -s.band && c[4] < -s.band)) {
+      s.sign = 0;
+      s.value = std::max(c[0], c[4]);
+      s.u = c[0] >= c[4] ? 0.05 : 0.95;
+      return s;
+    }
     if (c[best] < -s.band) {  // convex hull: F(., t) < 0, overlapping
       s.sign = -1;
       overlap_times.push_back(t);
@@ -439,17 +534,19 @@ class IntervalSolver {
         return ChainEnd::Stalled;
       }
       ++result_->work;
-      const BernsteinPolynomial g = atU(s.u);
+      std::vector<double> margin;
+      const BernsteinPolynomial g = atU(s.u, &margin);
       const double lo = rightward ? t : t2, hi = rightward ? t2 : t;
       const double t0 = F_.tLower(), w = F_.tUpper() - F_.tLower();
-      std::vector<double> c = g.coefficients(), cabs(c.size());
-      for (std::size_t j = 0; j < c.size(); ++j) cabs[j] = std::abs(c[j]);
-      restrictWithBound(&c, &cabs, (lo - t0) / w, (hi - t0) / w);
+      std::vector<double> c = g.coefficients();
+      const double ulps = tolerance::kCcdClipMarginUlps * static_cast<double>(c.size()) * tolerance::kUnitRoundoff;
+      for (std::size_t j = 0; j < c.size(); ++j) margin[j] += ulps * std::abs(c[j]);
+      restrictWithBound(&c, &margin, (lo - t0) / w, (hi - t0) / w);
       if (!rightward) {
         std::reverse(c.begin(), c.end());
-        std::reverse(cabs.begin(), cabs.end());
+        std::reverse(margin.begin(), margin.end());
       }
-      const std::optional<double> root = firstRootLowerBound(std::move(c), std::move(cabs));
+      const std::optional<double> root = firstRootLowerBound(std::move(c), std::move(margin));
       double next;
       if (!root) {
         next = t2;
@@ -570,7 +667,9 @@ class IntervalSolver {
 
  private:
   const BivariateBernstein& F_;
+  const Eigen::MatrixXd& E_;
   EllipsoidCcdResult* result_;
+  double error_at_t_ = 0.0;  // set by rowsAt: max_i error bound of c_i(t)
   std::vector<double> binomial_t_;
   std::vector<double> basis_;
 };
@@ -624,19 +723,47 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
     r.separation_intervals.push_back({0.0, tmax});
     return r;
   }
-  const Ellipsoid a0 = worldEllipsoid(a.body, ma, 0.0), b0 = worldEllipsoid(b.body, mb, 0.0);
-  if (opt.culling && !affine) {
-    const std::optional<SeparatingPlane> sp = separatingPlane(a0, b0);
+  // World centres at t = 0 (defined for every valid motion, no eigen-decomposition).
+  const Eigen::Matrix4d Ta0 = ma.evaluate(0.0), Tb0 = mb.evaluate(0.0);
+  const Eigen::Vector3d ca0 = Ta0.topLeftCorner<3, 3>() * a.body.center() + Ta0.block<3, 1>(0, 3);
+  const Eigen::Vector3d cb0 = Tb0.topLeftCorner<3, 3>() * b.body.center() + Tb0.block<3, 1>(0, 3);
+  // Beyond kCcdMaxCondition even the extended-precision F is rounding noise: conservative
+  // fallback, colliding throughout and flagged unresolved (docs/algorithms.md section 8).
+  const double condition = std::max(quadricCondition(a.body, ma), quadricCondition(b.body, mb));
+  auto conservative = [&] {
+    r.unresolved = true;
+    r.collide = true;
+    r.first_contact_time = 0.0;
+    r.collision_intervals.push_back({0.0, opt.all_intervals ? tmax : 0.0});
+    r.contact_point = 0.5 * (ca0 + cb0);
+    return r;
+  };
+  if (!(condition <= opt.max_condition)) return conservative();
+  // The world ellipsoids at t = 0 feed the plane cull and the first-contact static test only; an
+  // ill-conditioned affine map may have none representable (Ellipsoid::fromAffine throws), and
+  // then both shortcuts are skipped.
+  std::optional<Ellipsoid> a0, b0;
+  try {
+    a0 = worldEllipsoid(a.body, ma, 0.0);
+    b0 = worldEllipsoid(b.body, mb, 0.0);
+  } catch (const std::invalid_argument&) {
+    a0.reset();
+    b0.reset();
+  }
+  // Rigid motions only for the plane cull: the plane is carried into b's body frame by
+  // evaluate(0), exact to rounding for a rigid b (an ill-conditioned affine b would move it).
+  if (opt.culling && !affine && a0 && b0 && ma.isRigid() && mb.isRigid()) {
+    const std::optional<SeparatingPlane> sp = separatingPlane(*a0, *b0);
     if (sp && sp->certified && planeCull(a, ma, mb, sp->plane)) {
       r.culled_by = 2;
       r.separation_intervals.push_back({0.0, tmax});
       return r;
     }
   }
-  if (!opt.all_intervals && !affine) {
+  if (!opt.all_intervals && !affine && a0 && b0) {
     // First contact only: a pair not separate at t = 0 (certified static test, Theorem 4.1)
     // collides at 0; no CCD function is needed.
-    const SeparationCertificate c0 = classifyEllipsoids(a0, b0);
+    const SeparationCertificate c0 = classifyEllipsoids(*a0, *b0);
     if (c0.status != Separation::Separated) {
       r.collide = true;
       r.first_contact_time = 0.0;
@@ -651,35 +778,62 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
   const double L = std::max(a.body.radii().maxCoeff(), b.body.radii().maxCoeff());
   Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
   S.topLeftCorner<3, 3>() *= L;
-  PolynomialMatrix4 A, B;
+  ScaledQuadric A, B;
+  BivariateBernstein F;
+  Eigen::MatrixXd E;  // error estimate of F's coefficients (precision check only)
   if (!affine) {
-    S.block<3, 1>(0, 3) = 0.5 * (a0.center() + b0.center());
+    S.block<3, 1>(0, 3) = 0.5 * (ca0 + cb0);
     A = scaledQuadric(a.body.quadricMatrix(), ma.inverseCoefficients(), S);
     B = scaledQuadric(b.body.quadricMatrix(), mb.inverseCoefficients(), S);
+    // Precision check (docs/algorithms.md section 8): when the motions' and shapes' conditioning
+    // puts the double rounding of F above the touching band, F is rebuilt in extended precision
+    // from N's extended coefficients and the difference widens every margin (finding 8: a shear
+    // of condition 6e7 was certified separate on rounding noise). Well-conditioned pairs (every
+    // rigid motion of moderate aspect ratio) skip it: the fixed relative band covers them.
+    if (condition > tolerance::kCcdCheckedCondition) {
+      CheckedCcdFunction checked = ccdFunctionChecked(
+          A.Q, B.Q, scaledQuadricExtended(a.body.quadricMatrix(), ma.inverseCoefficientsExtended(), S, A.scale),
+          scaledQuadricExtended(b.body.quadricMatrix(), mb.inverseCoefficientsExtended(), S, B.scale));
+      F = std::move(checked.F);
+      E = std::move(checked.error);
+      r.precision_checked = true;
+    }
   } else {
     // In a's body frame: a is constant, b's shape and centre are interpolated (thesis §5.2).
     Eigen::Matrix3d Bs[2];
     Eigen::Vector3d cs[2];
     for (int k = 0; k < 2; ++k) {
       const Eigen::Matrix4d Ta = ma.evaluate(k);
-      const Ellipsoid bk = worldEllipsoid(b.body, mb, k);
+      std::optional<Ellipsoid> bk;
+      try {
+        bk = worldEllipsoid(b.body, mb, k);
+      } catch (const std::invalid_argument&) {
+        return conservative();  // b's end state is not representable: no interpolant
+      }
       const Eigen::Matrix3d Lin = Ta.topLeftCorner<3, 3>().inverse();
-      const Eigen::Matrix3d Lb = Lin * bk.rotation() * bk.radii().asDiagonal();
-      cs[k] = Lin * (bk.center() - Ta.block<3, 1>(0, 3));
+      const Eigen::Matrix3d Lb = Lin * bk->rotation() * bk->radii().asDiagonal();
+      cs[k] = Lin * (bk->center() - Ta.block<3, 1>(0, 3));
       Bs[k] = (Lb * Lb.transpose()).inverse();
     }
     S.block<3, 1>(0, 3) = 0.5 * (a.body.center() + cs[0]);
     A = scaledQuadric(a.body.quadricMatrix(), {Eigen::Matrix4d::Identity()}, S);
-    B = balanced(affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], S));
+    const PolynomialMatrix4 Bq = affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], S);
+    B = {balanced(Bq, balanceScale(Bq)), 1.0};
   }
-  BivariateBernstein F = ccdFunction(A, B);
+  if (!r.precision_checked) {
+    F = ccdFunction(A.Q, B.Q);
+    E = Eigen::MatrixXd::Zero(F.coefficients().rows(), F.coefficients().cols());
+  }
   {
     const double m = F.coefficients().cwiseAbs().maxCoeff();
-    if (m > 0.0 && std::isfinite(m)) F = BivariateBernstein(F.coefficients() / m);
+    if (m > 0.0 && std::isfinite(m)) {
+      F = BivariateBernstein(F.coefficients() / m);
+      E /= m;
+    }
   }
   r.degree_t = F.degreeT();
 
-  IntervalSolver solver(F, &r);
+  IntervalSolver solver(F, E, &r);
   const State s0 = solver.state(0.0);
   double t_contact = 0.0;
   double u_contact = s0.u;
@@ -718,7 +872,7 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
     t_contact = *r.first_contact_time;
     u_contact = t_contact == 0.0 ? s0.u : solver.state(t_contact).u;
   }
-  Eigen::Vector3d x = pencilCentre(A, B, t_contact, u_contact);
+  Eigen::Vector3d x = pencilCentre(A.Q, B.Q, t_contact, u_contact);
   x = S.topLeftCorner<3, 3>() * x + S.block<3, 1>(0, 3);
   if (affine) {  // back from a's body frame to the world with a's motion
     const Eigen::Matrix4d Ta = ma.evaluate(t_contact);
@@ -789,6 +943,11 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
   if (!(options.t_max > 0.0 && options.t_max <= 1.0)) {
     std::ostringstream os;
     os << "continuousCollideEllipsoids: t_max must be in (0, 1], got " << options.t_max;
+    throw std::invalid_argument(os.str());
+  }
+  if (!(options.max_condition > 0.0)) {
+    std::ostringstream os;
+    os << "continuousCollideEllipsoids: max_condition must be positive, got " << options.max_condition;
     throw std::invalid_argument(os.str());
   }
   const bool single = a.motion.pieces().size() == 1 && b.motion.pieces().size() == 1;

@@ -1,6 +1,7 @@
 #include "fcl_quadric/continuous/motion_matrix.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -38,30 +39,21 @@ void checkNoRootOnUnitInterval(const Polynomial& p, const char* what) {
 
 namespace {
 
-// det of the 3x3 block rows/cols {0,1,2} of M, and its adjugate.
+// det of the 3x3 block rows/cols {0,1,2} of M (the validation; N is built in extended precision).
 Polynomial det3(const PolynomialMatrix4& M) {
   return M(0, 0) * (M(1, 1) * M(2, 2) - M(1, 2) * M(2, 1)) - M(0, 1) * (M(1, 0) * M(2, 2) - M(1, 2) * M(2, 0)) +
          M(0, 2) * (M(1, 0) * M(2, 1) - M(1, 1) * M(2, 0));
 }
 
-// adj(L)(i, j) = cofactor(j, i) of the 3x3 block.
-Polynomial adj3(const PolynomialMatrix4& M, int i, int j) {
-  int r[2], c[2];
-  for (int k = 0, n = 0; k < 3; ++k)
-    if (k != j) r[n++] = k;
-  for (int k = 0, n = 0; k < 3; ++k)
-    if (k != i) c[n++] = k;
-  Polynomial minor = M(r[0], c[0]) * M(r[1], c[1]) - M(r[0], c[1]) * M(r[1], c[0]);
-  return ((i + j) % 2 == 0) ? minor : -minor;
-}
 
 }  // namespace
 
 namespace {
 
 // Drops trailing zero coefficient matrices (keeps at least one).
-std::vector<Eigen::Matrix4d> trimmedCoefficients(std::vector<Eigen::Matrix4d> c) {
-  while (c.size() > 1 && c.back().isZero(0.0)) c.pop_back();
+template <class Mat>
+std::vector<Mat> trimmedCoefficients(std::vector<Mat> c) {
+  while (c.size() > 1 && c.back().isZero(0)) c.pop_back();
   return c;
 }
 
@@ -73,31 +65,81 @@ PolynomialMatrix4 fromCoefficientMatrices(const std::vector<Eigen::Matrix4d>& c)
 }
 
 // sum_k A_k t^k times sum_l B_l t^l.
-std::vector<Eigen::Matrix4d> convolve(const std::vector<Eigen::Matrix4d>& A, const std::vector<Eigen::Matrix4d>& B) {
-  std::vector<Eigen::Matrix4d> C(A.size() + B.size() - 1, Eigen::Matrix4d::Zero());
+template <class Mat>
+std::vector<Mat> convolve(const std::vector<Mat>& A, const std::vector<Mat>& B) {
+  std::vector<Mat> C(A.size() + B.size() - 1, Mat::Zero());
   for (std::size_t k = 0; k < A.size(); ++k)
     for (std::size_t l = 0; l < B.size(); ++l) C[k + l].noalias() += A[k] * B[l];
   return C;
 }
 
 // Coefficients of s -> M(t0 + h s): sum_j s^j sum_{k >= j} C(k, j) t0^(k-j) h^j M_k.
-std::vector<Eigen::Matrix4d> composeAffine(const std::vector<Eigen::Matrix4d>& M, double h, double t0) {
+template <class Mat>
+std::vector<Mat> composeAffine(const std::vector<Mat>& M, double h, double t0) {
+  using T = typename Mat::Scalar;
   const int d = static_cast<int>(M.size()) - 1;
-  std::vector<Eigen::Matrix4d> R(d + 1, Eigen::Matrix4d::Zero());
+  std::vector<Mat> R(d + 1, Mat::Zero());
   for (int k = 0; k <= d; ++k) {
-    double hj = 1.0;
-    for (int j = 0; j <= k; ++j, hj *= h) R[j] += (detail::binomial(k, j) * std::pow(t0, k - j) * hj) * M[k];
+    T hj = 1;
+    for (int j = 0; j <= k; ++j, hj *= h) R[j] += (static_cast<T>(detail::binomial(k, j)) * std::pow(static_cast<T>(t0), k - j) * hj) * M[k];
   }
   return R;
 }
 
+// Polynomials with long double coefficients (power basis), for N in extended precision.
+using PolyL = std::vector<long double>;
+PolyL mul(const PolyL& a, const PolyL& b) {
+  PolyL c(a.size() + b.size() - 1, 0.0L);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
+  return c;
+}
+PolyL axpy(long double s, const PolyL& a, const PolyL& b) {  // s a + b
+  PolyL c(std::max(a.size(), b.size()), 0.0L);
+  for (std::size_t i = 0; i < a.size(); ++i) c[i] += s * a[i];
+  for (std::size_t i = 0; i < b.size(); ++i) c[i] += b[i];
+  return c;
+}
+using PolyMatL = std::array<std::array<PolyL, 4>, 4>;
+PolyMatL extended(const PolynomialMatrix4& M) {
+  PolyMatL R;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) R[i][j] = PolyL(M(i, j).coefficients().begin(), M(i, j).coefficients().end());
+  return R;
+}
+std::vector<Matrix4ld> coefficientMatrices(const PolyMatL& M) {
+  std::size_t n = 1;
+  for (const auto& row : M)
+    for (const PolyL& p : row) n = std::max(n, p.size());
+  std::vector<Matrix4ld> C(n, Matrix4ld::Zero());
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (std::size_t k = 0; k < M[i][j].size(); ++k) C[k](i, j) = M[i][j][k];
+  return C;
+}
+// 2x2 minor of the 3x3 block: rows r0, r1, columns c0, c1.
+PolyL minor2(const PolyMatL& M, int r0, int r1, int c0, int c1) {
+  return axpy(-1.0L, mul(M[r0][c1], M[r1][c0]), mul(M[r0][c0], M[r1][c1]));
+}
+
 }  // namespace
 
-MotionMatrix::MotionMatrix()
-    : MotionMatrix({Eigen::Matrix4d::Identity()}, {Eigen::Matrix4d::Identity()}, true) {}
+MotionMatrix::MotionMatrix() : MotionMatrix({Eigen::Matrix4d::Identity()}, {Matrix4ld::Identity()}, true) {}
 
-MotionMatrix::MotionMatrix(std::vector<Eigen::Matrix4d> M, std::vector<Eigen::Matrix4d> N, bool rigid)
-    : Mk_(trimmedCoefficients(std::move(M))), Nk_(trimmedCoefficients(std::move(N))), rigid_(rigid) {}
+MotionMatrix::MotionMatrix(std::vector<Eigen::Matrix4d> M, std::vector<Matrix4ld> N, bool rigid)
+    : Mk_(trimmedCoefficients(std::move(M))), Nk_ext_(trimmedCoefficients(std::move(N))), rigid_(rigid) {
+  Nk_.reserve(Nk_ext_.size());
+  for (const Matrix4ld& n : Nk_ext_) Nk_.push_back(n.cast<double>());
+}
+
+double MotionMatrix::linearCondition() const {
+  double worst = 0.0;
+  for (double t : {0.0, 0.5, 1.0}) {
+    const Eigen::Matrix3d L = evaluate(t).topLeftCorner<3, 3>();
+    worst = std::max(worst, L.norm() * L.inverse().norm());
+  }
+  return worst;
+}
 
 PolynomialMatrix4 MotionMatrix::matrix() const { return fromCoefficientMatrices(Mk_); }
 PolynomialMatrix4 MotionMatrix::inverse() const { return fromCoefficientMatrices(Nk_); }
@@ -138,15 +180,16 @@ MotionMatrix MotionMatrix::fromPoses(const Eigen::Matrix3d& R0, const Eigen::Vec
   const Eigen::Matrix3d Rk[3] = {Ra, rotation(ea + eb) - Ra - Rb, Rb};
   const double Ek[3] = {ea.squaredNorm(), 2.0 * ea.dot(eb), eb.squaredNorm()};
   const Eigen::Vector3d pk[2] = {p0, p1 - p0};
-  std::vector<Eigen::Matrix4d> Mk(4, Eigen::Matrix4d::Zero()), Nk(4, Eigen::Matrix4d::Zero());
+  std::vector<Eigen::Matrix4d> Mk(4, Eigen::Matrix4d::Zero());
+  std::vector<Matrix4ld> Nk(4, Matrix4ld::Zero());
   for (int k = 0; k < 3; ++k) {
     Mk[k].topLeftCorner<3, 3>() = Rk[k];
-    Nk[k].topLeftCorner<3, 3>() = Rk[k].transpose();
+    Nk[k].topLeftCorner<3, 3>() = Rk[k].transpose().cast<long double>();
     Mk[k](3, 3) = Ek[k];
     Nk[k](3, 3) = Ek[k];
     for (int l = 0; l < 2; ++l) {
-      Mk[k + l].block<3, 1>(0, 3) += Ek[k] * pk[l];                   // E(t) p(t)
-      Nk[k + l].block<3, 1>(0, 3) -= Rk[k].transpose() * pk[l];       // -R~(t)^T p(t)
+      Mk[k + l].block<3, 1>(0, 3) += Ek[k] * pk[l];                                                    // E(t) p(t)
+      Nk[k + l].block<3, 1>(0, 3) -= Rk[k].transpose().cast<long double>() * pk[l].cast<long double>();  // -R~(t)^T p(t)
     }
   }
   MotionMatrix m(std::move(Mk), std::move(Nk), true);
@@ -178,6 +221,7 @@ MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M_given
   }
   const Polynomial& w = M(3, 3);
   detail::checkNoRootOnUnitInterval(w, "motion matrix w(t) = M(3,3)");
+  const PolyMatL ML = extended(M);
   const Polynomial dl = det3(M);
   detail::checkNoRootOnUnitInterval(dl, "motion matrix det of the linear part L(t)");
   // Rigid (up to the scale w): L^T L = sigma I as polynomials, to rounding.
@@ -202,35 +246,52 @@ MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M_given
     // wrong for it (found by fuzz_motion: "ellipsoid rotation is not a rotation").
     off = std::max(off, (G(0, 0) - w * w).maxAbsCoefficient());
     if (scale > 0.0 && off <= 1e-13 * scale) {
-      PolynomialMatrix4 N;
+      // N = [[w L^T, -L^T v], [0, sigma]] in extended precision.
+      PolyMatL N;
       for (int i = 0; i < 3; ++i) {
-        Polynomial ltv;
+        PolyL ltv{0.0L};
         for (int j = 0; j < 3; ++j) {
-          N(i, j) = w * M(j, i);
-          ltv += M(j, i) * M(j, 3);
+          N[i][j] = mul(ML[3][3], ML[j][i]);
+          ltv = axpy(1.0L, mul(ML[j][i], ML[j][3]), ltv);
         }
-        N(i, 3) = -ltv;
+        N[i][3] = axpy(-1.0L, ltv, PolyL{0.0L});
+        N[3][i] = PolyL{0.0L};
       }
-      N(3, 3) = G(0, 0);
+      N[3][3] = axpy(1.0L, mul(ML[0][0], ML[0][0]), axpy(1.0L, mul(ML[1][0], ML[1][0]), mul(ML[2][0], ML[2][0])));
       return MotionMatrix(coefficientMatrices(M), coefficientMatrices(N), true);
     }
   }
-  PolynomialMatrix4 N;
+  // N = [[w adj L, -adj(L) v], [0, det L]] in extended precision (adj(L)(i, j) = cofactor(j, i)).
+  PolyMatL N;
+  PolyMatL adj;
   for (int i = 0; i < 3; ++i) {
-    Polynomial adj_v;
     for (int j = 0; j < 3; ++j) {
-      const Polynomial a = adj3(M, i, j);
-      N(i, j) = w * a;
-      adj_v += a * M(j, 3);
+      int r[2], c[2];
+      for (int k = 0, n = 0; k < 3; ++k)
+        if (k != j) r[n++] = k;
+      for (int k = 0, n = 0; k < 3; ++k)
+        if (k != i) c[n++] = k;
+      const PolyL m = minor2(ML, r[0], r[1], c[0], c[1]);
+      adj[i][j] = (i + j) % 2 == 0 ? m : axpy(-1.0L, m, PolyL{0.0L});
     }
-    N(i, 3) = -adj_v;
   }
-  N(3, 3) = dl;
+  for (int i = 0; i < 3; ++i) {
+    PolyL adj_v{0.0L};
+    for (int j = 0; j < 3; ++j) {
+      N[i][j] = mul(ML[3][3], adj[i][j]);
+      adj_v = axpy(1.0L, mul(adj[i][j], ML[j][3]), adj_v);
+    }
+    N[i][3] = axpy(-1.0L, adj_v, PolyL{0.0L});
+    N[3][i] = PolyL{0.0L};
+  }
+  PolyL det{0.0L};
+  for (int j = 0; j < 3; ++j) det = axpy(1.0L, mul(ML[0][j], adj[j][0]), det);
+  N[3][3] = det;
   return MotionMatrix(coefficientMatrices(M), coefficientMatrices(N), false);
 }
 
 MotionMatrix MotionMatrix::compose(const MotionMatrix& outer, const MotionMatrix& inner) {
-  return MotionMatrix(convolve(outer.Mk_, inner.Mk_), convolve(inner.Nk_, outer.Nk_), outer.rigid_ && inner.rigid_);
+  return MotionMatrix(convolve(outer.Mk_, inner.Mk_), convolve(inner.Nk_ext_, outer.Nk_ext_), outer.rigid_ && inner.rigid_);
 }
 
 Eigen::Matrix4d MotionMatrix::evaluate(double t) const {
@@ -246,7 +307,8 @@ MotionMatrix MotionMatrix::restricted(double t0, double t1) const {
     os << "MotionMatrix::restricted: need 0 <= t0 < t1 <= 1, got [" << t0 << ", " << t1 << "]";
     throw std::invalid_argument(os.str());
   }
-  std::vector<Eigen::Matrix4d> M = composeAffine(Mk_, t1 - t0, t0), N = composeAffine(Nk_, t1 - t0, t0);
+  std::vector<Eigen::Matrix4d> M = composeAffine(Mk_, t1 - t0, t0);
+  std::vector<Matrix4ld> N = composeAffine(Nk_ext_, t1 - t0, t0);
   MotionMatrix r(std::move(M), std::move(N), rigid_);
   if (linear_translation_) {
     const auto& [p0, p1] = *linear_translation_;
@@ -264,6 +326,18 @@ std::vector<Eigen::Matrix4d> coefficientMatrices(const PolynomialMatrix4& M) {
     }
   }
   return Mk;
+}
+
+PolynomialMatrix4 coefficientMagnitudes(const PolynomialMatrix4& M) {
+  PolynomialMatrix4 R;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      std::vector<double> c = M(i, j).coefficients();
+      for (double& x : c) x = std::abs(x);
+      R(i, j) = Polynomial(std::move(c));
+    }
+  }
+  return R;
 }
 
 PolynomialMatrix4 congruence(const Eigen::Matrix4d& Q, const PolynomialMatrix4& N, const Eigen::Matrix4d& S) {

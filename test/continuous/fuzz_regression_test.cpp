@@ -2,9 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <random>
 
 #include "fcl_quadric/continuous/ellipsoid_ccd.h"
+#include "support/exact_oracle.h"
+#include "support/oracle_margin.h"
 #include "support/random_ellipsoids.h"
 
 namespace fcl_quadric {
@@ -69,5 +73,111 @@ TEST(FuzzRegression, AUniformScalingIsNotRigid) {
                   .isRigid());
 }
 
+// fuzz_motion finding 8 (fuzz/findings/fuzz_motion-oracle-overlap-outside-intervals): a constant
+// shear of condition number ~6e7 turns a small ellipsoid into a needle ~3,840 long through the
+// origin; ellipsoid b moves onto the origin. From t = 0.375 on, the origin (a's centre) is inside
+// b, yet the solver certified separation on [0.34, 1]: F(u, t) was built from entries ~1e12
+// whose rounding exceeded F itself, and the margins ignored it. The coefficient error bounds
+// (MotionMatrix::inverseMagnitudes, ccdFunctionWithMagnitude) now cover the rounding. Oracle: the
+// point test of a's centre against b, independent of the CCD.
+TEST(FuzzRegression, AnIllConditionedShearIsNotCertifiedSeparateWhileOverlapping) {
+  Eigen::Matrix4d M0 = Eigen::Matrix4d::Identity();
+  M0(0, 2) = 32.0;
+  M0(2, 1) = -7680.0;
+  const MotionMatrix shear = MotionMatrix::fromPolynomialMatrix(PolynomialMatrix4(M0));
+  ASSERT_FALSE(shear.isRigid());
+  const MovingEllipsoid a{Ellipsoid({0.251, 0.501, 1.001}, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()),
+                          PiecewiseMotion(shear)};
+  Eigen::Isometry3d X0 = Eigen::Isometry3d::Identity();
+  X0.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  X0.translation() = Eigen::Vector3d(0, -3, 0);
+  const MovingEllipsoid b{Ellipsoid({2, 3, 2}, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()),
+                          PiecewiseMotion(MotionMatrix::fromPoses(X0, Eigen::Isometry3d::Identity()))};
+  // Both safeguards, each on its own: the default conditioning limit (this pair's estimate is
+  // ~6e19, so it is reported colliding throughout, unresolved), and with the limit lifted the
+  // extended-precision check plus Theorem 5.1's sign condition on det A, det B.
+  for (double max_condition : {tolerance::kCcdMaxCondition, std::numeric_limits<double>::infinity()})
+  for (bool culling : {true, false}) {
+    CcdOptions options;
+    options.culling = culling;
+    options.max_condition = max_condition;
+    for (bool swapped : {false, true}) {
+      const EllipsoidCcdResult r = swapped ? continuousCollideEllipsoids(b, a, options) : continuousCollideEllipsoids(a, b, options);
+      int inside = 0;
+      for (int i = 0; i <= 64; ++i) {
+        const double t = i / 64.0;
+        if (ellipsoidAt(b, t).implicit(Eigen::Vector3d::Zero()) >= -1e-9) continue;  // a's centre not clearly inside b
+        ++inside;
+        bool covered = false;
+        for (const CcdInterval& c : r.collision_intervals) covered = covered || (t >= c.begin && t <= c.end);
+        EXPECT_TRUE(covered) << "t = " << t << " culling " << culling << " swapped " << swapped << " limit " << max_condition;
+      }
+      EXPECT_GT(inside, 30);  // the oracle has something to say
+    }
+  }
+}
+
+// The same failure mode on random data: constant shears of growing condition (up to ~1e9) carry a
+// small ellipsoid; a rigid ellipsoid passes through. Wherever the exact oracle (GMP, on the world
+// ellipsoids at t, with its margin) clearly sees an overlap, the instant lies in a reported
+// collision interval. Before the fix, shears from ~2e3 on were certified separate at overlapping
+// instants. Run with the default conditioning limit and with the limit lifted (the extended-
+// precision check alone must then decide the pairs the limit would have refused).
+void illConditionedShears(double max_condition, int* judged, int* checked, int* fallback) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  CcdOptions options;
+  options.max_condition = max_condition;
+  for (int k = 0; k < 24; ++k) {
+    const double shear = std::pow(10.0, 1.0 + 8.0 * (k % 8) / 7.0);
+    Eigen::Matrix4d M0 = Eigen::Matrix4d::Identity();
+    M0(static_cast<int>(rng() % 3), 0) += 0.001 * U(rng) * shear;
+    M0(2, 1) = shear * U(rng);
+    M0(0, 2) = 1.0 / std::max(std::abs(U(rng)), 0.1) * 4;
+    const MovingEllipsoid a{Ellipsoid(test::randomRadii(rng, 0.1, 1.0), test::randomRotation(rng), Eigen::Vector3d::Zero()),
+                            PiecewiseMotion(MotionMatrix::fromPolynomialMatrix(PolynomialMatrix4(M0)))};
+    Eigen::Isometry3d X0 = Eigen::Isometry3d::Identity(), X1 = Eigen::Isometry3d::Identity();
+    X0.linear() = test::randomRotation(rng);
+    X1.linear() = test::randomRotation(rng);
+    X0.translation() = Eigen::Vector3d(3 * U(rng), -4, U(rng));
+    X1.translation() = Eigen::Vector3d(U(rng), 4 * U(rng), U(rng));
+    const MovingEllipsoid b{Ellipsoid(test::randomRadii(rng, 1.0, 3.0), Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()),
+                            PiecewiseMotion(MotionMatrix::fromPoses(X0, X1))};
+    const EllipsoidCcdResult r = continuousCollideEllipsoids(a, b, options);
+    *checked += r.precision_checked && !r.unresolved;
+    *fallback += r.unresolved;
+    for (int i = 0; i <= 32; ++i) {
+      const double t = i / 32.0;
+      std::optional<Ellipsoid> ea;
+      try {
+        ea = ellipsoidAt(a, t);
+      } catch (const std::invalid_argument&) {
+        continue;  // too ill-conditioned to be an Ellipsoid (documented)
+      }
+      const Ellipsoid eb = ellipsoidAt(b, t);
+      const std::optional<bool> exact = test::clearExactCollision(*ea, eb, std::max(1e-6, 1e3 * test::rigidMargin(*ea, eb)));
+      if (!exact || !*exact) continue;
+      ++*judged;
+      bool covered = false;
+      for (const CcdInterval& c : r.collision_intervals) covered = covered || (t >= c.begin && t <= c.end);
+      EXPECT_TRUE(covered) << "k " << k << " shear " << shear << " t " << t << " limit " << max_condition;
+    }
+  }
+}
+
+TEST(FuzzRegression, IllConditionedShearsNeverDropAnOverlap) {
+  int judged = 0, checked = 0, fallback = 0;
+  illConditionedShears(tolerance::kCcdMaxCondition, &judged, &checked, &fallback);
+  EXPECT_GT(judged, 40);
+  EXPECT_GT(checked, 4);   // decided through the extended-precision check
+  EXPECT_GT(fallback, 2);  // beyond the limit: colliding throughout, unresolved
+  std::printf("ill-conditioned shears, default limit: %d judged instants, %d precision-checked, %d refused\n", judged,
+              checked, fallback);
+  int judged_open = 0, checked_open = 0, fallback_open = 0;
+  illConditionedShears(std::numeric_limits<double>::infinity(), &judged_open, &checked_open, &fallback_open);
+  EXPECT_GT(checked_open, checked);  // the check decides some pairs the limit refused
+  std::printf("ill-conditioned shears, no limit: %d judged instants, %d precision-checked, %d unresolved\n", judged_open,
+              checked_open, fallback_open);
+}
 }  // namespace
 }  // namespace fcl_quadric

@@ -24,6 +24,7 @@
 
 #include "fcl_quadric/algebra/bivariate_bernstein.h"
 #include "fcl_quadric/algebra/polynomial_matrix.h"
+#include "fcl_quadric/continuous/motion_matrix.h"
 
 namespace fcl_quadric {
 
@@ -31,6 +32,22 @@ namespace fcl_quadric {
 /// 0..4, columns: t index). \throws std::invalid_argument if an entry has a non-finite
 /// coefficient or the degree in t exceeds 400.
 BivariateBernstein ccdFunction(const PolynomialMatrix4& A, const PolynomialMatrix4& B);
+
+/// F computed twice (docs/algorithms.md section 8, "precision check"): in double from A and B,
+/// and in extended precision (long double) from the power-basis coefficient matrices Ak, Bk of
+/// the same quadrics (computed in extended precision by the caller). The extended F is returned,
+/// rounded to double; `error` estimates its error per coefficient from the difference of the two
+/// (2^-11 of it, with a safety factor 8, smoothed over neighbouring coefficients) plus the final
+/// rounding. An estimate, not a bound: it is what the CCD uses for motions whose conditioning
+/// puts F's double rounding above the touching band, where the fixed relative band of
+/// kCcdTouchingRelative would certify rounding noise.
+struct CheckedCcdFunction {
+  BivariateBernstein F;
+  Eigen::MatrixXd error;  // same shape as F.coefficients(), entries >= 0
+};
+/// \throws std::invalid_argument as ccdFunction.
+CheckedCcdFunction ccdFunctionChecked(const PolynomialMatrix4& A, const PolynomialMatrix4& B,
+                                      const std::vector<Matrix4ld>& Ak, const std::vector<Matrix4ld>& Bk);
 
 /// det M(t) of a polynomial matrix, computed in the scaled Bernstein basis as above and returned
 /// in the Bernstein basis of [0, 1] at its structural degree. \throws std::invalid_argument if the

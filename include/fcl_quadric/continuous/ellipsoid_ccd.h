@@ -30,6 +30,7 @@
 
 #include "fcl_quadric/continuous/motion_matrix.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
+#include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
 
@@ -58,6 +59,12 @@ struct CcdOptions {
   CcdInterpolation interpolation = CcdInterpolation::Rigid;
   /// Skip the sphere and separating-plane culls (thesis Table 5 "setup 2" measures without them).
   bool culling = true;
+  /// Conditioning limit (docs/algorithms.md section 8): a pair whose condition estimate
+  /// (aspect ratio x condition of the motion's linear part)^2 exceeds it is not decided, it is
+  /// reported colliding throughout [0, t_max] and flagged unresolved. Pairs between
+  /// tolerance::kCcdCheckedCondition and this limit are decided with the extended-precision check.
+  /// Must be positive (infinity disables the fallback).
+  double max_condition = tolerance::kCcdMaxCondition;
 };
 
 /// A closed time interval [begin, end] (begin == end for an instant).
@@ -89,6 +96,10 @@ struct EllipsoidCcdResult {
   bool near_tangent = false;
   /// The work cap was reached: some interval was reported colliding without certification.
   bool unresolved = false;
+  /// The pair was ill-conditioned enough (tolerance::kCcdCheckedCondition) for F(u, t) to be
+  /// rebuilt in extended precision, its estimated rounding widening every margin
+  /// (docs/algorithms.md section 8, "precision check"): answers lean further toward contact.
+  bool precision_checked = false;
   /// The pair was declared collision-free by a cull (0 = none, 1 = bounding spheres,
   /// 2 = separating plane).
   int culled_by = 0;

@@ -38,6 +38,9 @@
 
 namespace fcl_quadric {
 
+/// 4x4 matrices in extended precision (long double: a 64-bit significand on x86-64).
+using Matrix4ld = Eigen::Matrix<long double, 4, 4>;
+
 /// A rational motion M(t), t in [0, 1], with its polynomial inverse N(t) (see the file comment).
 class MotionMatrix {
  public:
@@ -84,6 +87,13 @@ class MotionMatrix {
   /// built with two allocations; the solver works on fixed-size 4x4 products).
   const std::vector<Eigen::Matrix4d>& matrixCoefficients() const { return Mk_; }
   const std::vector<Eigen::Matrix4d>& inverseCoefficients() const { return Nk_; }
+  /// The same coefficient matrices of N computed in extended precision from M's coefficients
+  /// (inverseCoefficients() are these rounded to double). The CCD's precision check of
+  /// ill-conditioned motions starts from them (docs/algorithms.md section 8).
+  const std::vector<Matrix4ld>& inverseCoefficientsExtended() const { return Nk_ext_; }
+  /// Condition estimate of the linear part: max over t in {0, 1/2, 1} of |L(t)|_F |L(t)^-1|_F
+  /// (3 for a rigid motion; large for a strong shear or a near-singular scaling).
+  double linearCondition() const;
   /// True for motions built by constant() or fromPoses() (rigid by construction).
   bool isRigid() const { return rigid_; }
   /// For motions built by fromPoses() (and their restrictions): the path of the body origin is
@@ -104,9 +114,10 @@ class MotionMatrix {
   MotionMatrix restricted(double t0, double t1) const;
 
  private:
-  MotionMatrix(std::vector<Eigen::Matrix4d> M, std::vector<Eigen::Matrix4d> N, bool rigid);
+  MotionMatrix(std::vector<Eigen::Matrix4d> M, std::vector<Matrix4ld> N, bool rigid);
   std::vector<Eigen::Matrix4d> Mk_;
   std::vector<Eigen::Matrix4d> Nk_;
+  std::vector<Matrix4ld> Nk_ext_;  // Nk_ before rounding to double
   bool rigid_ = true;
   std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> linear_translation_;
 };
@@ -129,6 +140,10 @@ PolynomialMatrix4 congruence(const Eigen::Matrix4d& Q, const std::vector<Eigen::
 /// The coefficient matrices of a polynomial matrix: M(t) = sum_k result[k] t^k (maxDegree() + 1
 /// of them). No failure mode (PolynomialMatrix4 entries are finite by construction).
 std::vector<Eigen::Matrix4d> coefficientMatrices(const PolynomialMatrix4& M);
+
+/// Entry-wise |coefficients| of M (power basis): the magnitude from which rounding bounds of
+/// polynomial formulas in M are built. No failure mode.
+PolynomialMatrix4 coefficientMagnitudes(const PolynomialMatrix4& M);
 
 /// A piecewise rational motion over [0, 1]: motion k is used on [breaks[k], breaks[k+1]] and is
 /// parametrised over its own [0, 1] (so piece k at local s is the motion at
