@@ -614,6 +614,46 @@ Eigen::Vector3d pencilCentre(const PolynomialMatrix4& A, const PolynomialMatrix4
   return -Q.topLeftCorner<3, 3>().ldlt().solve(Q.block<3, 1>(0, 3));
 }
 
+// The pencil of one segment as the solver uses it: A(t), B(t) in scaled coordinates y = S^{-1} x
+// (origin between the centres at t = 0, unit ~ the largest radius), balanced, and F(u, t)
+// normalised to largest coefficient 1.
+struct SegmentPencil {
+  PolynomialMatrix4 A, B;
+  Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
+  BivariateBernstein F;
+};
+
+SegmentPencil segmentPencil(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEllipsoid& b,
+                            const MotionMatrix& mb, const Ellipsoid& a0, const Ellipsoid& b0, bool affine) {
+  SegmentPencil p;
+  const double L = std::max(a.body.radii().maxCoeff(), b.body.radii().maxCoeff());
+  p.S.topLeftCorner<3, 3>() *= L;
+  if (!affine) {
+    p.S.block<3, 1>(0, 3) = 0.5 * (a0.center() + b0.center());
+    p.A = scaledQuadric(a.body.quadricMatrix(), ma.inverseCoefficients(), p.S);
+    p.B = scaledQuadric(b.body.quadricMatrix(), mb.inverseCoefficients(), p.S);
+  } else {
+    // In a's body frame: a is constant, b's shape and centre are interpolated (thesis §5.2).
+    Eigen::Matrix3d Bs[2];
+    Eigen::Vector3d cs[2];
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Matrix4d Ta = ma.evaluate(k);
+      const Ellipsoid bk = worldEllipsoid(b.body, mb, k);
+      const Eigen::Matrix3d Lin = Ta.topLeftCorner<3, 3>().inverse();
+      const Eigen::Matrix3d Lb = Lin * bk.rotation() * bk.radii().asDiagonal();
+      cs[k] = Lin * (bk.center() - Ta.block<3, 1>(0, 3));
+      Bs[k] = (Lb * Lb.transpose()).inverse();
+    }
+    p.S.block<3, 1>(0, 3) = 0.5 * (a.body.center() + cs[0]);
+    p.A = scaledQuadric(a.body.quadricMatrix(), {Eigen::Matrix4d::Identity()}, p.S);
+    p.B = balanced(affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], p.S));
+  }
+  p.F = ccdFunction(p.A, p.B);
+  const double m = p.F.coefficients().cwiseAbs().maxCoeff();
+  if (m > 0.0 && std::isfinite(m)) p.F = BivariateBernstein(p.F.coefficients() / m);
+  return p;
+}
+
 // One segment: both motions are single rational pieces on the local [0, 1]; t_max local.
 EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEllipsoid& b,
                                 const MotionMatrix& mb, double tmax, const CcdOptions& opt) {
@@ -647,36 +687,11 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
     }
   }
 
-  // Scaled coordinates y = S^{-1} x: origin between the centres at t = 0, unit ~ the largest radius.
-  const double L = std::max(a.body.radii().maxCoeff(), b.body.radii().maxCoeff());
-  Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
-  S.topLeftCorner<3, 3>() *= L;
-  PolynomialMatrix4 A, B;
-  if (!affine) {
-    S.block<3, 1>(0, 3) = 0.5 * (a0.center() + b0.center());
-    A = scaledQuadric(a.body.quadricMatrix(), ma.inverseCoefficients(), S);
-    B = scaledQuadric(b.body.quadricMatrix(), mb.inverseCoefficients(), S);
-  } else {
-    // In a's body frame: a is constant, b's shape and centre are interpolated (thesis §5.2).
-    Eigen::Matrix3d Bs[2];
-    Eigen::Vector3d cs[2];
-    for (int k = 0; k < 2; ++k) {
-      const Eigen::Matrix4d Ta = ma.evaluate(k);
-      const Ellipsoid bk = worldEllipsoid(b.body, mb, k);
-      const Eigen::Matrix3d Lin = Ta.topLeftCorner<3, 3>().inverse();
-      const Eigen::Matrix3d Lb = Lin * bk.rotation() * bk.radii().asDiagonal();
-      cs[k] = Lin * (bk.center() - Ta.block<3, 1>(0, 3));
-      Bs[k] = (Lb * Lb.transpose()).inverse();
-    }
-    S.block<3, 1>(0, 3) = 0.5 * (a.body.center() + cs[0]);
-    A = scaledQuadric(a.body.quadricMatrix(), {Eigen::Matrix4d::Identity()}, S);
-    B = balanced(affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], S));
-  }
-  BivariateBernstein F = ccdFunction(A, B);
-  {
-    const double m = F.coefficients().cwiseAbs().maxCoeff();
-    if (m > 0.0 && std::isfinite(m)) F = BivariateBernstein(F.coefficients() / m);
-  }
+  const SegmentPencil pencil = segmentPencil(a, ma, b, mb, a0, b0, affine);
+  const PolynomialMatrix4& A = pencil.A;
+  const PolynomialMatrix4& B = pencil.B;
+  const Eigen::Matrix4d& S = pencil.S;
+  const BivariateBernstein& F = pencil.F;
   r.degree_t = F.degreeT();
 
   IntervalSolver solver(F, &r);
@@ -782,6 +797,17 @@ std::optional<EllipsoidCcdResult> movingSpheres(const MovingEllipsoid& a, const 
   return r;
 }
 
+// The union of both break sequences, clipped to [0, t_max].
+std::vector<double> segmentBreaks(const MovingEllipsoid& a, const MovingEllipsoid& b, double tmax) {
+  std::vector<double> breaks = a.motion.breaks();
+  breaks.insert(breaks.end(), b.motion.breaks().begin(), b.motion.breaks().end());
+  breaks.push_back(tmax);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double x) { return x > tmax; }), breaks.end());
+  return breaks;
+}
+
 }  // namespace
 
 EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const MovingEllipsoid& b,
@@ -810,14 +836,7 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
   if (single && options.t_max == 1.0) {  // the common case: no segments, no copies
     return solveSegment(a, a.motion.pieces().front(), b, b.motion.pieces().front(), 1.0, options);
   }
-  // The union of both break sequences, clipped to [0, t_max].
-  std::vector<double> breaks = a.motion.breaks();
-  breaks.insert(breaks.end(), b.motion.breaks().begin(), b.motion.breaks().end());
-  breaks.push_back(options.t_max);
-  std::sort(breaks.begin(), breaks.end());
-  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
-  breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double x) { return x > options.t_max; }),
-               breaks.end());
+  const std::vector<double> breaks = segmentBreaks(a, b, options.t_max);
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const double s0 = breaks[k], s1 = breaks[k + 1], w = s1 - s0;
     CcdOptions local = options;
@@ -857,6 +876,22 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
     }
   }
   return total;
+}
+
+std::vector<CcdFunctionSegment> ccdFunctionSegments(const MovingEllipsoid& a, const MovingEllipsoid& b,
+                                                    CcdInterpolation interpolation) {
+  const bool affine = interpolation == CcdInterpolation::Affine;
+  const std::vector<double> breaks = segmentBreaks(a, b, 1.0);
+  std::vector<CcdFunctionSegment> segments;
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double s0 = breaks[k], s1 = breaks[k + 1];
+    const bool whole = s0 == 0.0 && s1 == 1.0;
+    const MotionMatrix ma = whole ? a.motion.pieces().front() : a.motion.restricted(s0, s1);
+    const MotionMatrix mb = whole ? b.motion.pieces().front() : b.motion.restricted(s0, s1);
+    const Ellipsoid a0 = worldEllipsoid(a.body, ma, 0.0), b0 = worldEllipsoid(b.body, mb, 0.0);
+    segments.push_back({s0, s1, segmentPencil(a, ma, b, mb, a0, b0, affine).F});
+  }
+  return segments;
 }
 
 }  // namespace fcl_quadric
