@@ -614,6 +614,16 @@ void drawCcdFunction(cairo_t* cr, const CcdFunctionPlot& plot, const std::string
 constexpr int kDiscWidth = 1040, kDiscHeight = 620;
 constexpr double kDiscX = 104, kDiscY = 84, kDiscW = 620, kDiscH = 440;
 
+/// "10" with a superscript exponent for v = +-10^k ("−" for the sign).
+std::string powerOfTen(double v) {
+  static const char* const kSuperscript[] = {"⁰", "¹", "²", "³", "⁴",
+                                             "⁵", "⁶", "⁷", "⁸", "⁹"};
+  const long k = std::lround(std::log10(std::fabs(v)));
+  std::string exponent;
+  for (const char c : std::to_string(std::labs(k))) exponent += kSuperscript[c - '0'];
+  return std::string(v < 0.0 ? "−" : "") + "10" + (k < 0 ? "⁻" : "") + exponent;
+}
+
 /// The y scale of the discriminant plot: linear, or symmetric-log when |Delta| spans many orders.
 struct YScale {
   bool symlog = false;
@@ -643,7 +653,8 @@ void drawDiscriminant(cairo_t* cr, const DiscriminantPlot& plot, const std::stri
     }
     std::sort(mags.begin(), mags.end());
     // The smallest sampled magnitude sets the linear zone, so that sign changes stay visible.
-    const double low = mags.empty() ? vmax : std::max(mags.front(), vmax * 1e-280);
+    // Floor: 32 decades below the maximum (below that Delta is rounding noise of its coefficients).
+    const double low = mags.empty() ? vmax : std::max(mags.front(), vmax * 1e-32);
     if (vmax > 1e3 * low) {
       scale.symlog = true;
       scale.threshold = std::pow(10.0, std::floor(std::log10(low)));
@@ -690,11 +701,12 @@ void drawDiscriminant(cairo_t* cr, const DiscriminantPlot& plot, const std::stri
     const double step = niceStep((scale.hi - scale.lo) / 8.0);
     for (double v = std::ceil(scale.lo / step) * step; v <= scale.hi; v += step) ticks.push_back(v);
   }
-  // Symlog: keep every other decade when crowded.
-  std::sort(ticks.begin(), ticks.end());
-  std::vector<double> shown;
+  // The zero line always; others (smallest magnitude first) only where they do not crowd it.
+  std::sort(ticks.begin(), ticks.end(), [](double a, double b) { return std::fabs(a) < std::fabs(b); });
+  std::vector<double> shown{0.0};
   for (double v : ticks) {
-    if (shown.empty() || std::fabs(py(v) - py(shown.back())) >= 18.0) shown.push_back(v);
+    const bool room = std::all_of(shown.begin(), shown.end(), [&](double w) { return std::fabs(py(v) - py(w)) >= 18.0; });
+    if (room) shown.push_back(v);
   }
   for (double v : shown) {
     const double y = std::round(py(v)) + 0.5;
@@ -703,15 +715,7 @@ void drawDiscriminant(cairo_t* cr, const DiscriminantPlot& plot, const std::stri
     cairo_set_line_width(cr, zero ? 1.3 : 1.0);
     line(cr, x0, y, x0 + W, y);
     setColour(cr, kMuted);
-    char label[32];
-    if (zero) {
-      std::snprintf(label, sizeof label, "0");
-    } else if (scale.symlog || std::fabs(v) < 1e-3 || std::fabs(v) >= 1e4) {
-      std::snprintf(label, sizeof label, "%.0e", v);
-    } else {
-      std::snprintf(label, sizeof label, "%g", std::fabs(v) < 1e-12 ? 0.0 : v);
-    }
-    text(cr, label, x0 - 8, y + 4, 1.0);
+    text(cr, zero ? std::string("0") : scale.symlog ? powerOfTen(v) : formatNumber(v), x0 - 8, y + 4, 1.0);
   }
   for (int k = 0; k <= 10; ++k) {
     const double x = std::round(px(0.1 * k)) + 0.5;
@@ -731,15 +735,7 @@ void drawDiscriminant(cairo_t* cr, const DiscriminantPlot& plot, const std::stri
     cairo_line_to(cr, px(static_cast<double>(k) / kSamples), py(values[static_cast<std::size_t>(k)]));
   }
   cairo_stroke(cr);
-  // Roots of Delta on the zero line; contacts in red with a dashed vertical.
-  for (double t : plot.roots) {
-    cairo_arc(cr, px(t), py(0.0), 4.0, 0.0, 2.0 * M_PI);
-    cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_fill_preserve(cr);
-    setColour(cr, kZeroSet);
-    cairo_set_line_width(cr, 1.6);
-    cairo_stroke(cr);
-  }
+  // Contacts in red with a dashed vertical; the roots of Delta as rings on the zero line.
   const double dash[] = {6.0, 4.0};
   for (const EllipseContact& c : plot.result.contacts) {
     cairo_set_dash(cr, dash, 2, 0.0);
@@ -748,6 +744,13 @@ void drawDiscriminant(cairo_t* cr, const DiscriminantPlot& plot, const std::stri
     line(cr, px(c.t), y0, px(c.t), y0 + H);
     cairo_set_dash(cr, nullptr, 0, 0.0);
     dot(cr, px(c.t), py(plot.delta.evaluate(c.t)), 5.0, kContact);
+  }
+  for (double t : plot.roots) {
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, px(t), py(0.0), 8.0, 0.0, 2.0 * M_PI);
+    setColour(cr, kZeroSet);
+    cairo_set_line_width(cr, 1.6);
+    cairo_stroke(cr);
   }
   cairo_restore(cr);
   setColour(cr, kFrame);
@@ -772,7 +775,7 @@ void drawDiscriminant(cairo_t* cr, const DiscriminantPlot& plot, const std::stri
   if (scale.symlog) {
     setFont(cr, 11);
     setColour(cr, kMuted);
-    text(cr, "log\u2081\u2080 beyond \u00b1" + formatNumber(scale.threshold) + ", linear inside", 0, 15, 0.5);
+    text(cr, "log\u2081\u2080 beyond \u00b1" + powerOfTen(scale.threshold) + ", linear inside", 0, 15, 0.5);
   }
   cairo_restore(cr);
 
@@ -786,9 +789,7 @@ void drawDiscriminant(cairo_t* cr, const DiscriminantPlot& plot, const std::stri
   setFont(cr, 12);
   y = legendItem(cr, lx, y, "\u0394(t), discriminant of f(\u03bb; t)", stroke(cr, kZeroSet, 2.0, false));
   y = legendItem(cr, lx, y, "real root of \u0394", [&](double x, double ym) {
-    cairo_arc(cr, x + 11, ym, 4.0, 0.0, 2.0 * M_PI);
-    cairo_set_source_rgb(cr, 1, 1, 1);
-    cairo_fill_preserve(cr);
+    cairo_arc(cr, x + 11, ym, 7.0, 0.0, 2.0 * M_PI);
     setColour(cr, kZeroSet);
     cairo_set_line_width(cr, 1.6);
     cairo_stroke(cr);
@@ -896,7 +897,10 @@ void drawTimeline(cairo_t* cr, const std::vector<TimelineRow>& rows, const std::
       cairo_close_path(cr);
       setColour(cr, kText);
       cairo_fill(cr);
-      const std::string label = "t = " + fixed(*row.first_contact, 3) + (row.near_tangent ? " (near-tangent)" : "");
+      const bool touch_only = std::all_of(row.intervals.begin(), row.intervals.end(),
+                                          [](const std::pair<double, double>& iv) { return iv.first == iv.second; });
+      const std::string label = "t = " + fixed(*row.first_contact, 3) + (touch_only ? " (touch)" : "") +
+                                (row.near_tangent ? " (near-tangent)" : "");
       setColour(cr, kMuted);
       text(cr, label, x0 + W + 12, yc + 4);
     } else {
