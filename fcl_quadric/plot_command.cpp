@@ -366,6 +366,15 @@ double paragraph(cairo_t* cr, const std::string& s, double x, double y, double w
   return y;
 }
 
+/// The heading "Legend" at baseline y; sets the font of the items and returns their first baseline.
+double legendHeading(cairo_t* cr, double x, double y) {
+  setFont(cr, 13, true);
+  setColour(cr, kText);
+  text(cr, "Legend", x, y);
+  setFont(cr, 12);
+  return y + 22;
+}
+
 /// Legend entry: a symbol drawn by `symbol(x, y_mid)` and a label; returns the next baseline.
 template <class Symbol>
 double legendItem(cairo_t* cr, double x, double y, const std::string& label, Symbol symbol) {
@@ -397,6 +406,34 @@ auto stroke(cairo_t* cr, const Rgb& c, double width, bool dashed) {
     line(cr, x, y, x + 22, y);
     cairo_set_dash(cr, nullptr, 0, 0.0);
   };
+}
+
+/// The right-hand column under the legend: explanatory notes, then the solver's result (first
+/// contact, collision intervals) and a footer line.
+void notesAndResult(cairo_t* cr, double x, double y, double width, const std::vector<std::string>& notes,
+                    const std::optional<double>& first_contact, const std::vector<std::pair<double, double>>& intervals,
+                    const std::string& footer) {
+  setFont(cr, 11.5);
+  setColour(cr, kMuted);
+  for (const std::string& note : notes) y = paragraph(cr, note, x, y, width, 16) + 4;
+  y += 10;
+  setFont(cr, 13, true);
+  setColour(cr, kText);
+  text(cr, "Result", x, y);
+  y += 20;
+  setFont(cr, 12);
+  text(cr, first_contact ? "first contact t = " + fixed(*first_contact) : "no contact in [0, 1]", x, y);
+  y += 18;
+  if (!intervals.empty()) {
+    text(cr, "collision intervals:", x, y);
+    y += 18;
+    for (std::size_t k = 0; k < intervals.size() && k < 8; ++k) {
+      text(cr, "  " + interval(intervals[k].first, intervals[k].second), x, y);
+      y += 17;
+    }
+  }
+  setColour(cr, kMuted);
+  text(cr, footer, x, y + 4);
 }
 
 /// Labels at the wanted y positions, moved apart to at least `gap` pixels (order kept).
@@ -560,12 +597,7 @@ void drawCcdFunction(cairo_t* cr, const CcdFunctionPlot& plot, const std::string
 
   // Legend and reading notes on the right.
   const double lx = sx + sw + 100, width = kFnWidth - lx - 20;
-  double y = y0 + 4;
-  setFont(cr, 13, true);
-  setColour(cr, kText);
-  text(cr, "Legend", lx, y);
-  y += 22;
-  setFont(cr, 12);
+  double y = legendHeading(cr, lx, y0 + 4);
   y = legendItem(cr, lx, y, "F(u, t) > 0", swatch(cr, kPositive));
   y = legendItem(cr, lx, y, "F(u, t) < 0", swatch(cr, kNegative));
   y = legendItem(cr, lx, y, "zero set F = 0", stroke(cr, kZeroSet, 2.2, false));
@@ -577,36 +609,17 @@ void drawCcdFunction(cairo_t* cr, const CcdFunctionPlot& plot, const std::string
   });
   if (plot.segments.size() > 1) y = legendItem(cr, lx, y, "motion piece break", stroke(cr, kMuted, 1.2, true));
   y += 10;
-  setFont(cr, 11.5);
-  setColour(cr, kMuted);
-  y = paragraph(cr,
-                "A line t = const meets the zero set twice while the ellipsoids are separate, touches it "
-                "at a contact and misses it while they overlap (thesis Theorem 5.1).",
-                lx, y, width, 16);
+  std::vector<std::string> notes{
+      "A line t = const meets the zero set twice while the ellipsoids are separate, touches it at a contact and "
+      "misses it while they overlap (thesis Theorem 5.1)."};
   if (plot.segments.size() > 1) {
-    y = paragraph(cr, "Each motion piece has its own pencil scaling, so the u position jumps at a break.", lx, y + 4,
-                  width, 16);
+    notes.push_back("Each motion piece has its own pencil scaling, so the u position jumps at a break.");
   }
-  y += 14;
-  setFont(cr, 13, true);
-  setColour(cr, kText);
-  text(cr, "Result", lx, y);
-  y += 20;
-  setFont(cr, 12);
   const EllipsoidCcdResult& r = plot.result;
-  text(cr, r.first_contact_time ? "first contact t = " + fixed(*r.first_contact_time) : "no contact in [0, 1]", lx, y);
-  y += 18;
-  if (!r.collision_intervals.empty()) {
-    text(cr, "collision intervals:", lx, y);
-    y += 18;
-    for (std::size_t k = 0; k < r.collision_intervals.size() && k < 8; ++k) {
-      text(cr, "  " + interval(r.collision_intervals[k].begin, r.collision_intervals[k].end), lx, y);
-      y += 17;
-    }
-  }
-  setColour(cr, kMuted);
-  text(cr, "degree of F in t: " + std::to_string(r.degree_t > 0 ? r.degree_t : plot.segments.front().F.degreeT()), lx,
-       y + 4);
+  std::vector<std::pair<double, double>> intervals;
+  for (const CcdInterval& c : r.collision_intervals) intervals.emplace_back(c.begin, c.end);
+  notesAndResult(cr, lx, y + 10, width, notes, r.first_contact_time, intervals,
+                 "degree of F in t: " + std::to_string(r.degree_t > 0 ? r.degree_t : plot.segments.front().F.degreeT()));
 }
 
 // --- discriminant ----------------------------------------------------------------------------------
@@ -781,12 +794,7 @@ void drawDiscriminant(cairo_t* cr, const DiscriminantPlot& plot, const std::stri
 
   // Legend.
   const double lx = x0 + W + 30, width = kDiscWidth - lx - 20;
-  double y = y0 + 4;
-  setFont(cr, 13, true);
-  setColour(cr, kText);
-  text(cr, "Legend", lx, y);
-  y += 22;
-  setFont(cr, 12);
+  double y = legendHeading(cr, lx, y0 + 4);
   y = legendItem(cr, lx, y, "\u0394(t), discriminant of f(\u03bb; t)", stroke(cr, kZeroSet, 2.0, false));
   y = legendItem(cr, lx, y, "real root of \u0394", [&](double x, double ym) {
     cairo_arc(cr, x + 11, ym, 7.0, 0.0, 2.0 * M_PI);
@@ -800,34 +808,13 @@ void drawDiscriminant(cairo_t* cr, const DiscriminantPlot& plot, const std::stri
     setColour(cr, kCollision, 0.25);
     cairo_fill(cr);
   });
-  y += 8;
-  setFont(cr, 11.5);
-  setColour(cr, kMuted);
-  y = paragraph(cr,
-                "The contact state can change only at a root of \u0394 (thesis Theorem 2.9); CD-DISC "
-                "checks each root and each extremum with the static test.",
-                lx, y, width, 16);
-  y += 14;
-  setFont(cr, 13, true);
-  setColour(cr, kText);
-  text(cr, "Result", lx, y);
-  y += 20;
-  setFont(cr, 12);
   const EllipseCcdResult& r = plot.result;
-  text(cr, r.first_contact ? "first contact t = " + fixed(*r.first_contact) : "no contact in [0, 1]", lx, y);
-  y += 18;
-  if (!r.collision_intervals.empty()) {
-    text(cr, "collision intervals:", lx, y);
-    y += 18;
-    for (std::size_t k = 0; k < r.collision_intervals.size() && k < 8; ++k) {
-      text(cr, "  " + interval(r.collision_intervals[k].first, r.collision_intervals[k].second), lx, y);
-      y += 17;
-    }
-  }
-  setColour(cr, kMuted);
-  text(cr, "degree of \u0394: " + std::to_string(r.discriminant_degree) + ", real roots in [0, 1]: " +
-               std::to_string(plot.roots.size()),
-       lx, y + 4);
+  notesAndResult(cr, lx, y + 8, width,
+                 {"The contact state can change only at a root of \u0394 (thesis Theorem 2.9); CD-DISC checks each root "
+                  "and each extremum with the static test."},
+                 r.first_contact, r.collision_intervals,
+                 "degree of \u0394: " + std::to_string(r.discriminant_degree) +
+                     ", real roots in [0, 1]: " + std::to_string(plot.roots.size()));
 }
 
 // --- timeline --------------------------------------------------------------------------------------

@@ -4,6 +4,7 @@
 // for SVG, Cairo's PNG reader for PNG).
 
 #include <cairo.h>
+#include <gtest/gtest.h>
 
 #include <array>
 #include <cstdint>
@@ -136,6 +137,20 @@ inline double inkFraction(cairo_surface_t* image) {
     }
   }
   return static_cast<double>(ink) / (static_cast<double>(w) * h);
+}
+
+/// Runs the CLI with bad arguments and expects exit status 2, nothing on stdout and exactly one
+/// error line on stderr (containing `named` when given).
+inline void expectBadInput(const std::vector<std::string>& args, const std::string& named = "") {
+  const RunResult r = runCli(args);
+  std::string joined;
+  for (const auto& a : args) joined += a + " ";
+  EXPECT_EQ(r.status, kExitBadInput) << joined;
+  EXPECT_EQ(r.out, "") << joined;
+  ASSERT_FALSE(r.err.empty()) << joined;
+  EXPECT_EQ(r.err.rfind("fcl_quadric: error: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+  EXPECT_NE(r.err.find(named), std::string::npos) << "should name " << named << ": " << r.err;
 }
 
 }  // namespace test

@@ -234,17 +234,7 @@ TEST(Plot, BadInputExitsWithStatusTwoAndWritesNothing) {
       {{"plot", "histogram", ccd, "-o", png}, "histogram"},                           // unknown kind
       {{"plot", "timeline", (dir / "missing.json").string(), "-o", png}, "missing.json"},
   };
-  for (const auto& [args, named] : cases) {
-    const RunResult r = runCli(args);
-    std::string joined;
-    for (const auto& a : args) joined += a + " ";
-    EXPECT_EQ(r.status, kExitBadInput) << joined;
-    EXPECT_EQ(r.out, "") << joined;
-    ASSERT_FALSE(r.err.empty()) << joined;
-    EXPECT_EQ(r.err.rfind("fcl_quadric: error: ", 0), 0u) << r.err;
-    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
-    EXPECT_NE(r.err.find(named), std::string::npos) << "should name " << named << ": " << r.err;
-  }
+  for (const auto& [args, named] : cases) expectBadInput(args, named);
   EXPECT_FALSE(fs::exists(png));
   EXPECT_FALSE(fs::exists(dir / "out.jpg"));
 }

@@ -155,16 +155,7 @@ TEST(Render, BadInputExitsWithStatusTwoAndWritesNothing) {
       {"render", good},                                          // no output
       {"render", good, "-o", (dir / "no" / "such" / "dir.png").string()},  // unwritable
   };
-  for (const auto& args : cases) {
-    const RunResult r = runCli(args);
-    std::string joined;
-    for (const auto& a : args) joined += a + " ";
-    EXPECT_EQ(r.status, kExitBadInput) << joined;
-    EXPECT_EQ(r.out, "") << joined;
-    ASSERT_FALSE(r.err.empty()) << joined;
-    EXPECT_EQ(r.err.rfind("fcl_quadric: error: ", 0), 0u) << r.err;
-    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
-  }
+  for (const auto& args : cases) expectBadInput(args);
   EXPECT_FALSE(fs::exists(png));
   EXPECT_FALSE(fs::exists(dir / "out.jpg"));
 }
