@@ -1,14 +1,13 @@
 #include "fcl_quadric/ccd_command.h"
 
-#include "fcl_quadric/continuous/ellipse_ccd.h"
-#include "fcl_quadric/continuous/ellipsoid_ccd.h"
-
 namespace fcl_quadric {
 namespace cli {
 
 namespace {
 
 nlohmann::ordered_json toJson(const Eigen::Vector3d& v) { return nlohmann::ordered_json::array({v[0], v[1], v[2]}); }
+
+}  // namespace
 
 MovingEllipsoid movingEllipsoid(const SceneObject& object, std::size_t index) {
   if (!isEllipsoidal(object.shape)) {
@@ -21,7 +20,9 @@ MovingEllipsoid movingEllipsoid(const SceneObject& object, std::size_t index) {
   return MovingEllipsoid{body, PiecewiseMotion(MotionMatrix::constant(object.pose.linear(), object.pose.translation()))};
 }
 
-}  // namespace
+MovingEllipse2 movingEllipse2(const SceneObject& object) {
+  return MovingEllipse2(object.shape.dimensions[0], object.shape.dimensions[1], object.motion2);
+}
 
 namespace {
 
@@ -31,8 +32,7 @@ nlohmann::ordered_json ccdScene2(const Scene& scene) {
   for (const auto& [i, j] : scene.pairs) {
     const SceneObject& a = scene.objects.at(i);
     const SceneObject& b = scene.objects.at(j);
-    const MovingEllipse2 ea(a.shape.dimensions[0], a.shape.dimensions[1], a.motion2);
-    const MovingEllipse2 eb(b.shape.dimensions[0], b.shape.dimensions[1], b.motion2);
+    const MovingEllipse2 ea = movingEllipse2(a), eb = movingEllipse2(b);
     const EllipseCcdResult r = collideMovingEllipses(ea, eb, query);
     nlohmann::ordered_json entry;
     entry["a"] = a.name;

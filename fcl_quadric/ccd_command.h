@@ -8,10 +8,19 @@
 
 #include <nlohmann/json.hpp>
 
+#include "fcl_quadric/continuous/ellipse_ccd.h"
+#include "fcl_quadric/continuous/ellipsoid_ccd.h"
 #include "fcl_quadric/scene.h"
 
 namespace fcl_quadric {
 namespace cli {
+
+/// The moving ellipsoid of a 3D scene object (its motion, or its pose held fixed).
+/// \throws SceneError ("/objects/<index>/shape") if the object is not an ellipsoid or sphere.
+MovingEllipsoid movingEllipsoid(const SceneObject& object, std::size_t index);
+
+/// The moving ellipse of a planar scene object (its motion2). No failure mode for parsed scenes.
+MovingEllipse2 movingEllipse2(const SceneObject& object);
 
 /// The JSON document printed by `ccd`:
 /// {"pairs":[{"a","b","collide","first_contact_time","contact_point","overlap_intervals",

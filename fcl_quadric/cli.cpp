@@ -11,6 +11,7 @@
 #include "fcl_quadric/ccd_command.h"
 #include "fcl_quadric/check_command.h"
 #include "fcl_quadric/demo_command.h"
+#include "fcl_quadric/plot_command.h"
 #include "fcl_quadric/render_command.h"
 #include "fcl_quadric/scene.h"
 #include "fcl_quadric/version.h"
@@ -73,6 +74,18 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
   render->add_option("--time", render_time, "For scenes with motions: draw the poses at this time in [0, 1]")
       ->capture_default_str();
 
+  std::string plot_kind, plot_scene_path, plot_pair, plot_output;
+  CLI::App* plot = app.add_subcommand(
+      "plot", "Plots that explain the continuous-collision algorithms, to SVG or PNG: ccd-function (zero set "
+              "of the CCD function F(u, t) of a moving ellipsoid pair, contact instants marked), discriminant "
+              "(Delta(t) of a moving ellipse pair of a planar scene), timeline (overlap intervals of every moving pair).");
+  plot->add_option("KIND", plot_kind, "ccd-function, discriminant or timeline")
+      ->required()
+      ->check(CLI::IsMember({"ccd-function", "discriminant", "timeline"}));
+  plot->add_option("SCENE", plot_scene_path, "Scene file (JSON with motions; see examples/README.md)")->required();
+  plot->add_option("--pair", plot_pair, "The pair I,J to plot (object indices from 0, or names); ccd-function and discriminant");
+  plot->add_option("-o,--output", plot_output, "Picture to write: a .svg or .png file")->required();
+
   DemoOptions demo_options;
   CLI::App* demo = app.add_subcommand(
       "demo", "Simulate spinning ellipsoids and compare classification with and without "
@@ -121,9 +134,15 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
       demo_options.seed = *parseSeed(seed_text);
       const DemoSummary summary = simulateDemo(demo_options);
       printDemoSummary(summary, result);
-      if (!demo_pictures.empty()) result << "  pictures: " << writeDemoPictures(summary, demo_pictures) << "\n";
+      if (!demo_pictures.empty()) {
+        result << "  pictures: " << writeDemoPictures(summary, demo_pictures) << "\n";
+        // The demo's frames have no motions over [0, 1]: the CCD plots show the built-in example scenes.
+        result << "  plots: " << writeDemoPlots(demo_pictures) << "\n";
+      }
     } else if (render->parsed()) {
       runRender(render_scene_path, render_output, render_time);
+    } else if (plot->parsed()) {
+      runPlot(plot_kind, plot_scene_path, plot_pair, plot_output);
     }
   } catch (const SceneError& e) {
     err << errorLine(e.what());

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -11,12 +10,12 @@
 #include <stdexcept>
 #include <utility>
 
-#include <cairo-svg.h>
 #include <cairo.h>
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
 #include "fcl_quadric/check_command.h"
+#include "fcl_quadric/picture.h"
 #include "fcl_quadric/geometry/separating_plane.h"
 
 namespace fcl_quadric {
@@ -32,15 +31,11 @@ constexpr int kGap = 64;       // between panels
 constexpr int kTop = 96;       // title, subtitle and panel titles
 constexpr int kBottom = 96;    // tick labels of the u axis and the legend
 
-struct Rgb {
-  double r, g, b;
-};
 constexpr Rgb kCollideFill{0.90, 0.16, 0.14};
 constexpr Rgb kCollideLine{0.62, 0.05, 0.04};
 constexpr std::array<Rgb, 5> kPalette{{{0.20, 0.45, 0.78}, {0.10, 0.58, 0.55}, {0.46, 0.36, 0.72},
                                        {0.30, 0.56, 0.22}, {0.40, 0.45, 0.55}}};
 constexpr Rgb kPlaneColour{0.05, 0.50, 0.25};
-constexpr Rgb kText{0.12, 0.12, 0.14};
 
 /// An orthographic view: world axes u (right) and v (up).
 struct View {
@@ -66,22 +61,6 @@ struct Panel {
     cairo_clip(cr);
   }
 };
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-std::string formatNumber(double v) {
-  if (std::isfinite(v) && std::fabs(v) < 1e-12) v = 0.0;
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", v);
-  return buffer;
-}
 
 /// The nearest rotation to A (polar factor), for rigid motions evaluated in floating point.
 Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& A) {
@@ -261,41 +240,6 @@ std::optional<std::array<Eigen::Vector2d, 2>> traceLine(const Panel& panel, cons
   const Eigen::Vector2d a = mid - reach * dir, b = mid + reach * dir;
   return std::array<Eigen::Vector2d, 2>{Eigen::Vector2d(panel.px(a[0]), panel.py(a[1])),
                                         Eigen::Vector2d(panel.px(b[0]), panel.py(b[1]))};
-}
-
-/// A "nice" grid step (1, 2 or 5 times a power of ten) near `raw`.
-double niceStep(double raw) {
-  const double p = std::pow(10.0, std::floor(std::log10(raw)));
-  const double f = raw / p;
-  return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * p;
-}
-
-void setColour(cairo_t* cr, const Rgb& c, double alpha = 1.0) { cairo_set_source_rgba(cr, c.r, c.g, c.b, alpha); }
-
-void setFont(cairo_t* cr, double size, bool bold = false) {
-  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, size);
-}
-
-/// Draws text with its reference point at (x, y): align 0 left, 0.5 centre, 1 right; baseline y.
-void text(cairo_t* cr, const std::string& s, double x, double y, double align = 0.0) {
-  cairo_text_extents_t e;
-  cairo_text_extents(cr, s.c_str(), &e);
-  cairo_move_to(cr, x - align * e.x_advance, y);
-  cairo_show_text(cr, s.c_str());
-}
-
-/// Text with a white halo, for labels over the drawing.
-void haloText(cairo_t* cr, const std::string& s, double x, double y, const Rgb& colour) {
-  cairo_move_to(cr, x, y);
-  cairo_text_path(cr, s.c_str());
-  cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
-  cairo_set_line_width(cr, 3.0);
-  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  cairo_stroke(cr);
-  setColour(cr, colour);
-  cairo_move_to(cr, x, y);
-  cairo_show_text(cr, s.c_str());
 }
 
 struct PairDrawing {
@@ -695,39 +639,12 @@ Scene sceneAtTime(const Scene& scene, double t) {
 }
 
 void renderScene(const Scene& scene, const RenderOptions& options, const std::string& path) {
-  const std::string ext = lower(path);
-  const bool svg = endsWith(ext, ".svg"), png = endsWith(ext, ".png");
-  if (!svg && !png) throw SceneError("", "output file must end in .svg or .png: " + path);
   const ImageSize size = renderImageSize(scene.dimension);
-  cairo_surface_t* surface = svg ? cairo_svg_surface_create(path.c_str(), size.width, size.height)
-                                 : cairo_image_surface_create(CAIRO_FORMAT_ARGB32, size.width, size.height);
-  cairo_t* cr = cairo_create(surface);
-  cairo_status_t status = cairo_status(cr);
-  if (status == CAIRO_STATUS_SUCCESS) {
-    try {
-      draw(cr, scene, options);
-    } catch (...) {
-      cairo_destroy(cr);
-      cairo_surface_destroy(surface);
-      throw;
-    }
-    status = cairo_status(cr);
-  }
-  cairo_destroy(cr);
-  if (status == CAIRO_STATUS_SUCCESS && png) status = cairo_surface_write_to_png(surface, path.c_str());
-  cairo_surface_finish(surface);
-  if (status == CAIRO_STATUS_SUCCESS) status = cairo_surface_status(surface);
-  cairo_surface_destroy(surface);
-  if (status != CAIRO_STATUS_SUCCESS) {
-    throw SceneError("", "cannot write " + path + ": " + cairo_status_to_string(status));
-  }
+  writePicture(path, size.width, size.height, [&](cairo_t* cr) { draw(cr, scene, options); });
 }
 
 void runRender(const std::string& scene_path, const std::string& output, double time) {
-  const std::string ext = lower(output);
-  if (!endsWith(ext, ".svg") && !endsWith(ext, ".png")) {
-    throw SceneError("", "output file must end in .svg or .png: " + output);
-  }
+  requirePictureFile(output);
   if (!std::isfinite(time) || time < 0.0 || time > 1.0) {
     throw SceneError("", "--time must be a number in [0, 1], got " + formatNumber(time));
   }

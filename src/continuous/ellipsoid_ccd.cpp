@@ -713,6 +713,81 @@ Eigen::Vector3d pencilCentre(const PolynomialMatrix4& A, const PolynomialMatrix4
   return -Q.topLeftCorner<3, 3>().ldlt().solve(Q.block<3, 1>(0, 3));
 }
 
+// The pencil of one segment as the solver uses it: A(t), B(t) in scaled coordinates y = S^{-1} x
+// (origin between the centres ca0, cb0 at t = 0, unit ~ the largest radius), balanced, and F(u, t)
+// normalised to largest coefficient 1, with the error estimate E of F's coefficients (zero unless
+// the precision check ran). Empty when the affine interpolant's end states are not representable.
+struct SegmentPencil {
+  ScaledQuadric A, B;
+  Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
+  BivariateBernstein F;
+  Eigen::MatrixXd E;
+  bool precision_checked = false;
+};
+
+std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEllipsoid& b,
+                                           const MotionMatrix& mb, const Eigen::Vector3d& ca0, const Eigen::Vector3d& cb0,
+                                           bool affine, double condition) {
+  SegmentPencil p;
+  const double L = std::max(a.body.radii().maxCoeff(), b.body.radii().maxCoeff());
+  p.S.topLeftCorner<3, 3>() *= L;
+  if (!affine) {
+    p.S.block<3, 1>(0, 3) = 0.5 * (ca0 + cb0);
+    p.A = scaledQuadric(a.body.quadricMatrix(), ma.inverseCoefficients(), p.S);
+    p.B = scaledQuadric(b.body.quadricMatrix(), mb.inverseCoefficients(), p.S);
+    // Precision check (docs/algorithms.md section 8): when the motions' and shapes' conditioning
+    // puts the double rounding of F above the touching band, F is rebuilt in extended precision
+    // from N's extended coefficients and the difference widens every margin (finding 8: a shear
+    // of condition 6e7 was certified separate on rounding noise). Well-conditioned pairs (every
+    // rigid motion of moderate aspect ratio) skip it: the fixed relative band covers them.
+    if (condition > tolerance::kCcdCheckedCondition) {
+      CheckedCcdFunction checked = ccdFunctionChecked(
+          p.A.Q, p.B.Q, scaledQuadricExtended(a.body.quadricMatrix(), ma.inverseCoefficientsExtended(), p.S, p.A.scale),
+          scaledQuadricExtended(b.body.quadricMatrix(), mb.inverseCoefficientsExtended(), p.S, p.B.scale));
+      p.F = std::move(checked.F);
+      p.E = std::move(checked.error);
+      p.precision_checked = true;
+    }
+  } else {
+    // In a's body frame: a is constant, b's shape and centre are interpolated (thesis §5.2).
+    Eigen::Matrix3d Bs[2];
+    Eigen::Vector3d cs[2];
+    for (int k = 0; k < 2; ++k) {
+      const Eigen::Matrix4d Ta = ma.evaluate(k);
+      std::optional<Ellipsoid> bk;
+      try {
+        bk = worldEllipsoid(b.body, mb, k);
+      } catch (const std::invalid_argument&) {
+        return std::nullopt;  // b's end state is not representable: no interpolant
+      }
+      const Eigen::Matrix3d Lin = Ta.topLeftCorner<3, 3>().inverse();
+      const Eigen::Matrix3d Lb = Lin * bk->rotation() * bk->radii().asDiagonal();
+      cs[k] = Lin * (bk->center() - Ta.block<3, 1>(0, 3));
+      Bs[k] = (Lb * Lb.transpose()).inverse();
+    }
+    p.S.block<3, 1>(0, 3) = 0.5 * (a.body.center() + cs[0]);
+    p.A = scaledQuadric(a.body.quadricMatrix(), {Eigen::Matrix4d::Identity()}, p.S);
+    const PolynomialMatrix4 Bq = affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], p.S);
+    p.B = {balanced(Bq, balanceScale(Bq)), 1.0};
+  }
+  if (!p.precision_checked) {
+    p.F = ccdFunction(p.A.Q, p.B.Q);
+    p.E = Eigen::MatrixXd::Zero(p.F.coefficients().rows(), p.F.coefficients().cols());
+  }
+  const double m = p.F.coefficients().cwiseAbs().maxCoeff();
+  if (m > 0.0 && std::isfinite(m)) {
+    p.F = BivariateBernstein(p.F.coefficients() / m);
+    p.E /= m;
+  }
+  return p;
+}
+
+// World centre of a moving ellipsoid at local time 0 (no eigen-decomposition).
+Eigen::Vector3d centreAtStart(const MovingEllipsoid& e, const MotionMatrix& m) {
+  const Eigen::Matrix4d T = m.evaluate(0.0);
+  return T.topLeftCorner<3, 3>() * e.body.center() + T.block<3, 1>(0, 3);
+}
+
 // One segment: both motions are single rational pieces on the local [0, 1]; t_max local.
 EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEllipsoid& b,
                                 const MotionMatrix& mb, double tmax, const CcdOptions& opt) {
@@ -723,10 +798,7 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
     r.separation_intervals.push_back({0.0, tmax});
     return r;
   }
-  // World centres at t = 0 (defined for every valid motion, no eigen-decomposition).
-  const Eigen::Matrix4d Ta0 = ma.evaluate(0.0), Tb0 = mb.evaluate(0.0);
-  const Eigen::Vector3d ca0 = Ta0.topLeftCorner<3, 3>() * a.body.center() + Ta0.block<3, 1>(0, 3);
-  const Eigen::Vector3d cb0 = Tb0.topLeftCorner<3, 3>() * b.body.center() + Tb0.block<3, 1>(0, 3);
+  const Eigen::Vector3d ca0 = centreAtStart(a, ma), cb0 = centreAtStart(b, mb);
   // Beyond kCcdMaxCondition even the extended-precision F is rounding noise: conservative
   // fallback, colliding throughout and flagged unresolved (docs/algorithms.md section 8).
   const double condition = std::max(quadricCondition(a.body, ma), quadricCondition(b.body, mb));
@@ -774,66 +846,16 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
     }
   }
 
-  // Scaled coordinates y = S^{-1} x: origin between the centres at t = 0, unit ~ the largest radius.
-  const double L = std::max(a.body.radii().maxCoeff(), b.body.radii().maxCoeff());
-  Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
-  S.topLeftCorner<3, 3>() *= L;
-  ScaledQuadric A, B;
-  BivariateBernstein F;
-  Eigen::MatrixXd E;  // error estimate of F's coefficients (precision check only)
-  if (!affine) {
-    S.block<3, 1>(0, 3) = 0.5 * (ca0 + cb0);
-    A = scaledQuadric(a.body.quadricMatrix(), ma.inverseCoefficients(), S);
-    B = scaledQuadric(b.body.quadricMatrix(), mb.inverseCoefficients(), S);
-    // Precision check (docs/algorithms.md section 8): when the motions' and shapes' conditioning
-    // puts the double rounding of F above the touching band, F is rebuilt in extended precision
-    // from N's extended coefficients and the difference widens every margin (finding 8: a shear
-    // of condition 6e7 was certified separate on rounding noise). Well-conditioned pairs (every
-    // rigid motion of moderate aspect ratio) skip it: the fixed relative band covers them.
-    if (condition > tolerance::kCcdCheckedCondition) {
-      CheckedCcdFunction checked = ccdFunctionChecked(
-          A.Q, B.Q, scaledQuadricExtended(a.body.quadricMatrix(), ma.inverseCoefficientsExtended(), S, A.scale),
-          scaledQuadricExtended(b.body.quadricMatrix(), mb.inverseCoefficientsExtended(), S, B.scale));
-      F = std::move(checked.F);
-      E = std::move(checked.error);
-      r.precision_checked = true;
-    }
-  } else {
-    // In a's body frame: a is constant, b's shape and centre are interpolated (thesis §5.2).
-    Eigen::Matrix3d Bs[2];
-    Eigen::Vector3d cs[2];
-    for (int k = 0; k < 2; ++k) {
-      const Eigen::Matrix4d Ta = ma.evaluate(k);
-      std::optional<Ellipsoid> bk;
-      try {
-        bk = worldEllipsoid(b.body, mb, k);
-      } catch (const std::invalid_argument&) {
-        return conservative();  // b's end state is not representable: no interpolant
-      }
-      const Eigen::Matrix3d Lin = Ta.topLeftCorner<3, 3>().inverse();
-      const Eigen::Matrix3d Lb = Lin * bk->rotation() * bk->radii().asDiagonal();
-      cs[k] = Lin * (bk->center() - Ta.block<3, 1>(0, 3));
-      Bs[k] = (Lb * Lb.transpose()).inverse();
-    }
-    S.block<3, 1>(0, 3) = 0.5 * (a.body.center() + cs[0]);
-    A = scaledQuadric(a.body.quadricMatrix(), {Eigen::Matrix4d::Identity()}, S);
-    const PolynomialMatrix4 Bq = affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], S);
-    B = {balanced(Bq, balanceScale(Bq)), 1.0};
-  }
-  if (!r.precision_checked) {
-    F = ccdFunction(A.Q, B.Q);
-    E = Eigen::MatrixXd::Zero(F.coefficients().rows(), F.coefficients().cols());
-  }
-  {
-    const double m = F.coefficients().cwiseAbs().maxCoeff();
-    if (m > 0.0 && std::isfinite(m)) {
-      F = BivariateBernstein(F.coefficients() / m);
-      E /= m;
-    }
-  }
+  const std::optional<SegmentPencil> pencil = segmentPencil(a, ma, b, mb, ca0, cb0, affine, condition);
+  if (!pencil) return conservative();
+  const PolynomialMatrix4& A = pencil->A.Q;
+  const PolynomialMatrix4& B = pencil->B.Q;
+  const Eigen::Matrix4d& S = pencil->S;
+  const BivariateBernstein& F = pencil->F;
+  r.precision_checked = pencil->precision_checked;
   r.degree_t = F.degreeT();
 
-  IntervalSolver solver(F, E, &r);
+  IntervalSolver solver(F, pencil->E, &r);
   const State s0 = solver.state(0.0);
   double t_contact = 0.0;
   double u_contact = s0.u;
@@ -872,7 +894,7 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
     t_contact = *r.first_contact_time;
     u_contact = t_contact == 0.0 ? s0.u : solver.state(t_contact).u;
   }
-  Eigen::Vector3d x = pencilCentre(A.Q, B.Q, t_contact, u_contact);
+  Eigen::Vector3d x = pencilCentre(A, B, t_contact, u_contact);
   x = S.topLeftCorner<3, 3>() * x + S.block<3, 1>(0, 3);
   if (affine) {  // back from a's body frame to the world with a's motion
     const Eigen::Matrix4d Ta = ma.evaluate(t_contact);
@@ -936,6 +958,17 @@ std::optional<EllipsoidCcdResult> movingSpheres(const MovingEllipsoid& a, const 
   return r;
 }
 
+// The union of both break sequences, clipped to [0, t_max].
+std::vector<double> segmentBreaks(const MovingEllipsoid& a, const MovingEllipsoid& b, double tmax) {
+  std::vector<double> breaks = a.motion.breaks();
+  breaks.insert(breaks.end(), b.motion.breaks().begin(), b.motion.breaks().end());
+  breaks.push_back(tmax);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double x) { return x > tmax; }), breaks.end());
+  return breaks;
+}
+
 }  // namespace
 
 EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const MovingEllipsoid& b,
@@ -969,14 +1002,7 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
   if (single && options.t_max == 1.0) {  // the common case: no segments, no copies
     return solveSegment(a, a.motion.pieces().front(), b, b.motion.pieces().front(), 1.0, options);
   }
-  // The union of both break sequences, clipped to [0, t_max].
-  std::vector<double> breaks = a.motion.breaks();
-  breaks.insert(breaks.end(), b.motion.breaks().begin(), b.motion.breaks().end());
-  breaks.push_back(options.t_max);
-  std::sort(breaks.begin(), breaks.end());
-  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
-  breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double x) { return x > options.t_max; }),
-               breaks.end());
+  const std::vector<double> breaks = segmentBreaks(a, b, options.t_max);
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const double s0 = breaks[k], s1 = breaks[k + 1], w = s1 - s0;
     CcdOptions local = options;
@@ -1016,6 +1042,30 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
     }
   }
   return total;
+}
+
+std::vector<CcdFunctionSegment> ccdFunctionSegments(const MovingEllipsoid& a, const MovingEllipsoid& b,
+                                                    CcdInterpolation interpolation) {
+  const bool affine = interpolation == CcdInterpolation::Affine;
+  const std::vector<double> breaks = segmentBreaks(a, b, 1.0);
+  std::vector<CcdFunctionSegment> segments;
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double s0 = breaks[k], s1 = breaks[k + 1];
+    const bool whole = s0 == 0.0 && s1 == 1.0;
+    const MotionMatrix ma = whole ? a.motion.pieces().front() : a.motion.restricted(s0, s1);
+    const MotionMatrix mb = whole ? b.motion.pieces().front() : b.motion.restricted(s0, s1);
+    const double condition = std::max(quadricCondition(a.body, ma), quadricCondition(b.body, mb));
+    const std::optional<SegmentPencil> p =
+        segmentPencil(a, ma, b, mb, centreAtStart(a, ma), centreAtStart(b, mb), affine, condition);
+    if (!p) {
+      std::ostringstream os;
+      os << "ccdFunctionSegments: the affine interpolant of segment [" << s0 << ", " << s1
+         << "] is not representable (an end state's affine map is too ill-conditioned)";
+      throw std::invalid_argument(os.str());
+    }
+    segments.push_back({s0, s1, p->F});
+  }
+  return segments;
 }
 
 }  // namespace fcl_quadric

@@ -6,15 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <cstdint>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli/picture_check.h"
 #include "fcl_quadric/cli.h"
 #include "fcl_quadric/render_command.h"
 #include "fcl_quadric/scene.h"
@@ -24,96 +22,7 @@ namespace cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct RunResult {
-  int status;
-  std::string out;
-  std::string err;
-};
-
-RunResult runCli(const std::vector<std::string>& args) {
-  std::vector<const char*> argv{"fcl_quadric"};
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  const int status = run(static_cast<int>(argv.size()), argv.data(), out, err);
-  return {status, out.str(), err.str()};
-}
-
-/// A fresh empty directory for one test's outputs.
-fs::path scratchDir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("fcl_quadric_render_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// A minimal XML well-formedness check: a prolog "<?xml", then elements that nest and close
-/// properly (attribute values may contain '>'), comments / processing instructions / declarations
-/// skipped, exactly one root element, named `root`. Returns "" when well-formed, else the problem.
-std::string xmlProblem(const std::string& text, const std::string& root) {
-  if (text.rfind("<?xml", 0) != 0) return "does not start with <?xml";
-  std::vector<std::string> stack;
-  int roots = 0;
-  std::size_t i = 0;
-  while (true) {
-    const std::size_t lt = text.find('<', i);
-    if (lt == std::string::npos) break;
-    if (text.compare(lt, 4, "<!--") == 0) {
-      const std::size_t end = text.find("-->", lt + 4);
-      if (end == std::string::npos) return "unterminated comment";
-      i = end + 3;
-      continue;
-    }
-    if (text.compare(lt, 2, "<?") == 0 || text.compare(lt, 2, "<!") == 0) {
-      const std::size_t end = text.find('>', lt);
-      if (end == std::string::npos) return "unterminated declaration";
-      i = end + 1;
-      continue;
-    }
-    // A tag: find its end outside quoted attribute values.
-    std::size_t j = lt + 1;
-    char quote = 0;
-    for (; j < text.size(); ++j) {
-      const char c = text[j];
-      if (quote) {
-        if (c == quote) quote = 0;
-      } else if (c == '"' || c == '\'') {
-        quote = c;
-      } else if (c == '>') {
-        break;
-      } else if (c == '<') {
-        return "'<' inside a tag at offset " + std::to_string(j);
-      }
-    }
-    if (j >= text.size()) return "unterminated tag at offset " + std::to_string(lt);
-    const std::string tag = text.substr(lt + 1, j - lt - 1);
-    i = j + 1;
-    if (tag.empty()) return "empty tag";
-    if (tag[0] == '/') {
-      const std::string name = tag.substr(1, tag.find_first_of(" \t\r\n", 1) - 1);
-      if (stack.empty() || stack.back() != name) return "mismatched </" + name + ">";
-      stack.pop_back();
-      continue;
-    }
-    const std::string name = tag.substr(0, tag.find_first_of(" \t\r\n/"));
-    if (name.empty()) return "element without a name";
-    if (stack.empty()) {
-      if (++roots > 1) return "more than one root element";
-      if (name != root) return "root element is <" + name + ">";
-    }
-    if (tag.back() != '/') stack.push_back(name);
-  }
-  if (roots != 1) return "no root element";
-  if (!stack.empty()) return "unclosed <" + stack.back() + ">";
-  return "";
-}
+using namespace test;  // NOLINT: the picture helpers of cli/picture_check.h
 
 TEST(XmlCheck, AcceptsWellFormedAndRejectsBrokenDocuments) {
   EXPECT_EQ(xmlProblem("<?xml version=\"1.0\"?>\n<svg a=\"x>y\"><g><path d='M 0 0'/></g><!-- c --></svg>", "svg"), "");
@@ -123,32 +32,6 @@ TEST(XmlCheck, AcceptsWellFormedAndRejectsBrokenDocuments) {
   EXPECT_NE(xmlProblem("<?xml version=\"1.0\"?><svg><g></svg></g>", "svg"), "");     // crossed
   EXPECT_NE(xmlProblem("<?xml version=\"1.0\"?><svg", "svg"), "");                   // truncated
   EXPECT_NE(xmlProblem("<?xml version=\"1.0\"?><html></html>", "svg"), "");          // wrong root
-}
-
-/// The PNG read back by Cairo (owned; destroy with cairo_surface_destroy).
-cairo_surface_t* readPng(const fs::path& path) { return cairo_image_surface_create_from_png(path.c_str()); }
-
-/// The pixel (r, g, b) in 0..255 at (x, y) of an ARGB32/RGB24 image surface.
-std::array<int, 3> pixel(cairo_surface_t* image, int x, int y) {
-  cairo_surface_flush(image);
-  const unsigned char* data = cairo_image_surface_get_data(image);
-  const int stride = cairo_image_surface_get_stride(image);
-  std::uint32_t v;
-  std::memcpy(&v, data + y * stride + 4 * x, 4);  // native-endian 0xAARRGGBB
-  return {static_cast<int>((v >> 16) & 0xff), static_cast<int>((v >> 8) & 0xff), static_cast<int>(v & 0xff)};
-}
-
-/// Fraction of pixels that are not (nearly) white: a blank picture would be ~0.
-double inkFraction(cairo_surface_t* image) {
-  const int w = cairo_image_surface_get_width(image), h = cairo_image_surface_get_height(image);
-  long ink = 0;
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      const auto p = pixel(image, x, y);
-      ink += (p[0] < 235 || p[1] < 235 || p[2] < 235);
-    }
-  }
-  return static_cast<double>(ink) / (static_cast<double>(w) * h);
 }
 
 /// Checks an SVG output and a PNG output of a scene of the given dimension.
@@ -272,16 +155,7 @@ TEST(Render, BadInputExitsWithStatusTwoAndWritesNothing) {
       {"render", good},                                          // no output
       {"render", good, "-o", (dir / "no" / "such" / "dir.png").string()},  // unwritable
   };
-  for (const auto& args : cases) {
-    const RunResult r = runCli(args);
-    std::string joined;
-    for (const auto& a : args) joined += a + " ";
-    EXPECT_EQ(r.status, kExitBadInput) << joined;
-    EXPECT_EQ(r.out, "") << joined;
-    ASSERT_FALSE(r.err.empty()) << joined;
-    EXPECT_EQ(r.err.rfind("fcl_quadric: error: ", 0), 0u) << r.err;
-    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
-  }
+  for (const auto& args : cases) expectBadInput(args);
   EXPECT_FALSE(fs::exists(png));
   EXPECT_FALSE(fs::exists(dir / "out.jpg"));
 }

@@ -28,6 +28,7 @@
 
 #include <Eigen/Core>
 
+#include "fcl_quadric/algebra/bivariate_bernstein.h"
 #include "fcl_quadric/continuous/motion_matrix.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
 #include "fcl_quadric/tolerances.h"
@@ -115,6 +116,23 @@ struct EllipsoidCcdResult {
 /// never holds NaN.
 EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const MovingEllipsoid& b,
                                                const CcdOptions& options = CcdOptions());
+
+/// The CCD function of one segment [t_begin, t_end] of [0, 1] (a piece of both motions; one segment
+/// [0, 1] for single-piece motions) exactly as continuousCollideEllipsoids() builds and solves it:
+/// F(u, s) = det((u - 1) A(s) - u B(s)) on [0, 1]^2 in the segment's local time
+/// s = (t - t_begin) / (t_end - t_begin), with A and B in the solver's scaled, balanced coordinates
+/// and F normalised to largest |coefficient| 1. The u scale (lambda = (u - 1) / u up to the
+/// positive balancing factors) differs from one segment to the next.
+struct CcdFunctionSegment {
+  double t_begin = 0.0;
+  double t_end = 1.0;
+  BivariateBernstein F;
+};
+
+/// The CCD functions of the pair over [0, 1], one per segment (for plots and tests; the culls are
+/// not applied). \throws std::invalid_argument as continuousCollideEllipsoids().
+std::vector<CcdFunctionSegment> ccdFunctionSegments(const MovingEllipsoid& a, const MovingEllipsoid& b,
+                                                    CcdInterpolation interpolation = CcdInterpolation::Rigid);
 
 /// The world ellipsoid of a moving ellipsoid at time t (affine image of the body ellipsoid, thesis
 /// §5.1). \throws std::invalid_argument if t is not finite (t outside [0, 1] extrapolates).
