@@ -37,21 +37,10 @@
 #include "fcl_quadric/geometry/ellipsoid.h"
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
+#include "random_rotations.h"
 
 namespace fcl_quadric {
 namespace bench {
-
-inline Eigen::Matrix3d randomRotation(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  const double w = n(rng), x = n(rng), y = n(rng), z = n(rng);
-  return Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
-}
-
-inline Eigen::Vector3d randomUnitVector(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  const double x = n(rng), y = n(rng), z = n(rng);
-  return Eigen::Vector3d(x, y, z).normalized();
-}
 
 /// Radii log-uniform in [scale / aspect, scale].
 inline Eigen::Vector3d randomRadii(std::mt19937_64& rng, double scale, double aspect) {
