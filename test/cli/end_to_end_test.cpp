@@ -392,11 +392,15 @@ TEST_F(BenchEndToEnd, TinyWritesResultsForEveryExperimentAndPeer) {
       EXPECT_TRUE(std::isfinite(row.at("ratio").get<double>()) && row.at("ratio").get<double>() > 0.0) << row.dump();
       EXPECT_TRUE(row.at("wrong").is_null() || row.at("wrong").get<long>() >= 0) << row.dump();
       // fcl_quadric is the exact answer of every experiment but near_tangent (truth by construction).
-      if (row.at("peer") == "fcl_quadric" && experiments[i] != "near_tangent") EXPECT_EQ(row.at("wrong"), 0) << row.dump();
+      if (row.at("peer") == "fcl_quadric" && experiments[i] != "near_tangent") {
+        EXPECT_EQ(row.at("wrong"), 0) << row.dump();
+      }
     }
     EXPECT_EQ(peers.count("fcl_quadric"), 1u) << experiments[i];
     EXPECT_GE(peers.size(), 2u) << experiments[i];
-    if (experiments[i] != "broadphase" && experiments[i] != "octree") EXPECT_EQ(peers.count("bullet"), 1u) << experiments[i];
+    if (experiments[i] != "broadphase" && experiments[i] != "octree") {
+      EXPECT_EQ(peers.count("bullet"), 1u) << experiments[i];
+    }
     // The chart parses back as a PNG of nonzero size.
     const std::string png = (dir_ / "bench_tiny" / e.at("chart").get<std::string>()).string();
     cairo_surface_t* image = cairo_image_surface_create_from_png(png.c_str());
