@@ -47,7 +47,7 @@ Eigen::Isometry3d translated(const Eigen::Isometry3d& X0, const Eigen::Isometry3
 }  // namespace
 
 BenchExperiment runBoxingExperiment(BenchSize size, const BenchProgress& progress) {
-  const std::size_t frames = size == BenchSize::kTiny ? 5 : size == BenchSize::kSmall ? 50 : 1000;
+  const std::size_t frames = size == BenchSize::kTiny ? 5 : size == BenchSize::kSmall ? 300 : 1000;
   BenchExperiment e;
   e.name = "boxing";
   e.title = "Boxing (thesis Table 5): continuous collision of 2 x 20 ellipsoids, 400 cross pairs per frame";

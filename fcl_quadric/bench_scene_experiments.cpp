@@ -17,8 +17,8 @@ namespace fcl_quadric {
 namespace cli {
 
 BenchExperiment runBroadphaseExperiment(BenchSize size, const BenchProgress& progress) {
-  const std::size_t n = size == BenchSize::kTiny ? 50 : size == BenchSize::kSmall ? 1000 : 1000;
-  const int frames = size == BenchSize::kTiny ? 5 : size == BenchSize::kSmall ? 20 : 1000;
+  const std::size_t n = size == BenchSize::kTiny ? 50 : 1000;
+  const int frames = size == BenchSize::kTiny ? 5 : size == BenchSize::kSmall ? 300 : 1000;
   BenchExperiment e;
   e.name = "broadphase";
   char title[160];
@@ -61,7 +61,7 @@ BenchExperiment runBroadphaseExperiment(BenchSize size, const BenchProgress& pro
 }
 
 BenchExperiment runOcTreeExperiment(BenchSize size, const BenchProgress& progress) {
-  const std::size_t queries = size == BenchSize::kTiny ? 100 : size == BenchSize::kSmall ? 400 : 2000;
+  const std::size_t queries = size == BenchSize::kTiny ? 100 : size == BenchSize::kSmall ? 2000 : 10000;
   const double half = size == BenchSize::kTiny ? 3.0 : 8.0;
   BenchExperiment e;
   e.name = "octree";

@@ -110,7 +110,7 @@ void collideRows(const std::string& case_name, const PeerPairs& p, const std::ve
 // (1) Random pairs
 
 BenchExperiment runRandomPairsExperiment(BenchSize size, const BenchProgress& progress) {
-  const std::size_t n = size == BenchSize::kTiny ? 2000 : size == BenchSize::kSmall ? 20000 : 100000;
+  const std::size_t n = size == BenchSize::kTiny ? 2000 : size == BenchSize::kSmall ? 50000 : 100000;
   BenchExperiment e;
   e.name = "random";
   e.title = "Random ellipsoid pairs (ANCHORS generator, seed 42): static collide and signed distance";
@@ -170,7 +170,7 @@ BenchExperiment runRandomPairsExperiment(BenchSize size, const BenchProgress& pr
 // (2) Near-tangent pairs
 
 BenchExperiment runNearTangentExperiment(BenchSize size, const BenchProgress& progress) {
-  const std::size_t n = size == BenchSize::kTiny ? 100 : size == BenchSize::kSmall ? 1000 : 10000;
+  const std::size_t n = size == BenchSize::kTiny ? 100 : size == BenchSize::kSmall ? 5000 : 10000;
   const double gaps[] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8};
   BenchExperiment e;
   e.name = "near_tangent";
@@ -234,7 +234,7 @@ BenchExperiment runNearTangentExperiment(BenchSize size, const BenchProgress& pr
 
 BenchExperiment runSeparatingPlanesExperiment(BenchSize size, const BenchProgress& progress) {
   const int table1_frames = size == BenchSize::kTiny ? 1000 : bench::kTable1Frames;
-  const std::size_t table1_sequences = size == BenchSize::kFull ? 16 : 1;
+  const std::size_t table1_sequences = size == BenchSize::kFull ? 16 : size == BenchSize::kSmall ? 4 : 1;
   std::vector<int> tessellations = {488};
   if (size != BenchSize::kTiny) tessellations.push_back(1460);
   if (size == BenchSize::kFull) tessellations.insert(tessellations.end(), {4376, 13124});
