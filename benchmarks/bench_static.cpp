@@ -22,7 +22,6 @@
 // "Agreement".
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <initializer_list>
 #include <memory>
@@ -411,16 +410,6 @@ void printReport(const StaticReport& r) {
   printQuantiles("|d - L(n)| / |d| (overlapping)", c.objective_gap_overlapping);
   std::printf("  cached-plane benchmarks: %zu separated pairs primed\n", r.primed_planes);
   std::fflush(stdout);
-}
-
-/// printf into a std::string.
-__attribute__((format(printf, 1, 2))) std::string strprintf(const char* fmt, ...) {
-  char buf[512];
-  va_list args;
-  va_start(args, fmt);
-  std::vsnprintf(buf, sizeof buf, fmt, args);
-  va_end(args);
-  return buf;
 }
 
 /// "1e-09" -> "1e-9".

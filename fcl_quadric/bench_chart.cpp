@@ -8,6 +8,7 @@
 
 #include <cairo.h>
 
+#include "fcl_quadric/cairo_text.h"
 #include "fcl_quadric/scene.h"
 
 namespace fcl_quadric {
@@ -40,19 +41,6 @@ Rgb peerColour(const std::string& peer) {
 
 void setColour(cairo_t* cr, const Rgb& c) { cairo_set_source_rgb(cr, c.r, c.g, c.b); }
 
-void setFont(cairo_t* cr, double size, bool bold = false) {
-  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, size);
-}
-
-/// Text with its reference point at (x, y): align 0 left, 0.5 centre, 1 right; baseline y.
-void text(cairo_t* cr, const std::string& s, double x, double y, double align = 0.0) {
-  cairo_text_extents_t e;
-  cairo_text_extents(cr, s.c_str(), &e);
-  cairo_move_to(cr, x - align * e.x_advance, y);
-  cairo_show_text(cr, s.c_str());
-}
-
 std::string timeText(double ns) {
   char buf[32];
   if (ns >= 1e6) {
@@ -63,14 +51,6 @@ std::string timeText(double ns) {
     std::snprintf(buf, sizeof buf, "%.3g ns", ns);
   }
   return buf;
-}
-
-/// A step of 1, 2 or 5 times a power of ten giving about `ticks` ticks over [0, max].
-double niceStep(double max, int ticks) {
-  const double raw = max / ticks;
-  const double p = std::pow(10.0, std::floor(std::log10(raw)));
-  const double f = raw / p;
-  return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * p;
 }
 
 /// The value a bar shows.
@@ -129,7 +109,7 @@ void draw(cairo_t* cr, const BenchExperiment& e, double height) {
   if (log_scale) {
     for (int k = static_cast<int>(a0); k <= static_cast<int>(a1); ++k) ticks.emplace_back(std::pow(10.0, k), timeText(std::pow(10.0, k)));
   } else {
-    const double step = niceStep(a1, 6);
+    const double step = niceStep(a1 / 6);
     for (double v = 0.0; v <= a1 * (1 + 1e-9); v += step) {
       char buf[32];
       if (e.chart_wrong) {

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdarg>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -14,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "benchmarks/bench_support.h"
 #include "fcl_quadric/bench_chart.h"
 #include "fcl_quadric/scene.h"
 
@@ -58,15 +58,7 @@ void fillRatios(BenchExperiment* e) {
   }
 }
 
-std::string printfString(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
-std::string printfString(const char* fmt, ...) {
-  char buf[512];
-  va_list args;
-  va_start(args, fmt);
-  std::vsnprintf(buf, sizeof buf, fmt, args);
-  va_end(args);
-  return buf;
-}
+using bench::strprintf;
 
 void printTable(const BenchExperiment& e, std::ostream& out) {
   out << "\n== " << e.name << ": " << e.title << " ==\n";
@@ -76,12 +68,12 @@ void printTable(const BenchExperiment& e, std::ostream& out) {
     peer_width = std::max(peer_width, r.peer.size());
   }
   const int cw = static_cast<int>(case_width), pw = static_cast<int>(peer_width);
-  out << printfString("%-*s  %-*s %9s %14s %14s %8s\n", cw, "case", pw, "peer", "n", ("ns/" + e.unit).c_str(),
+  out << strprintf("%-*s  %-*s %9s %14s %14s %8s\n", cw, "case", pw, "peer", "n", ("ns/" + e.unit).c_str(),
                       "x fcl_quadric", "wrong");
   for (const BenchRow& r : e.rows) {
-    const std::string ratio = r.ratio > 0.0 ? printfString("%.2f", r.ratio) : "-";
+    const std::string ratio = r.ratio > 0.0 ? strprintf("%.2f", r.ratio) : "-";
     const std::string wrong = r.wrong >= 0 ? std::to_string(r.wrong) : "-";
-    out << printfString("%-*s  %-*s %9zu %14.1f %14s %8s\n", cw, r.case_name.c_str(), pw, r.peer.c_str(), r.n,
+    out << strprintf("%-*s  %-*s %9zu %14.1f %14s %8s\n", cw, r.case_name.c_str(), pw, r.peer.c_str(), r.n,
                         r.ns_per_query, ratio.c_str(), wrong.c_str());
   }
   for (const std::string& note : e.notes) out << "  " << note << "\n";
@@ -113,7 +105,7 @@ std::string utcNow() {
 class ProgressBar {
  public:
   ProgressBar(std::ostream& err, bool tty, std::size_t index, std::size_t count, const std::string& name)
-      : err_(err), tty_(tty), prefix_(printfString("[%zu/%zu] %-18s", index, count, name.c_str())) {
+      : err_(err), tty_(tty), prefix_(strprintf("[%zu/%zu] %-18s", index, count, name.c_str())) {
     start_ = std::chrono::steady_clock::now();
     if (tty_) {
       update(0.0);
@@ -128,7 +120,7 @@ class ProgressBar {
     const int width = 30, filled = static_cast<int>(std::lround(fraction * width));
     err_ << "\r" << prefix_ << " [" << std::string(static_cast<std::size_t>(filled), '#')
          << std::string(static_cast<std::size_t>(width - filled), '.') << "] "
-         << printfString("%3d%%  %5.1f s", static_cast<int>(std::lround(100 * fraction)), seconds());
+         << strprintf("%3d%%  %5.1f s", static_cast<int>(std::lround(100 * fraction)), seconds());
     err_.flush();
   }
   void done() {
@@ -136,7 +128,7 @@ class ProgressBar {
       update(1.0);
       err_ << "\n";
     } else {
-      err_ << "fcl_quadric bench: " << prefix_ << printfString(" done in %.1f s\n", seconds());
+      err_ << "fcl_quadric bench: " << prefix_ << strprintf(" done in %.1f s\n", seconds());
     }
     err_.flush();
   }

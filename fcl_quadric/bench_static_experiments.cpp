@@ -104,6 +104,25 @@ void collideRows(const std::string& case_name, const PeerPairs& p, const std::ve
   step();
 }
 
+/// The peers of the separating-planes set-ups on frames that form sequences of `sequence`
+/// frames: classification every frame, PairCoherence (one per sequence: the cached plane is the
+/// point of the paper), FCL libccd and Bullet.
+void sequenceRows(const std::string& case_name, const PeerPairs& p, const std::vector<char>& truth, std::size_t sequence,
+                  std::vector<BenchRow>* rows, const std::function<void()>& step) {
+  rows->push_back(collideRow(case_name, "fcl_quadric", p, truth, [&](std::size_t i) { return oursCollide(p, i); }));
+  step();
+  PairCoherence coherence;
+  rows->push_back(collideRow(case_name, "pair_coherence", p, truth, [&](std::size_t i) {
+    if (sequence > 0 && i % sequence == 0) coherence = PairCoherence();
+    return coherence.query(p.a[i], p.b[i]) != Separation::Separated;
+  }));
+  step();
+  rows->push_back(collideRow(case_name, "fcl_libccd", p, truth, [&](std::size_t i) { return libccdCollide(p, i); }));
+  step();
+  rows->push_back(collideRow(case_name, "bullet", p, truth, [&](std::size_t i) { return btCollide(p, i); }));
+  step();
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------------------------------------
@@ -255,20 +274,7 @@ BenchExperiment runSeparatingPlanesExperiment(BenchSize size, const BenchProgres
     std::vector<char> truth(p.size());
     for (std::size_t i = 0; i < p.size(); ++i) truth[i] = oursCollide(p, i);
     step();
-    const std::string case_name = "T1 omega " + format("%.1f", omega);
-    e.rows.push_back(collideRow(case_name, "fcl_quadric", p, truth, [&](std::size_t i) { return oursCollide(p, i); }));
-    step();
-    // EECD: one PairCoherence per sequence (the cached plane is the point of the paper).
-    PairCoherence coherence;
-    e.rows.push_back(collideRow(case_name, "pair_coherence", p, truth, [&](std::size_t i) {
-      if (i % static_cast<std::size_t>(table1_frames) == 0) coherence = PairCoherence();
-      return coherence.query(p.a[i], p.b[i]) != Separation::Separated;
-    }));
-    step();
-    e.rows.push_back(collideRow(case_name, "fcl_libccd", p, truth, [&](std::size_t i) { return libccdCollide(p, i); }));
-    step();
-    e.rows.push_back(collideRow(case_name, "bullet", p, truth, [&](std::size_t i) { return btCollide(p, i); }));
-    step();
+    sequenceRows("T1 omega " + format("%.1f", omega), p, truth, static_cast<std::size_t>(table1_frames), &e.rows, step);
   }
   char line[256];
   std::snprintf(line, sizeof line, "Table 1: %zu sequence(s) of %d frames per angular speed (paper: 10,000 frames)",
@@ -286,17 +292,7 @@ BenchExperiment runSeparatingPlanesExperiment(BenchSize size, const BenchProgres
   std::size_t collisions = 0;
   for (std::size_t i = 0; i < p.size(); ++i) collisions += truth[i] = oursCollide(p, i);
   const std::string t2 = "T2 orbit";
-  e.rows.push_back(collideRow(t2, "fcl_quadric", p, truth, [&](std::size_t i) { return oursCollide(p, i); }));
-  step();
-  PairCoherence coherence;
-  e.rows.push_back(collideRow(t2, "pair_coherence", p, truth, [&](std::size_t i) {
-    return coherence.query(p.a[i], p.b[i]) != Separation::Separated;
-  }));
-  step();
-  e.rows.push_back(collideRow(t2, "fcl_libccd", p, truth, [&](std::size_t i) { return libccdCollide(p, i); }));
-  step();
-  e.rows.push_back(collideRow(t2, "bullet", p, truth, [&](std::size_t i) { return btCollide(p, i); }));
-  step();
+  sequenceRows(t2, p, truth, p.size(), &e.rows, step);
   for (int v : tessellations) {
     const std::shared_ptr<fcl::Convexd> ca = bench::fclConvex(bench::sqrt3Ellipsoid(Eigen::Vector3d::Ones(), v));
     const std::shared_ptr<fcl::Convexd> cb = bench::fclConvex(bench::sqrt3Ellipsoid(b.radii(), v));

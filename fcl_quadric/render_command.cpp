@@ -16,6 +16,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
+#include "fcl_quadric/cairo_text.h"
 #include "fcl_quadric/check_command.h"
 #include "fcl_quadric/geometry/separating_plane.h"
 
@@ -263,27 +264,7 @@ std::optional<std::array<Eigen::Vector2d, 2>> traceLine(const Panel& panel, cons
                                         Eigen::Vector2d(panel.px(b[0]), panel.py(b[1]))};
 }
 
-/// A "nice" grid step (1, 2 or 5 times a power of ten) near `raw`.
-double niceStep(double raw) {
-  const double p = std::pow(10.0, std::floor(std::log10(raw)));
-  const double f = raw / p;
-  return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * p;
-}
-
 void setColour(cairo_t* cr, const Rgb& c, double alpha = 1.0) { cairo_set_source_rgba(cr, c.r, c.g, c.b, alpha); }
-
-void setFont(cairo_t* cr, double size, bool bold = false) {
-  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, size);
-}
-
-/// Draws text with its reference point at (x, y): align 0 left, 0.5 centre, 1 right; baseline y.
-void text(cairo_t* cr, const std::string& s, double x, double y, double align = 0.0) {
-  cairo_text_extents_t e;
-  cairo_text_extents(cr, s.c_str(), &e);
-  cairo_move_to(cr, x - align * e.x_advance, y);
-  cairo_show_text(cr, s.c_str());
-}
 
 /// Text with a white halo, for labels over the drawing.
 void haloText(cairo_t* cr, const std::string& s, double x, double y, const Rgb& colour) {
