@@ -78,9 +78,6 @@ namespace fcl_quadric {
 namespace bench {
 namespace {
 
-constexpr std::uint64_t kMovingSeed = 2003;
-constexpr std::uint64_t kQuerySeed = 31;
-constexpr std::size_t kAllContacts = std::size_t{1} << 30;  ///< collect every colliding pair
 
 /// Which of the measured pairs QuadricSolver answers exactly when this program is built (its
 /// dispatch tables); the others go through libccd inside it, as in stock FCL.
@@ -101,124 +98,6 @@ struct Settings {
 
 // ------------------------------------------------------------------------------------------------
 // (a) Moving ellipsoids
-
-enum class Peer { kOurs, kPairCache, kStock, kBroadphaseOnly };
-constexpr Peer kPeers[] = {Peer::kBroadphaseOnly, Peer::kOurs, Peer::kPairCache, Peer::kStock};
-
-const char* peerName(Peer p) {
-  switch (p) {
-    case Peer::kOurs: return "fcl_quadric";
-    case Peer::kPairCache: return "pair_cache";
-    case Peer::kStock: return "fcl_libccd";
-    case Peer::kBroadphaseOnly: return "broadphase_only";
-  }
-  return "?";
-}
-
-bool countCandidate(fcl::CollisionObjectd*, fcl::CollisionObjectd*, void* data) {
-  ++*static_cast<std::size_t*>(data);
-  return false;
-}
-
-using ObjectPairs = std::vector<std::pair<fcl::CollisionObjectd*, fcl::CollisionObjectd*>>;
-
-bool recordCandidate(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data) {
-  static_cast<ObjectPairs*>(data)->emplace_back(a, b);
-  return false;
-}
-
-/// One frame with one peer's callback; returns the number of contacts (candidate pairs for
-/// broadphase_only). `result`, if given, receives the collision result.
-std::size_t runFrame(MovingEllipsoids& s, int k, Peer peer, PairCache* cache, fcl::CollisionResultd* result = nullptr) {
-  s.setFrame(k);
-  switch (peer) {
-    case Peer::kOurs:
-    case Peer::kStock: {
-      fcl::DefaultCollisionData<double> data;
-      data.request.num_max_contacts = kAllContacts;
-      s.manager().collide(&data, peer == Peer::kOurs ? fcl_quadric::defaultCollisionFunction<double>
-                                                     : fcl::DefaultCollisionFunction<double>);
-      if (result) *result = data.result;
-      return data.result.numContacts();
-    }
-    case Peer::kPairCache: {
-      CoherentCollisionData data(cache);
-      data.request.num_max_contacts = kAllContacts;
-      s.manager().collide(&data, coherentCollisionFunction);
-      if (result) *result = data.result;
-      return data.result.numContacts();
-    }
-    case Peer::kBroadphaseOnly: {
-      std::size_t candidates = 0;
-      s.manager().collide(&candidates, countCandidate);
-      return candidates;
-    }
-  }
-  return 0;
-}
-
-struct MovingReport {
-  std::size_t n = 0;
-  int frames = 0;
-  double side = 0.0;
-  std::size_t candidates = 0, colliding = 0;  ///< sums over frames (colliding: exact)
-  /// Per peer (ours, pair_cache, stock): pairs the peer missed / reported wrongly, summed over frames.
-  std::size_t misses[3] = {0, 0, 0}, false_hits[3] = {0, 0, 0};
-  std::uint64_t cache_queries = 0, cache_hits = 0;
-};
-
-using IndexPairs = std::vector<std::pair<std::size_t, std::size_t>>;
-
-IndexPairs sortedPairs(const MovingEllipsoids& s, const fcl::CollisionResultd& r) {
-  IndexPairs out;
-  for (std::size_t k = 0; k < r.numContacts(); ++k) {
-    std::size_t a = s.indexOf(r.getContact(k).o1), b = s.indexOf(r.getContact(k).o2);
-    out.emplace_back(std::min(a, b), std::max(a, b));
-  }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
-
-std::size_t countMissing(const IndexPairs& from, const IndexPairs& in) {
-  IndexPairs d;
-  std::set_difference(from.begin(), from.end(), in.begin(), in.end(), std::back_inserter(d));
-  return d.size();
-}
-
-/// Untimed: every frame, each peer's manager result against classifyEllipsoids on the candidates.
-MovingReport countMoving(MovingEllipsoids& s) {
-  MovingReport rep;
-  rep.n = s.size();
-  rep.frames = s.frames();
-  rep.side = s.side();
-  PairCache cache;
-  for (int k = 0; k < s.frames(); ++k) {
-    s.setFrame(k);
-    ObjectPairs candidates;
-    s.manager().collide(&candidates, recordCandidate);
-    rep.candidates += candidates.size();
-    IndexPairs exact;
-    for (const auto& [a, b] : candidates) {
-      const std::size_t i = s.indexOf(a->collisionGeometry().get()), j = s.indexOf(b->collisionGeometry().get());
-      if (classifyEllipsoids(s.ellipsoid(i), s.ellipsoid(j)).status != Separation::Separated)
-        exact.emplace_back(std::min(i, j), std::max(i, j));
-    }
-    std::sort(exact.begin(), exact.end());
-    rep.colliding += exact.size();
-    const Peer peers[3] = {Peer::kOurs, Peer::kPairCache, Peer::kStock};
-    for (int p = 0; p < 3; ++p) {
-      fcl::CollisionResultd result;
-      runFrame(s, k, peers[p], &cache, &result);
-      const IndexPairs found = sortedPairs(s, result);
-      rep.misses[p] += countMissing(exact, found);
-      rep.false_hits[p] += countMissing(found, exact);
-    }
-  }
-  rep.cache_queries = cache.queries();
-  rep.cache_hits = cache.planeHits();
-  return rep;
-}
 
 void benchMoving(benchmark::State& state, MovingEllipsoids* s, Peer peer, const MovingReport* rep) {
   PairCache cache;
@@ -285,9 +164,7 @@ std::unique_ptr<fcl::CollisionObjectd> ellipsoidObject(const Ellipsoid& e) {
                                                  makePose(e.rotation(), e.center()));
 }
 
-/// (b) Ellipsoids near the terrain: (x, y) uniform inside the map, radii scale U(0.1, 0.5) with
-/// aspect up to 3, random rotation, centre at the terrain height plus t times the ellipsoid's
-/// vertical half extent, t ~ U(-0.5, 2).
+/// (b) Ellipsoids near the terrain (terrainQueries in bench_fcl_support.h).
 QueryScene makeOcTreeScene(const Settings& cfg, std::size_t* leaves) {
   QueryScene s;
   s.group = "OcTree";
@@ -300,15 +177,7 @@ QueryScene makeOcTreeScene(const Settings& cfg, std::size_t* leaves) {
                 2 * cfg.terrain_half, boxes.size());
   s.target = text;
   s.environment = std::make_unique<fcl::CollisionObjectd>(fcl_tree, fcl::Transform3d::Identity());
-  std::mt19937_64 rng(kQuerySeed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  const double inner = std::max(0.5, cfg.terrain_half - 1.0);
-  for (std::size_t i = 0; i < cfg.queries; ++i) {
-    const double x = inner * (2 * u(rng) - 1), y = inner * (2 * u(rng) - 1);
-    const Eigen::Vector3d r = randomRadii(rng, 0.1 + 0.4 * u(rng), 3.0);
-    const Eigen::Matrix3d R = randomRotation(rng);
-    const double hz = ellipsoidHalfExtents(Ellipsoid(r, R, Eigen::Vector3d::Zero()))[2];
-    const Ellipsoid e(r, R, Eigen::Vector3d(x, y, terrainHeight(x, y) + (2.5 * u(rng) - 0.5) * hz));
+  for (const Ellipsoid& e : terrainQueries(cfg.terrain_half, cfg.queries)) {
     s.queries.push_back(ellipsoidObject(e));
     s.exact.push_back(boxes.collides(e));
   }

@@ -1,9 +1,12 @@
 #pragma once
 /// \file bench_fcl_support.h
-/// Scenes of bench_fcl_scenes.cpp (issue 3's benchmarks of the FCL integration), built once,
-/// outside the timed loops, from fixed seeds:
+/// Scenes of bench_fcl_scenes.cpp (issue 3's benchmarks of the FCL integration) and of
+/// `fcl_quadric bench` (experiments broadphase and octree), built once, outside the timed loops,
+/// from fixed seeds:
 ///  - MovingEllipsoids: n ellipsoids spinning and drifting (reflected at the walls of a cube) in a
 ///    DynamicAABBTreeCollisionManager; the pose of every object is a function of the frame number.
+///    runFrame() runs one frame with one peer's callback, countMoving() counts each peer's wrong
+///    pairs against classifyEllipsoids.
 ///  - terrainOcTree: an octomap::OcTree of a noisy terrain at resolution 0.05 (one column of
 ///    occupied voxels per cell, down to the lowest neighbour so the surface has no holes).
 ///  - torusMesh: a tessellated torus as fcl::BVHModel<OBBRSS>, with its triangles kept for the
@@ -27,6 +30,7 @@
 
 #include <Eigen/Geometry>
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/octree/octree.h>
 #include <fcl/geometry/shape/ellipsoid.h>
@@ -34,24 +38,19 @@
 #include <fcl/narrowphase/collision_object.h>
 #include <octomap/OcTree.h>
 
+#include "fcl_quadric/fcl/collision.h"
+#include "fcl_quadric/fcl/pair_cache.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
+#include "random_rotations.h"
 
 namespace fcl_quadric {
 namespace bench {
 
-inline Eigen::Matrix3d randomRotation(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  const double w = n(rng), x = n(rng), y = n(rng), z = n(rng);
-  return Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
-}
-
-inline Eigen::Vector3d randomUnitVector(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  const double x = n(rng), y = n(rng), z = n(rng);
-  return Eigen::Vector3d(x, y, z).normalized();
-}
+constexpr std::uint64_t kMovingSeed = 2003;
+constexpr std::uint64_t kQuerySeed = 31;
+constexpr std::size_t kAllContacts = std::size_t{1} << 30;  ///< collect every colliding pair
 
 /// Radii log-uniform in [scale / aspect, scale].
 inline Eigen::Vector3d randomRadii(std::mt19937_64& rng, double scale, double aspect) {
@@ -157,6 +156,128 @@ class MovingEllipsoids {
   fcl::DynamicAABBTreeCollisionManagerd manager_;
 };
 
+
+// ------------------------------------------------------------------------------------------------
+// (a) Moving ellipsoids: one frame per peer, and the untimed count of each peer's wrong pairs
+
+enum class Peer { kOurs, kPairCache, kStock, kBroadphaseOnly };
+inline constexpr Peer kPeers[] = {Peer::kBroadphaseOnly, Peer::kOurs, Peer::kPairCache, Peer::kStock};
+
+inline const char* peerName(Peer p) {
+  switch (p) {
+    case Peer::kOurs: return "fcl_quadric";
+    case Peer::kPairCache: return "pair_cache";
+    case Peer::kStock: return "fcl_libccd";
+    case Peer::kBroadphaseOnly: return "broadphase_only";
+  }
+  return "?";
+}
+
+inline bool countCandidate(fcl::CollisionObjectd*, fcl::CollisionObjectd*, void* data) {
+  ++*static_cast<std::size_t*>(data);
+  return false;
+}
+
+using ObjectPairs = std::vector<std::pair<fcl::CollisionObjectd*, fcl::CollisionObjectd*>>;
+
+inline bool recordCandidate(fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data) {
+  static_cast<ObjectPairs*>(data)->emplace_back(a, b);
+  return false;
+}
+
+/// One frame with one peer's callback; returns the number of contacts (candidate pairs for
+/// broadphase_only). `result`, if given, receives the collision result.
+inline std::size_t runFrame(MovingEllipsoids& s, int k, Peer peer, PairCache* cache, fcl::CollisionResultd* result = nullptr) {
+  s.setFrame(k);
+  switch (peer) {
+    case Peer::kOurs:
+    case Peer::kStock: {
+      fcl::DefaultCollisionData<double> data;
+      data.request.num_max_contacts = kAllContacts;
+      s.manager().collide(&data, peer == Peer::kOurs ? fcl_quadric::defaultCollisionFunction<double>
+                                                     : fcl::DefaultCollisionFunction<double>);
+      if (result) *result = data.result;
+      return data.result.numContacts();
+    }
+    case Peer::kPairCache: {
+      CoherentCollisionData data(cache);
+      data.request.num_max_contacts = kAllContacts;
+      s.manager().collide(&data, coherentCollisionFunction);
+      if (result) *result = data.result;
+      return data.result.numContacts();
+    }
+    case Peer::kBroadphaseOnly: {
+      std::size_t candidates = 0;
+      s.manager().collide(&candidates, countCandidate);
+      return candidates;
+    }
+  }
+  return 0;
+}
+
+struct MovingReport {
+  std::size_t n = 0;
+  int frames = 0;
+  double side = 0.0;
+  std::size_t candidates = 0, colliding = 0;  ///< sums over frames (colliding: exact)
+  /// Per peer (ours, pair_cache, stock): pairs the peer missed / reported wrongly, summed over frames.
+  std::size_t misses[3] = {0, 0, 0}, false_hits[3] = {0, 0, 0};
+  std::uint64_t cache_queries = 0, cache_hits = 0;
+};
+
+using IndexPairs = std::vector<std::pair<std::size_t, std::size_t>>;
+
+inline IndexPairs sortedPairs(const MovingEllipsoids& s, const fcl::CollisionResultd& r) {
+  IndexPairs out;
+  for (std::size_t k = 0; k < r.numContacts(); ++k) {
+    std::size_t a = s.indexOf(r.getContact(k).o1), b = s.indexOf(r.getContact(k).o2);
+    out.emplace_back(std::min(a, b), std::max(a, b));
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+inline std::size_t countMissing(const IndexPairs& from, const IndexPairs& in) {
+  IndexPairs d;
+  std::set_difference(from.begin(), from.end(), in.begin(), in.end(), std::back_inserter(d));
+  return d.size();
+}
+
+/// Untimed: every frame, each peer's manager result against classifyEllipsoids on the candidates.
+inline MovingReport countMoving(MovingEllipsoids& s) {
+  MovingReport rep;
+  rep.n = s.size();
+  rep.frames = s.frames();
+  rep.side = s.side();
+  PairCache cache;
+  for (int k = 0; k < s.frames(); ++k) {
+    s.setFrame(k);
+    ObjectPairs candidates;
+    s.manager().collide(&candidates, recordCandidate);
+    rep.candidates += candidates.size();
+    IndexPairs exact;
+    for (const auto& [a, b] : candidates) {
+      const std::size_t i = s.indexOf(a->collisionGeometry().get()), j = s.indexOf(b->collisionGeometry().get());
+      if (classifyEllipsoids(s.ellipsoid(i), s.ellipsoid(j)).status != Separation::Separated)
+        exact.emplace_back(std::min(i, j), std::max(i, j));
+    }
+    std::sort(exact.begin(), exact.end());
+    rep.colliding += exact.size();
+    const Peer peers[3] = {Peer::kOurs, Peer::kPairCache, Peer::kStock};
+    for (int p = 0; p < 3; ++p) {
+      fcl::CollisionResultd result;
+      runFrame(s, k, peers[p], &cache, &result);
+      const IndexPairs found = sortedPairs(s, result);
+      rep.misses[p] += countMissing(exact, found);
+      rep.false_hits[p] += countMissing(found, exact);
+    }
+  }
+  rep.cache_queries = cache.queries();
+  rep.cache_hits = cache.planeHits();
+  return rep;
+}
+
 // ------------------------------------------------------------------------------------------------
 // (b) OcTree terrain
 
@@ -253,6 +374,24 @@ class LeafBoxes {
   std::vector<Box> boxes_;
   std::unordered_map<long, std::vector<std::size_t>> grid_;
 };
+
+/// Query ellipsoids near the terrain of terrainOcTree(half, ...): (x, y) uniform inside the map,
+/// radii scale U(0.1, 0.5) with aspect up to 3, random rotation, centre at the terrain height plus
+/// t times the ellipsoid's vertical half extent, t ~ U(-0.5, 2). Seed kQuerySeed.
+inline std::vector<Ellipsoid> terrainQueries(double terrain_half, std::size_t n) {
+  std::vector<Ellipsoid> out;
+  std::mt19937_64 rng(kQuerySeed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double inner = std::max(0.5, terrain_half - 1.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = inner * (2 * u(rng) - 1), y = inner * (2 * u(rng) - 1);
+    const Eigen::Vector3d r = randomRadii(rng, 0.1 + 0.4 * u(rng), 3.0);
+    const Eigen::Matrix3d R = randomRotation(rng);
+    const double hz = ellipsoidHalfExtents(Ellipsoid(r, R, Eigen::Vector3d::Zero()))[2];
+    out.emplace_back(r, R, Eigen::Vector3d(x, y, terrainHeight(x, y) + (2.5 * u(rng) - 0.5) * hz));
+  }
+  return out;
+}
 
 // ------------------------------------------------------------------------------------------------
 // (c) Triangle mesh

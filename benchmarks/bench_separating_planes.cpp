@@ -38,6 +38,7 @@
 #include "fcl_peers.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/geometry/pair_coherence.h"
+#include "separating_planes_scenes.h"
 #include "sqrt3_tessellation.h"
 
 namespace fcl_quadric {
@@ -47,10 +48,7 @@ namespace {
 // ------------------------------------------------------------------------------------------------
 // Table 1: rotating ellipsoids
 
-constexpr int kTable1Frames = 10000;
-constexpr std::uint64_t kTable1FirstSeed = 2004;
 constexpr std::size_t kDefaultTable1Sequences = 16;
-constexpr double kTable1Omegas[] = {0.1, 0.5, 1.0};
 /// Paper values (Pentium 4, 2.26 GHz) in the order of kTable1Omegas.
 constexpr int kPaperCollisions[] = {1202, 1554, 1622};
 constexpr int kPaperPlaneHits[] = {8310, 6029, 4502};
@@ -79,32 +77,15 @@ struct RotatingScene {
   double frames() const { return static_cast<double>(kTable1Frames) * static_cast<double>(sequences.size()); }
 };
 
-Eigen::Vector3d randomUnitVector(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  const double x = n(rng), y = n(rng), z = n(rng);
-  return Eigen::Vector3d(x, y, z).normalized();
-}
-
-Eigen::Matrix3d randomRotation(std::mt19937_64& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  const double w = n(rng), x = n(rng), y = n(rng), z = n(rng);
-  return Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
-}
-
-/// Seed -> initial orientations R_A0, R_B0 (uniform), then axes u_A, u_B (uniform); frame k has
-/// R_A = AngleAxis(k omega, u_A) R_A0, R_B = AngleAxis(k omega, u_B) R_B0, p_A = 0, p_B = (8,0,0).
+/// The sequence of rotatingFrames(omega, seed) with its FCL poses and counts.
 RotatingSequence makeRotatingSequence(double omega, std::uint64_t seed, const fcl::Ellipsoidd& fcl_shape) {
   RotatingSequence s;
-  std::mt19937_64 rng(seed);
-  const Eigen::Matrix3d R_A0 = randomRotation(rng), R_B0 = randomRotation(rng);
-  const Eigen::Vector3d axis_a = randomUnitVector(rng), axis_b = randomUnitVector(rng);
-  const Eigen::Vector3d radii(3.0, 3.0, 5.0), p_WA(0.0, 0.0, 0.0), p_WB(8.0, 0.0, 0.0);
+  RotatingFrames frames = rotatingFrames(omega, seed);
+  s.a = std::move(frames.a);
+  s.b = std::move(frames.b);
   for (int k = 0; k < kTable1Frames; ++k) {
-    const double angle = omega * k;
-    s.a.emplace_back(radii, Eigen::AngleAxisd(angle, axis_a).toRotationMatrix() * R_A0, p_WA);
-    s.b.emplace_back(radii, Eigen::AngleAxisd(angle, axis_b).toRotationMatrix() * R_B0, p_WB);
-    s.X_WA.push_back(fclPose(s.a.back()));
-    s.X_WB.push_back(fclPose(s.b.back()));
+    s.X_WA.push_back(fclPose(s.a[k]));
+    s.X_WB.push_back(fclPose(s.b[k]));
   }
   PairCoherence coherence;
   for (int k = 0; k < kTable1Frames; ++k) {
@@ -206,9 +187,6 @@ void benchTable1Fcl(benchmark::State& state, const RotatingScene* s) {
 // ------------------------------------------------------------------------------------------------
 // Table 2: a sphere orbiting an ellipsoid
 
-constexpr int kTable2Frames = 13746;
-constexpr double kOrbitRadius = 5.49;
-constexpr double kOrbitStep = 0.01;  // rad per frame
 constexpr int kTessellations[] = {488, 1460, 4376, 13124};
 /// Paper values: EECD and enhanced GJK on n = 488 ... 13,124 vertices.
 constexpr int kPaperTable2Collisions[] = {1157, 0, 435, 971, 1111};
@@ -218,7 +196,7 @@ constexpr int kPaperTable2BoxFrames = 10000;
 constexpr double kPaperTable2PlainUs = 7.63;
 
 struct OrbitScene {
-  Ellipsoid b{Eigen::Vector3d(4.5, 4.0, 2.0), Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()};
+  Ellipsoid b = orbitEllipsoid();
   std::vector<Ellipsoid> a;               ///< the sphere at each frame
   std::vector<fcl::Transform3d> X_WA;     ///< its pose (translation only)
   fcl::Transform3d X_WB = fcl::Transform3d::Identity();
@@ -229,15 +207,13 @@ struct OrbitScene {
 
 OrbitScene makeOrbitScene() {
   OrbitScene s;
-  const Eigen::Vector3d half_b = s.b.radii();  // axis-aligned: its AABB half-extents
   for (int k = 0; k < kTable2Frames; ++k) {
-    const double t = kOrbitStep * k;
-    const Eigen::Vector3d p(kOrbitRadius * std::cos(t), kOrbitRadius * std::sin(t), 0.0);
+    const Eigen::Vector3d p = orbitCentre(k);
     s.a.push_back(Ellipsoid::sphere(1.0, p));
     fcl::Transform3d X = fcl::Transform3d::Identity();
     X.translation() = p;
     s.X_WA.push_back(X);
-    const bool overlap = (p.cwiseAbs().array() <= half_b.array() + 1.0).all();
+    const bool overlap = orbitBoxesOverlap(p);
     s.box_overlap.push_back(overlap);
     s.box_frames += overlap;
     const bool hit = overlap && classifyEllipsoids(s.a[k], s.b).status != Separation::Separated;
@@ -296,14 +272,6 @@ void benchOrbit(benchmark::State& state, const OrbitScene& s, const OrbitPeer& p
   state.counters["misses"] = peer.misses;
   state.counters["false_hits"] = peer.false_hits;
   if (peer.vertices > 0) state.counters["vertices"] = peer.vertices;
-}
-
-std::shared_ptr<fcl::Convexd> makeConvex(const TriangleMesh& m) {
-  auto vertices = std::make_shared<std::vector<fcl::Vector3d>>(m.vertices.begin(), m.vertices.end());
-  auto faces = std::make_shared<std::vector<int>>();
-  faces->reserve(4 * m.faces.size());
-  for (const auto& f : m.faces) faces->insert(faces->end(), {3, f[0], f[1], f[2]});
-  return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(m.faces.size()), faces);
 }
 
 std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> makeBvh(const TriangleMesh& m) {
@@ -491,7 +459,7 @@ int main(int argc, char** argv) {
     const TriangleMesh mesh_a = sqrt3Ellipsoid(Eigen::Vector3d::Ones(), n);
     const TriangleMesh mesh_b = sqrt3Ellipsoid(orbit.b.radii(), n);
     const int v = static_cast<int>(mesh_a.vertices.size());
-    peers.push_back({"fcl_libccd_convex_" + std::to_string(v), makeConvex(mesh_a), makeConvex(mesh_b), v});
+    peers.push_back({"fcl_libccd_convex_" + std::to_string(v), fclConvex(mesh_a), fclConvex(mesh_b), v});
     peers.push_back({"fcl_obbrss_mesh_" + std::to_string(v), makeBvh(mesh_a), makeBvh(mesh_b), v});
   }
   for (std::size_t i = 2; i < peers.size(); ++i) {

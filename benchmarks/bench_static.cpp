@@ -4,13 +4,14 @@
 // `--pairs N` or FCL_QUADRIC_BENCH_PAIRS=N says otherwise). Each benchmark iteration is one pair;
 // the pair set is walked cyclically. Groups and their members (the first is the baseline, the
 // others get `x_ours` = their time / its time):
-//   Static/Collide             classifyEllipsoids | fcl::collide libccd | fcl::collide indep
+//   Static/Collide             classifyEllipsoids | fcl::collide libccd | fcl::collide indep |
+//                              Bullet GJK/EPA distance <= 0 (bullet_peers.h)
 //   Static/CollideHot          the first 1,024 pairs (data in L2): classify | fcl::collide libccd
 //   Static/CollideSeparated    classify etc. on the separated pairs only, plus PairCoherence::query
 //                              with a valid cached plane, the bare planeSeparates() test and
 //                              separatingPlane() (the cost of a new plane)
 //   Static/CollideSeparatedHot the first 1,024 separated pairs (data in L2): classify, cached plane
-//   Static/Distance            signedDistance | fcl::distance libccd (all pairs)
+//   Static/Distance            signedDistance | fcl::distance libccd | Bullet GJK/EPA (all pairs)
 //   Static/DistanceOverlapping signedDistance | fcl::distance libccd, touching/overlapping pairs
 //   Static/DistanceSeparated   signedDistance | fcl::distance libccd | fcl::distance indep, on the
 //                              separated pairs where FCL indep's signed distance is >= 0 (FCL 0.7's
@@ -21,9 +22,9 @@
 // "Agreement".
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <initializer_list>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -32,6 +33,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_support.h"
+#include "bullet_peers.h"
 #include "fcl_peers.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/geometry/pair_coherence.h"
@@ -57,6 +59,8 @@ struct StaticScene {
   PairSet pairs;
   std::vector<fcl::Ellipsoidd> fcl_a, fcl_b;
   std::vector<fcl::Transform3d> X_WA, X_WB;
+  std::vector<std::unique_ptr<btMultiSphereShape>> bullet_a, bullet_b;
+  std::vector<btTransform> bullet_X_WA, bullet_X_WB;
 
   explicit StaticScene(PairSet p) : pairs(std::move(p)) {
     const std::size_t n = pairs.size();
@@ -69,6 +73,10 @@ struct StaticScene {
       fcl_b.push_back(fclShape(pairs.b[i]));
       X_WA.push_back(fclPose(pairs.a[i]));
       X_WB.push_back(fclPose(pairs.b[i]));
+      bullet_a.push_back(bulletShape(pairs.a[i]));
+      bullet_b.push_back(bulletShape(pairs.b[i]));
+      bullet_X_WA.push_back(bulletPose(pairs.a[i]));
+      bullet_X_WB.push_back(bulletPose(pairs.b[i]));
     }
   }
   std::size_t size() const { return pairs.size(); }
@@ -106,8 +114,8 @@ struct DistanceSelfCheck {
 
 struct StaticReport {
   std::size_t pairs = 0, separated = 0, touching = 0, overlapping = 0;
-  PeerAgreement collide_libccd, collide_indep;
-  PeerAgreement distance_libccd;              ///< all pairs
+  PeerAgreement collide_libccd, collide_indep, collide_bullet;
+  PeerAgreement distance_libccd, distance_bullet;  ///< all pairs
   PeerAgreement distance_libccd_overlapping;  ///< touching/overlapping pairs
   PeerAgreement distance_libccd_separated, distance_indep_separated;  ///< DistanceSeparated set
   std::size_t distance_separated_pairs = 0;  ///< separated pairs where FCL indep's d >= 0
@@ -201,6 +209,33 @@ void benchSeparatingPlane(benchmark::State& state, const StaticScene* s) {
   setPerItemTime(state, 1.0);
 }
 
+void benchBulletCollide(benchmark::State& state, const StaticScene* s, const PeerAgreement* agreement) {
+  const std::size_t n = s->size();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const bool hit = bulletCollide(s->bullet_a[i].get(), s->bullet_X_WA[i], s->bullet_b[i].get(), s->bullet_X_WB[i]);
+    benchmark::DoNotOptimize(hit);
+    if (++i == n) i = 0;
+  }
+  setPerItemTime(state, 1.0);
+  state.counters["false_hits"] = static_cast<double>(agreement->false_hits);
+  state.counters["misses"] = static_cast<double>(agreement->misses);
+}
+
+void benchBulletDistance(benchmark::State& state, const StaticScene* s, const PeerAgreement* agreement) {
+  const std::size_t n = s->size();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const double d =
+        bulletSignedDistance(s->bullet_a[i].get(), s->bullet_X_WA[i], s->bullet_b[i].get(), s->bullet_X_WB[i]);
+    benchmark::DoNotOptimize(d);
+    if (++i == n) i = 0;
+  }
+  setPerItemTime(state, 1.0);
+  state.counters["err_median"] = agreement->rel_error.median;
+  state.counters["err_max"] = agreement->rel_error.max;
+}
+
 void benchSignedDistance(benchmark::State& state, const StaticScene* s) {
   const std::size_t n = s->size();
   std::size_t i = 0;
@@ -239,12 +274,24 @@ void countCollideAgreement(const StaticScene& s, const std::vector<Separation>& 
   }
 }
 
-void countDistanceAgreement(const StaticScene& s, const std::vector<SignedDistanceResult>& ours,
-                            fcl::GJKSolverType solver, PeerAgreement* out) {
+/// Bullet's collide (GJK/EPA distance <= 0) against the exact classification, like FCL's.
+void countBulletCollideAgreement(const StaticScene& s, const std::vector<Separation>& ours, PeerAgreement* out) {
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const bool hit = bulletCollide(s.bullet_a[i].get(), s.bullet_X_WA[i], s.bullet_b[i].get(), s.bullet_X_WB[i]);
+    const bool truth = ours[i] != Separation::Separated;
+    out->false_hits += hit && !truth;
+    out->misses += !hit && truth;
+  }
+}
+
+/// Distance agreement of a peer given as `peer(i)` = its signed distance of pair i.
+template <class Peer>
+void countDistanceAgreementOf(const StaticScene& s, const std::vector<SignedDistanceResult>& ours, Peer&& peer,
+                              PeerAgreement* out) {
   std::vector<double> all, sep, ovl;
   all.reserve(s.size());
   for (std::size_t i = 0; i < s.size(); ++i) {
-    const double d = fclSignedDistance(&s.fcl_a[i], s.X_WA[i], &s.fcl_b[i], s.X_WB[i], solver);
+    const double d = peer(i);
     const double e = std::abs(d - ours[i].distance) / std::max(std::abs(ours[i].distance), 1e-12);
     all.push_back(e);
     const bool separated = ours[i].status == Separation::Separated;
@@ -254,6 +301,23 @@ void countDistanceAgreement(const StaticScene& s, const std::vector<SignedDistan
   out->rel_error = quantiles(all);
   out->rel_error_separated = quantiles(sep);
   out->rel_error_overlapping = quantiles(ovl);
+}
+
+void countDistanceAgreement(const StaticScene& s, const std::vector<SignedDistanceResult>& ours,
+                            fcl::GJKSolverType solver, PeerAgreement* out) {
+  countDistanceAgreementOf(
+      s, ours, [&](std::size_t i) { return fclSignedDistance(&s.fcl_a[i], s.X_WA[i], &s.fcl_b[i], s.X_WB[i], solver); },
+      out);
+}
+
+void countBulletDistanceAgreement(const StaticScene& s, const std::vector<SignedDistanceResult>& ours,
+                                  PeerAgreement* out) {
+  countDistanceAgreementOf(
+      s, ours,
+      [&](std::size_t i) {
+        return bulletSignedDistance(s.bullet_a[i].get(), s.bullet_X_WA[i], s.bullet_b[i].get(), s.bullet_X_WB[i]);
+      },
+      out);
 }
 
 void countDepthAgreement(const StaticScene& s, const std::vector<SignedDistanceResult>& ours,
@@ -317,14 +381,16 @@ void printReport(const StaticReport& r) {
               r.collide_libccd.false_hits, r.collide_libccd.misses);
   std::printf("  fcl::collide indep  vs classifyEllipsoids: %zu false hits, %zu misses\n",
               r.collide_indep.false_hits, r.collide_indep.misses);
+  std::printf("  Bullet GJK/EPA (scaled btMultiSphereShape) vs classifyEllipsoids: %zu false hits, %zu misses\n",
+              r.collide_bullet.false_hits, r.collide_bullet.misses);
   std::printf("  fcl::distance indep (enable_signed_distance) is run only on the %zu separated pairs where "
               "its solver's distance is >= 0\n  (FCL 0.7 asserts on the others; see fcl_peers.h)\n",
               r.distance_separated_pairs);
   const PeerAgreement* peers[] = {&r.distance_libccd, &r.distance_libccd_separated,
-                                  &r.distance_indep_separated};
+                                  &r.distance_indep_separated, &r.distance_bullet};
   const char* names[] = {"fcl::distance libccd (all pairs)", "fcl::distance libccd (DistanceSeparated set)",
-                         "fcl::distance indep (DistanceSeparated set)"};
-  for (int k = 0; k < 3; ++k) {
+                         "fcl::distance indep (DistanceSeparated set)", "Bullet GJK/EPA distance (all pairs)"};
+  for (int k = 0; k < 4; ++k) {
     std::printf("  %s: |d_fcl - d_ours| / max(|d_ours|, 1e-12); sign disagreements %zu\n", names[k],
                 peers[k]->sign_flips);
     printQuantiles("all pairs", peers[k]->rel_error);
@@ -344,16 +410,6 @@ void printReport(const StaticReport& r) {
   printQuantiles("|d - L(n)| / |d| (overlapping)", c.objective_gap_overlapping);
   std::printf("  cached-plane benchmarks: %zu separated pairs primed\n", r.primed_planes);
   std::fflush(stdout);
-}
-
-/// printf into a std::string.
-__attribute__((format(printf, 1, 2))) std::string strprintf(const char* fmt, ...) {
-  char buf[512];
-  va_list args;
-  va_start(args, fmt);
-  std::vsnprintf(buf, sizeof buf, fmt, args);
-  va_end(args);
-  return buf;
 }
 
 /// "1e-09" -> "1e-9".
@@ -486,9 +542,11 @@ int main(int argc, char** argv) {
   std::fflush(stdout);
   countCollideAgreement(scene, status, fcl::GST_LIBCCD, &rep.collide_libccd);
   countCollideAgreement(scene, status, fcl::GST_INDEP, &rep.collide_indep);
+  countBulletCollideAgreement(scene, status, &rep.collide_bullet);
   const std::vector<SignedDistanceResult> ours_distance = signedDistances(scene);
   countDistanceAgreement(scene, ours_distance, fcl::GST_LIBCCD, &rep.distance_libccd);
   rep.distance_libccd_overlapping.rel_error = rep.distance_libccd.rel_error_overlapping;
+  countBulletDistanceAgreement(scene, ours_distance, &rep.distance_bullet);
   countDepthAgreement(scene, ours_distance, fcl::GST_LIBCCD, &rep.depth_error_libccd,
                       &rep.depth_nonpositive_libccd);
   countDepthAgreement(scene, ours_distance, fcl::GST_INDEP, &rep.depth_error_indep,
@@ -514,6 +572,7 @@ int main(int argc, char** argv) {
                                &rep.collide_libccd);
   benchmark::RegisterBenchmark("Static/Collide/fcl_indep", benchFclCollide, &scene, fcl::GST_INDEP,
                                &rep.collide_indep);
+  benchmark::RegisterBenchmark("Static/Collide/bullet", benchBulletCollide, &scene, &rep.collide_bullet);
   benchmark::RegisterBenchmark("Static/CollideHot/fcl_quadric", benchClassify, &hot_all);
   benchmark::RegisterBenchmark("Static/CollideHot/fcl_libccd", benchFclCollide, &hot_all, fcl::GST_LIBCCD,
                                nullptr);
@@ -534,6 +593,7 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("Static/Distance/fcl_quadric", benchSignedDistance, &scene);
   benchmark::RegisterBenchmark("Static/Distance/fcl_libccd", benchFclDistance, &scene, fcl::GST_LIBCCD,
                                &rep.distance_libccd);
+  benchmark::RegisterBenchmark("Static/Distance/bullet", benchBulletDistance, &scene, &rep.distance_bullet);
   if (overlapping.size() > 0) {
     benchmark::RegisterBenchmark("Static/DistanceOverlapping/fcl_quadric", benchSignedDistance, &overlapping);
     benchmark::RegisterBenchmark("Static/DistanceOverlapping/fcl_libccd", benchFclDistance, &overlapping,

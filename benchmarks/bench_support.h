@@ -8,6 +8,7 @@
 /// verbatim into docs/benchmarks.md by benchmarks/update_docs.sh: keep them free of blank lines.
 
 #include <algorithm>
+#include <cstdarg>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -113,6 +114,16 @@ inline std::size_t takeSizeOption(int* argc, char** argv, const char* name, cons
   *argc = out;
   argv[out] = nullptr;
   return std::max<std::size_t>(value, 1);
+}
+
+/// printf into a std::string (at most 511 characters).
+__attribute__((format(printf, 1, 2))) inline std::string strprintf(const char* fmt, ...) {
+  char buf[512];
+  va_list args;
+  va_start(args, fmt);
+  std::vsnprintf(buf, sizeof buf, fmt, args);
+  va_end(args);
+  return buf;
 }
 
 /// Console options for SummaryReporter, from `--benchmark_color` in argv (read before

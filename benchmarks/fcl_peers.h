@@ -5,13 +5,17 @@
 /// benchmark program instantiates FCL's entry points once.
 
 #include <cstddef>
+#include <memory>
+#include <vector>
 
+#include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/detail/gjk_solver_indep.h>
 #include <fcl/narrowphase/distance.h>
 
 #include "fcl_quadric/geometry/ellipsoid.h"
+#include "sqrt3_tessellation.h"
 
 namespace fcl_quadric {
 namespace bench {
@@ -26,6 +30,15 @@ inline fcl::Transform3d fclPose(const Ellipsoid& e) {
 
 inline fcl::Ellipsoidd fclShape(const Ellipsoid& e) {
   return fcl::Ellipsoidd(e.radii()[0], e.radii()[1], e.radii()[2]);
+}
+
+/// A triangle mesh (sqrt3_tessellation.h) as an fcl::Convex.
+inline std::shared_ptr<fcl::Convexd> fclConvex(const TriangleMesh& m) {
+  auto vertices = std::make_shared<std::vector<fcl::Vector3d>>(m.vertices.begin(), m.vertices.end());
+  auto faces = std::make_shared<std::vector<int>>();
+  faces->reserve(4 * m.faces.size());
+  for (const auto& f : m.faces) faces->insert(faces->end(), {3, f[0], f[1], f[2]});
+  return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(m.faces.size()), faces);
 }
 
 /// Boolean fcl::collide (no contacts) with the given GJK implementation.

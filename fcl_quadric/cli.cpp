@@ -1,13 +1,17 @@
 #include "fcl_quadric/cli.h"
 
+#include <unistd.h>
+
 #include <cstdint>
 #include <exception>
+#include <iostream>
 #include <limits>
 #include <optional>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
 
+#include "fcl_quadric/bench_command.h"
 #include "fcl_quadric/ccd_command.h"
 #include "fcl_quadric/check_command.h"
 #include "fcl_quadric/demo_command.h"
@@ -107,6 +111,32 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
                    "Directory for the pictures of the first and last frame (created if missing; \"\" for none)")
       ->capture_default_str();
 
+  BenchOptions bench_options;
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Benchmark suite: fcl_quadric against stock FCL 0.7 and Bullet on the same inputs in this process "
+               "(random pairs, near-tangent pairs, the separating-planes paper's tables, the thesis' boxing, a broad-"
+               "phase scene, an OcTree); prints a table per experiment, writes DIR/bench.json and a bar chart per "
+               "experiment.");
+  bench->add_option("--size", bench_options.size, "tiny (seconds), small (about a minute) or full (the papers' sizes)")
+      ->check([](const std::string& s) {
+        return s == "tiny" || s == "small" || s == "full" ? std::string()
+                                                          : "unknown size '" + s + "' (known: tiny, small, full)";
+      })
+      ->capture_default_str();
+  bench->add_option("--out", bench_options.out, "Directory for bench.json and the charts (created if missing)")
+      ->capture_default_str();
+  bench->add_option("--only", bench_options.only,
+                    "Comma-separated experiments to run (random, near_tangent, separating_planes, boxing, broadphase, "
+                    "octree); default all")
+      ->check([](const std::string& s) {
+        try {
+          parseBenchOnly(s);
+          return std::string();
+        } catch (const SceneError& e) {
+          return e.message();
+        }
+      });
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -139,6 +169,8 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
         // The demo's frames have no motions over [0, 1]: the CCD plots show the built-in example scenes.
         result << "  plots: " << writeDemoPlots(demo_pictures) << "\n";
       }
+    } else if (bench->parsed()) {
+      runBench(bench_options, result, err, &err == &std::cerr && isatty(STDERR_FILENO) != 0);
     } else if (render->parsed()) {
       runRender(render_scene_path, render_output, render_time);
     } else if (plot->parsed()) {

@@ -1,6 +1,7 @@
 #pragma once
 /// \file cli.h
-/// Entry point of the fcl_quadric command-line program (commands `check`, `ccd` and `demo`).
+/// Entry point of the fcl_quadric command-line program (commands `check`, `ccd`, `render`, `demo`
+/// and `bench`).
 
 #include <ostream>
 #include <string>

@@ -11,6 +11,7 @@ PKGS=(
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libcairo2-dev
   libboost-dev libgmp-dev
+  libbullet-dev
 )
 # Sanitizer and fuzz builds (scripts/ci-sanitizers.sh, docs/reliability.md): clang with its
 # runtimes (libFuzzer, ASan/UBSan/TSan) and llvm-symbolizer for readable reports.

@@ -10,8 +10,10 @@
 #include <fstream>
 #include <random>
 #include <regex>
+#include <set>
 #include <sstream>
 
+#include <cairo.h>
 #include <nlohmann/json.hpp>
 
 #include "cli/bad_scenes.h"
@@ -356,6 +358,72 @@ TEST_F(EndToEnd, DemoPrintsConsistentSummary) {
   const ProcessResult other = run({"demo", "--frames", "50", "--objects", "10", "--seed", "12345"});
   ASSERT_EQ(other.status, 0) << other.err;
   EXPECT_NE(other.out.find("(seed 12345)"), std::string::npos);
+}
+
+// `fcl_quadric bench --size tiny`: runs once for the whole group (it takes seconds). Timings are
+// not asserted, only that every experiment and peer reports a finite positive time and that the
+// charts are valid PNGs.
+class BenchEndToEnd : public EndToEnd {
+ protected:
+  static const ProcessResult& tiny() {
+    static const ProcessResult r = run({"bench", "--size", "tiny", "--out", (dir_ / "bench_tiny").string()});
+    return r;
+  }
+};
+
+TEST_F(BenchEndToEnd, TinyWritesResultsForEveryExperimentAndPeer) {
+  const ProcessResult& r = tiny();
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json doc = json::parse(readFile(dir_ / "bench_tiny" / "bench.json"));
+  const std::vector<std::string> experiments = {"random", "near_tangent", "separating_planes",
+                                                "boxing", "broadphase",   "octree"};
+  ASSERT_EQ(doc.at("experiments").size(), experiments.size());
+  for (std::size_t i = 0; i < experiments.size(); ++i) {
+    const json& e = doc.at("experiments").at(i);
+    EXPECT_EQ(e.at("name"), experiments[i]);
+    EXPECT_NE(r.out.find("== " + experiments[i] + ": "), std::string::npos) << "no table for " << experiments[i];
+    std::set<std::string> peers;
+    for (const json& row : doc.at("results")) {
+      if (row.at("experiment") != experiments[i]) continue;
+      peers.insert(row.at("peer").get<std::string>());
+      const double ns = row.at("ns_per_query").get<double>();
+      EXPECT_TRUE(std::isfinite(ns) && ns > 0.0) << row.dump();
+      EXPECT_GT(row.at("n").get<std::size_t>(), 0u) << row.dump();
+      EXPECT_TRUE(std::isfinite(row.at("ratio").get<double>()) && row.at("ratio").get<double>() > 0.0) << row.dump();
+      EXPECT_TRUE(row.at("wrong").is_null() || row.at("wrong").get<long>() >= 0) << row.dump();
+      // fcl_quadric is the exact answer of every experiment but near_tangent (truth by construction).
+      if (row.at("peer") == "fcl_quadric" && experiments[i] != "near_tangent") {
+        EXPECT_EQ(row.at("wrong"), 0) << row.dump();
+      }
+    }
+    EXPECT_EQ(peers.count("fcl_quadric"), 1u) << experiments[i];
+    EXPECT_GE(peers.size(), 2u) << experiments[i];
+    if (experiments[i] != "broadphase" && experiments[i] != "octree") {
+      EXPECT_EQ(peers.count("bullet"), 1u) << experiments[i];
+    }
+    // The chart parses back as a PNG of nonzero size.
+    const std::string png = (dir_ / "bench_tiny" / e.at("chart").get<std::string>()).string();
+    cairo_surface_t* image = cairo_image_surface_create_from_png(png.c_str());
+    EXPECT_EQ(cairo_surface_status(image), CAIRO_STATUS_SUCCESS) << png;
+    EXPECT_GT(cairo_image_surface_get_width(image), 0) << png;
+    EXPECT_GT(cairo_image_surface_get_height(image), 0) << png;
+    cairo_surface_destroy(image);
+  }
+}
+
+TEST_F(BenchEndToEnd, BadSizeIsAUsageError) {
+  expectUsageOrInputError(run({"bench", "--size", "huge", "--out", (dir_ / "bench_bad").string()}), "huge");
+}
+
+TEST_F(BenchEndToEnd, UnknownExperimentIsAUsageError) {
+  expectUsageOrInputError(run({"bench", "--only", "random,nonesuch", "--out", (dir_ / "bench_bad").string()}),
+                          "nonesuch");
+}
+
+TEST_F(BenchEndToEnd, UnwritableOutIsAnInputError) {
+  // A regular file where the directory should be.
+  const std::string file = writeFile("not_a_directory", "x");
+  expectUsageOrInputError(run({"bench", "--size", "tiny", "--only", "random", "--out", file}), "not_a_directory");
 }
 
 }  // namespace
