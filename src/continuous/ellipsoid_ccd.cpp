@@ -430,7 +430,7 @@ class IntervalSolver {
   // E: entry-wise bound of the error of F's coefficients (every decision below widens its margin
   // by the matching combination of E).
   IntervalSolver(const BivariateBernstein& F, const Eigen::MatrixXd& E, EllipsoidCcdResult* result)
-      : F_(F), E_(E), result_(result) {
+      : F_(F), E_(E), has_error_(E.size() > 0 && E.maxCoeff() > 0.0), result_(result) {
     const int n = F.degreeT();
     binomial_t_.resize(n + 1);
     for (int j = 0; j <= n; ++j) binomial_t_[j] = detail::binomial(n, j);
@@ -456,7 +456,8 @@ class IntervalSolver {
     error->resize(C.cols());
     for (Eigen::Index j = 0; j < C.cols(); ++j) {
       g[j] = w[0] * C(0, j) + w[1] * C(1, j) + w[2] * C(2, j) + w[3] * C(3, j) + w[4] * C(4, j);
-      (*error)[j] = w[0] * E_(0, j) + w[1] * E_(1, j) + w[2] * E_(2, j) + w[3] * E_(3, j) + w[4] * E_(4, j);
+      (*error)[j] =
+          has_error_ ? w[0] * E_(0, j) + w[1] * E_(1, j) + w[2] * E_(2, j) + w[3] * E_(3, j) + w[4] * E_(4, j) : 0.0;
     }
     return BernsteinPolynomial(std::move(g), F_.tLower(), F_.tUpper());
   }
@@ -472,13 +473,14 @@ class IntervalSolver {
     const Eigen::MatrixXd& C = F_.coefficients();
     error_at_t_ = 0.0;
     for (int i = 0; i <= 4; ++i) {
-      double v = 0.0, e = 0.0;
-      for (int j = 0; j <= n; ++j) {
-        v += C(i, j) * basis_[j];
-        e += E_(i, j) * basis_[j];
-      }
+      double v = 0.0;
+      for (int j = 0; j <= n; ++j) v += C(i, j) * basis_[j];
       c[i] = v;
-      error_at_t_ = std::max(error_at_t_, e);
+      if (has_error_) {
+        double e = 0.0;
+        for (int j = 0; j <= n; ++j) e += E_(i, j) * basis_[j];
+        error_at_t_ = std::max(error_at_t_, e);
+      }
     }
     return c;
   }
@@ -668,6 +670,7 @@ class IntervalSolver {
  private:
   const BivariateBernstein& F_;
   const Eigen::MatrixXd& E_;
+  bool has_error_;  // E is not all zero (the precision check ran)
   EllipsoidCcdResult* result_;
   double error_at_t_ = 0.0;  // set by rowsAt: max_i error bound of c_i(t)
   std::vector<double> binomial_t_;

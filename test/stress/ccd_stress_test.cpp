@@ -100,6 +100,13 @@ void nearDegenerateW(int n, std::uint64_t seed, StressCounts& c, int* rejected) 
     const Eigen::Vector3d ra = test::randomRadii(rng, 1.0, k % 2 ? 1e4 : 5.0), rb = test::randomRadii(rng, 1.0, 5.0);
     const EllipsoidCcdResult deg6 = checkMotionPair(body(ra, *scaled), body(rb, mb), 64, c);
     const EllipsoidCcdResult deg2 = continuousCollideEllipsoids(body(ra, ma), body(rb, mb));
+    if (deg6.unresolved || deg2.unresolved) {
+      // The documented conservative fallback (work cap or conditioning limit): colliding from
+      // the first uncertified instant, never a dropped overlap (checkMotionPair checks that).
+      ++c.conservative;
+      EXPECT_TRUE(deg6.collide || !deg6.unresolved);
+      continue;
+    }
     if (!deg2.near_tangent && !deg6.near_tangent) {
       EXPECT_EQ(deg6.collide, deg2.collide) << c.name << " eps " << eps;
       if (deg6.collide && deg2.collide) {
@@ -125,6 +132,7 @@ TEST(CcdStress, LongDegree6MotionsWithNearlyVanishingW) {
   int rejected = 0;
   nearDegenerateW(400, 92, c, &rejected);
   EXPECT_EQ(c.disagreements, 0);
+  EXPECT_LE(c.conservative, c.cases / 50);  // the work cap stays rare (2 of 400 cases measured)
 }
 
 /// Zero-length motions (fromPoses(X, X) and constant()) of pairs around tangency: the solver's
