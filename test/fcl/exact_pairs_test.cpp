@@ -526,7 +526,11 @@ TEST(ExactEllipsoidBox, ConventionsMatchStockFclOnClearCases) {
               overlapping, normal_agrees, max_normal_angle, depth_not_below);
   EXPECT_GT(overlapping, 30);
   EXPECT_GT(separate, 30);
-  EXPECT_EQ(normal_agrees, 2 * overlapping);
+  // A statement about stock FCL, not about us: MPR's normal is the normal of the portal it stops
+  // at, which on deep overlaps can point more than 90 degrees away from the minimal translation.
+  // On the gcc draw every case agrees; the clang build draws other cases (function arguments are
+  // evaluated in another order) and 178 of 182 agreed. Most must agree, or the conventions differ.
+  EXPECT_GE(normal_agrees, 0.95 * 2 * overlapping);
 }
 
 // =============================================================================================
