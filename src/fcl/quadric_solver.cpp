@@ -313,6 +313,90 @@ bool exactSignedDistance(const Ellipsoid& e, const WorldPlane& other, ExactDista
   return c.signed_distance >= 0.0;
 }
 
+// --- Any convex shape against a plane or a half-space, by support points -------------------------
+
+bool supportPlaneDistance(const SupportExtent& e, const WorldPlane& P, bool signed_distance, ExactDistance* out) {
+  const double a = P.n.dot(e.lo) - P.d;  // lowest point's offset
+  const double b = P.n.dot(e.hi) - P.d;  // highest point's offset
+  auto onPlane = [&](const Eigen::Vector3d& x) -> Eigen::Vector3d { return x - (P.n.dot(x) - P.d) * P.n; };
+  if (a > 0.0) {  // entirely on the positive side: separate from the plane and from { n.x <= d }
+    out->distance = a;
+    out->p1 = e.lo;
+    out->p2 = onPlane(e.lo);
+    return true;
+  }
+  if (!P.halfspace && b < 0.0) {  // entirely on the negative side of a two-sided plane
+    out->distance = -b;
+    out->p1 = e.hi;
+    out->p2 = onPlane(e.hi);
+    return true;
+  }
+  // Overlapping. Half-space: the deepest point is lo, depth -a. Plane: pushed out to the side of
+  // the centre, as FCL's closed forms choose it (centre on the plane: +n).
+  const bool up = P.halfspace || P.n.dot(e.centre) - P.d >= 0.0;
+  const Eigen::Vector3d deepest = up ? e.lo : e.hi;
+  if (signed_distance) {
+    out->distance = up ? a : -b;
+    out->p1 = deepest;
+    out->p2 = onPlane(deepest);
+    return false;
+  }
+  // libccd's convention: -1 and a point common to both solids.
+  out->distance = -1.0;
+  if (P.halfspace) {
+    out->p1 = out->p2 = e.lo;
+  } else {
+    // Where the segment from lo to hi (inside the solid) crosses the plane.
+    const double w = b - a;
+    out->p1 = out->p2 = w > 0.0 ? Eigen::Vector3d(e.lo + (-a / w) * (e.hi - e.lo)) : onPlane(e.lo);
+  }
+  return false;
+}
+
+Eigen::Vector3d supportPoint(const Eigen::Vector3d& dir, double radius, const Eigen::Vector3d& centre) {
+  if (!(radius >= 0.0) || !std::isfinite(radius))
+    throw std::invalid_argument("fcl_quadric::QuadricSolver: fcl::Sphere radius must be finite and >= 0");
+  return centre + radius * dir;
+}
+
+Eigen::Vector3d supportPointBox(const Eigen::Vector3d& dir, const Eigen::Vector3d& half, const Eigen::Matrix3d& R,
+                                const Eigen::Vector3d& p) {
+  const Eigen::Vector3d local = R.transpose() * dir;
+  Eigen::Vector3d s;
+  for (int i = 0; i < 3; ++i) s[i] = local[i] >= 0.0 ? half[i] : -half[i];
+  return p + R * s;
+}
+
+Eigen::Vector3d supportPointCapsule(const Eigen::Vector3d& dir, double radius, double length, const Eigen::Matrix3d& R,
+                                    const Eigen::Vector3d& p) {
+  const Eigen::Vector3d axis = R.col(2) * (0.5 * length);
+  return p + (dir.dot(axis) >= 0.0 ? axis : Eigen::Vector3d(-axis)) + radius * dir;
+}
+
+namespace {
+// The unit radial direction of `local` in the local xy-plane (zero when `local` is along z).
+Eigen::Vector3d radialUnit(const Eigen::Vector3d& local) {
+  const double r = std::hypot(local.x(), local.y());
+  return r > 0.0 ? Eigen::Vector3d(local.x() / r, local.y() / r, 0.0) : Eigen::Vector3d::Zero();
+}
+}  // namespace
+
+Eigen::Vector3d supportPointCylinder(const Eigen::Vector3d& dir, double radius, double length,
+                                     const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d local = R.transpose() * dir;
+  const Eigen::Vector3d s = radius * radialUnit(local) + Eigen::Vector3d(0, 0, local.z() >= 0.0 ? 0.5 * length : -0.5 * length);
+  return p + R * s;
+}
+
+Eigen::Vector3d supportPointCone(const Eigen::Vector3d& dir, double radius, double length, const Eigen::Matrix3d& R,
+                                 const Eigen::Vector3d& p) {
+  // Base disk of radius r at local z = -L/2, apex at +L/2 (fcl::Cone).
+  const Eigen::Vector3d local = R.transpose() * dir;
+  const Eigen::Vector3d apex(0, 0, 0.5 * length);
+  const Eigen::Vector3d rim = radius * radialUnit(local) + Eigen::Vector3d(0, 0, -0.5 * length);
+  return p + R * (local.dot(apex) >= local.dot(rim) ? apex : rim);
+}
+
 // --- Ellipsoid against a box or a triangle -----------------------------------------------------
 
 namespace {

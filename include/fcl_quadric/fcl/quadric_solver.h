@@ -18,6 +18,8 @@
 
 #include <cmath>
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -27,6 +29,7 @@
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/halfspace.h>
@@ -75,6 +78,24 @@ enum class QuadricPairKind {
   /// fcl::Ellipsoid x triangle (QuadricTriangle, BVH meshes): classifyEllipsoidTriangle /
   /// signedDistanceEllipsoidTriangle.
   kEllipsoidTriangle,
+  /// fcl::Sphere / Box / Capsule / Cylinder / Cone / Convex x fcl::Plane / fcl::Halfspace (both
+  /// orders), distance and signed distance only: FCL 0.7 has no closed form for them and its GJK
+  /// has no support function for a plane, so stock fcl::distance segfaults (docs/reliability.md,
+  /// finding 5). Answered from the shape's two extreme points along the plane normal
+  /// (detail::supportPlaneDistance, closed-form support functions). Collision stays FCL's own
+  /// closed forms (plane-inl.h, halfspace-inl.h) for the sphere, box and capsule.
+  kSupportPlane,
+  /// fcl::Cylinder / fcl::Cone / fcl::Convex x fcl::Plane / fcl::Halfspace: as kSupportPlane, and
+  /// collision too (signed distance <= 0; one contact: normal toward the plane solid, depth,
+  /// position midway between the deepest point and its projection). FCL 0.7's cylinder-plane and
+  /// cone-half-space closed forms report contact at clear gaps (measured up to 0.5 on shapes of
+  /// size ~1), and its convex-plane collision segfaults like the distance
+  /// (test/fcl/support_plane_test.cpp).
+  kSupportPlaneExact,
+  /// fcl::Plane / fcl::Halfspace x fcl::Plane / fcl::Halfspace: collision is FCL's closed form;
+  /// distance throws std::invalid_argument (FCL 0.7 has no closed form and its GJK segfaults; two
+  /// unbounded solids have no penetration depth).
+  kPlanePlane,
 };
 
 /// Pair table for shapeIntersect / shapeDistance / shapeSignedDistance. `swapped` tells a
@@ -161,6 +182,47 @@ struct QuadricPair<fcl::Cone<S>, fcl::Ellipsoid<S>> {
   static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCone;
   static constexpr bool swapped = true;
 };
+
+// Shapes answered against planes and half-spaces by their support functions (kSupportPlane).
+#define FCL_QUADRIC_SUPPORT_PLANE_PAIR(Shape, Kind)   \
+  template <typename S>                                 \
+  struct QuadricPair<fcl::Shape<S>, fcl::Plane<S>> {    \
+    static constexpr QuadricPairKind kind = Kind;       \
+    static constexpr bool swapped = false;              \
+  };                                                    \
+  template <typename S>                                 \
+  struct QuadricPair<fcl::Plane<S>, fcl::Shape<S>> {    \
+    static constexpr QuadricPairKind kind = Kind;       \
+    static constexpr bool swapped = true;               \
+  };                                                    \
+  template <typename S>                                 \
+  struct QuadricPair<fcl::Shape<S>, fcl::Halfspace<S>> { \
+    static constexpr QuadricPairKind kind = Kind;       \
+    static constexpr bool swapped = false;              \
+  };                                                    \
+  template <typename S>                                 \
+  struct QuadricPair<fcl::Halfspace<S>, fcl::Shape<S>> { \
+    static constexpr QuadricPairKind kind = Kind;       \
+    static constexpr bool swapped = true;               \
+  };
+FCL_QUADRIC_SUPPORT_PLANE_PAIR(Sphere, QuadricPairKind::kSupportPlane)
+FCL_QUADRIC_SUPPORT_PLANE_PAIR(Box, QuadricPairKind::kSupportPlane)
+FCL_QUADRIC_SUPPORT_PLANE_PAIR(Capsule, QuadricPairKind::kSupportPlane)
+FCL_QUADRIC_SUPPORT_PLANE_PAIR(Convex, QuadricPairKind::kSupportPlaneExact)
+FCL_QUADRIC_SUPPORT_PLANE_PAIR(Cylinder, QuadricPairKind::kSupportPlaneExact)
+FCL_QUADRIC_SUPPORT_PLANE_PAIR(Cone, QuadricPairKind::kSupportPlaneExact)
+#undef FCL_QUADRIC_SUPPORT_PLANE_PAIR
+#define FCL_QUADRIC_PLANE_PLANE_PAIR(A, B)                                  \
+  template <typename S>                                                    \
+  struct QuadricPair<fcl::A<S>, fcl::B<S>> {                               \
+    static constexpr QuadricPairKind kind = QuadricPairKind::kPlanePlane;  \
+    static constexpr bool swapped = false;                                 \
+  };
+FCL_QUADRIC_PLANE_PLANE_PAIR(Plane, Plane)
+FCL_QUADRIC_PLANE_PLANE_PAIR(Plane, Halfspace)
+FCL_QUADRIC_PLANE_PLANE_PAIR(Halfspace, Plane)
+FCL_QUADRIC_PLANE_PLANE_PAIR(Halfspace, Halfspace)
+#undef FCL_QUADRIC_PLANE_PLANE_PAIR
 
 /// Table for the shape-triangle queries (the triangle is always the second operand).
 template <typename Shape>
@@ -334,6 +396,95 @@ bool exactSignedDistance(const Ellipsoid& e, const WorldCapsule& other, ExactDis
 bool exactSignedDistance(const Ellipsoid& e, const WorldCylinder& other, ExactDistance* out);
 bool exactSignedDistance(const Ellipsoid& e, const WorldCone& other, ExactDistance* out);
 
+/// A convex solid seen along a unit direction n: its extreme points lo = argmin n.x and
+/// hi = argmax n.x (world frame) and its centre (the origin of its local frame, which decides the
+/// side of a two-sided plane as FCL's closed forms do).
+struct SupportExtent {
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero();
+  Eigen::Vector3d hi = Eigen::Vector3d::Zero();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+};
+
+/// Distance (signed_distance = false: libccd's convention, -1 and p1 = p2 = a common point when
+/// they overlap) or signed distance (negative = minus the penetration depth along the plane
+/// normal) between a convex solid known by its SupportExtent along other.n and a plane or
+/// half-space. p1 on the solid, p2 on the plane. Returns true iff separated. Exact up to the
+/// rounding of the support points (closed forms); no tolerance band.
+bool supportPlaneDistance(const SupportExtent& e, const WorldPlane& other, bool signed_distance, ExactDistance* out);
+
+/// argmax over the posed shape of dir . x (dir unit, world frame): closed-form support points.
+Eigen::Vector3d supportPoint(const Eigen::Vector3d& dir, double radius, const Eigen::Vector3d& centre);  // sphere
+Eigen::Vector3d supportPointBox(const Eigen::Vector3d& dir, const Eigen::Vector3d& half, const Eigen::Matrix3d& R,
+                                const Eigen::Vector3d& p);
+Eigen::Vector3d supportPointCapsule(const Eigen::Vector3d& dir, double radius, double length, const Eigen::Matrix3d& R,
+                                    const Eigen::Vector3d& p);
+Eigen::Vector3d supportPointCylinder(const Eigen::Vector3d& dir, double radius, double length,
+                                     const Eigen::Matrix3d& R, const Eigen::Vector3d& p);
+Eigen::Vector3d supportPointCone(const Eigen::Vector3d& dir, double radius, double length, const Eigen::Matrix3d& R,
+                                 const Eigen::Vector3d& p);
+
+/// The posed shape's support point along dir, after the same validation as the exact kernels'
+/// operands (`which` names the operand in the std::invalid_argument thrown for bad parameters).
+template <typename S>
+Eigen::Vector3d supportOf(const fcl::Sphere<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
+                          const char* which) {
+  const Ellipsoid e = asEllipsoid(s, tf, which);
+  return supportPoint(dir, e.radii()[0], e.center());
+}
+template <typename S>
+Eigen::Vector3d supportOf(const fcl::Box<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
+                          const char* which) {
+  const WorldBox b = boxFromFcl(s.side.template cast<double>(), tf.linear().template cast<double>(),
+                                tf.translation().template cast<double>(), which);
+  return supportPointBox(dir, b.half, b.R, b.p);
+}
+template <typename S>
+Eigen::Vector3d supportOf(const fcl::Capsule<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
+                          const char* which) {
+  const WorldCapsule c = capsuleFromFcl(static_cast<double>(s.radius), static_cast<double>(s.lz),
+                                        tf.linear().template cast<double>(), tf.translation().template cast<double>(), which);
+  return supportPointCapsule(dir, c.radius, c.length, c.R, c.p);
+}
+template <typename S>
+Eigen::Vector3d supportOf(const fcl::Cylinder<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
+                          const char* which) {
+  const WorldCylinder c = cylinderFromFcl(static_cast<double>(s.radius), static_cast<double>(s.lz),
+                                          tf.linear().template cast<double>(), tf.translation().template cast<double>(), which);
+  return supportPointCylinder(dir, c.radius, c.length, c.R, c.p);
+}
+template <typename S>
+Eigen::Vector3d supportOf(const fcl::Cone<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
+                          const char* which) {
+  const WorldCone c = coneFromFcl(static_cast<double>(s.radius), static_cast<double>(s.lz),
+                                  tf.linear().template cast<double>(), tf.translation().template cast<double>(), which);
+  return supportPointCone(dir, c.radius, c.length, c.R, c.p);
+}
+template <typename S>
+Eigen::Vector3d supportOf(const fcl::Convex<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
+                          const char* which) {
+  const std::vector<fcl::Vector3<S>>& v = s.getVertices();
+  if (v.empty()) throw std::invalid_argument(std::string("fcl_quadric::QuadricSolver: ") + which + " (fcl::Convex) has no vertices");
+  Eigen::Vector3d best = (tf * v.front()).template cast<double>();
+  for (const fcl::Vector3<S>& x : v) {
+    const Eigen::Vector3d w = (tf * x).template cast<double>();
+    if (!w.allFinite())
+      throw std::invalid_argument(std::string("fcl_quadric::QuadricSolver: ") + which + " (fcl::Convex) has a non-finite vertex");
+    if (w.dot(dir) > best.dot(dir)) best = w;
+  }
+  return best;
+}
+
+/// The kSupportPlane pair: the shape's extent along the plane normal, then supportPlaneDistance.
+template <typename S, typename Shape>
+bool supportPairDistance(const Shape& shape, const fcl::Transform3<S>& tf_shape, const char* which,
+                         const WorldPlane& plane, bool signed_distance, ExactDistance* out) {
+  SupportExtent e;
+  e.lo = supportOf(shape, tf_shape, -plane.n, which);
+  e.hi = supportOf(shape, tf_shape, plane.n, which);
+  e.centre = tf_shape.translation().template cast<double>();
+  return supportPlaneDistance(e, plane, signed_distance, out);
+}
+
 /// The posed FCL shape as the operand type of the exact kernels.
 template <typename S>
 Ellipsoid asExact(const fcl::Ellipsoid<S>& s, const fcl::Transform3<S>& tf, const char* which) {
@@ -477,8 +628,21 @@ class QuadricSolver {
     detail::checkTransform(tf1, "tf1");
     detail::checkTransform(tf2, "tf2");
     using Pair = detail::QuadricPair<Shape1, Shape2>;
-    if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd) {
-      return libccd_.shapeIntersect(s1, tf1, s2, tf2, contacts);
+    if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd || Pair::kind == detail::QuadricPairKind::kSupportPlane ||
+                  Pair::kind == detail::QuadricPairKind::kPlanePlane) {
+      return libccd_.shapeIntersect(s1, tf1, s2, tf2, contacts);  // FCL's closed forms
+    } else if constexpr (Pair::kind == detail::QuadricPairKind::kSupportPlaneExact) {
+      S dist = 0;
+      fcl::Vector3<S> p1, p2;
+      if (supportPlanePair<Pair::swapped>(s1, tf1, s2, tf2, true, &dist, &p1, &p2)) return false;
+      if (contacts) {
+        // p1 on s1, p2 on s2: when they overlap, p2 - p1 = dist * (unit normal from s1 to s2).
+        const fcl::Vector3<S> d = p2 - p1;
+        const S len = d.norm();
+        fcl::Vector3<S> normal = len > 0 ? fcl::Vector3<S>(-d / len) : fcl::Vector3<S>(supportNormal<Pair::swapped>(s1, tf1, s2, tf2));
+        contacts->emplace_back(normal, (0.5 * (p1 + p2)).eval(), -dist);
+      }
+      return true;
     } else {
       static_assert(isShapePairKind(Pair::kind), "QuadricSolver::shapeIntersect: unhandled pair kind");
       detail::ExactContact c;
@@ -541,6 +705,13 @@ class QuadricSolver {
     using Pair = detail::QuadricPair<Shape1, Shape2>;
     if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd) {
       return libccd_.shapeDistance(s1, tf1, s2, tf2, dist, p1, p2);
+    } else if constexpr (Pair::kind == detail::QuadricPairKind::kSupportPlane ||
+                         Pair::kind == detail::QuadricPairKind::kSupportPlaneExact) {
+      return supportPlanePair<Pair::swapped>(s1, tf1, s2, tf2, false, dist, p1, p2);
+    } else if constexpr (Pair::kind == detail::QuadricPairKind::kPlanePlane) {
+      throw std::invalid_argument(
+          "fcl_quadric::QuadricSolver: no distance between two planes / half-spaces (FCL 0.7 has no closed form "
+          "and its GJK segfaults on them)");
     } else {
       static_assert(isShapePairKind(Pair::kind), "QuadricSolver::shapeDistance: unhandled pair kind");
       detail::ExactDistance d;
@@ -562,6 +733,13 @@ class QuadricSolver {
     using Pair = detail::QuadricPair<Shape1, Shape2>;
     if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd) {
       return libccd_.shapeSignedDistance(s1, tf1, s2, tf2, dist, p1, p2);
+    } else if constexpr (Pair::kind == detail::QuadricPairKind::kSupportPlane ||
+                         Pair::kind == detail::QuadricPairKind::kSupportPlaneExact) {
+      return supportPlanePair<Pair::swapped>(s1, tf1, s2, tf2, true, dist, p1, p2);
+    } else if constexpr (Pair::kind == detail::QuadricPairKind::kPlanePlane) {
+      throw std::invalid_argument(
+          "fcl_quadric::QuadricSolver: no distance between two planes / half-spaces (FCL 0.7 has no closed form "
+          "and its GJK segfaults on them)");
     } else {
       static_assert(isShapePairKind(Pair::kind), "QuadricSolver::shapeSignedDistance: unhandled pair kind");
       detail::ExactDistance d;
@@ -627,6 +805,39 @@ class QuadricSolver {
            k == detail::QuadricPairKind::kEllipsoidHalfspace || k == detail::QuadricPairKind::kEllipsoidBox ||
            k == detail::QuadricPairKind::kEllipsoidCapsule || k == detail::QuadricPairKind::kEllipsoidCylinder ||
            k == detail::QuadricPairKind::kEllipsoidCone;
+  }
+
+  // kSupportPlane: the shape in FCL's order s1, s2 (swapped: the plane first).
+  template <bool swapped, typename Shape1, typename Shape2>
+  static bool supportPlanePair(const Shape1& s1, const fcl::Transform3<S>& tf1, const Shape2& s2,
+                               const fcl::Transform3<S>& tf2, bool signed_distance, S* dist, fcl::Vector3<S>* p1,
+                               fcl::Vector3<S>* p2) {
+    detail::ExactDistance d;
+    bool separated;
+    if constexpr (swapped) {
+      separated = detail::supportPairDistance(s2, tf2, "o2", detail::asExact(s1, tf1, "o1"), signed_distance, &d);
+      d.p1.swap(d.p2);
+    } else {
+      separated = detail::supportPairDistance(s1, tf1, "o1", detail::asExact(s2, tf2, "o2"), signed_distance, &d);
+    }
+    detail::writeDistance(d, dist, p1, p2);
+    return separated;
+  }
+
+  // The unit normal from s1 to s2 when the deepest point lies on the plane (zero depth): the
+  // plane normal toward the plane solid's side.
+  template <bool swapped, typename Shape1, typename Shape2>
+  static Eigen::Vector3d supportNormal(const Shape1& s1, const fcl::Transform3<S>& tf1, const Shape2& s2,
+                                       const fcl::Transform3<S>& tf2) {
+    if constexpr (swapped) {
+      const detail::WorldPlane P = detail::asExact(s1, tf1, "o1");
+      const bool up = P.halfspace || P.n.dot(tf2.translation().template cast<double>()) - P.d >= 0.0;
+      return up ? Eigen::Vector3d(P.n) : Eigen::Vector3d(-P.n);  // from the plane toward the shape
+    } else {
+      const detail::WorldPlane P = detail::asExact(s2, tf2, "o2");
+      const bool up = P.halfspace || P.n.dot(tf1.translation().template cast<double>()) - P.d >= 0.0;
+      return up ? Eigen::Vector3d(-P.n) : Eigen::Vector3d(P.n);  // from the shape toward the plane
+    }
   }
 
   static bool triangleIntersect(const Ellipsoid& e, const detail::WorldTriangle& t, fcl::Vector3<S>* contact_points,
