@@ -719,7 +719,8 @@ Eigen::Vector3d pencilCentre(const PolynomialMatrix4& A, const PolynomialMatrix4
 // The pencil of one segment as the solver uses it: A(t), B(t) in scaled coordinates y = S^{-1} x
 // (origin between the centres ca0, cb0 at t = 0, unit ~ the largest radius), balanced, and F(u, t)
 // normalised to largest coefficient 1, with the error estimate E of F's coefficients (zero unless
-// the precision check ran). Empty when the affine interpolant's end states are not representable.
+// the precision check ran). Empty when the moving quadrics or the affine interpolant's end states
+// are not representable in double (overflow).
 struct SegmentPencil {
   ScaledQuadric A, B;
   Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
@@ -736,8 +737,15 @@ std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const Motio
   p.S.topLeftCorner<3, 3>() *= L;
   if (!affine) {
     p.S.block<3, 1>(0, 3) = 0.5 * (ca0 + cb0);
-    p.A = scaledQuadric(a.body.quadricMatrix(), ma.inverseCoefficients(), p.S);
-    p.B = scaledQuadric(b.body.quadricMatrix(), mb.inverseCoefficients(), p.S);
+    // A motion whose affine map M / w overflows (w(t) ~ 1e-308 passes validation: it has no root)
+    // has no representable moving quadric: no pencil (the caller's conservative fallback).
+    if (!p.S.array().isFinite().all()) return std::nullopt;
+    try {
+      p.A = scaledQuadric(a.body.quadricMatrix(), ma.inverseCoefficients(), p.S);
+      p.B = scaledQuadric(b.body.quadricMatrix(), mb.inverseCoefficients(), p.S);
+    } catch (const std::invalid_argument&) {
+      return std::nullopt;  // a coefficient overflowed to inf / NaN (Polynomial rejects it)
+    }
     // Precision check (docs/algorithms.md section 8): when the motions' and shapes' conditioning
     // puts the double rounding of F above the touching band, F is rebuilt in extended precision
     // from N's extended coefficients and the difference widens every margin (finding 8: a shear
@@ -785,10 +793,15 @@ std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const Motio
   return p;
 }
 
-// World centre of a moving ellipsoid at local time 0 (no eigen-decomposition).
-Eigen::Vector3d centreAtStart(const MovingEllipsoid& e, const MotionMatrix& m) {
+// World centre of a moving ellipsoid at local time 0 (no eigen-decomposition); empty when the
+// affine map M(0) / w(0) overflows (checked before any product, so that no inf * 0 is formed;
+// isFinite, not allFinite, which computes x - x and raises FE_INVALID on inf).
+std::optional<Eigen::Vector3d> centreAtStart(const MovingEllipsoid& e, const MotionMatrix& m) {
   const Eigen::Matrix4d T = m.evaluate(0.0);
-  return T.topLeftCorner<3, 3>() * e.body.center() + T.block<3, 1>(0, 3);
+  if (!T.array().isFinite().all()) return std::nullopt;
+  const Eigen::Vector3d c = T.topLeftCorner<3, 3>() * e.body.center() + T.block<3, 1>(0, 3);
+  if (!c.array().isFinite().all()) return std::nullopt;
+  return c;
 }
 
 // One segment: both motions are single rational pieces on the local [0, 1]; t_max local.
@@ -801,18 +814,23 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
     r.separation_intervals.push_back({0.0, tmax});
     return r;
   }
-  const Eigen::Vector3d ca0 = centreAtStart(a, ma), cb0 = centreAtStart(b, mb);
-  // Beyond kCcdMaxCondition even the extended-precision F is rounding noise: conservative
-  // fallback, colliding throughout and flagged unresolved (docs/algorithms.md section 8).
-  const double condition = std::max(quadricCondition(a.body, ma), quadricCondition(b.body, mb));
+  const std::optional<Eigen::Vector3d> ca = centreAtStart(a, ma), cb = centreAtStart(b, mb);
   auto conservative = [&] {
     r.unresolved = true;
     r.collide = true;
     r.first_contact_time = 0.0;
     r.collision_intervals.push_back({0.0, opt.all_intervals ? tmax : 0.0});
-    r.contact_point = 0.5 * (ca0 + cb0);
+    // Indicative only: the midpoint of the centres at t = 0, or whichever centre exists (a motion
+    // whose map overflows has none; NaN never leaks into a result).
+    r.contact_point = ca && cb ? Eigen::Vector3d(0.5 * (*ca + *cb)) : cb ? *cb : ca ? *ca : Eigen::Vector3d::Zero();
     return r;
   };
+  // A map that overflows (w(t) ~ 1e-308 passes validation: it has no root) has no representable
+  // quadric: conservative fallback, as beyond kCcdMaxCondition, where even the extended-precision
+  // F is rounding noise (docs/algorithms.md section 8).
+  if (!ca || !cb) return conservative();
+  const Eigen::Vector3d ca0 = *ca, cb0 = *cb;
+  const double condition = std::max(quadricCondition(a.body, ma), quadricCondition(b.body, mb));
   if (!(condition <= opt.max_condition)) return conservative();
   // The world ellipsoids at t = 0 feed the plane cull and the first-contact static test only; an
   // ill-conditioned affine map may have none representable (Ellipsoid::fromAffine throws), and
@@ -1058,12 +1076,13 @@ std::vector<CcdFunctionSegment> ccdFunctionSegments(const MovingEllipsoid& a, co
     const MotionMatrix ma = whole ? a.motion.pieces().front() : a.motion.restricted(s0, s1);
     const MotionMatrix mb = whole ? b.motion.pieces().front() : b.motion.restricted(s0, s1);
     const double condition = std::max(quadricCondition(a.body, ma), quadricCondition(b.body, mb));
+    const std::optional<Eigen::Vector3d> ca = centreAtStart(a, ma), cb = centreAtStart(b, mb);
     const std::optional<SegmentPencil> p =
-        segmentPencil(a, ma, b, mb, centreAtStart(a, ma), centreAtStart(b, mb), affine, condition);
+        ca && cb ? segmentPencil(a, ma, b, mb, *ca, *cb, affine, condition) : std::nullopt;
     if (!p) {
       std::ostringstream os;
       os << "ccdFunctionSegments: the affine interpolant of segment [" << s0 << ", " << s1
-         << "] is not representable (an end state's affine map is too ill-conditioned)";
+         << "] is not representable in double (an affine map overflows or is too ill-conditioned)";
       throw std::invalid_argument(os.str());
     }
     segments.push_back({s0, s1, p->F});

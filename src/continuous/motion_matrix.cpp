@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -136,6 +137,10 @@ double MotionMatrix::linearCondition() const {
   double worst = 0.0;
   for (double t : {0.0, 0.5, 1.0}) {
     const Eigen::Matrix3d L = evaluate(t).topLeftCorner<3, 3>();
+    // A map that overflows, or whose determinant underflows, has no usable inverse (and the
+    // division of Eigen's 3x3 inverse must not run on a zero determinant).
+    const double det = L.array().isFinite().all() ? L.determinant() : 0.0;
+    if (!std::isnormal(det)) return std::numeric_limits<double>::infinity();
     worst = std::max(worst, L.norm() * L.inverse().norm());
   }
   return worst;

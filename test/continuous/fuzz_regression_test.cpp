@@ -179,5 +179,30 @@ TEST(FuzzRegression, IllConditionedShearsNeverDropAnOverlap) {
   std::printf("ill-conditioned shears, no limit: %d judged instants, %d precision-checked, %d unresolved\n", judged_open,
               checked_open, fallback_open);
 }
+// fuzz_motion (session 4, 500-run check; corpus entry finding11-subnormal-w): w(t) = 5.6e-309, a
+// subnormal with no root, passes MotionMatrix validation, but the affine map M / w overflows to
+// inf, the centre at t = 0 became inf * 0 = NaN and building the moving quadric threw
+// "Polynomial: non-finite coefficient" from inside continuousCollideEllipsoids. Now the pair gets
+// the documented conservative answer (colliding throughout, unresolved) with a finite contact
+// point, in both argument orders.
+TEST(FuzzRegression, AnOverflowingAffineMapGetsTheConservativeAnswer) {
+  const double sub = 5.5626846462680035e-309;
+  Eigen::Matrix4d M0;
+  M0 << 1, 8, 0, 0, 224, sub, sub, sub, sub, sub, sub, sub, 0, 0, 0, sub;
+  const MotionMatrix m = MotionMatrix::fromPolynomialMatrix(PolynomialMatrix4(M0));
+  const MovingEllipsoid a{Ellipsoid({1e-3, 1e-3, 1e-3}, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()),
+                          PiecewiseMotion(m)};
+  const MovingEllipsoid b{Ellipsoid({1, 1, 1}, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()), PiecewiseMotion()};
+  for (bool swapped : {false, true}) {
+    const EllipsoidCcdResult r = swapped ? continuousCollideEllipsoids(b, a) : continuousCollideEllipsoids(a, b);
+    EXPECT_TRUE(r.collide);
+    EXPECT_TRUE(r.unresolved);
+    EXPECT_TRUE(r.contact_point.allFinite());
+    ASSERT_EQ(r.collision_intervals.size(), 1u);
+    EXPECT_EQ(r.collision_intervals[0].begin, 0.0);
+    EXPECT_EQ(r.collision_intervals[0].end, 1.0);
+  }
+}
+
 }  // namespace
 }  // namespace fcl_quadric

@@ -467,7 +467,7 @@ Eigen::Vector3d supportOf(const fcl::Convex<S>& s, const fcl::Transform3<S>& tf,
   Eigen::Vector3d best = (tf * v.front()).template cast<double>();
   for (const fcl::Vector3<S>& x : v) {
     const Eigen::Vector3d w = (tf * x).template cast<double>();
-    if (!w.allFinite())
+    if (!w.array().isFinite().all())
       throw std::invalid_argument(std::string("fcl_quadric::QuadricSolver: ") + which + " (fcl::Convex) has a non-finite vertex");
     if (w.dot(dir) > best.dot(dir)) best = w;
   }
