@@ -994,12 +994,13 @@ std::vector<double> segmentBreaks(const MovingEllipsoid& a, const MovingEllipsoi
 
 EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const MovingEllipsoid& b,
                                                const CcdOptions& options) {
-  if (!(options.t_max > 0.0 && options.t_max <= 1.0)) {
+  // std::isnan first: an ordered comparison with NaN raises FE_INVALID (trapped by the tests).
+  if (std::isnan(options.t_max) || !(options.t_max > 0.0 && options.t_max <= 1.0)) {
     std::ostringstream os;
     os << "continuousCollideEllipsoids: t_max must be in (0, 1], got " << options.t_max;
     throw std::invalid_argument(os.str());
   }
-  if (!(options.max_condition > 0.0)) {
+  if (std::isnan(options.max_condition) || !(options.max_condition > 0.0)) {
     std::ostringstream os;
     os << "continuousCollideEllipsoids: max_condition must be positive, got " << options.max_condition;
     throw std::invalid_argument(os.str());

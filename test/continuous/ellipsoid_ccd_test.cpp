@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <limits>
 #include <random>
 
 #include <Eigen/Geometry>
@@ -441,6 +443,18 @@ TEST(EllipsoidCcd, FarApartPairsAreCulledAndTMaxLimitsTheSearch) {
   EXPECT_FALSE(continuousCollideEllipsoids(A, through, early).collide);
   early.t_max = 0.0;
   EXPECT_THROW(continuousCollideEllipsoids(A, through, early), std::invalid_argument);
+  // CcdOptions::max_condition must be positive (documented): 0, negative and NaN are rejected,
+  // naming the option.
+  for (double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    CcdOptions o;
+    o.max_condition = bad;
+    try {
+      (void)continuousCollideEllipsoids(A, through, o);
+      ADD_FAILURE() << "max_condition " << bad << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("max_condition"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace
