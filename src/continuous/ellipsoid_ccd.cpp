@@ -90,10 +90,11 @@ bool sphereCull(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEl
     const double t = vv > 0.0 ? std::clamp(-d0.dot(v) / vv, 0.0, 1.0) : 0.0;
     return (d0 + t * v).squaredNorm() > R * R * (1.0 + 1e-12);
   }
-  const Vec4P ca = times(ma.matrix(), a.body.center().homogeneous());
-  const Vec4P cb = times(mb.matrix(), b.body.center().homogeneous());
-  const Vec4P ca_abs = times(coefficientMagnitudes(ma.matrix()), a.body.center().cwiseAbs().homogeneous());
-  const Vec4P cb_abs = times(coefficientMagnitudes(mb.matrix()), b.body.center().cwiseAbs().homogeneous());
+  const PolynomialMatrix4 Ma = ma.matrix(), Mb = mb.matrix();
+  const Vec4P ca = times(Ma, a.body.center().homogeneous());
+  const Vec4P cb = times(Mb, b.body.center().homogeneous());
+  const Vec4P ca_abs = times(coefficientMagnitudes(Ma), a.body.center().cwiseAbs().homogeneous());
+  const Vec4P cb_abs = times(coefficientMagnitudes(Mb), b.body.center().cwiseAbs().homogeneous());
   const double r = a.body.radii().maxCoeff() + b.body.radii().maxCoeff();
   Polynomial g, g_abs;
   for (int i = 0; i < 3; ++i) {

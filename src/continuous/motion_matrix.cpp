@@ -46,11 +46,6 @@ Polynomial det3(const PolynomialMatrix4& M) {
          M(0, 2) * (M(1, 0) * M(2, 1) - M(1, 1) * M(2, 0));
 }
 
-
-}  // namespace
-
-namespace {
-
 // Drops trailing zero coefficient matrices (keeps at least one).
 template <class Mat>
 std::vector<Mat> trimmedCoefficients(std::vector<Mat> c) {

@@ -353,24 +353,20 @@ bool supportPlaneDistance(const SupportExtent& e, const WorldPlane& P, bool sign
   return false;
 }
 
-Eigen::Vector3d supportPoint(const Eigen::Vector3d& dir, double radius, const Eigen::Vector3d& centre) {
-  if (!(radius >= 0.0) || !std::isfinite(radius))
-    throw std::invalid_argument("fcl_quadric::QuadricSolver: fcl::Sphere radius must be finite and >= 0");
-  return centre + radius * dir;
+Eigen::Vector3d supportPoint(const Ellipsoid& sphere, const Eigen::Vector3d& dir) {
+  return sphere.center() + sphere.radii()[0] * dir;
 }
 
-Eigen::Vector3d supportPointBox(const Eigen::Vector3d& dir, const Eigen::Vector3d& half, const Eigen::Matrix3d& R,
-                                const Eigen::Vector3d& p) {
-  const Eigen::Vector3d local = R.transpose() * dir;
+Eigen::Vector3d supportPoint(const WorldBox& box, const Eigen::Vector3d& dir) {
+  const Eigen::Vector3d local = box.R.transpose() * dir;
   Eigen::Vector3d s;
-  for (int i = 0; i < 3; ++i) s[i] = local[i] >= 0.0 ? half[i] : -half[i];
-  return p + R * s;
+  for (int i = 0; i < 3; ++i) s[i] = local[i] >= 0.0 ? box.half[i] : -box.half[i];
+  return box.p + box.R * s;
 }
 
-Eigen::Vector3d supportPointCapsule(const Eigen::Vector3d& dir, double radius, double length, const Eigen::Matrix3d& R,
-                                    const Eigen::Vector3d& p) {
-  const Eigen::Vector3d axis = R.col(2) * (0.5 * length);
-  return p + (dir.dot(axis) >= 0.0 ? axis : Eigen::Vector3d(-axis)) + radius * dir;
+Eigen::Vector3d supportPoint(const WorldCapsule& capsule, const Eigen::Vector3d& dir) {
+  const Eigen::Vector3d axis = capsule.R.col(2) * (0.5 * capsule.length);
+  return capsule.p + (dir.dot(axis) >= 0.0 ? axis : Eigen::Vector3d(-axis)) + capsule.radius * dir;
 }
 
 namespace {
@@ -381,20 +377,18 @@ Eigen::Vector3d radialUnit(const Eigen::Vector3d& local) {
 }
 }  // namespace
 
-Eigen::Vector3d supportPointCylinder(const Eigen::Vector3d& dir, double radius, double length,
-                                     const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
-  const Eigen::Vector3d local = R.transpose() * dir;
-  const Eigen::Vector3d s = radius * radialUnit(local) + Eigen::Vector3d(0, 0, local.z() >= 0.0 ? 0.5 * length : -0.5 * length);
-  return p + R * s;
+Eigen::Vector3d supportPoint(const WorldCylinder& cylinder, const Eigen::Vector3d& dir) {
+  const Eigen::Vector3d local = cylinder.R.transpose() * dir;
+  const double z = local.z() >= 0.0 ? 0.5 * cylinder.length : -0.5 * cylinder.length;
+  return cylinder.p + cylinder.R * (cylinder.radius * radialUnit(local) + Eigen::Vector3d(0, 0, z));
 }
 
-Eigen::Vector3d supportPointCone(const Eigen::Vector3d& dir, double radius, double length, const Eigen::Matrix3d& R,
-                                 const Eigen::Vector3d& p) {
+Eigen::Vector3d supportPoint(const WorldCone& cone, const Eigen::Vector3d& dir) {
   // Base disk of radius r at local z = -L/2, apex at +L/2 (fcl::Cone).
-  const Eigen::Vector3d local = R.transpose() * dir;
-  const Eigen::Vector3d apex(0, 0, 0.5 * length);
-  const Eigen::Vector3d rim = radius * radialUnit(local) + Eigen::Vector3d(0, 0, -0.5 * length);
-  return p + R * (local.dot(apex) >= local.dot(rim) ? apex : rim);
+  const Eigen::Vector3d local = cone.R.transpose() * dir;
+  const Eigen::Vector3d apex(0, 0, 0.5 * cone.length);
+  const Eigen::Vector3d rim = cone.radius * radialUnit(local) + Eigen::Vector3d(0, 0, -0.5 * cone.length);
+  return cone.p + cone.R * (local.dot(apex) >= local.dot(rim) ? apex : rim);
 }
 
 // --- Ellipsoid against a box or a triangle -----------------------------------------------------

@@ -92,7 +92,8 @@ class MotionMatrix {
   /// ill-conditioned motions starts from them (docs/algorithms.md section 8).
   const std::vector<Matrix4ld>& inverseCoefficientsExtended() const { return Nk_ext_; }
   /// Condition estimate of the linear part: max over t in {0, 1/2, 1} of |L(t)|_F |L(t)^-1|_F
-  /// (3 for a rigid motion; large for a strong shear or a near-singular scaling).
+  /// (3 for a rigid motion; large for a strong shear or a near-singular scaling). No failure mode:
+  /// +infinity when the map M / w overflows or det L underflows at one of those times.
   double linearCondition() const;
   /// True for motions built by constant() or fromPoses() (rigid by construction).
   bool isRigid() const { return rigid_; }

@@ -396,95 +396,6 @@ bool exactSignedDistance(const Ellipsoid& e, const WorldCapsule& other, ExactDis
 bool exactSignedDistance(const Ellipsoid& e, const WorldCylinder& other, ExactDistance* out);
 bool exactSignedDistance(const Ellipsoid& e, const WorldCone& other, ExactDistance* out);
 
-/// A convex solid seen along a unit direction n: its extreme points lo = argmin n.x and
-/// hi = argmax n.x (world frame) and its centre (the origin of its local frame, which decides the
-/// side of a two-sided plane as FCL's closed forms do).
-struct SupportExtent {
-  Eigen::Vector3d lo = Eigen::Vector3d::Zero();
-  Eigen::Vector3d hi = Eigen::Vector3d::Zero();
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-};
-
-/// Distance (signed_distance = false: libccd's convention, -1 and p1 = p2 = a common point when
-/// they overlap) or signed distance (negative = minus the penetration depth along the plane
-/// normal) between a convex solid known by its SupportExtent along other.n and a plane or
-/// half-space. p1 on the solid, p2 on the plane. Returns true iff separated. Exact up to the
-/// rounding of the support points (closed forms); no tolerance band.
-bool supportPlaneDistance(const SupportExtent& e, const WorldPlane& other, bool signed_distance, ExactDistance* out);
-
-/// argmax over the posed shape of dir . x (dir unit, world frame): closed-form support points.
-Eigen::Vector3d supportPoint(const Eigen::Vector3d& dir, double radius, const Eigen::Vector3d& centre);  // sphere
-Eigen::Vector3d supportPointBox(const Eigen::Vector3d& dir, const Eigen::Vector3d& half, const Eigen::Matrix3d& R,
-                                const Eigen::Vector3d& p);
-Eigen::Vector3d supportPointCapsule(const Eigen::Vector3d& dir, double radius, double length, const Eigen::Matrix3d& R,
-                                    const Eigen::Vector3d& p);
-Eigen::Vector3d supportPointCylinder(const Eigen::Vector3d& dir, double radius, double length,
-                                     const Eigen::Matrix3d& R, const Eigen::Vector3d& p);
-Eigen::Vector3d supportPointCone(const Eigen::Vector3d& dir, double radius, double length, const Eigen::Matrix3d& R,
-                                 const Eigen::Vector3d& p);
-
-/// The posed shape's support point along dir, after the same validation as the exact kernels'
-/// operands (`which` names the operand in the std::invalid_argument thrown for bad parameters).
-template <typename S>
-Eigen::Vector3d supportOf(const fcl::Sphere<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
-                          const char* which) {
-  const Ellipsoid e = asEllipsoid(s, tf, which);
-  return supportPoint(dir, e.radii()[0], e.center());
-}
-template <typename S>
-Eigen::Vector3d supportOf(const fcl::Box<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
-                          const char* which) {
-  const WorldBox b = boxFromFcl(s.side.template cast<double>(), tf.linear().template cast<double>(),
-                                tf.translation().template cast<double>(), which);
-  return supportPointBox(dir, b.half, b.R, b.p);
-}
-template <typename S>
-Eigen::Vector3d supportOf(const fcl::Capsule<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
-                          const char* which) {
-  const WorldCapsule c = capsuleFromFcl(static_cast<double>(s.radius), static_cast<double>(s.lz),
-                                        tf.linear().template cast<double>(), tf.translation().template cast<double>(), which);
-  return supportPointCapsule(dir, c.radius, c.length, c.R, c.p);
-}
-template <typename S>
-Eigen::Vector3d supportOf(const fcl::Cylinder<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
-                          const char* which) {
-  const WorldCylinder c = cylinderFromFcl(static_cast<double>(s.radius), static_cast<double>(s.lz),
-                                          tf.linear().template cast<double>(), tf.translation().template cast<double>(), which);
-  return supportPointCylinder(dir, c.radius, c.length, c.R, c.p);
-}
-template <typename S>
-Eigen::Vector3d supportOf(const fcl::Cone<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
-                          const char* which) {
-  const WorldCone c = coneFromFcl(static_cast<double>(s.radius), static_cast<double>(s.lz),
-                                  tf.linear().template cast<double>(), tf.translation().template cast<double>(), which);
-  return supportPointCone(dir, c.radius, c.length, c.R, c.p);
-}
-template <typename S>
-Eigen::Vector3d supportOf(const fcl::Convex<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
-                          const char* which) {
-  const std::vector<fcl::Vector3<S>>& v = s.getVertices();
-  if (v.empty()) throw std::invalid_argument(std::string("fcl_quadric::QuadricSolver: ") + which + " (fcl::Convex) has no vertices");
-  Eigen::Vector3d best = (tf * v.front()).template cast<double>();
-  for (const fcl::Vector3<S>& x : v) {
-    const Eigen::Vector3d w = (tf * x).template cast<double>();
-    if (!w.array().isFinite().all())
-      throw std::invalid_argument(std::string("fcl_quadric::QuadricSolver: ") + which + " (fcl::Convex) has a non-finite vertex");
-    if (w.dot(dir) > best.dot(dir)) best = w;
-  }
-  return best;
-}
-
-/// The kSupportPlane pair: the shape's extent along the plane normal, then supportPlaneDistance.
-template <typename S, typename Shape>
-bool supportPairDistance(const Shape& shape, const fcl::Transform3<S>& tf_shape, const char* which,
-                         const WorldPlane& plane, bool signed_distance, ExactDistance* out) {
-  SupportExtent e;
-  e.lo = supportOf(shape, tf_shape, -plane.n, which);
-  e.hi = supportOf(shape, tf_shape, plane.n, which);
-  e.centre = tf_shape.translation().template cast<double>();
-  return supportPlaneDistance(e, plane, signed_distance, out);
-}
-
 /// The posed FCL shape as the operand type of the exact kernels.
 template <typename S>
 Ellipsoid asExact(const fcl::Ellipsoid<S>& s, const fcl::Transform3<S>& tf, const char* which) {
@@ -533,6 +444,64 @@ WorldTriangle asExactTriangle(const fcl::Vector3<S>& P1, const fcl::Vector3<S>& 
                               const fcl::Transform3<S>& tf) {
   return triangleFromFcl((tf * P1).template cast<double>(), (tf * P2).template cast<double>(),
                          (tf * P3).template cast<double>());
+}
+
+/// A convex solid seen along a unit direction n: its extreme points lo = argmin n.x and
+/// hi = argmax n.x (world frame) and its centre (the origin of its local frame, which decides the
+/// side of a two-sided plane as FCL's closed forms do).
+struct SupportExtent {
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero();
+  Eigen::Vector3d hi = Eigen::Vector3d::Zero();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+};
+
+/// Distance (signed_distance = false: libccd's convention, -1 and p1 = p2 = a common point when
+/// they overlap) or signed distance (negative = minus the penetration depth along the plane
+/// normal) between a convex solid known by its SupportExtent along other.n and a plane or
+/// half-space. p1 on the solid, p2 on the plane. Returns true iff separated. Exact up to the
+/// rounding of the support points (closed forms); no tolerance band.
+bool supportPlaneDistance(const SupportExtent& e, const WorldPlane& other, bool signed_distance, ExactDistance* out);
+
+/// argmax of dir . x over the validated operand (dir unit, world frame): closed-form support
+/// points. A sphere operand is the Ellipsoid of asExact(fcl::Sphere) (equal radii). No failure
+/// mode (the operands were validated by their *FromFcl constructors).
+Eigen::Vector3d supportPoint(const Ellipsoid& sphere, const Eigen::Vector3d& dir);
+Eigen::Vector3d supportPoint(const WorldBox& box, const Eigen::Vector3d& dir);
+Eigen::Vector3d supportPoint(const WorldCapsule& capsule, const Eigen::Vector3d& dir);
+Eigen::Vector3d supportPoint(const WorldCylinder& cylinder, const Eigen::Vector3d& dir);
+Eigen::Vector3d supportPoint(const WorldCone& cone, const Eigen::Vector3d& dir);
+
+/// The posed shape's support point along dir, after the same validation as the exact kernels'
+/// operands (asExact; `which` names the operand in the std::invalid_argument thrown for bad
+/// parameters).
+template <typename S, typename Shape>
+Eigen::Vector3d supportOf(const Shape& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir, const char* which) {
+  return supportPoint(asExact(s, tf, which), dir);
+}
+template <typename S>
+Eigen::Vector3d supportOf(const fcl::Convex<S>& s, const fcl::Transform3<S>& tf, const Eigen::Vector3d& dir,
+                          const char* which) {
+  const std::vector<fcl::Vector3<S>>& v = s.getVertices();
+  if (v.empty()) throw std::invalid_argument(std::string("fcl_quadric::QuadricSolver: ") + which + " (fcl::Convex) has no vertices");
+  Eigen::Vector3d best = (tf * v.front()).template cast<double>();
+  for (const fcl::Vector3<S>& x : v) {
+    const Eigen::Vector3d w = (tf * x).template cast<double>();
+    if (!w.array().isFinite().all())
+      throw std::invalid_argument(std::string("fcl_quadric::QuadricSolver: ") + which + " (fcl::Convex) has a non-finite vertex");
+    if (w.dot(dir) > best.dot(dir)) best = w;
+  }
+  return best;
+}
+
+/// The kSupportPlane pair: the shape's extent along the plane normal, then supportPlaneDistance.
+template <typename S, typename Shape>
+bool supportPairDistance(const Shape& shape, const fcl::Transform3<S>& tf_shape, const char* which,
+                         const WorldPlane& plane, bool signed_distance, ExactDistance* out) {
+  SupportExtent e;
+  e.lo = supportOf(shape, tf_shape, -plane.n, which);
+  e.hi = supportOf(shape, tf_shape, plane.n, which);
+  e.centre = tf_shape.translation().template cast<double>();
+  return supportPlaneDistance(e, plane, signed_distance, out);
 }
 
 /// Runs the exact kernel of a non-libccd pair: Shape1/Shape2 in FCL's order; a `swapped` pair
