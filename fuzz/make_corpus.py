@@ -133,10 +133,12 @@ huge = [[[x * 1e300 if isinstance(x, float) else x for x in row] for row in M] f
 write("fuzz_motion", "degree6_huge", motion(huge))
 write("fuzz_motion", "nan_coefficient", motion([[[float("nan")] * 4] * 4]))
 
-# --- fuzz_scene: mode byte (0 check, 1 ccd, 2 command line) + body
+# --- fuzz_scene: mode byte (0 check, 1 ccd, 2 command line, 3 render, 4 plot, 5 bench) + body
 examples = os.path.join(HERE, "..", "examples")
+# scene_quadrics.json is left out: its CSG shapes take about 100 s per execution under ASan (the
+# quadric-region engine's AABB and point searches at -O1); quadrics_small below stands in for it.
 for name in sorted(os.listdir(examples)):
-    if name.endswith(".json"):
+    if name.endswith(".json") and name != "scene_quadrics.json":
         text = open(os.path.join(examples, name), "rb").read()
         write("fuzz_scene", "check_" + name, b"\x00" + text)
         write("fuzz_scene", "ccd_" + name, b"\x01" + text)
@@ -153,3 +155,21 @@ write("fuzz_scene", "demo_small", b"\x02demo\n--frames\n3\n--objects\n4")
 write("fuzz_scene", "demo_seed_max", b"\x02demo\n--seed\n18446744073709551615\n--frames\n2\n--objects\n2")
 write("fuzz_scene", "help", b"\x02--help")
 write("fuzz_scene", "check_missing_file", b"\x02check\n/nonexistent/scene.json")
+
+# render / plot: an options byte and an argument byte before the scene (fuzz_scene.cpp, fuzzPicture)
+def example(name):
+    return open(os.path.join(examples, name), "rb").read()
+write("fuzz_scene", "render_basic_svg", b"\x03\x00\x00" + example("scene_basic.json"))
+write("fuzz_scene", "render_ccd_png_time", b"\x03\x03\x78" + example("scene_ccd.json"))
+quadrics_small = (b'{"objects":[{"name":"pillar","shape":{"type":"elliptic_cylinder","radii":[0.6,0.3],"length":2.0}},'
+                  b'{"name":"pin","shape":{"type":"sphere","radius":0.4},"pose":{"translation":[0.8,0,0]}},'
+                  b'{"name":"floor","shape":{"type":"halfspace","normal":[0,0,1],"offset":-1.5}}]}')
+write("fuzz_scene", "check_quadrics_small", b"\x00" + quadrics_small)
+write("fuzz_scene", "render_quadrics_small_svg", b"\x03\x00\x00" + quadrics_small)
+write("fuzz_scene", "plot_ccd_function_pair", b"\x04\x02\x01" + example("scene_ccd.json"))
+write("fuzz_scene", "plot_discriminant_png", b"\x04\x05\x00" + example("scene_ccd_2d.json"))
+write("fuzz_scene", "plot_timeline", b"\x04\x08\x00" + example("scene_ccd.json"))
+# bench: "SIZE\nONLY" (fuzzBench)
+write("fuzz_scene", "bench_tiny_cheap", b"\x05tiny\nboxing,broadphase,octree")
+write("fuzz_scene", "bench_unknown_experiment", b"\x05tiny\nboxing,bogus")
+write("fuzz_scene", "bench_bad_size", b"\x05huge\n")
