@@ -91,10 +91,25 @@ constexpr int kCcdMaxClipSteps = 96;
 /// cannot be certified separate it is reported as colliding (thesis Remark 5.4: conservative).
 constexpr double kCcdMinIntervalWidth = 1.0 / 1073741824.0;  // 2^-30 ~ 9.3e-10
 
-/// Work cap of one CCD solve: state evaluations plus Bezier shoots. When it is reached every
-/// interval not yet certified separate is reported as colliding and the result is flagged
-/// unresolved (conservative fallback).
+/// Work cap of one CCD solve (all its segments together): state evaluations plus Bezier shoots.
+/// When it is reached every interval not yet certified separate is reported as colliding and the
+/// result is flagged unresolved (conservative fallback).
 constexpr int kCcdMaxWork = 20000;
+
+/// Balance breaks of the CCD (docs/algorithms.md section 8, "Nearly vanishing w"): a segment is
+/// bisected while, over 9 samples, the ratio |w_a(t)| / |w_b(t)| of the two motions' homogeneous
+/// weights, or (|det L_a(t)| / |det L_b(t)|)^(1/3), varies by more than this factor. A common
+/// scalar factor of a motion matrix that nearly vanishes near [0, 1] (finding 9: w(t) with roots
+/// at -1e-8 and 1 + 1e-8) drives the balance of the pencil det(lambda A(t) - B(t)) away from
+/// lambda = -1 over the segment, and the Bezier shoots of the solver then stall. Motions from two
+/// poses (ratio at most 2) are never split; the breaks only change how [0, 1] is cut into
+/// exactly solved segments, never an answer.
+constexpr double kCcdBalanceRatio = 4.0;
+
+/// Bisection depth and segment count caps of the balance breaks (a segment at the cap is solved
+/// as it is: at worst the work cap's conservative answer).
+constexpr int kCcdMaxBalanceDepth = 48;
+constexpr int kCcdMaxBalanceSegments = 256;
 
 /// Precision check of the CCD function (docs/algorithms.md section 8): when the condition
 /// estimate (aspect ratio x condition of the motion's linear part)^2 of either moving quadric

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -806,9 +807,12 @@ std::optional<Eigen::Vector3d> centreAtStart(const MovingEllipsoid& e, const Mot
 }
 
 // One segment: both motions are single rational pieces on the local [0, 1]; t_max local.
+// `work_used`: the work already spent on earlier segments of the same solve (the cap is global).
 EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEllipsoid& b,
-                                const MotionMatrix& mb, double tmax, const CcdOptions& opt) {
+                                const MotionMatrix& mb, double tmax, const CcdOptions& opt, int work_used = 0) {
   EllipsoidCcdResult r;
+  r.work = work_used;
+  r.segments = 1;
   const bool affine = opt.interpolation == CcdInterpolation::Affine;
   if (opt.culling && !affine && ma.isRigid() && mb.isRigid() && sphereCull(a, ma, b, mb)) {
     r.culled_by = 1;
@@ -980,6 +984,71 @@ std::optional<EllipsoidCcdResult> movingSpheres(const MovingEllipsoid& a, const 
   return r;
 }
 
+// --- Balance breaks (docs/algorithms.md section 8, "Nearly vanishing w") ----------------------
+// M and g(t) M are the same motion for a scalar polynomial g without roots in [0, 1], but the
+// moving quadric N^T Q N of such a matrix carries g's powers, and when g nearly vanishes near
+// [0, 1] (finding 9: roots at -1e-8 and 1 + 1e-8) the pencil det(lambda A(t) - B(t)) drifts far
+// from its balance lambda ~ -1 (balanceScale) along the segment: the maximiser u of F(u, t)
+// slides toward u = 0 or 1, and each Bezier shoot along a fixed u certifies only a sliver of t.
+// On a segment where the weights of the two motions keep their ratio within kCcdBalanceRatio the
+// per-segment balancing holds, so the segment is bisected until they do. Which breaks are chosen
+// never changes an answer: every segment is solved exactly on the restricted motions.
+
+// The homogeneous matrix of `m` at global time t, from piece k (no division by w).
+Eigen::Matrix4d homogeneousAt(const PiecewiseMotion& m, std::size_t k, double t) {
+  const std::vector<double>& br = m.breaks();
+  const double s = (t - br[k]) / (br[k + 1] - br[k]);
+  const std::vector<Eigen::Matrix4d>& C = m.pieces()[k].matrixCoefficients();
+  Eigen::Matrix4d M = C.back();
+  for (std::size_t i = C.size() - 1; i-- > 0;) M = M * s + C[i];
+  return M;
+}
+
+std::size_t pieceOf(const PiecewiseMotion& m, double t) {
+  const std::vector<double>& br = m.breaks();
+  const auto it = std::upper_bound(br.begin(), br.end(), t);
+  const std::size_t k = it == br.begin() ? 0 : static_cast<std::size_t>(it - br.begin()) - 1;
+  return std::min(k, m.pieces().size() - 1);
+}
+
+// True when the weight ratio or the linear-scale ratio of the two motions varies by more than
+// kCcdBalanceRatio over 9 samples of [s0, s1] (a heuristic: the breaks are a matter of speed).
+// A zero or non-finite sample counts as unbalanced (the depth cap ends the bisection).
+bool unbalanced(const MovingEllipsoid& a, const MovingEllipsoid& b, double s0, double s1) {
+  const double mid = 0.5 * (s0 + s1);
+  const std::size_t ka = pieceOf(a.motion, mid), kb = pieceOf(b.motion, mid);
+  double w_lo = std::numeric_limits<double>::infinity(), w_hi = 0.0;
+  double l_lo = std::numeric_limits<double>::infinity(), l_hi = 0.0;
+  constexpr int kSamples = 8;
+  for (int i = 0; i <= kSamples; ++i) {
+    const double t = s0 + (s1 - s0) * i / kSamples;
+    const Eigen::Matrix4d Ma = homogeneousAt(a.motion, ka, t), Mb = homogeneousAt(b.motion, kb, t);
+    const double rw = std::abs(Ma(3, 3) / Mb(3, 3));
+    const double rl = std::cbrt(std::abs(Ma.topLeftCorner<3, 3>().determinant() / Mb.topLeftCorner<3, 3>().determinant()));
+    if (!(rw > 0.0 && rw < std::numeric_limits<double>::infinity() && rl > 0.0 &&
+          rl < std::numeric_limits<double>::infinity()))
+      return true;
+    w_lo = std::min(w_lo, rw);
+    w_hi = std::max(w_hi, rw);
+    l_lo = std::min(l_lo, rl);
+    l_hi = std::max(l_hi, rl);
+  }
+  return w_hi > tolerance::kCcdBalanceRatio * w_lo || l_hi > tolerance::kCcdBalanceRatio * l_lo;
+}
+
+// Appends the right ends of the balanced sub-segments of [s0, s1] (bisection, capped).
+void balanceBreaks(const MovingEllipsoid& a, const MovingEllipsoid& b, double s0, double s1, int depth,
+                   std::vector<double>* out) {
+  const double mid = 0.5 * (s0 + s1);
+  if (depth < tolerance::kCcdMaxBalanceDepth && out->size() < static_cast<std::size_t>(tolerance::kCcdMaxBalanceSegments) &&
+      s0 < mid && mid < s1 && unbalanced(a, b, s0, s1)) {
+    balanceBreaks(a, b, s0, mid, depth + 1, out);
+    balanceBreaks(a, b, mid, s1, depth + 1, out);
+    return;
+  }
+  out->push_back(s1);
+}
+
 // The union of both break sequences, clipped to [0, t_max].
 std::vector<double> segmentBreaks(const MovingEllipsoid& a, const MovingEllipsoid& b, double tmax) {
   std::vector<double> breaks = a.motion.breaks();
@@ -988,6 +1057,21 @@ std::vector<double> segmentBreaks(const MovingEllipsoid& a, const MovingEllipsoi
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
   breaks.erase(std::remove_if(breaks.begin(), breaks.end(), [&](double x) { return x > tmax; }), breaks.end());
+  return breaks;
+}
+
+// The segments the solver cuts [0, t_max] into: the breaks of both piecewise motions, each piece
+// interval refined by balanceBreaks (skipped when both motions are single pieces from poses).
+std::vector<double> solverBreaks(const MovingEllipsoid& a, const MovingEllipsoid& b, double tmax, bool from_poses) {
+  const std::vector<double> piece_breaks = segmentBreaks(a, b, tmax);
+  std::vector<double> breaks{piece_breaks.front()};
+  for (std::size_t k = 0; k + 1 < piece_breaks.size(); ++k) {
+    if (from_poses) {
+      breaks.push_back(piece_breaks[k + 1]);
+    } else {
+      balanceBreaks(a, b, piece_breaks[k], piece_breaks[k + 1], 0, &breaks);
+    }
+  }
   return breaks;
 }
 
@@ -1022,22 +1106,29 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
       return total;
     }
   }
-  if (single && options.t_max == 1.0) {  // the common case: no segments, no copies
+  // Motions from two poses (or constant) have weights within a factor 2 of each other: balanced
+  // by construction, no sampling needed.
+  const bool from_poses = single && a.motion.pieces().front().linearTranslation() &&
+                          b.motion.pieces().front().linearTranslation();
+  if (single && options.t_max == 1.0 && (from_poses || !unbalanced(a, b, 0.0, 1.0))) {
+    // The common case: one segment, no copies.
     return solveSegment(a, a.motion.pieces().front(), b, b.motion.pieces().front(), 1.0, options);
   }
-  const std::vector<double> breaks = segmentBreaks(a, b, options.t_max);
+  const std::vector<double> breaks = solverBreaks(a, b, options.t_max, from_poses);
+  total.segments = static_cast<int>(breaks.size()) - 1;
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const double s0 = breaks[k], s1 = breaks[k + 1], w = s1 - s0;
     CcdOptions local = options;
     local.t_max = 1.0;
     const bool whole = s0 == 0.0 && s1 == 1.0;  // single pieces over [0, 1]: no copies
     const EllipsoidCcdResult r =
-        whole ? solveSegment(a, a.motion.pieces().front(), b, b.motion.pieces().front(), 1.0, local)
-              : solveSegment(a, a.motion.restricted(s0, s1), b, b.motion.restricted(s0, s1), 1.0, local);
-    total.work += r.work;
+        whole ? solveSegment(a, a.motion.pieces().front(), b, b.motion.pieces().front(), 1.0, local, total.work)
+              : solveSegment(a, a.motion.restricted(s0, s1), b, b.motion.restricted(s0, s1), 1.0, local, total.work);
+    total.work = r.work;  // r started from total.work: the cap is shared by all segments
     total.degree_t = std::max(total.degree_t, r.degree_t);
     total.near_tangent = total.near_tangent || r.near_tangent;
     total.unresolved = total.unresolved || r.unresolved;
+    total.precision_checked = total.precision_checked || r.precision_checked;
     if (breaks.size() == 2) total.culled_by = r.culled_by;
     auto map = [&](const CcdInterval& i) { return CcdInterval{s0 + w * i.begin, s0 + w * i.end}; };
     for (const CcdInterval& i : r.separation_intervals) {
@@ -1070,7 +1161,7 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
 std::vector<CcdFunctionSegment> ccdFunctionSegments(const MovingEllipsoid& a, const MovingEllipsoid& b,
                                                     CcdInterpolation interpolation) {
   const bool affine = interpolation == CcdInterpolation::Affine;
-  const std::vector<double> breaks = segmentBreaks(a, b, 1.0);
+  const std::vector<double> breaks = solverBreaks(a, b, 1.0, false);
   std::vector<CcdFunctionSegment> segments;
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const double s0 = breaks[k], s1 = breaks[k + 1];

@@ -76,7 +76,13 @@ void randomPoses(std::mt19937_64& rng, const Eigen::Vector3d& base, double reach
 /// the same world motion as a matrix of degree 6 whose w(t) = s(t) E(t) nearly vanishes at both
 /// ends (a double root at -eps, a simple one at 1 + eps). The solver must give the answer of the
 /// original motion.
-void nearDegenerateW(int n, std::uint64_t seed, StressCounts& c, int* rejected) {
+struct NearDegenerateCounts {
+  int rejected = 0;    // fromPolynomialMatrix could not exclude a root of w or det L
+  int unresolved = 0;  // the work cap's conservative answer (either motion form)
+  int segments = 0;    // most segments one solve used (balance breaks)
+};
+
+void nearDegenerateW(int n, std::uint64_t seed, StressCounts& c, NearDegenerateCounts* counts) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int k = 0; k < n; ++k) {
@@ -94,48 +100,58 @@ void nearDegenerateW(int n, std::uint64_t seed, StressCounts& c, int* rejected) 
       // Documented conservative outcome: a root of w(t) (or of det L(t) = s(t)^3 det R~(t)) that
       // cannot be excluded counts as a root.
       EXPECT_NE(std::string(e.what()).find("vanishes"), std::string::npos) << e.what();
-      ++*rejected;
+      ++counts->rejected;
       continue;
     }
     const Eigen::Vector3d ra = test::randomRadii(rng, 1.0, k % 2 ? 1e4 : 5.0), rb = test::randomRadii(rng, 1.0, 5.0);
     const EllipsoidCcdResult deg6 = checkMotionPair(body(ra, *scaled), body(rb, mb), 64, c);
     const EllipsoidCcdResult deg2 = continuousCollideEllipsoids(body(ra, ma), body(rb, mb));
+    counts->segments = std::max(counts->segments, deg6.segments);
     if (deg6.unresolved || deg2.unresolved) {
       // The documented conservative fallback (work cap or conditioning limit): colliding from
       // the first uncertified instant, never a dropped overlap (checkMotionPair checks that).
       ++c.conservative;
+      ++counts->unresolved;
       EXPECT_TRUE(deg6.collide || !deg6.unresolved);
       continue;
     }
-    if (!deg2.near_tangent && !deg6.near_tangent) {
-      EXPECT_EQ(deg6.collide, deg2.collide) << c.name << " eps " << eps;
-      if (deg6.collide && deg2.collide) {
-        EXPECT_NEAR(*deg6.first_contact_time, *deg2.first_contact_time, 1e-6);
-      }
+    if (deg2.near_tangent || deg6.near_tangent) {
+      ++c.conservative;  // contact within the band (e.g. a needle's segment starting in it)
+      continue;
+    }
+    EXPECT_EQ(deg6.collide, deg2.collide) << c.name << " eps " << eps;
+    // The same world motion gives the same first contact, except under the precision check
+    // (needles of aspect ratio 1e4 here), whose widened band may put either earlier than the
+    // exact instant (never later: checkMotionPair's oracle samples check that side).
+    if (deg6.collide && deg2.collide && !deg6.precision_checked && !deg2.precision_checked) {
+      EXPECT_NEAR(*deg6.first_contact_time, *deg2.first_contact_time, 1e-6) << c.name << " eps " << eps;
     }
   }
 }
 
-// Long only: under ASan on a loaded machine the first cases of this test ran for over 10 minutes
-// (docs/reliability.md, open: the CCD is slow on nearly vanishing w); not yet run to completion.
-TEST(CcdStress, LongDegree6MotionsWithNearlyVanishingWFew) {
+// Finding 9 (docs/reliability.md): before the balance breaks, 300 of these 328 solves reached the
+// work cap (degree-82 CCD functions whose pencil drifts out of balance as w nearly vanishes); the
+// counts below are what the balance breaks achieve (measured 2026-11-22: 0 of 18 unresolved here,
+// 4 of 328 in the long sweep, at most 52 segments).
+TEST(CcdStress, Degree6MotionsWithNearlyVanishingW) {
   StressCounts c("ccd-degree6-near-degenerate-w");
-  int rejected = 0;
-  nearDegenerateW(24, 91, c, &rejected);
-  EXPECT_GT(c.cases, 12) << rejected << " rejected";
+  NearDegenerateCounts counts;
+  nearDegenerateW(24, 91, c, &counts);
+  EXPECT_GT(c.cases, 12) << counts.rejected << " rejected";
   EXPECT_GT(c.judged, c.cases / 2);
   EXPECT_EQ(c.disagreements, 0);
+  EXPECT_EQ(counts.unresolved, 0);
+  EXPECT_GT(counts.segments, 1);  // the balance breaks did cut [0, 1]
+  EXPECT_LE(counts.segments, tolerance::kCcdMaxBalanceSegments);
 }
 
 TEST(CcdStress, LongDegree6MotionsWithNearlyVanishingW) {
   StressCounts c("ccd-degree6-near-degenerate-w-long");
-  int rejected = 0;
-  nearDegenerateW(400, 92, c, &rejected);
+  NearDegenerateCounts counts;
+  nearDegenerateW(400, 92, c, &counts);
   EXPECT_EQ(c.disagreements, 0);
-  // Not asserted: how often the work cap is reached. On these degree-82 functions it is most of
-  // the time (300 of 328 cases, measured 2026-11-22, the same before and after that session's
-  // changes): the answer is then the documented conservative one (docs/reliability.md finding 9,
-  // open: the CCD is slow on nearly vanishing w).
+  // At most 3% of the solves end at the work cap (4 of 328 measured).
+  EXPECT_LE(counts.unresolved, c.cases * 3 / 100) << counts.unresolved << " of " << c.cases;
 }
 
 /// Zero-length motions (fromPoses(X, X) and constant()) of pairs around tangency: the solver's

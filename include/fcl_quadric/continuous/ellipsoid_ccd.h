@@ -106,8 +106,13 @@ struct EllipsoidCcdResult {
   int culled_by = 0;
   /// Degree of F(u, t) in t (0 when culled).
   int degree_t = 0;
-  /// State evaluations plus Bezier shoots spent.
+  /// State evaluations plus Bezier shoots spent (over all segments; capped by
+  /// tolerance::kCcdMaxWork).
   int work = 0;
+  /// Segments [0, t_max] was cut into and solved one by one: the breaks of piecewise motions
+  /// plus the balance breaks (tolerance::kCcdBalanceRatio). 1 for two single-piece motions
+  /// whose weights stay balanced (every motion from two poses).
+  int segments = 0;
 };
 
 /// Continuous collision of two moving ellipsoids over [0, options.t_max].
@@ -129,8 +134,9 @@ struct CcdFunctionSegment {
   BivariateBernstein F;
 };
 
-/// The CCD functions of the pair over [0, 1], one per segment (for plots and tests; the culls are
-/// not applied). \throws std::invalid_argument as continuousCollideEllipsoids().
+/// The CCD functions of the pair over [0, 1], one per segment the solver uses (the pieces' breaks
+/// and the balance breaks, EllipsoidCcdResult::segments; for plots and tests; the culls are not
+/// applied). \throws std::invalid_argument as continuousCollideEllipsoids().
 std::vector<CcdFunctionSegment> ccdFunctionSegments(const MovingEllipsoid& a, const MovingEllipsoid& b,
                                                     CcdInterpolation interpolation = CcdInterpolation::Rigid);
 
