@@ -18,16 +18,22 @@ void checkGeometry(const fcl::CollisionGeometry<S>* g, const char* where, const 
 }
 
 template <typename S>
+[[noreturn, gnu::cold, gnu::noinline]] void throwNonFinitePose(const fcl::Transform3<S>& tf, const char* where,
+                                                              const char* which) {
+  std::ostringstream os;
+  os << where << ": transform " << which << " is not finite, [R | p] =\n" << tf.matrix().template topRows<3>();
+  throw std::invalid_argument(os.str());
+}
+
+template <typename S>
 void checkPose(const fcl::Transform3<S>& tf, const char* where, const char* which) {
-  // std::isfinite raises no floating-point exception (the tests trap FE_INVALID).
+  // std::isfinite raises no floating-point exception (the tests trap FE_INVALID). The message is
+  // built out of line: this runs twice per front-door query.
   const auto& m = tf.matrix();
+  bool finite = true;
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 3; ++r)
-      if (!std::isfinite(m(r, c))) {
-        std::ostringstream os;
-        os << where << ": transform " << which << " is not finite, [R | p] =\n" << m.template topRows<3>();
-        throw std::invalid_argument(os.str());
-      }
+    for (int r = 0; r < 3; ++r) finite &= std::isfinite(m(r, c));
+  if (!finite) throwNonFinitePose(tf, where, which);
 }
 
 /// The argument checks of the (geometry, pose) front doors, in the order o1, o2, tf1, tf2.
