@@ -158,7 +158,9 @@ inline bool hasNaN(const Eigen::Vector3d& v) { return v.hasNaN(); }
 /// A rigid motion from the reader: normalised rotation and translation (both finite, else the
 /// identity rotation / zero translation).
 inline Eigen::Isometry3d rigidMotion(Reader& in) {
-  Eigen::Quaterniond q(in.value(), in.value(), in.value(), in.value());
+  // Named draws: the order in which function arguments are evaluated is unspecified.
+  const double w = in.value(), x = in.value(), y = in.value(), z = in.value();
+  Eigen::Quaterniond q(w, x, y, z);
   const double n = q.norm();
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   if (std::isfinite(n) && n > 1e-150) {

@@ -67,7 +67,8 @@ Shape readShape(Reader& in, bool ellipsoidal_only) {
 /// whether it is a clearly valid rigid transform.
 fcl::Transform3d readPose(Reader& in, bool& valid) {
   const bool raw = (in.byte() % 4) == 1;
-  Eigen::Quaterniond q(in.value(), in.value(), in.value(), in.value());
+  const double qw = in.value(), qx = in.value(), qy = in.value(), qz = in.value();  // named: argument order is unspecified
+  Eigen::Quaterniond q(qw, qx, qy, qz);
   const double n = q.norm();
   valid = std::isfinite(n) && n > 1e-150 && !raw;
   if (!raw && valid) q.coeffs() /= n;

@@ -92,10 +92,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (last_row_nonzero) FUZZ_CHECK(!motion, "last row not [0, 0, 0, w] accepted");
   if (!motion) return 0;
 
-  const Eigen::Vector3d ra(1e-3 + std::fabs(std::fmod(in.value(), 10.0)), 1e-3 + std::fabs(std::fmod(in.value(), 10.0)),
-                           1e-3 + std::fabs(std::fmod(in.value(), 10.0)));
+  // Named draws: the order in which function arguments are evaluated is unspecified (gcc and
+  // clang differ), so an input must not decode through one expression with several reads.
+  const double r0 = in.value(), r1 = in.value(), r2 = in.value();
+  const Eigen::Vector3d ra(1e-3 + std::fabs(std::fmod(r0, 10.0)), 1e-3 + std::fabs(std::fmod(r1, 10.0)),
+                           1e-3 + std::fabs(std::fmod(r2, 10.0)));
   if (!ra.allFinite()) return 0;
-  const Eigen::Vector3d rb(1 + in.byte() % 8, 1 + in.byte() % 8, 1 + in.byte() % 8);
+  const int b0 = in.byte() % 8, b1 = in.byte() % 8, b2 = in.byte() % 8;
+  const Eigen::Vector3d rb(1 + b0, 1 + b1, 1 + b2);
   const Eigen::Isometry3d X0 = fuzz::rigidMotion(in), X1 = fuzz::rigidMotion(in);
   if (X0.translation().cwiseAbs().maxCoeff() > 1e6 || X1.translation().cwiseAbs().maxCoeff() > 1e6) return 0;
 
@@ -112,11 +116,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const EllipsoidCcdResult ba = continuousCollideEllipsoids(b, a, options);
   checkResult(ab, options, "ccd(a, b)");
   checkResult(ba, options, "ccd(b, a)");
+  // Symmetry holds for the exact rational motions only: the affine interpolant (thesis section
+  // 5.2) interpolates the relative motion in the first body's frame, so (a, b) and (b, a) solve
+  // two different approximations (found by a gcc build of this target: the relative pose was the
+  // same at both ends in b's frame, so that interpolant never moved).
+  if (options.interpolation == CcdInterpolation::Affine) return 0;  // the oracle knows the rigid motions only
   if (ab.collide && !ab.near_tangent && !ab.unresolved)
     FUZZ_CHECK(ba.collide, "certified collision in (a, b) at %g but none in (b, a)", *ab.first_contact_time);
   if (ba.collide && !ba.near_tangent && !ba.unresolved)
     FUZZ_CHECK(ab.collide, "certified collision in (b, a) at %g but none in (a, b)", *ba.first_contact_time);
-  if (options.interpolation == CcdInterpolation::Affine) return 0;  // the oracle knows the rigid motions only
 
   for (int s = 0; s <= 8; ++s) {
     const double t = s / 8.0;
