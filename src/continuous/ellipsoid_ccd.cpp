@@ -1023,11 +1023,15 @@ bool unbalanced(const MovingEllipsoid& a, const MovingEllipsoid& b, double s0, d
   for (int i = 0; i <= kSamples; ++i) {
     const double t = s0 + (s1 - s0) * i / kSamples;
     const Eigen::Matrix4d Ma = homogeneousAt(a.motion, ka, t), Mb = homogeneousAt(b.motion, kb, t);
-    const double rw = std::abs(Ma(3, 3) / Mb(3, 3));
-    const double rl = std::cbrt(std::abs(Ma.topLeftCorner<3, 3>().determinant() / Mb.topLeftCorner<3, 3>().determinant()));
-    if (!(rw > 0.0 && rw < std::numeric_limits<double>::infinity() && rl > 0.0 &&
-          rl < std::numeric_limits<double>::infinity()))
-      return true;
+    const double wa = std::abs(Ma(3, 3)), wb = std::abs(Mb(3, 3));
+    const double la = std::abs(Ma.topLeftCorner<3, 3>().determinant()), lb = std::abs(Mb.topLeftCorner<3, 3>().determinant());
+    // Finiteness first and no division by zero: an ordered comparison with NaN raises FE_INVALID
+    // and x / 0 FE_DIVBYZERO (both trapped by the tests); a weight or determinant that underflows
+    // or overflows here is judged unbalanced.
+    if (!(std::isfinite(wa) && std::isfinite(wb) && std::isfinite(la) && std::isfinite(lb))) return true;
+    if (wa == 0.0 || wb == 0.0 || la == 0.0 || lb == 0.0) return true;
+    const double rw = wa / wb, rl = std::cbrt(la / lb);
+    if (!(std::isfinite(rw) && std::isfinite(rl) && rw > 0.0 && rl > 0.0)) return true;
     w_lo = std::min(w_lo, rw);
     w_hi = std::max(w_hi, rw);
     l_lo = std::min(l_lo, rl);
