@@ -98,131 +98,57 @@ enum class QuadricPairKind {
   kPlanePlane,
 };
 
+/// An entry of the pair tables: the algorithm and whether the shapes come in the reverse order.
+template <QuadricPairKind Kind, bool Swapped>
+struct PairEntry {
+  static constexpr QuadricPairKind kind = Kind;
+  static constexpr bool swapped = Swapped;
+};
+
 /// Pair table for shapeIntersect / shapeDistance / shapeSignedDistance. `swapped` tells a
 /// one-sided kernel (ellipsoid first) to exchange the arguments and flip normals and points.
 template <typename Shape1, typename Shape2>
-struct QuadricPair {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kLibccd;
-  static constexpr bool swapped = false;
-};
-template <typename S>
-struct QuadricPair<fcl::Ellipsoid<S>, fcl::Ellipsoid<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidEllipsoid;
-  static constexpr bool swapped = false;
-};
-template <typename S>
-struct QuadricPair<fcl::Ellipsoid<S>, fcl::Sphere<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidEllipsoid;
-  static constexpr bool swapped = false;
-};
-template <typename S>
-struct QuadricPair<fcl::Sphere<S>, fcl::Ellipsoid<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidEllipsoid;
-  static constexpr bool swapped = false;
-};
-template <typename S>
-struct QuadricPair<fcl::Ellipsoid<S>, fcl::Plane<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidPlane;
-  static constexpr bool swapped = false;
-};
-template <typename S>
-struct QuadricPair<fcl::Plane<S>, fcl::Ellipsoid<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidPlane;
-  static constexpr bool swapped = true;
-};
-template <typename S>
-struct QuadricPair<fcl::Ellipsoid<S>, fcl::Halfspace<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidHalfspace;
-  static constexpr bool swapped = false;
-};
-template <typename S>
-struct QuadricPair<fcl::Halfspace<S>, fcl::Ellipsoid<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidHalfspace;
-  static constexpr bool swapped = true;
-};
-template <typename S>
-struct QuadricPair<fcl::Ellipsoid<S>, fcl::Box<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidBox;
-  static constexpr bool swapped = false;
-};
-template <typename S>
-struct QuadricPair<fcl::Box<S>, fcl::Ellipsoid<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidBox;
-  static constexpr bool swapped = true;
-};
+struct QuadricPair : PairEntry<QuadricPairKind::kLibccd, false> {};
 
-template <typename S>
-struct QuadricPair<fcl::Ellipsoid<S>, fcl::Capsule<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCapsule;
-  static constexpr bool swapped = false;
-};
-template <typename S>
-struct QuadricPair<fcl::Capsule<S>, fcl::Ellipsoid<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCapsule;
-  static constexpr bool swapped = true;
-};
+/// (A, B) answered by `Kind` with A first; (B, A) by the same kernel with the arguments swapped.
+#define FCL_QUADRIC_PAIR_BOTH_ORDERS(A, B, Kind)                                                   \
+  template <typename S>                                                                          \
+  struct QuadricPair<fcl::A<S>, fcl::B<S>> : PairEntry<QuadricPairKind::Kind, false> {};        \
+  template <typename S>                                                                          \
+  struct QuadricPair<fcl::B<S>, fcl::A<S>> : PairEntry<QuadricPairKind::Kind, true> {};
+/// Symmetric entries: no swap in either order (both shapes convert to the same kind of solid).
+#define FCL_QUADRIC_PAIR_SYMMETRIC(A, B, Kind) \
+  template <typename S>                        \
+  struct QuadricPair<fcl::A<S>, fcl::B<S>> : PairEntry<QuadricPairKind::Kind, false> {};
 
-template <typename S>
-struct QuadricPair<fcl::Ellipsoid<S>, fcl::Cylinder<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCylinder;
-  static constexpr bool swapped = false;
-};
-template <typename S>
-struct QuadricPair<fcl::Cylinder<S>, fcl::Ellipsoid<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCylinder;
-  static constexpr bool swapped = true;
-};
-template <typename S>
-struct QuadricPair<fcl::Ellipsoid<S>, fcl::Cone<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCone;
-  static constexpr bool swapped = false;
-};
-template <typename S>
-struct QuadricPair<fcl::Cone<S>, fcl::Ellipsoid<S>> {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidCone;
-  static constexpr bool swapped = true;
-};
-
-// Shapes answered against planes and half-spaces by their support functions (kSupportPlane).
-#define FCL_QUADRIC_SUPPORT_PLANE_PAIR(Shape, Kind)   \
-  template <typename S>                                 \
-  struct QuadricPair<fcl::Shape<S>, fcl::Plane<S>> {    \
-    static constexpr QuadricPairKind kind = Kind;       \
-    static constexpr bool swapped = false;              \
-  };                                                    \
-  template <typename S>                                 \
-  struct QuadricPair<fcl::Plane<S>, fcl::Shape<S>> {    \
-    static constexpr QuadricPairKind kind = Kind;       \
-    static constexpr bool swapped = true;               \
-  };                                                    \
-  template <typename S>                                 \
-  struct QuadricPair<fcl::Shape<S>, fcl::Halfspace<S>> { \
-    static constexpr QuadricPairKind kind = Kind;       \
-    static constexpr bool swapped = false;              \
-  };                                                    \
-  template <typename S>                                 \
-  struct QuadricPair<fcl::Halfspace<S>, fcl::Shape<S>> { \
-    static constexpr QuadricPairKind kind = Kind;       \
-    static constexpr bool swapped = true;               \
-  };
-FCL_QUADRIC_SUPPORT_PLANE_PAIR(Sphere, QuadricPairKind::kSupportPlane)
-FCL_QUADRIC_SUPPORT_PLANE_PAIR(Box, QuadricPairKind::kSupportPlane)
-FCL_QUADRIC_SUPPORT_PLANE_PAIR(Capsule, QuadricPairKind::kSupportPlane)
-FCL_QUADRIC_SUPPORT_PLANE_PAIR(Convex, QuadricPairKind::kSupportPlaneExact)
-FCL_QUADRIC_SUPPORT_PLANE_PAIR(Cylinder, QuadricPairKind::kSupportPlaneExact)
-FCL_QUADRIC_SUPPORT_PLANE_PAIR(Cone, QuadricPairKind::kSupportPlaneExact)
-#undef FCL_QUADRIC_SUPPORT_PLANE_PAIR
-#define FCL_QUADRIC_PLANE_PLANE_PAIR(A, B)                                  \
-  template <typename S>                                                    \
-  struct QuadricPair<fcl::A<S>, fcl::B<S>> {                               \
-    static constexpr QuadricPairKind kind = QuadricPairKind::kPlanePlane;  \
-    static constexpr bool swapped = false;                                 \
-  };
-FCL_QUADRIC_PLANE_PLANE_PAIR(Plane, Plane)
-FCL_QUADRIC_PLANE_PLANE_PAIR(Plane, Halfspace)
-FCL_QUADRIC_PLANE_PLANE_PAIR(Halfspace, Plane)
-FCL_QUADRIC_PLANE_PLANE_PAIR(Halfspace, Halfspace)
-#undef FCL_QUADRIC_PLANE_PLANE_PAIR
+FCL_QUADRIC_PAIR_SYMMETRIC(Ellipsoid, Ellipsoid, kEllipsoidEllipsoid)
+FCL_QUADRIC_PAIR_SYMMETRIC(Ellipsoid, Sphere, kEllipsoidEllipsoid)
+FCL_QUADRIC_PAIR_SYMMETRIC(Sphere, Ellipsoid, kEllipsoidEllipsoid)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Ellipsoid, Plane, kEllipsoidPlane)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Ellipsoid, Halfspace, kEllipsoidHalfspace)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Ellipsoid, Box, kEllipsoidBox)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Ellipsoid, Capsule, kEllipsoidCapsule)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Ellipsoid, Cylinder, kEllipsoidCylinder)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Ellipsoid, Cone, kEllipsoidCone)
+// Shapes answered against planes and half-spaces by their support functions.
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Sphere, Plane, kSupportPlane)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Sphere, Halfspace, kSupportPlane)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Box, Plane, kSupportPlane)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Box, Halfspace, kSupportPlane)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Capsule, Plane, kSupportPlane)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Capsule, Halfspace, kSupportPlane)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Convex, Plane, kSupportPlaneExact)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Convex, Halfspace, kSupportPlaneExact)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Cylinder, Plane, kSupportPlaneExact)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Cylinder, Halfspace, kSupportPlaneExact)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Cone, Plane, kSupportPlaneExact)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Cone, Halfspace, kSupportPlaneExact)
+FCL_QUADRIC_PAIR_SYMMETRIC(Plane, Plane, kPlanePlane)
+FCL_QUADRIC_PAIR_SYMMETRIC(Plane, Halfspace, kPlanePlane)
+FCL_QUADRIC_PAIR_SYMMETRIC(Halfspace, Plane, kPlanePlane)
+FCL_QUADRIC_PAIR_SYMMETRIC(Halfspace, Halfspace, kPlanePlane)
+#undef FCL_QUADRIC_PAIR_BOTH_ORDERS
+#undef FCL_QUADRIC_PAIR_SYMMETRIC
 
 /// Table for the shape-triangle queries (the triangle is always the second operand).
 template <typename Shape>
