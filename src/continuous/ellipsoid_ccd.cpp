@@ -997,11 +997,7 @@ std::optional<EllipsoidCcdResult> movingSpheres(const MovingEllipsoid& a, const 
 // The homogeneous matrix of `m` at global time t, from piece k (no division by w).
 Eigen::Matrix4d homogeneousAt(const PiecewiseMotion& m, std::size_t k, double t) {
   const std::vector<double>& br = m.breaks();
-  const double s = (t - br[k]) / (br[k + 1] - br[k]);
-  const std::vector<Eigen::Matrix4d>& C = m.pieces()[k].matrixCoefficients();
-  Eigen::Matrix4d M = C.back();
-  for (std::size_t i = C.size() - 1; i-- > 0;) M = M * s + C[i];
-  return M;
+  return m.pieces()[k].homogeneous((t - br[k]) / (br[k + 1] - br[k]));
 }
 
 std::size_t pieceOf(const PiecewiseMotion& m, double t) {

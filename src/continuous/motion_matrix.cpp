@@ -294,10 +294,15 @@ MotionMatrix MotionMatrix::compose(const MotionMatrix& outer, const MotionMatrix
   return MotionMatrix(convolve(outer.Mk_, inner.Mk_), convolve(inner.Nk_ext_, outer.Nk_ext_), outer.rigid_ && inner.rigid_);
 }
 
-Eigen::Matrix4d MotionMatrix::evaluate(double t) const {
-  if (!std::isfinite(t)) throw std::invalid_argument("MotionMatrix::evaluate: non-finite t");
+Eigen::Matrix4d MotionMatrix::homogeneous(double t) const {
   Eigen::Matrix4d m = Mk_.back();
   for (std::size_t k = Mk_.size() - 1; k-- > 0;) m = m * t + Mk_[k];
+  return m;
+}
+
+Eigen::Matrix4d MotionMatrix::evaluate(double t) const {
+  if (!std::isfinite(t)) throw std::invalid_argument("MotionMatrix::evaluate: non-finite t");
+  const Eigen::Matrix4d m = homogeneous(t);
   return m / m(3, 3);
 }
 

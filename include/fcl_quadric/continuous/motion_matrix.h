@@ -108,6 +108,9 @@ class MotionMatrix {
   /// The affine map at time t: M(t) / w(t), last row [0, 0, 0, 1]. \throws std::invalid_argument
   /// if t is not finite.
   Eigen::Matrix4d evaluate(double t) const;
+  /// M(t) itself (homogeneous, not divided by w; Horner on the coefficient matrices). No failure
+  /// mode: a non-finite t gives a non-finite matrix.
+  Eigen::Matrix4d homogeneous(double t) const;
 
   /// The same motion on the sub-interval [t0, t1] of its parameter, reparametrised to [0, 1]:
   /// the result at s is this motion at t0 + (t1 - t0) s. \throws std::invalid_argument unless
