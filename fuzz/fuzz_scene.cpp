@@ -48,11 +48,14 @@ using namespace fcl_quadric;
 
 namespace {
 
+/// A scratch file or directory of this process under $TMPDIR (never the working directory).
+std::string scratchPath(const std::string& name) {
+  const char* dir = std::getenv("TMPDIR");
+  return std::string(dir && *dir ? dir : "/tmp") + "/fcl_quadric_fuzz_scene." + std::to_string(getpid()) + "." + name;
+}
+
 std::string scenePath() {
-  static const std::string path = [] {
-    const char* dir = std::getenv("TMPDIR");
-    return std::string(dir && *dir ? dir : "/tmp") + "/fcl_quadric_fuzz_scene." + std::to_string(getpid()) + ".json";
-  }();
+  static const std::string path = scratchPath("json");
   return path;
 }
 
@@ -144,12 +147,6 @@ void checkSymmetry(const std::string& text) {
 
 enum Mode { kCheck, kCcd, kCommandLine, kRender, kPlot, kBench, kModes };
 
-/// A scratch file or directory of this process under $TMPDIR (never the working directory).
-std::string scratchPath(const std::string& name) {
-  const char* dir = std::getenv("TMPDIR");
-  return std::string(dir && *dir ? dir : "/tmp") + "/fcl_quadric_fuzz_scene." + std::to_string(getpid()) + "." + name;
-}
-
 /// Keeps each execution short: small scene files with at most 28 pairs.
 bool shortScene(const std::string& body) {
   if (body.size() > 4096) return false;
@@ -158,11 +155,6 @@ bool shortScene(const std::string& body) {
   } catch (const cli::SceneError&) {
   }
   return true;
-}
-
-/// Exit status 0 or 2 with the one-line diagnostic (checkOutput's rules for pictures and bench).
-void checkStatus(const cli::test::RunResult& r, const std::string& command) {
-  checkOutput(r.status, r.out, r.err, command);
 }
 
 /// A picture the CLI reported as written must be there and be a valid SVG / PNG: well-formed XML
@@ -208,7 +200,7 @@ int fuzzPicture(int mode, const std::uint8_t* data, std::size_t size) {
       args.insert(args.end(), {"--pair", std::to_string((argument >> 4) % 5) + "," + std::to_string((argument & 15) % 5)});
   }
   const cli::test::RunResult r = cli::test::runCli(args);
-  checkStatus(r, args[0]);
+  checkOutput(r.status, r.out, r.err, args[0]);  // exit status 0 or 2 with the one-line diagnostic
   if (r.status == cli::kExitOk) checkPicture(output, png, args[0]);
   return 0;
 }
@@ -239,7 +231,7 @@ int fuzzBench(const std::uint8_t* data, std::size_t size) {
   if (!size_arg.empty()) args.insert(args.end(), {"--size", size_arg});
   if (newline != std::string::npos) args.insert(args.end(), {"--only", only});
   const cli::test::RunResult r = cli::test::runCli(args);
-  checkStatus(r, "bench");
+  checkOutput(r.status, r.out, r.err, "bench");
   if (r.status != cli::kExitOk) return 0;
   const auto doc = nlohmann::json::parse(cli::test::readFile(dir + "/bench.json"));
   for (const auto& row : doc.at("results")) {
