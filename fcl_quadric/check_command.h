@@ -39,8 +39,8 @@ PairReport evaluatePair(const SceneObject& a, const SceneObject& b);
 /// with the pairs in scene order and the keys in that order.
 nlohmann::ordered_json checkScene(const Scene& scene);
 
-/// Runs `check`: reads the scene file, evaluates it and writes the JSON (2-space indent, newline)
-/// to `out`. Nothing is written if the scene is bad.
+/// Runs `check`: reads the scene file, evaluates it at t = 0 (sceneAtTime: objects with a motion
+/// where the motion puts them at t = 0) and writes the JSON (2-space indent, newline) to `out`. Nothing is written if the scene is bad.
 /// \throws SceneError for an unreadable or invalid scene.
 void runCheck(const std::string& scene_path, std::ostream& out);
 

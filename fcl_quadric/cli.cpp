@@ -59,7 +59,7 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
   std::string scene_path;
   CLI::App* check = app.add_subcommand(
       "check", "Classify the object pairs of a JSON scene and print status, signed distance, witness "
-               "points and normal of each pair as JSON.");
+               "points and normal of each pair as JSON (objects with a motion at t = 0).");
   check->add_option("SCENE", scene_path, "Scene file (JSON; see examples/README.md)")->required();
 
   std::string ccd_scene_path;

@@ -12,7 +12,6 @@
 
 #include <cairo.h>
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 
 #include "fcl_quadric/check_command.h"
 #include "fcl_quadric/picture.h"
@@ -61,26 +60,6 @@ struct Panel {
     cairo_clip(cr);
   }
 };
-
-/// The nearest rotation to A (polar factor), for rigid motions evaluated in floating point.
-Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& A) {
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d U = svd.matrixU();
-  if ((U * svd.matrixV().transpose()).determinant() < 0.0) U.col(2) = -U.col(2);
-  return U * svd.matrixV().transpose();
-}
-
-/// Sets an ellipsoid object to the affine image { M u + p : |u| <= 1 } (principal axes).
-void setEllipsoid(SceneObject* object, const Eigen::Matrix3d& M, const Eigen::Vector3d& p) {
-  const Ellipsoid e = Ellipsoid::fromAffine(M, p);
-  Eigen::Matrix3d R = e.rotation();
-  if (R.determinant() < 0.0) R.col(2) = -R.col(2);  // the solid is symmetric: keep a proper rotation
-  object->shape.type = ShapeType::Ellipsoid;
-  object->shape.dimensions = e.radii();
-  object->pose = Eigen::Isometry3d::Identity();
-  object->pose.linear() = R;
-  object->pose.translation() = p;
-}
 
 // --- Per-object geometry in a view ---------------------------------------------------------------
 
@@ -599,43 +578,6 @@ Eigen::Vector2d pixelOf(const Scene& scene, int view, const Eigen::Vector3d& wor
 ImageSize renderImageSize(int dimension) {
   if (dimension == 2) return {2 * kMarginX + kPanel2 + 160, kTop + kPanel2 + kBottom};
   return {2 * kMarginX + 3 * kPanel3 + 2 * kGap, kTop + kPanel3 + kBottom};
-}
-
-Scene sceneAtTime(const Scene& scene, double t) {
-  if (!std::isfinite(t) || t < 0.0 || t > 1.0) {
-    throw SceneError("", "--time must be a number in [0, 1], got " + formatNumber(t));
-  }
-  Scene out = scene;
-  if (scene.dimension == 2) {
-    // Ellipses in z = 0 as ellipsoids with a common third semi-axis: two such ellipsoids meet
-    // exactly when the ellipses do (the best height is z = 0 for both).
-    for (SceneObject& o : out.objects) {
-      Eigen::Matrix3d H = o.motion2.evaluate(t);
-      H /= H(2, 2);
-      Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
-      M.topLeftCorner<2, 2>() = H.topLeftCorner<2, 2>() * o.shape.dimensions.head<2>().asDiagonal();
-      M(2, 2) = 1.0;
-      setEllipsoid(&o, M, Eigen::Vector3d(H(0, 2), H(1, 2), 0.0));
-      o.motion.reset();
-    }
-    return out;
-  }
-  for (SceneObject& o : out.objects) {
-    if (!o.motion) continue;
-    Eigen::Matrix4d H = o.motion->evaluate(t);
-    H /= H(3, 3);
-    const Eigen::Matrix3d A = H.topLeftCorner<3, 3>();
-    const Eigen::Vector3d p = H.topRightCorner<3, 1>();
-    if (isEllipsoidal(o.shape)) {
-      setEllipsoid(&o, A * o.shape.dimensions.asDiagonal(), p);
-    } else {
-      o.pose = Eigen::Isometry3d::Identity();
-      o.pose.linear() = nearestRotation(A);
-      o.pose.translation() = p;
-    }
-    o.motion.reset();
-  }
-  return out;
 }
 
 void renderScene(const Scene& scene, const RenderOptions& options, const std::string& path) {

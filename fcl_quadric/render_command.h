@@ -40,13 +40,6 @@ ImageSize renderImageSize(int dimension);
 /// \throws std::out_of_range for a view the picture does not have.
 Eigen::Vector2d pixelOf(const Scene& scene, int view, const Eigen::Vector3d& world);
 
-/// The scene with every moving object placed at its pose at time t (motion code of `ccd`:
-/// PiecewiseMotion::evaluate / PolynomialMatrix3::evaluate); a planar scene's ellipses become
-/// ellipsoids in the plane z = 0 with a common third semi-axis (their pairs classify as the
-/// ellipses do). Objects without a motion keep their pose.
-/// \throws SceneError if t is not finite or not in [0, 1].
-Scene sceneAtTime(const Scene& scene, double t);
-
 /// Draws the scene (already at its time; see sceneAtTime) to `path`, SVG or PNG by the extension
 /// (".svg" / ".png", case-insensitive).
 /// \throws SceneError for an unknown extension or an unwritable file.

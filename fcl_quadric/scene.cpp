@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include <Eigen/SVD>
 #include <nlohmann/json.hpp>
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
@@ -613,6 +614,42 @@ SceneObject readObject2(const json& node, const std::string& pointer) {
   return object;
 }
 
+/// M(t) / w(t): the homogeneous matrix of a motion at t, normalised to last entry 1.
+Eigen::Matrix4d normalisedMotionAt(const PiecewiseMotion& motion, double t) {
+  Eigen::Matrix4d H = motion.evaluate(t);
+  return H / H(3, 3);  // w(t) != 0 on [0, 1] (MotionMatrix validates it)
+}
+
+/// The nearest rotation to A (polar factor): a rigid motion's L / w evaluated in floating point
+/// is a rotation only to rounding (rigidity is detected to 1e-13 relative, motion_matrix.cpp).
+Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& A) {
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d U = svd.matrixU();
+  if ((U * svd.matrixV().transpose()).determinant() < 0.0) U.col(2) = -U.col(2);
+  return U * svd.matrixV().transpose();
+}
+
+/// The pose at t of a rigid motion (PiecewiseMotion::isRigid()).
+Eigen::Isometry3d rigidPoseAt(const PiecewiseMotion& motion, double t) {
+  const Eigen::Matrix4d H = normalisedMotionAt(motion, t);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = nearestRotation(H.topLeftCorner<3, 3>());
+  pose.translation() = H.topRightCorner<3, 1>();
+  return pose;
+}
+
+/// Sets an ellipsoid object to the affine image { M u + p : |u| <= 1 } (principal axes).
+void setEllipsoid(SceneObject* object, const Eigen::Matrix3d& M, const Eigen::Vector3d& p) {
+  const Ellipsoid e = Ellipsoid::fromAffine(M, p);
+  Eigen::Matrix3d R = e.rotation();
+  if (R.determinant() < 0.0) R.col(2) = -R.col(2);  // the solid is symmetric: keep a proper rotation
+  object->shape.type = ShapeType::Ellipsoid;
+  object->shape.dimensions = e.radii();
+  object->pose = Eigen::Isometry3d::Identity();
+  object->pose.linear() = R;
+  object->pose.translation() = p;
+}
+
 SceneObject readObject(const json& node, const std::string& pointer) {
   requireType(node, pointer, json::value_t::object, "an object");
   rejectUnknownFields(node, pointer, {"name", "shape", "pose", "motion"});
@@ -623,9 +660,14 @@ SceneObject readObject(const json& node, const std::string& pointer) {
   if (const auto it = node.find("motion"); it != node.end()) {
     if (node.find("pose") != node.end()) fail(child(pointer, "motion"), "an object has a \"pose\" or a \"motion\", not both");
     object.motion = readMotion(*it, child(pointer, "motion"));
-    const Eigen::Matrix4d T0 = object.motion->evaluate(0.0);
-    object.pose.linear() = T0.topLeftCorner<3, 3>();
-    object.pose.translation() = T0.block<3, 1>(0, 3);
+    if (object.motion->isRigid()) {
+      object.pose = rigidPoseAt(*object.motion, 0.0);
+    } else if (!isEllipsoidal(object.shape)) {
+      // An affine map of a box or a quadric solid is not a posed copy of it; only an ellipsoid's
+      // affine image is again an ellipsoid (sceneAtTime draws and checks it as one).
+      fail(child(pointer, "motion"), std::string("the motion is not rigid (L(t) is not w(t) times a rotation), and a ") +
+                                         toString(object.shape.type) + " may only move rigidly; affine motions are for ellipsoids and spheres");
+    }
   }
   return object;
 }
@@ -786,6 +828,41 @@ Scene readSceneFile(const std::string& path) {
     if (!e.pointer().empty()) throw;
     fail("", path + ": " + e.message());  // name the file in whole-document errors
   }
+}
+
+Scene sceneAtTime(const Scene& scene, double t) {
+  if (!std::isfinite(t) || t < 0.0 || t > 1.0) {
+    std::ostringstream v;
+    v.precision(17);
+    v << t;
+    fail("", "the time must be a number in [0, 1], got " + v.str());
+  }
+  Scene out = scene;
+  if (scene.dimension == 2) {
+    // Ellipses in z = 0 as ellipsoids with a common third semi-axis: two such ellipsoids meet
+    // exactly when the ellipses do (the best height is z = 0 for both).
+    for (SceneObject& o : out.objects) {
+      Eigen::Matrix3d H = o.motion2.evaluate(t);
+      H /= H(2, 2);
+      Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+      M.topLeftCorner<2, 2>() = H.topLeftCorner<2, 2>() * o.shape.dimensions.head<2>().asDiagonal();
+      M(2, 2) = 1.0;
+      setEllipsoid(&o, M, Eigen::Vector3d(H(0, 2), H(1, 2), 0.0));
+      o.motion.reset();
+    }
+    return out;
+  }
+  for (SceneObject& o : out.objects) {
+    if (!o.motion) continue;
+    if (o.motion->isRigid()) {
+      o.pose = rigidPoseAt(*o.motion, t);
+    } else {  // an ellipsoid (readObject rejects affine motions of other shapes)
+      const Eigen::Matrix4d H = normalisedMotionAt(*o.motion, t);
+      setEllipsoid(&o, H.topLeftCorner<3, 3>() * o.shape.dimensions.asDiagonal(), H.topRightCorner<3, 1>());
+    }
+    o.motion.reset();
+  }
+  return out;
 }
 
 }  // namespace cli

@@ -104,7 +104,9 @@ struct SceneObject {
   std::string name;
   Shape shape;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  /// The object's motion over [0, 1] when the scene gives one (`pose` is then the pose at t = 0).
+  /// The object's motion over [0, 1] when the scene gives one. `pose` is then the pose at t = 0
+  /// for a rigid motion and the identity for an affine one (only ellipsoids and spheres may move
+  /// affinely; their shape at t = 0 has other radii): use sceneAtTime() for a static snapshot.
   std::optional<PiecewiseMotion> motion;
   /// 2D scenes: the 3x3 homogeneous motion (body -> world in the plane), or the pose as a
   /// constant matrix when the object has no motion.
@@ -141,6 +143,16 @@ Scene readSceneFile(const std::string& path);
 
 /// True for the shapes that are ellipsoids for the exact library (ellipsoid, sphere).
 bool isEllipsoidal(const Shape& shape);
+
+/// The scene with every moving object placed at time t (the motion code of `ccd`:
+/// PiecewiseMotion::evaluate / PolynomialMatrix3::evaluate) and its motion removed: a rigid
+/// motion gives the object its pose at t; an affine motion of an ellipsoid gives the image
+/// ellipsoid (new radii and principal axes; an ellipsoid's affine image is an ellipsoid). A
+/// planar scene's ellipses become ellipsoids in the plane z = 0 with a common third semi-axis
+/// (their pairs classify as the ellipses do). Objects without a motion keep their pose. The
+/// static commands (`check`, `render --time`) work on this snapshot.
+/// \throws SceneError if t is not finite or not in [0, 1].
+Scene sceneAtTime(const Scene& scene, double t);
 
 /// The library's Ellipsoid for an ellipsoid or sphere object.
 /// \pre isEllipsoidal(object.shape) (else std::invalid_argument).

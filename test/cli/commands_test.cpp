@@ -1,6 +1,7 @@
 // In-process tests of the commands (check, demo) and of cli::run()'s output contract.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -77,6 +78,66 @@ TEST(CheckCommand, ReportsExactlyWhatTheLibraryComputes) {
   std::vector<std::string> keys;
   for (const auto& item : out["pairs"][0].items()) keys.push_back(item.key());
   EXPECT_EQ(keys, (std::vector<std::string>{"a", "b", "status", "collide", "signed_distance", "points", "normal", "method"}));
+}
+
+// A moving object is checked where its motion puts it at t = 0. Found by fuzz_scene (CI of
+// f273df0): a sheared "polynomial" motion made `check` build an Ellipsoid from the non-rigid
+// M(0) and exit 1 ("ellipsoid rotation is not a rotation"); a rigid one with w(0) != 1 did too.
+TEST(CheckCommand, MovingObjectsAreCheckedAtTimeZero) {
+  // "shear": the unit ball under x -> L x, L = [[1, 1, 0], [0, 1, 0], [0, 0, 1]] (x += y), whose
+  // image reaches (1, 1, 0); "probe": a small sphere at (1, 1.05, 0), 0.071 from the sheared
+  // surface (point L u for u = (-0.0476, 0.9989, 0)) and 1.45 from the unsheared one.
+  // "scaled": w = 2 and L = 2 I, i.e. the rigid pose translation (3, 0, 0).
+  const Scene scene = parseSceneText(R"({"objects": [
+    {"name": "shear", "shape": {"type": "sphere", "radius": 1},
+     "motion": {"type": "polynomial", "matrix": [[1, 1, 0, 0], [0, 1, 0, 0], [0, 0, 1, [0, 1]], [0, 0, 0, 1]]}},
+    {"name": "probe", "shape": {"type": "sphere", "radius": 0.1}, "pose": {"translation": [1, 1.05, 0]}},
+    {"name": "scaled", "shape": {"type": "ellipsoid", "radii": [1, 0.5, 0.5]},
+     "motion": {"type": "polynomial", "matrix": [[2, 0, 0, 6], [0, 2, 0, 0], [0, 0, 2, 0], [0, 0, 0, 2]]}}],
+    "pairs": [["shear", "probe"], ["probe", "scaled"]]})");
+  EXPECT_FALSE(scene.objects[0].motion->isRigid());
+  EXPECT_TRUE(scene.objects[2].motion->isRigid());
+  EXPECT_TRUE(scene.objects[2].pose.isApprox(Eigen::Isometry3d(Eigen::Translation3d(3, 0, 0)), 1e-15));
+
+  const nlohmann::ordered_json out = checkScene(sceneAtTime(scene, 0.0));
+  ASSERT_EQ(out.at("pairs").size(), 2u);
+  const nlohmann::ordered_json& sheared = out["pairs"][0];
+  SCOPED_TRACE(sheared.dump());
+  EXPECT_EQ(sheared["collide"], true);
+  // Independent of the snapshot's eigen-decomposition: the witness on "shear" is on the sheared
+  // unit sphere (|L^-1 p| = 1) and the one on "probe" on its sphere.
+  Eigen::Matrix3d L;
+  L << 1, 1, 0, 0, 1, 0, 0, 0, 1;
+  const Eigen::Vector3d pa(sheared["points"][0][0].get<double>(), sheared["points"][0][1].get<double>(),
+                           sheared["points"][0][2].get<double>());
+  const Eigen::Vector3d pb(sheared["points"][1][0].get<double>(), sheared["points"][1][1].get<double>(),
+                           sheared["points"][1][2].get<double>());
+  EXPECT_NEAR((L.inverse() * pa).norm(), 1.0, 1e-9);
+  EXPECT_NEAR((pb - Eigen::Vector3d(1, 1.05, 0)).norm(), 0.1, 1e-9);
+  EXPECT_LT(sheared["signed_distance"].get<double>(), 0.0);
+  EXPECT_GT(sheared["signed_distance"].get<double>(), -0.1);
+  // probe-scaled (the ellipsoid at (3, 0, 0), not at the origin nor scaled by 2): the centres are
+  // |d| apart, d = (2, -1.05); the gap of the supports along d is a lower bound of the distance
+  // (ellipsoid support sqrt((2 * 1)^2 + (1.05 * 0.5)^2) / |d|), and the distance to the
+  // ellipsoid's point (2, 0, 0) an upper bound.
+  const Eigen::Vector2d d(2, -1.05);
+  const double lower = d.norm() - 0.1 - std::hypot(2.0 * 1.0, 1.05 * 0.5) / d.norm();
+  const double upper = std::hypot(1.0, 1.05) - 0.1;
+  EXPECT_EQ(out["pairs"][1]["collide"], false);
+  EXPECT_GE(out["pairs"][1]["signed_distance"].get<double>(), lower - 1e-12);
+  EXPECT_LE(out["pairs"][1]["signed_distance"].get<double>(), upper + 1e-12);
+}
+
+// Only an ellipsoid's affine image is again a shape of its kind: a box may only move rigidly.
+TEST(CheckCommand, AffineMotionOfABoxIsABadScene) {
+  try {
+    parseSceneText(R"({"objects": [{"name": "B", "shape": {"type": "box", "size": [1, 1, 1]},
+      "motion": {"type": "polynomial", "matrix": [[1, 1, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}}]})");
+    ADD_FAILURE() << "no SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.pointer(), "/objects/0/motion");
+    EXPECT_NE(e.message().find("box may only move rigidly"), std::string::npos) << e.message();
+  }
 }
 
 TEST(Cli, ErrorLineIsOneLine) {
