@@ -63,9 +63,8 @@ bool sphereTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificate* o
   const double outer = a.maxRadius() + b.maxRadius();
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   if (D2 > outer * outer * (1.0 + tau)) {
-    const double D = std::sqrt(D2);
     out->status = Separation::Separated;
-    out->normal = d / D;
+    out->normal = d * (1.0 / std::sqrt(D2));  // one division: any unit-length rounding is harmless here
     out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (a.maxRadius() - b.maxRadius())) * out->normal;
     out->precision_stage = -1;
     return true;
@@ -94,19 +93,31 @@ bool separatedAlong(const Eigen::Vector3d& m, const Eigen::Vector3d& d, const El
   if (!(md - ha - hb > tau * scale)) return false;
   const double m2 = m.squaredNorm();
   out->status = Separation::Separated;
-  out->normal = m / std::sqrt(m2);
+  out->normal = m * (1.0 / std::sqrt(m2));
   out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (ha - hb) / m2) * m;  // on the mid-plane of the gap
   out->precision_stage = -1;
   return true;
 }
 
-/// x strictly inside e: q_e(x) = |S^-1 R^T (x - p)|^2 - 1 < -tau (1 + (|x|_1 + |p|_1) / r_min).
-/// The rounding of x - p is below eps (|x|_1 + |p|_1) per coordinate, that of the rotation and
-/// division a few eps of |S^-1 R^T (x - p)| <= 1 (otherwise the test fails anyway), so the
-/// margin covers the rounding of q_e(x) for any x with a relative factor of > 1000.
-bool strictlyInside(const Ellipsoid& e, const Eigen::Vector3d& x, double tau) {
-  const double q = (e.rotation().transpose() * (x - e.center())).cwiseProduct(e.inverseRadii()).squaredNorm() - 1.0;
-  const double spread = (x.cwiseAbs().sum() + e.center().cwiseAbs().sum()) / e.radii().minCoeff();
+/// 1 / r for the three radii with one division instead of three: k = 1 / (r0 r1 r2), then
+/// 1 / r0 = r1 r2 k, ... Each is within 3 ulps of the correctly rounded reciprocal (far inside
+/// the 2^-40 margins of the tests that use them), and radii in [kMinRadius, kMaxLength] =
+/// [1e-100, 1e100] keep the product r0 r1 r2 within [1e-300, 1e300]: no overflow or underflow.
+Eigen::Vector3d reciprocalRadii(const Ellipsoid& e) {
+  const Eigen::Vector3d& r = e.radii();
+  const double r12 = r[1] * r[2];
+  const double k = 1.0 / (r[0] * r12);
+  return Eigen::Vector3d(r12 * k, r[0] * r[2] * k, r[0] * r[1] * k);
+}
+
+/// x strictly inside e: q_e(x) = |S^-1 R^T (x - p)|^2 - 1 < -tau (1 + (|x|_1 + |p|_1) / r_min),
+/// with inv_r = reciprocalRadii(e). The rounding of x - p is below eps (|x|_1 + |p|_1) per
+/// coordinate, that of the rotation and of the reciprocals a few eps of |S^-1 R^T (x - p)| <= 1
+/// (otherwise the test fails anyway), so the margin covers the rounding of q_e(x) for any x with a
+/// relative factor of > 1000.
+bool strictlyInside(const Ellipsoid& e, const Eigen::Vector3d& inv_r, const Eigen::Vector3d& x, double tau) {
+  const double q = (e.rotation().transpose() * (x - e.center())).cwiseProduct(inv_r).squaredNorm() - 1.0;
+  const double spread = (x.cwiseAbs().sum() + e.center().cwiseAbs().sum()) * inv_r.maxCoeff();
   return q < -tau * (1.0 + spread);
 }
 
@@ -128,7 +139,7 @@ bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificat
   const Eigen::Vector3d d = b.center() - a.center();
   const double D = d.norm();
   if (!(D > 0.0)) return false;
-  const Eigen::Vector3d n = d / D;
+  const Eigen::Vector3d n = d * (1.0 / D);  // |n| = 1 to 2 ulps: covered by the margins below
   const Eigen::Vector3d ua = a.rotation().transpose() * n, ub = b.rotation().transpose() * n;
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   const Eigen::Vector3d sa = ua.cwiseProduct(a.radii()), sb = ub.cwiseProduct(b.radii());
@@ -140,11 +151,13 @@ bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificat
     out->precision_stage = -1;
     return true;
   }
-  const Eigen::Vector3d inv_ra = a.inverseRadii(), inv_rb = b.inverseRadii();  // computed on use: once
+  const Eigen::Vector3d inv_ra = reciprocalRadii(a), inv_rb = reciprocalRadii(b);  // computed on use: once
   const Eigen::Vector3d ia = ua.cwiseProduct(inv_ra), ib = ub.cwiseProduct(inv_rb);
-  const double rho_a = 1.0 / ia.norm();
-  const double rho_b = 1.0 / ib.norm();
-  if (rho_a + rho_b > D * (1.0 + tau)) {
+  // rho_a + rho_b > D (1 + tau) with rho = 1 / |i|, multiplied out (no division): |ia|, |ib| and D
+  // are at most ~1e100 sqrt(3) for sizes in [kMinRadius, kMaxLength], so the products stay finite.
+  const double la_inv = ia.norm(), lb_inv = ib.norm();
+  if (la_inv + lb_inv > D * (1.0 + tau) * (la_inv * lb_inv)) {  // (la lb): symmetric in (a, b)
+    const double rho_a = 1.0 / la_inv, rho_b = 1.0 / lb_inv;
     out->status = Separation::Overlapping;
     out->normal = n;
     out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (rho_a - rho_b)) * n;  // inside both
@@ -156,11 +169,11 @@ bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificat
   const Eigen::Vector3d na = a.rotation() * ia.cwiseProduct(inv_ra);
   const Eigen::Vector3d nb = b.rotation() * ib.cwiseProduct(inv_rb);
   const double la = na.norm(), lb = nb.norm();
-  if (la > 0.0 && lb > 0.0 && separatedAlong(na / la + nb / lb, d, a, b, tau, out)) return true;
+  if (la > 0.0 && lb > 0.0 && separatedAlong(na * (1.0 / la) + nb * (1.0 / lb), d, a, b, tau, out)) return true;
   // 4. Support points: p_a + R_a S_a (sa / ha) and p_b - R_b S_b (sb / hb).
-  const Eigen::Vector3d x = 0.5 * ((a.center() + a.rotation() * (sa.cwiseProduct(a.radii()) / ha)) +
-                                   (b.center() - b.rotation() * (sb.cwiseProduct(b.radii()) / hb)));
-  if (strictlyInside(a, x, tau) && strictlyInside(b, x, tau)) {
+  const Eigen::Vector3d x = 0.5 * ((a.center() + a.rotation() * (sa.cwiseProduct(a.radii()) * (1.0 / ha))) +
+                                   (b.center() - b.rotation() * (sb.cwiseProduct(b.radii()) * (1.0 / hb))));
+  if (strictlyInside(a, inv_ra, x, tau) && strictlyInside(b, inv_rb, x, tau)) {
     out->status = Separation::Overlapping;
     out->normal = n;
     out->witness = x;

@@ -2,18 +2,14 @@
 
 namespace fcl_quadric {
 
-Separation PairCoherence::query(const Ellipsoid& a, const Ellipsoid& b) {
-  ++queries_;
-  if (candidate_ && planeSeparates(*candidate_, a, b)) {
-    ++plane_hits_;
-    return Separation::Separated;
-  }
+Separation PairCoherence::classifyAndRemember(const Ellipsoid& a, const Ellipsoid& b) {
   const SeparationCertificate cert = classifyEllipsoids(a, b);
   if (cert.status == Separation::Separated) {
     // Keep the certificate's normal placed midway between the solids (planeWithNormal() proves it
     // separates them now). It is not re-certified here: every use certifies it against the poses
     // of that frame, so a plane spoilt by rounding can only cost a miss, never a wrong answer.
     candidate_ = planeWithNormal(cert.normal, a, b);
+    if (!detail::isFinitePlane(*candidate_)) candidate_.reset();  // query() relies on finite planes
   } else {
     candidate_.reset();
   }

@@ -86,41 +86,56 @@ Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellips
 }
 
 namespace {
-/// The certified gap of e below the plane { n.x = off } (sgn = +1) or above it (sgn = -1):
-/// returns g = sgn (off - n.p) - tau (|off| + n_max |p|_1) and m2 = |S R^T n|^2, and e lies
-/// strictly on that side iff g > 0 and g^2 > m2 (1 + 4 tau) (compared in squares: no square
-/// root). n_max = max_i |n_i|, so |off| + n_max |p|_1 bounds the absolute evaluation of off - n.p
-/// and tau = 2^-40 covers its rounding with a wide margin. Written out by hand: this is the whole
-/// cost of a cached-plane query.
-inline double sideGap(const Eigen::Vector3d& n, double n_max, double off, const Ellipsoid& e, double tau, double sgn,
-                      double* m2) {
-  const Eigen::Matrix3d& R = e.rotation();
-  const Eigen::Vector3d& r = e.radii();
-  const Eigen::Vector3d& c = e.center();
-  const double m0 = (R(0, 0) * n[0] + R(1, 0) * n[1] + R(2, 0) * n[2]) * r[0];
-  const double m1 = (R(0, 1) * n[0] + R(1, 1) * n[1] + R(2, 1) * n[2]) * r[1];
-  const double m3 = (R(0, 2) * n[0] + R(1, 2) * n[1] + R(2, 2) * n[2]) * r[2];
-  *m2 = m0 * m0 + m1 * m1 + m3 * m3;
-  const double nc = n[0] * c[0] + n[1] * c[1] + n[2] * c[2];
-  return sgn * (off - nc) - tau * (std::fabs(off) + n_max * (std::fabs(c[0]) + std::fabs(c[1]) + std::fabs(c[2])));
-}
+/// Two doubles in one SSE2 register (a GCC/Clang vector extension): lane 0 carries ellipsoid a,
+/// lane 1 ellipsoid b, so the two side tests of a cached-plane query cost one pass of arithmetic
+/// instead of two. Each lane performs exactly the scalar operations, in the same order, so the
+/// results are bit for bit those of a scalar evaluation.
+typedef double Lanes2 __attribute__((vector_size(16)));
+inline Lanes2 lanes(double x, double y) { return Lanes2{x, y}; }
 }  // namespace
 
+// The certified gap of an ellipsoid e on its side of the plane { n.x = off } (a below: sgn = +1;
+// b above: sgn = -1) is g = sgn (off - n.p) - tau (|off| + n_max |p|_1), and e lies strictly on
+// that side iff g > 0 and g^2 > m2 (1 + 4 tau) with m2 = |S R^T n|^2, the squared support
+// half-width (compared in squares: no square root). n_max = max_i |n_i|, so |off| + n_max |p|_1
+// bounds the absolute evaluation of off - n.p, and tau = 2^-40 covers its rounding with a wide
+// margin. Written out by hand, both sides at once: this is the whole cost of a cached-plane query.
+bool detail::isFinitePlane(const Plane& plane) {
+  const Eigen::Vector3d& n = plane.normal;
+  return std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]) && std::isfinite(plane.offset);
+}
+
+// A non-finite plane is never certified (the comparisons of the test would raise FE_INVALID on
+// NaN).
 bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
-  // a below the plane, b above it.
+  return detail::isFinitePlane(plane) && detail::planeSeparatesFinite(plane, a, b);
+}
+
+bool detail::planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   const Eigen::Vector3d& n = plane.normal;
-  // A non-finite plane is never certified (std::isfinite raises no floating-point exception; the
-  // comparisons below would, on NaN).
-  if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2]) || !std::isfinite(plane.offset)) {
-    return false;
-  }
+  const double off = plane.offset;
   const double n_max = std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
-  double ma2, mb2;
-  const double ga = sideGap(n, n_max, plane.offset, a, tau, 1.0, &ma2);
-  if (!(ga > 0.0 && ga * ga > ma2 * (1.0 + 4.0 * tau))) return false;
-  const double gb = sideGap(n, n_max, plane.offset, b, tau, -1.0, &mb2);
-  return gb > 0.0 && gb * gb > mb2 * (1.0 + 4.0 * tau);
+  const Eigen::Matrix3d& Ra = a.rotation();
+  const Eigen::Matrix3d& Rb = b.rotation();
+  const Eigen::Vector3d& ra = a.radii();
+  const Eigen::Vector3d& rb = b.radii();
+  const Eigen::Vector3d& ca = a.center();
+  const Eigen::Vector3d& cb = b.center();
+  const Lanes2 n0 = lanes(n[0], n[0]), n1 = lanes(n[1], n[1]), n2 = lanes(n[2], n[2]);
+  const Lanes2 m0 = (lanes(Ra(0, 0), Rb(0, 0)) * n0 + lanes(Ra(1, 0), Rb(1, 0)) * n1 + lanes(Ra(2, 0), Rb(2, 0)) * n2) *
+                    lanes(ra[0], rb[0]);
+  const Lanes2 m1 = (lanes(Ra(0, 1), Rb(0, 1)) * n0 + lanes(Ra(1, 1), Rb(1, 1)) * n1 + lanes(Ra(2, 1), Rb(2, 1)) * n2) *
+                    lanes(ra[1], rb[1]);
+  const Lanes2 m3 = (lanes(Ra(0, 2), Rb(0, 2)) * n0 + lanes(Ra(1, 2), Rb(1, 2)) * n1 + lanes(Ra(2, 2), Rb(2, 2)) * n2) *
+                    lanes(ra[2], rb[2]);
+  const Lanes2 m2 = m0 * m0 + m1 * m1 + m3 * m3;
+  const Lanes2 nc = n0 * lanes(ca[0], cb[0]) + n1 * lanes(ca[1], cb[1]) + n2 * lanes(ca[2], cb[2]);
+  const Lanes2 c_l1 = lanes(std::fabs(ca[0]), std::fabs(cb[0])) + lanes(std::fabs(ca[1]), std::fabs(cb[1])) +
+                      lanes(std::fabs(ca[2]), std::fabs(cb[2]));
+  const Lanes2 g = lanes(1.0, -1.0) * (off - nc) - tau * (std::fabs(off) + n_max * c_l1);
+  const auto ok = (g > 0.0) & (g * g > m2 * (1.0 + 4.0 * tau));  // per lane: all ones or zero
+  return ok[0] != 0 && ok[1] != 0;
 }
 
 std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipsoid& b) {

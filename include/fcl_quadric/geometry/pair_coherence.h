@@ -21,7 +21,14 @@ class PairCoherence {
   /// The answer is always identical to classifyEllipsoids(a, b).status except that a certified
   /// plane short-cuts the work (a plane is only trusted when it provably separates).
   /// Never throws for valid Ellipsoid objects.
-  Separation query(const Ellipsoid& a, const Ellipsoid& b);
+  Separation query(const Ellipsoid& a, const Ellipsoid& b) {
+    ++queries_;
+    if (candidate_ && detail::planeSeparatesFinite(*candidate_, a, b)) {  // stored planes are finite
+      ++plane_hits_;
+      return Separation::Separated;
+    }
+    return classifyAndRemember(a, b);
+  }
 
   const std::optional<Plane>& candidate() const { return candidate_; }
   void reset() { candidate_.reset(); }
@@ -30,6 +37,9 @@ class PairCoherence {
   std::uint64_t planeHits() const { return plane_hits_; }
 
  private:
+  /// Step 2 of query(): the full classification, keeping a new (finite) plane if Separated.
+  Separation classifyAndRemember(const Ellipsoid& a, const Ellipsoid& b);
+
   std::optional<Plane> candidate_;
   std::uint64_t queries_ = 0;
   std::uint64_t plane_hits_ = 0;

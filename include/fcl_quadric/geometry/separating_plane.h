@@ -59,6 +59,16 @@ Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellips
 /// non-unit or non-finite plane simply fails the certificate (returns false).
 bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
 
+namespace detail {
+/// True when the plane's normal and offset are all finite (std::isfinite: no floating-point
+/// exception).
+bool isFinitePlane(const Plane& plane);
+/// planeSeparates() for a plane already known to be finite: the hot path of the plane caches
+/// (PairCoherence, PairCache), which check isFinitePlane() once when they store a plane instead
+/// of on every query. \pre isFinitePlane(plane) (else the comparisons raise FE_INVALID on NaN).
+bool planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
+}  // namespace detail
+
 /// Gap between the plane and the ellipsoid on its positive side: min over x in E of
 /// normal.x - offset = -offset - support(-normal). > 0 when E lies strictly on the positive side
 /// (the plane does not meet E); for a unit normal it is the Euclidean distance. Negate the plane to
