@@ -78,6 +78,7 @@
 
 #include "bench_support.h"
 #include "boxing_scene.h"
+#include "robot_arm_scene.h"
 #include "fcl_quadric/continuous/ccd_function.h"
 #include "fcl_quadric/continuous/ellipsoid_ccd.h"
 #include "fcl_quadric/continuous/motion_matrix.h"
@@ -435,42 +436,8 @@ std::vector<PosePair> randomPairs(std::size_t n) {
 // ------------------------------------------------------------------------------------------------
 // (3) Robot arm
 
-/// Homogeneous rotation about axis (2 = z, 1 = y) by theta(t) with tan(theta/2) = s(t) linear in t:
-/// [[(1 + s^2) R, 0], [0, 1 + s^2]], entries of degree 2.
-PolynomialMatrix4 jointRotation(int axis, double theta0, double theta1) {
-  const double s0 = std::tan(0.5 * theta0), s1 = std::tan(0.5 * theta1);
-  const Polynomial s{s0, s1 - s0};
-  const Polynomial ss = s * s, one{1.0};
-  const Polynomial c = one - ss, w = one + ss, sn = 2.0 * s;
-  PolynomialMatrix4 H;
-  if (axis == 2) {
-    H(0, 0) = c;
-    H(0, 1) = -sn;
-    H(1, 0) = sn;
-    H(1, 1) = c;
-    H(2, 2) = w;
-  } else {
-    H(0, 0) = c;
-    H(0, 2) = sn;
-    H(2, 0) = -sn;
-    H(2, 2) = c;
-    H(1, 1) = w;
-  }
-  H(3, 3) = w;
-  return H;
-}
-
-PolynomialMatrix4 translation(const Eigen::Vector3d& d) {
-  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-  T.block<3, 1>(0, 3) = d;
-  return PolynomialMatrix4(T);
-}
-
-struct ArmPair {
-  std::string name;  ///< obstacle letter and link number, e.g. "W-6"
-  int link = 0, motion_degree = 0;
-  MovingEllipsoid obstacle{Ellipsoid::sphere(1.0, Eigen::Vector3d::Zero()), PiecewiseMotion()};
-  MovingEllipsoid link_e{Ellipsoid::sphere(1.0, Eigen::Vector3d::Zero()), PiecewiseMotion()};
+struct ArmPair : ArmScenePair {
+  explicit ArmPair(ArmScenePair p) : ArmScenePair(std::move(p)) {}
   EllipsoidCcdResult result;
   int oracle_outside = 0;       ///< sampled colliding instants outside the reported intervals
   double oracle_end_gap = 0.0;  ///< largest distance of a reported interval end from a sampled transition
@@ -481,60 +448,12 @@ struct Arm {
 };
 
 Arm makeArm() {
-  // Joint 1: yaw about z at the base; joint 2: shoulder pitch about y, 0.7 m up; joint 3: elbow
-  // pitch about y, 0.6 m along the upper arm. Positive pitch turns the arm down.
-  const PolynomialMatrix4 J1 = jointRotation(2, -1.1, 1.1);
-  const PolynomialMatrix4 J2 = J1 * translation({0.0, 0.0, 0.7}) * jointRotation(1, -0.1, 0.35);
-  const PolynomialMatrix4 J3 = J2 * translation({0.6, 0.0, 0.0}) * jointRotation(1, 0.2, 0.9);
-  struct Link {
-    int joint;
-    Eigen::Vector3d radii, centre;
-  };
-  const Link links[10] = {
-      {0, {0.25, 0.25, 0.15}, {0.0, 0.0, 0.15}},   // 0 base
-      {1, {0.15, 0.15, 0.12}, {0.0, 0.0, 0.40}},   // 1 turret
-      {1, {0.12, 0.18, 0.10}, {0.0, 0.0, 0.62}},   // 2 shoulder housing
-      {1, {0.06, 0.06, 0.10}, {-0.12, 0.0, 0.7}},  // 3 counterweight
-      {2, {0.30, 0.08, 0.08}, {0.30, 0.0, 0.0}},   // 4 upper arm
-      {2, {0.09, 0.10, 0.09}, {0.60, 0.0, 0.0}},   // 5 elbow
-      {3, {0.25, 0.06, 0.06}, {0.25, 0.0, 0.0}},   // 6 forearm
-      {3, {0.06, 0.06, 0.06}, {0.52, 0.0, 0.0}},   // 7 wrist
-      {3, {0.07, 0.02, 0.03}, {0.63, 0.04, 0.0}},  // 8 finger
-      {3, {0.07, 0.02, 0.03}, {0.63, -0.04, 0.0}}  // 9 finger
-  };
-  const PolynomialMatrix4 joint_motion[4] = {PolynomialMatrix4(Eigen::Matrix4d::Identity()), J1, J2, J3};
-  // The I-beam obstacle in front of the arm: flanges U (top), W (bottom), web V.
-  const Eigen::Vector3d beam(1.0, 0.1, 0.0);
-  const struct {
-    const char* name;
-    Eigen::Vector3d radii, centre;
-  } obstacles[3] = {{"U", {0.12, 0.35, 0.06}, beam + Eigen::Vector3d(0, 0, 1.05)},
-                    {"V", {0.06, 0.06, 0.45}, beam + Eigen::Vector3d(0, 0, 0.55)},
-                    {"W", {0.12, 0.35, 0.06}, beam + Eigen::Vector3d(0, 0, 0.1)}};
   Arm arm;
-  for (const auto& o : obstacles) {
-    for (int k = 0; k < 10; ++k) {
-      ArmPair p;
-      p.name = std::string(o.name) + "-" + std::to_string(k);
-      p.link = k;
-      p.motion_degree = 2 * links[k].joint;
-      p.obstacle = MovingEllipsoid{Ellipsoid(o.radii, Eigen::Matrix3d::Identity(), o.centre),
-                                   PiecewiseMotion(MotionMatrix::constant(Eigen::Matrix3d::Identity(),
-                                                                          Eigen::Vector3d::Zero()))};
-      p.link_e = MovingEllipsoid{Ellipsoid(links[k].radii, Eigen::Matrix3d::Identity(), links[k].centre),
-                                 PiecewiseMotion(MotionMatrix::fromPolynomialMatrix(joint_motion[links[k].joint]))};
-      arm.pairs.push_back(std::move(p));
-    }
-  }
+  for (ArmScenePair& p : makeArmScene()) arm.pairs.emplace_back(std::move(p));
   return arm;
 }
 
-CcdOptions armOptions() {
-  CcdOptions o;
-  o.all_intervals = true;
-  o.culling = false;
-  return o;
-}
+CcdOptions armOptions() { return armCcdOptions(); }
 
 void checkArmPair(ArmPair* p) {
   p->result = continuousCollideEllipsoids(p->obstacle, p->link_e, armOptions());

@@ -21,8 +21,8 @@ namespace fcl_quadric {
 namespace cli {
 
 const std::vector<std::string>& benchExperimentNames() {
-  static const std::vector<std::string> names = {"random",  "near_tangent", "separating_planes",
-                                                 "boxing",  "broadphase",   "octree"};
+  static const std::vector<std::string> names = {"random", "near_tangent", "separating_planes", "boxing",
+                                                 "arm",    "broadphase",   "octree"};
   return names;
 }
 
@@ -31,6 +31,7 @@ BenchExperiment runBenchExperiment(const std::string& name, BenchSize size, cons
   if (name == "near_tangent") return runNearTangentExperiment(size, progress);
   if (name == "separating_planes") return runSeparatingPlanesExperiment(size, progress);
   if (name == "boxing") return runBoxingExperiment(size, progress);
+  if (name == "arm") return runArmExperiment(size, progress);
   if (name == "broadphase") return runBroadphaseExperiment(size, progress);
   if (name == "octree") return runOcTreeExperiment(size, progress);
   throw SceneError("", "unknown experiment '" + name + "'");

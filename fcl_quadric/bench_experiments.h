@@ -54,6 +54,7 @@ BenchExperiment runRandomPairsExperiment(BenchSize size, const BenchProgress& pr
 BenchExperiment runNearTangentExperiment(BenchSize size, const BenchProgress& progress);      // bench_static_experiments.cpp
 BenchExperiment runSeparatingPlanesExperiment(BenchSize size, const BenchProgress& progress); // bench_static_experiments.cpp
 BenchExperiment runBoxingExperiment(BenchSize size, const BenchProgress& progress);           // bench_ccd_experiment.cpp
+BenchExperiment runArmExperiment(BenchSize size, const BenchProgress& progress);              // bench_ccd_experiment.cpp
 BenchExperiment runBroadphaseExperiment(BenchSize size, const BenchProgress& progress);       // bench_scene_experiments.cpp
 BenchExperiment runOcTreeExperiment(BenchSize size, const BenchProgress& progress);           // bench_scene_experiments.cpp
 

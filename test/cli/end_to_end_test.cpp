@@ -375,8 +375,8 @@ TEST_F(BenchEndToEnd, TinyWritesResultsForEveryExperimentAndPeer) {
   const ProcessResult& r = tiny();
   ASSERT_EQ(r.status, 0) << r.err;
   const json doc = json::parse(readFile(dir_ / "bench_tiny" / "bench.json"));
-  const std::vector<std::string> experiments = {"random", "near_tangent", "separating_planes",
-                                                "boxing", "broadphase",   "octree"};
+  const std::vector<std::string> experiments = {"random", "near_tangent", "separating_planes", "boxing",
+                                                "arm",    "broadphase",   "octree"};
   ASSERT_EQ(doc.at("experiments").size(), experiments.size());
   for (std::size_t i = 0; i < experiments.size(); ++i) {
     const json& e = doc.at("experiments").at(i);
