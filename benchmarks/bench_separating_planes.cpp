@@ -274,18 +274,6 @@ void benchOrbit(benchmark::State& state, const OrbitScene& s, const OrbitPeer& p
   if (peer.vertices > 0) state.counters["vertices"] = peer.vertices;
 }
 
-std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> makeBvh(const TriangleMesh& m) {
-  std::vector<fcl::Triangle> triangles;
-  triangles.reserve(m.faces.size());
-  for (const auto& f : m.faces) triangles.emplace_back(f[0], f[1], f[2]);
-  std::vector<fcl::Vector3d> vertices(m.vertices.begin(), m.vertices.end());
-  auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-  bvh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size()));
-  bvh->addSubModel(vertices, triangles);
-  bvh->endModel();
-  return bvh;
-}
-
 /// Table 1 laid out like the paper's: one row per quantity, per angular speed this run's value
 /// beside the paper's.
 void printTable1(const std::vector<RotatingScene>& scenes, const SummaryReporter& r) {
@@ -460,7 +448,7 @@ int main(int argc, char** argv) {
     const TriangleMesh mesh_b = sqrt3Ellipsoid(orbit.b.radii(), n);
     const int v = static_cast<int>(mesh_a.vertices.size());
     peers.push_back({"fcl_libccd_convex_" + std::to_string(v), fclConvex(mesh_a), fclConvex(mesh_b), v});
-    peers.push_back({"fcl_obbrss_mesh_" + std::to_string(v), makeBvh(mesh_a), makeBvh(mesh_b), v});
+    peers.push_back({"fcl_obbrss_mesh_" + std::to_string(v), fclBvh(mesh_a), fclBvh(mesh_b), v});
   }
   for (std::size_t i = 2; i < peers.size(); ++i) {
     OrbitPeer* p = &peers[i];

@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/narrowphase/collision.h>
@@ -39,6 +40,20 @@ inline std::shared_ptr<fcl::Convexd> fclConvex(const TriangleMesh& m) {
   faces->reserve(4 * m.faces.size());
   for (const auto& f : m.faces) faces->insert(faces->end(), {3, f[0], f[1], f[2]});
   return std::make_shared<fcl::Convexd>(vertices, static_cast<int>(m.faces.size()), faces);
+}
+
+/// A triangle mesh (sqrt3_tessellation.h) as an fcl::BVHModel<OBBRSS> (FCL's usual mesh type;
+/// collide tests triangle against triangle, so it sees surfaces, not volumes).
+inline std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> fclBvh(const TriangleMesh& m) {
+  std::vector<fcl::Triangle> triangles;
+  triangles.reserve(m.faces.size());
+  for (const auto& f : m.faces) triangles.emplace_back(f[0], f[1], f[2]);
+  std::vector<fcl::Vector3d> vertices(m.vertices.begin(), m.vertices.end());
+  auto bvh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+  bvh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(vertices.size()));
+  bvh->addSubModel(vertices, triangles);
+  bvh->endModel();
+  return bvh;
 }
 
 /// Boolean fcl::collide (no contacts) with the given GJK implementation.
