@@ -244,6 +244,23 @@ inline std::size_t countMissing(const IndexPairs& from, const IndexPairs& in) {
   return d.size();
 }
 
+/// Frame k (set here) and its exactly colliding pairs (i < j, sorted): classifyEllipsoids on the
+/// manager's candidate pairs; touching counts as collision. Also returns the candidate count.
+inline IndexPairs exactCollidingPairs(MovingEllipsoids& s, int k, std::size_t* candidate_count = nullptr) {
+  s.setFrame(k);
+  ObjectPairs candidates;
+  s.manager().collide(&candidates, recordCandidate);
+  if (candidate_count) *candidate_count = candidates.size();
+  IndexPairs exact;
+  for (const auto& [a, b] : candidates) {
+    const std::size_t i = s.indexOf(a->collisionGeometry().get()), j = s.indexOf(b->collisionGeometry().get());
+    if (classifyEllipsoids(s.ellipsoid(i), s.ellipsoid(j)).status != Separation::Separated)
+      exact.emplace_back(std::min(i, j), std::max(i, j));
+  }
+  std::sort(exact.begin(), exact.end());
+  return exact;
+}
+
 /// Untimed: every frame, each peer's manager result against classifyEllipsoids on the candidates.
 inline MovingReport countMoving(MovingEllipsoids& s) {
   MovingReport rep;
@@ -252,17 +269,9 @@ inline MovingReport countMoving(MovingEllipsoids& s) {
   rep.side = s.side();
   PairCache cache;
   for (int k = 0; k < s.frames(); ++k) {
-    s.setFrame(k);
-    ObjectPairs candidates;
-    s.manager().collide(&candidates, recordCandidate);
-    rep.candidates += candidates.size();
-    IndexPairs exact;
-    for (const auto& [a, b] : candidates) {
-      const std::size_t i = s.indexOf(a->collisionGeometry().get()), j = s.indexOf(b->collisionGeometry().get());
-      if (classifyEllipsoids(s.ellipsoid(i), s.ellipsoid(j)).status != Separation::Separated)
-        exact.emplace_back(std::min(i, j), std::max(i, j));
-    }
-    std::sort(exact.begin(), exact.end());
+    std::size_t candidates = 0;
+    const IndexPairs exact = exactCollidingPairs(s, k, &candidates);
+    rep.candidates += candidates;
     rep.colliding += exact.size();
     const Peer peers[3] = {Peer::kOurs, Peer::kPairCache, Peer::kStock};
     for (int p = 0; p < 3; ++p) {
