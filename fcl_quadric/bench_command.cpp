@@ -22,7 +22,7 @@ namespace cli {
 
 const std::vector<std::string>& benchExperimentNames() {
   static const std::vector<std::string> names = {"random", "near_tangent", "separating_planes", "boxing",
-                                                 "arm",    "broadphase",   "octree"};
+                                                 "arm",    "broadphase",   "octree",            "quadric_shapes"};
   return names;
 }
 
@@ -34,6 +34,7 @@ BenchExperiment runBenchExperiment(const std::string& name, BenchSize size, cons
   if (name == "arm") return runArmExperiment(size, progress);
   if (name == "broadphase") return runBroadphaseExperiment(size, progress);
   if (name == "octree") return runOcTreeExperiment(size, progress);
+  if (name == "quadric_shapes") return runQuadricShapesExperiment(size, progress);
   throw SceneError("", "unknown experiment '" + name + "'");
 }
 

@@ -57,6 +57,7 @@ BenchExperiment runBoxingExperiment(BenchSize size, const BenchProgress& progres
 BenchExperiment runArmExperiment(BenchSize size, const BenchProgress& progress);              // bench_ccd_experiment.cpp
 BenchExperiment runBroadphaseExperiment(BenchSize size, const BenchProgress& progress);       // bench_scene_experiments.cpp
 BenchExperiment runOcTreeExperiment(BenchSize size, const BenchProgress& progress);           // bench_scene_experiments.cpp
+BenchExperiment runQuadricShapesExperiment(BenchSize size, const BenchProgress& progress);    // bench_quadric_experiment.cpp
 
 /// CPU time of this thread, in ns (what the experiments time: less sensitive to other processes
 /// than wall time).

@@ -115,7 +115,7 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
   CLI::App* bench = app.add_subcommand(
       "bench", "Benchmark suite: fcl_quadric against stock FCL 0.7 and Bullet on the same inputs in this process "
                "(random pairs, near-tangent pairs, the separating-planes paper's tables, the thesis' boxing and robot "
-               "arm, a broad-phase scene, an OcTree); prints a table per experiment, writes DIR/bench.json and a bar chart per "
+               "arm, a broad-phase scene, an OcTree, capped cylinders and CSG pairs); prints a table per experiment, writes DIR/bench.json and a bar chart per "
                "experiment.");
   bench->add_option("--size", bench_options.size, "tiny (seconds), small (about a minute) or full (the papers' sizes)")
       ->check([](const std::string& s) {
@@ -127,7 +127,7 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
       ->capture_default_str();
   bench->add_option("--only", bench_options.only,
                     "Comma-separated experiments to run (random, near_tangent, separating_planes, boxing, arm, "
-                    "broadphase, octree); default all")
+                    "broadphase, octree, quadric_shapes); default all")
       ->check([](const std::string& s) {
         try {
           parseBenchOnly(s);
