@@ -142,8 +142,201 @@ bool isCylinder(const Shape& shape) {
   return shape.type == ShapeType::EllipticCylinder || shape.type == ShapeType::Cylinder;
 }
 
-/// Quadric shapes drawn by their bounding box (general quadrics and CSG; not half-spaces).
-bool drawnByBox(const SceneObject& o) { return isQuadricShape(o.shape) && !isCylinder(o.shape) && !isHalfspace(o); }
+/// General quadrics and CSG solids (not cylinders, not half-spaces): drawn by their exact shadow,
+/// computed per pixel (silhouetteMask).
+bool drawnBySilhouette(const SceneObject& o) {
+  return isQuadricShape(o.shape) && !isCylinder(o.shape) && !isHalfspace(o);
+}
+
+// --- Exact shadows of CSG solids of quadrics -------------------------------------------------------
+//
+// A pixel of a view is in the shadow of a solid iff the line through the pixel centre along the
+// view axis meets the solid in a segment of positive length. Along the line X(s) = (P + s e, 1),
+// each atom X^T Q X <= 0 is the quadratic a s^2 + 2 b s + c <= 0 with a = Q_ww, b = (Q X_P)_w,
+// c = X_P^T Q X_P, whose solution set is found in closed form; the CSG tree then combines the
+// interval sets exactly (union, intersection, difference). The only approximation is the pixel
+// grid of the picture.
+
+using Intervals = std::vector<std::pair<double, double>>;  // sorted, disjoint, closed
+
+Intervals intersectIntervals(const Intervals& x, const Intervals& y) {
+  Intervals out;
+  std::size_t i = 0, j = 0;
+  while (i < x.size() && j < y.size()) {
+    const double lo = std::max(x[i].first, y[j].first), hi = std::min(x[i].second, y[j].second);
+    if (lo <= hi) out.emplace_back(lo, hi);
+    (x[i].second < y[j].second) ? ++i : ++j;
+  }
+  return out;
+}
+
+Intervals uniteIntervals(Intervals x, const Intervals& y) {
+  x.insert(x.end(), y.begin(), y.end());
+  std::sort(x.begin(), x.end());
+  Intervals out;
+  for (const auto& iv : x) {
+    if (!out.empty() && iv.first <= out.back().second) {
+      out.back().second = std::max(out.back().second, iv.second);
+    } else {
+      out.push_back(iv);
+    }
+  }
+  return out;
+}
+
+/// [s0, s1] minus the open interior of y (the closure of the complement, as the regularised CSG
+/// difference takes it).
+Intervals complementIntervals(const Intervals& y, double s0, double s1) {
+  Intervals out;
+  double from = s0;
+  for (const auto& iv : y) {
+    if (iv.first > from) out.emplace_back(from, std::min(iv.first, s1));
+    from = std::max(from, iv.second);
+  }
+  if (from < s1) out.emplace_back(from, s1);
+  return out;
+}
+
+/// {s in [s0, s1] : a s^2 + 2 b s + c <= 0}.
+Intervals quadraticIntervals(double a, double b, double c, double s0, double s1) {
+  const double scale = std::fabs(a) * std::max(s0 * s0, s1 * s1) + 2.0 * std::fabs(b) * std::max(std::fabs(s0), std::fabs(s1)) +
+                       std::fabs(c);
+  Intervals all{{s0, s1}};
+  if (!(scale > 0.0)) return all;  // the zero polynomial: 0 <= 0 everywhere
+  if (std::fabs(a) * std::max(s0 * s0, s1 * s1) <= 1e-14 * scale) {  // linear: 2 b s + c <= 0
+    if (std::fabs(b) * std::max(std::fabs(s0), std::fabs(s1)) <= 1e-14 * scale) return c <= 0.0 ? all : Intervals{};
+    const double r = -c / (2.0 * b);
+    return intersectIntervals(all, b > 0.0 ? Intervals{{-HUGE_VAL, r}} : Intervals{{r, HUGE_VAL}});
+  }
+  const double disc = b * b - a * c;
+  if (disc < 0.0) return a > 0.0 ? Intervals{} : all;
+  const double q = -(b + std::copysign(std::sqrt(disc), b));  // stable roots q / a and c / q
+  double r1 = q / a, r2 = q != 0.0 ? c / q : r1;
+  if (r1 > r2) std::swap(r1, r2);
+  if (a > 0.0) return intersectIntervals(all, Intervals{{r1, r2}});
+  return intersectIntervals(all, Intervals{{-HUGE_VAL, r1}, {r2, HUGE_VAL}});
+}
+
+/// The parameters s in [s0, s1] where X(s) = (P + s e_axis, 1) is in the region (world frame).
+Intervals regionIntervals(const QuadricRegion& r, const Eigen::Vector3d& P, int axis, double s0, double s1) {
+  switch (r.op()) {
+    case QuadricRegion::Op::Atom: {
+      const Eigen::Matrix4d& Q = r.matrix();
+      const Eigen::Vector4d X(P[0], P[1], P[2], 1.0);
+      const Eigen::Vector4d QX = Q * X;
+      return quadraticIntervals(Q(axis, axis), QX[axis], X.dot(QX), s0, s1);
+    }
+    case QuadricRegion::Op::Union: {
+      Intervals out;
+      for (const QuadricRegion& c : r.children()) out = uniteIntervals(std::move(out), regionIntervals(c, P, axis, s0, s1));
+      return out;
+    }
+    case QuadricRegion::Op::Intersection: {
+      Intervals out{{s0, s1}};
+      for (const QuadricRegion& c : r.children()) {
+        out = intersectIntervals(out, regionIntervals(c, P, axis, s0, s1));
+        if (out.empty()) break;
+      }
+      return out;
+    }
+    case QuadricRegion::Op::Difference: {
+      Intervals out = regionIntervals(r.children().front(), P, axis, s0, s1);
+      for (std::size_t k = 1; k < r.children().size() && !out.empty(); ++k) {
+        out = intersectIntervals(out, complementIntervals(regionIntervals(r.children()[k], P, axis, s0, s1), s0, s1));
+      }
+      return out;
+    }
+  }
+  return {};
+}
+
+/// The pixels of a panel in the shadow of a quadric / CSG object: mask[row][col] over the pixel
+/// rectangle [x, x + cols) x [y, y + rows) (device coordinates) covering the object's world box.
+struct SilhouetteMask {
+  int x = 0, y = 0, cols = 0, rows = 0;
+  std::vector<char> in;
+  bool at(int c, int r) const { return c >= 0 && r >= 0 && c < cols && r < rows && in[static_cast<std::size_t>(r * cols + c)]; }
+};
+
+SilhouetteMask silhouetteMask(const Panel& panel, const SceneObject& o) {
+  SilhouetteMask m;
+  const std::vector<Eigen::Vector3d> corners = boxCorners(o);
+  Eigen::Vector3d lo = corners.front(), hi = corners.front();
+  for (const Eigen::Vector3d& c : corners) {
+    lo = lo.cwiseMin(c);
+    hi = hi.cwiseMax(c);
+  }
+  const int u = panel.view.u, v = panel.view.v, w = 3 - u - v;
+  // Pixel range of the box, clipped to the panel.
+  const double left = std::max(panel.x0, std::floor(panel.px(lo[u]))), right = std::min(panel.x0 + panel.size, std::ceil(panel.px(hi[u])));
+  const double top = std::max(panel.y0, std::floor(panel.py(hi[v]))), bottom = std::min(panel.y0 + panel.size, std::ceil(panel.py(lo[v])));
+  if (!(right > left) || !(bottom > top)) return m;
+  m.x = static_cast<int>(left);
+  m.y = static_cast<int>(top);
+  m.cols = static_cast<int>(right - left);
+  m.rows = static_cast<int>(bottom - top);
+  m.in.assign(static_cast<std::size_t>(m.cols) * static_cast<std::size_t>(m.rows), 0);
+  const QuadricRegion world = o.shape.region->transformed(o.pose.linear(), o.pose.translation());
+  const double min_length = 1e-9 * (hi - lo).maxCoeff();
+  for (int r = 0; r < m.rows; ++r) {
+    for (int c = 0; c < m.cols; ++c) {
+      Eigen::Vector3d P = Eigen::Vector3d::Zero();
+      P[u] = panel.cu + (m.x + c + 0.5 - panel.x0 - 0.5 * panel.size) / panel.scale;
+      P[v] = panel.cv - (m.y + r + 0.5 - panel.y0 - 0.5 * panel.size) / panel.scale;
+      bool hit = false;
+      for (const auto& iv : regionIntervals(world, P, w, lo[w], hi[w])) hit = hit || iv.second - iv.first > min_length;
+      m.in[static_cast<std::size_t>(r * m.cols + c)] = hit;
+    }
+  }
+  return m;
+}
+
+/// Appends the mask to the path: its pixels as row runs (fill) or the edges between inside and
+/// outside pixels, merged into maximal segments (outline).
+void maskPath(cairo_t* cr, const SilhouetteMask& m, bool outline) {
+  if (!outline) {
+    for (int r = 0; r < m.rows; ++r) {
+      for (int c = 0; c < m.cols;) {
+        if (!m.at(c, r)) {
+          ++c;
+          continue;
+        }
+        int e = c;
+        while (m.at(e, r)) ++e;
+        cairo_rectangle(cr, m.x + c, m.y + r, e - c, 1.0);
+        c = e;
+      }
+    }
+    return;
+  }
+  // Horizontal edges: between rows r - 1 and r; vertical edges: between columns c - 1 and c.
+  for (int r = 0; r <= m.rows; ++r) {
+    for (int c = 0; c < m.cols;) {
+      if (m.at(c, r - 1) == m.at(c, r)) {
+        ++c;
+        continue;
+      }
+      int e = c;
+      while (e < m.cols && m.at(e, r - 1) != m.at(e, r)) ++e;
+      cairo_move_to(cr, m.x + c, m.y + r);
+      cairo_line_to(cr, m.x + e, m.y + r);
+      c = e;
+    }
+  }
+  for (int c = 0; c <= m.cols; ++c) {
+    for (int r = 0; r < m.rows;) {
+      if (m.at(c - 1, r) == m.at(c, r)) {
+        ++r;
+        continue;
+      }
+      int e = r;
+      while (e < m.rows && m.at(c - 1, e) != m.at(c, e)) ++e;
+      cairo_move_to(cr, m.x + c, m.y + r);
+      cairo_line_to(cr, m.x + c, m.y + e);
+      r = e;
+    }
+  }
+}
 
 /// Appends the object's outline in the panel to the current path (device coordinates).
 /// Returns false when the object has no outline in this view (half-spaces).
@@ -189,7 +382,7 @@ bool outlinePath(cairo_t* cr, const Panel& panel, const SceneObject& o) {
     cairo_close_path(cr);
     return true;
   }
-  if (o.shape.type == ShapeType::Box || o.shape.box) {
+  if (o.shape.type == ShapeType::Box) {  // quadric / CSG solids: silhouetteMask
     std::vector<Eigen::Vector2d> pts;
     for (const Eigen::Vector3d& c : boxCorners(o)) pts.emplace_back(panel.px(c), panel.py(c));
     const std::vector<Eigen::Vector2d> hull = convexHull(pts);
@@ -340,7 +533,12 @@ void drawPanel(cairo_t* cr, const Panel& panel, const Scene& scene, const Evalua
                ev.colliding[k] ? kCollideLine : Rgb{0.45, 0.35, 0.22});
     }
   }
-  // Fills, then outlines (so every outline stays visible through the translucent fills).
+  // Fills, then outlines (so every outline stays visible through the translucent fills). The
+  // shadows of quadric / CSG solids are computed once per panel.
+  std::vector<std::optional<SilhouetteMask>> masks(scene.objects.size());
+  for (std::size_t k = 0; k < scene.objects.size(); ++k) {
+    if (drawnBySilhouette(scene.objects[k])) masks[k] = silhouetteMask(panel, scene.objects[k]);
+  }
   for (int pass = 0; pass < 2; ++pass) {
     for (std::size_t k = 0; k < scene.objects.size(); ++k) {
       const SceneObject& o = scene.objects[k];
@@ -348,18 +546,18 @@ void drawPanel(cairo_t* cr, const Panel& panel, const Scene& scene, const Evalua
       const Rgb fill = hot ? kCollideFill : kPalette[k % kPalette.size()];
       const Rgb line = hot ? kCollideLine : Rgb{0.6 * fill.r, 0.6 * fill.g, 0.6 * fill.b};
       cairo_new_path(cr);
-      if (!outlinePath(cr, panel, o)) continue;
+      if (masks[k]) {
+        maskPath(cr, *masks[k], pass == 1);
+      } else if (!outlinePath(cr, panel, o)) {
+        continue;
+      }
       if (pass == 0) {
         setColour(cr, fill, hot ? 0.38 : 0.28);
         cairo_fill(cr);
       } else {
         setColour(cr, line);
         cairo_set_line_width(cr, hot ? 2.2 : 1.6);
-        const bool approximate = drawnByBox(o);
-        const double dash[] = {6.0, 4.0};
-        cairo_set_dash(cr, dash, approximate ? 2 : 0, 0.0);
         cairo_stroke(cr);
-        cairo_set_dash(cr, nullptr, 0, 0.0);
       }
     }
   }
@@ -443,7 +641,7 @@ void drawPanel(cairo_t* cr, const Panel& panel, const Scene& scene, const Evalua
 }
 
 /// The legend: items left to right, wrapping onto a second row at `right`.
-void drawLegend(cairo_t* cr, double x0, double y, double right, bool details, bool approximations) {
+void drawLegend(cairo_t* cr, double x0, double y, double right, bool details) {
   setFont(cr, 12);
   double x = x0;
   // Each item: a symbol of width `symbol` drawn at (x, y) and its label.
@@ -461,17 +659,14 @@ void drawLegend(cairo_t* cr, double x0, double y, double right, bool details, bo
     text(cr, label, x + symbol + 6, y);
     x += symbol + 6 + e.x_advance + 24;
   };
-  auto swatch = [&](const Rgb& c, bool dashed) {
-    return [&cr, c, dashed](double sx, double sy) {
+  auto swatch = [&](const Rgb& c) {
+    return [&cr, c](double sx, double sy) {
       cairo_rectangle(cr, sx, sy - 10, 18, 12);
       setColour(cr, c, 0.35);
       cairo_fill_preserve(cr);
       setColour(cr, {0.6 * c.r, 0.6 * c.g, 0.6 * c.b});
       cairo_set_line_width(cr, 1.5);
-      const double dash[] = {4.0, 2.5};
-      cairo_set_dash(cr, dash, dashed ? 2 : 0, 0.0);
       cairo_stroke(cr);
-      cairo_set_dash(cr, nullptr, 0, 0.0);
     };
   };
   auto segment = [&cr](const Rgb& c, const double* dash, double width) {
@@ -485,8 +680,8 @@ void drawLegend(cairo_t* cr, double x0, double y, double right, bool details, bo
       cairo_set_dash(cr, nullptr, 0, 0.0);
     };
   };
-  item(18, "colliding (touching or overlapping)", swatch(kCollideFill, false));
-  item(18, "free (a colour per object)", swatch(kPalette[0], false));
+  item(18, "colliding (touching or overlapping)", swatch(kCollideFill));
+  item(18, "free (a colour per object)", swatch(kPalette[0]));
   item(10, "contact witness points", [&cr](double sx, double sy) {
     cairo_arc(cr, sx + 5, sy - 4, 4.0, 0.0, 2.0 * M_PI);
     cairo_set_source_rgb(cr, 1.0, 0.85, 0.1);
@@ -501,7 +696,6 @@ void drawLegend(cairo_t* cr, double x0, double y, double right, bool details, bo
     item(28, "separating plane (trace)", segment(kPlaneColour, kPlaneDash, 1.4));
     item(28, "closest points", segment({0.25, 0.25, 0.3}, kDots, 1.2));
   }
-  if (approximations) item(18, "quadric / CSG shape, drawn as its bounding box", swatch({0.5, 0.5, 0.55}, true));
 }
 
 /// The view panels of a scene: one scale for all views (so sizes compare across them), each view
@@ -562,9 +756,7 @@ void draw(cairo_t* cr, const Scene& scene, const RenderOptions& options) {
   text(cr, subtitle, kMarginX, 54);
 
   for (const Panel& panel : panels) drawPanel(cr, panel, scene, ev, options, centre);
-  bool approximations = false;
-  for (const SceneObject& o : scene.objects) approximations = approximations || drawnByBox(o);
-  drawLegend(cr, kMarginX, size.height - 42, size.width - kMarginX, options.separation_details, approximations);
+  drawLegend(cr, kMarginX, size.height - 42, size.width - kMarginX, options.separation_details);
 }
 
 }  // namespace

@@ -137,6 +137,35 @@ TEST(Render, CollidingObjectsAreHighlightedRed) {
   }
 }
 
+// A CSG solid is drawn by its exact shadow, not its bounding box: a ring (ellipsoid (1.2, 1.2, 0.6)
+// minus a bore of radius 0.6 along z), alone. Seen from the top the bore is a hole and the box
+// corner (1, 1) is outside the disk; seen from the front the line through the centre crosses the
+// ring's material (|y| in [0.6, 1.2]), and (x, z) = (1, 0.5) is outside the ellipse
+// x^2/1.44 + z^2/0.36 <= 1 though inside the box.
+TEST(Render, CsgSolidsAreDrawnByTheirExactShadow) {
+  const fs::path dir = scratchDir("csg_shadow");
+  const fs::path scene_path = dir / "ring.json", png = dir / "ring.png";
+  std::ofstream(scene_path) << R"({"objects": [{"name": "ring", "shape": {"type": "csg", "op": "difference",
+      "children": [{"type": "ellipsoid", "radii": [1.2, 1.2, 0.6]}, {"type": "cylinder", "radius": 0.6, "length": 3}]}}]})";
+  const RunResult r = runCli({"render", scene_path.string(), "-o", png.string()});
+  ASSERT_EQ(r.status, kExitOk) << r.err;
+  const Scene scene = readSceneFile(scene_path.string());
+  cairo_surface_t* image = readPng(png);
+  ASSERT_EQ(cairo_surface_status(image), CAIRO_STATUS_SUCCESS);
+  auto colourAt = [&](int view, const Eigen::Vector3d& world) {
+    const Eigen::Vector2d p = pixelOf(scene, view, world);
+    return pixel(image, static_cast<int>(p[0]), static_cast<int>(p[1]));
+  };
+  auto filled = [](const std::array<int, 3>& c) { return c[2] > c[0] + 20; };  // the blue of the palette
+  EXPECT_FALSE(filled(colourAt(0, {0.0, 0.0, 0.0})));   // top view: the bore
+  EXPECT_TRUE(filled(colourAt(0, {0.9, 0.0, 0.0})));    // top view: material
+  EXPECT_FALSE(filled(colourAt(0, {1.0, 1.0, 0.0})));   // top view: box corner outside the disk
+  EXPECT_TRUE(filled(colourAt(1, {0.0, 0.0, 0.0})));    // front view: through the material
+  EXPECT_FALSE(filled(colourAt(1, {1.0, 0.0, 0.5})));   // front view: outside the ellipse
+  EXPECT_TRUE(filled(colourAt(1, {1.0, 0.0, 0.2})));    // front view: inside it
+  cairo_surface_destroy(image);
+}
+
 TEST(Render, BadInputExitsWithStatusTwoAndWritesNothing) {
   const fs::path dir = scratchDir("bad");
   const std::string good = std::string(FCL_QUADRIC_SOURCE_DIR) + "/examples/scene_basic.json";
