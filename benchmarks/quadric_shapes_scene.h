@@ -7,8 +7,11 @@
 ///  - CSG: a ring (ellipsoid (1.2, 1.2, 0.6) minus a bore of radius 0.6) against a wedge (capped
 ///    elliptic cylinder (1.0, 0.7, length 0.8) minus the half-space y > 0 minus a bore of radius
 ///    0.3), the wedge posed randomly as above (std::mt19937_64(11)).
+///  - capped elliptic cylinders (semi-axes U(0.3, 1) each, length U(0.6, 2)), posed as the
+///    circular ones (std::mt19937_64(13)), with their polygonal tessellation for mesh peers.
 /// No FCL here.
 
+#include <cmath>
 #include <cstddef>
 #include <random>
 #include <utility>
@@ -17,6 +20,7 @@
 #include <Eigen/Geometry>
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
+#include "sqrt3_tessellation.h"
 #include "fcl_quadric/geometry/quadric_region.h"
 
 namespace fcl_quadric {
@@ -64,6 +68,55 @@ inline RegionRelation cylinderPairRelation(const CylinderPair& c) {
   return collideRegions(cappedCylinderRegion(c.r1, c.r1, c.L1), b1, cappedCylinderRegion(c.r2, c.r2, c.L2), b2, c.R,
                         c.p)
       .relation;
+}
+
+struct EllipticCylinderPair {
+  double a1, b1, L1, a2, b2, L2;
+  Eigen::Matrix3d R;  ///< cylinder 2 in cylinder 1's frame
+  Eigen::Vector3d p;
+};
+
+inline std::vector<EllipticCylinderPair> makeEllipticCylinderPairs(std::size_t n) {
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> r(0.3, 1.0), L(0.6, 2.0), u(-2.0, 2.0);
+  std::vector<EllipticCylinderPair> pairs;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double a1 = r(rng), b1 = r(rng), L1 = L(rng), a2 = r(rng), b2 = r(rng), L2 = L(rng);
+    const Eigen::Matrix3d R = quadricSceneRotation(rng);
+    const double x = u(rng), y = u(rng), z = u(rng);
+    pairs.push_back({a1, b1, L1, a2, b2, L2, R, Eigen::Vector3d(x, y, z)});
+  }
+  return pairs;
+}
+
+inline RegionRelation ellipticCylinderPairRelation(const EllipticCylinderPair& c) {
+  const Box3 b1{Eigen::Vector3d(-c.a1, -c.b1, -0.5 * c.L1), Eigen::Vector3d(c.a1, c.b1, 0.5 * c.L1)};
+  const Box3 b2{Eigen::Vector3d(-c.a2, -c.b2, -0.5 * c.L2), Eigen::Vector3d(c.a2, c.b2, 0.5 * c.L2)};
+  return collideRegions(cappedCylinderRegion(c.a1, c.b1, c.L1), b1, cappedCylinderRegion(c.a2, c.b2, c.L2), b2, c.R,
+                        c.p)
+      .relation;
+}
+
+/// The capped elliptic cylinder as the prism over a polygon of k vertices inscribed in its
+/// ellipse (what a mesh user would build): 2k vertices, side quads and cap fans as triangles.
+inline TriangleMesh ellipticCylinderMesh(double a, double b, double L, int k) {
+  TriangleMesh m;
+  for (const double z : {-0.5 * L, 0.5 * L}) {
+    for (int i = 0; i < k; ++i) {
+      const double s = 2.0 * M_PI * i / k;
+      m.vertices.emplace_back(a * std::cos(s), b * std::sin(s), z);
+    }
+  }
+  for (int i = 0; i < k; ++i) {
+    const int j = (i + 1) % k;
+    m.faces.push_back({i, j, k + j});
+    m.faces.push_back({i, k + j, k + i});
+  }
+  for (int i = 1; i + 1 < k; ++i) {
+    m.faces.push_back({0, i + 1, i});          // bottom cap, facing -z
+    m.faces.push_back({k, k + i, k + i + 1});  // top cap, facing +z
+  }
+  return m;
 }
 
 inline QuadricRegion ringRegion() {

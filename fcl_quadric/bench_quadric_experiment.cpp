@@ -1,7 +1,8 @@
 // Experiment (7) of `fcl_quadric bench`: composite quadric models (issue 5) on the pairs of
 // benchmarks/quadric_shapes_scene.h. Capped circular cylinders: the certified region engine
 // against stock FCL 0.7 (fcl::Cylinder, GJK libccd and indep) and Bullet (btCylinderShapeZ,
-// GJK/EPA) on the same poses. CSG ring-versus-wedge pairs: fcl_quadric alone (no peer models a
+// GJK/EPA) on the same poses. Capped elliptic cylinders: against FCL on tessellated prisms
+// (fcl::Convex), the only model a user of FCL has for them. CSG ring-versus-wedge pairs: fcl_quadric alone (no peer models a
 // CSG solid of quadrics; a user would tessellate it).
 #include <cstdio>
 #include <memory>
@@ -13,6 +14,7 @@
 #include <fcl/narrowphase/collision.h>
 
 #include "benchmarks/bullet_peers.h"
+#include "benchmarks/fcl_peers.h"
 #include "benchmarks/quadric_shapes_scene.h"
 #include "fcl_quadric/bench_experiments.h"
 
@@ -24,7 +26,7 @@ BenchExperiment runQuadricShapesExperiment(BenchSize size, const BenchProgress& 
   const std::size_t n_csg = size == BenchSize::kTiny ? 64 : size == BenchSize::kSmall ? 256 : 2048;
   BenchExperiment e;
   e.name = "quadric_shapes";
-  e.title = "Composite quadric models: capped circular cylinders (vs FCL, Bullet) and CSG ring-vs-wedge pairs";
+  e.title = "Composite quadric models: capped circular and elliptic cylinders, CSG ring-vs-wedge pairs";
   e.unit = "pair";
   e.truth =
       "the region engine's certified relation (Touching counts as contact; checked against sampling oracles in the "
@@ -92,7 +94,58 @@ BenchExperiment runQuadricShapesExperiment(BenchSize size, const BenchProgress& 
     countWrong(&r);
     e.rows.push_back(r);
   }
+  {
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "cylinders: %zu pairs (radius U(0.3, 1), length U(0.6, 2), random poses in [-2, 2]^3), %zu in "
+                  "contact, %zu of them Touching (the engine's tolerance band: counted as contact)",
+                  n, colliding, touching);
+    e.notes.push_back(line);
+  }
   progress(0.7);
+  {
+    // Capped elliptic cylinders: no FCL or Bullet primitive; a user tessellates them (a prism over
+    // an inscribed k-gon, as fcl::Convex: libccd GJK on its vertices).
+    const std::vector<bench::EllipticCylinderPair> ep = bench::makeEllipticCylinderPairs(n);
+    std::vector<char> etruth(n);
+    std::size_t ecolliding = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      etruth[i] = bench::ellipticCylinderPairRelation(ep[i]) != RegionRelation::Separated;
+      ecolliding += etruth[i];
+    }
+    auto countEllipticWrong = [&](BenchRow* r) {
+      long wrong = 0;
+      for (std::size_t i = 0; i < n; ++i) wrong += (hit[i] != 0) != (etruth[i] != 0);
+      r->wrong = wrong;
+    };
+    BenchRow ours = row("elliptic cylinders", "fcl_quadric", n, [&](std::size_t i) {
+      return bench::ellipticCylinderPairRelation(ep[i]) != RegionRelation::Separated;
+    });
+    countEllipticWrong(&ours);
+    e.rows.push_back(ours);
+    for (const int k : {16, 64, 256}) {
+      std::vector<std::shared_ptr<fcl::Convexd>> ca, cb;
+      for (const bench::EllipticCylinderPair& c : ep) {
+        ca.push_back(bench::fclConvex(bench::ellipticCylinderMesh(c.a1, c.b1, c.L1, k)));
+        cb.push_back(bench::fclConvex(bench::ellipticCylinderMesh(c.a2, c.b2, c.L2, k)));
+      }
+      BenchRow r = row("elliptic cylinders", "fcl_convex_" + std::to_string(2 * k), n, [&](std::size_t i) {
+        fcl::Transform3d tb = fcl::Transform3d::Identity();
+        tb.linear() = ep[i].R;
+        tb.translation() = ep[i].p;
+        return bench::fclCollide(ca[i].get(), fcl::Transform3d::Identity(), cb[i].get(), tb, fcl::GST_LIBCCD);
+      });
+      countEllipticWrong(&r);
+      e.rows.push_back(r);
+    }
+    char note[240];
+    std::snprintf(note, sizeof note,
+                  "elliptic cylinders: %zu pairs (semi-axes U(0.3, 1), length U(0.6, 2), random poses), %zu in "
+                  "contact; fcl_convex_N: libccd on a prism over an inscribed polygon, N vertices",
+                  n, ecolliding);
+    e.notes.push_back(note);
+  }
+  progress(0.85);
   const QuadricRegion ring = bench::ringRegion(), wedge = bench::wedgeRegion();
   const Box3 ring_box = regionAabb(ring), wedge_box = regionAabb(wedge);
   const auto poses = bench::makeRingWedgePoses(n_csg);
@@ -107,11 +160,6 @@ BenchExperiment runQuadricShapesExperiment(BenchSize size, const BenchProgress& 
   e.rows.push_back(csg);
   progress(1.0);
   char line[320];
-  std::snprintf(line, sizeof line,
-                "cylinders: %zu pairs (radius U(0.3, 1), length U(0.6, 2), random poses in [-2, 2]^3), %zu in contact, "
-                "%zu of them Touching (the engine's tolerance band: counted as contact)",
-                n, colliding, touching);
-  e.notes.push_back(line);
   std::snprintf(line, sizeof line,
                 "csg ring-wedge: ring = ellipsoid (1.2, 1.2, 0.6) minus a bore of radius 0.6; wedge = capped elliptic "
                 "cylinder (1.0, 0.7, 0.8) minus the half-space y > 0 minus a bore of radius 0.3; %zu random poses, %zu "
