@@ -18,6 +18,8 @@
 #include "fcl_quadric/continuous/motion_matrix.h"
 #include "fcl_quadric/fcl/collision.h"
 #include "fcl_quadric/fcl/distance.h"
+#include "fcl_quadric/fcl/quadric_shapes.h"
+#include "fcl_quadric/geometry/ellipsoid_region_distance.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
 
 namespace fcl_quadric {
@@ -108,6 +110,27 @@ bool distanceCallback(fcl::CollisionObject<double>* o1, fcl::CollisionObject<dou
   const fcl::CollisionGeometry<double>* g1 = o1->collisionGeometry().get();
   const fcl::CollisionGeometry<double>* g2 = o2->collisionGeometry().get();
   if (d->skip_ellipsoidal && isEllipsoidal(g1) && isEllipsoidal(g2)) {
+    dist = d->base.result.min_distance;
+    return d->base.done;
+  }
+  // Composite quadric obstacles (quadric_shapes.h) have no exact distance: a certified lower
+  // bound against an ellipsoidal body (ellipsoid_region_distance.h), capped at the running
+  // minimum; 0 when they may touch or overlap (no penetration depth). Both the advancement and
+  // clearance() only need a lower bound.
+  const auto* q1 = g1->getNodeType() == fcl::BV_UNKNOWN ? dynamic_cast<const QuadricShape<double>*>(g1) : nullptr;
+  const auto* q2 = g2->getNodeType() == fcl::BV_UNKNOWN ? dynamic_cast<const QuadricShape<double>*>(g2) : nullptr;
+  if ((q1 != nullptr) != (q2 != nullptr) && isEllipsoidal(q1 ? g2 : g1)) {
+    const QuadricShape<double>& q = q1 ? *q1 : *q2;
+    const fcl::Transform3<double>& Xq = (q1 ? o1 : o2)->getTransform();
+    const fcl::CollisionObject<double>* body = q1 ? o2 : o1;
+    const Ellipsoid e = ellipsoidOf(body->collisionGeometry().get(), Eigen::Isometry3d(body->getTransform().matrix()));
+    const double cap = std::min(d->base.result.min_distance, d->upper);
+    const double bound = ellipsoidRegionDistanceLowerBound(e, q.region(), q.localBox(), Xq.linear(), Xq.translation(), cap);
+    if (bound < d->base.result.min_distance) {
+      d->base.result.min_distance = bound;
+      d->base.result.o1 = g1;
+      d->base.result.o2 = g2;
+    }
     dist = d->base.result.min_distance;
     return d->base.done;
   }

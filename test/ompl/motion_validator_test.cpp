@@ -14,6 +14,8 @@
 #include <ompl/geometric/planners/rrt/RRTstar.h>
 #include <ompl/util/Console.h>
 
+#include "fcl_quadric/fcl/quadric_shapes.h"
+
 #include "ompl_support.h"
 
 namespace fcl_quadric {
@@ -394,6 +396,46 @@ TEST(StateValidityChecker, AgreesWithPairwiseExactCollideAndClearanceWithPairwis
   }
   EXPECT_GT(colliding, 20);
   EXPECT_LT(colliding, 280);
+}
+
+// A composite quadric obstacle (quadric_shapes.h): a capped elliptic pillar (semi-axes 0.3 x 0.1,
+// height 2) at the origin, axis z. A sphere robot (r = 0.05) crossing it along x collides (the
+// discrete validator at its default resolution steps over the 0.2-thick pillar along y), one
+// passing beside it does not; clearance is a certified lower bound of the closed-form distance of
+// the sphere to the pillar's side (a point beside the pillar's flat face, |y| > 0.1).
+TEST(Environment, AQuadricShapeObstacleStopsATunnellingMotionAndBoundsTheClearance) {
+  auto robot = std::make_shared<RobotModel>(RobotModel::Base::Free);
+  robot->addBody(0, std::make_shared<fcl::Sphere<double>>(0.05));
+  auto env = std::make_shared<Environment>();
+  env->add(std::make_shared<fcl_quadric::EllipticCylinder<double>>(0.3, 0.1, 2.0), Eigen::Isometry3d::Identity());
+  const ob::StateSpacePtr space = makeStateSpace(*robot, Eigen::Vector3d::Constant(-5), Eigen::Vector3d::Constant(5), true);
+  auto si = makeSi(space, robot, env);
+  ob::ScopedState<> a(space), b(space);
+  // Through the thin side of the pillar (along y): first contact where the sphere's front reaches
+  // y = -0.1 at x = 0.
+  setSE3(a.get(), {0, -1, 0}, Eigen::Quaterniond::Identity());
+  setSE3(b.get(), {0, 1, 0}, Eigen::Quaterniond::Identity());
+  ASSERT_TRUE(si->isValid(a.get()));
+  ASSERT_TRUE(si->isValid(b.get()));
+  EXPECT_FALSE(si->checkMotion(a.get(), b.get()));
+  std::pair<ob::State*, double> last(si->allocState(), -1.0);
+  EXPECT_FALSE(si->getMotionValidator()->checkMotion(a.get(), b.get(), last));
+  const double t_star = (1.0 - 0.1 - 0.05) / 2.0;
+  EXPECT_LE(last.second, t_star);
+  EXPECT_GT(last.second, t_star - 1e-3);  // advancement on a lower bound: close, never past
+  EXPECT_TRUE(si->isValid(last.first));
+  si->freeState(last.first);
+  // Beside it (x = 0.4: 0.05 from the pillar's widest point, so 0 < clearance): valid.
+  setSE3(a.get(), {0.4, -1, 0}, Eigen::Quaterniond::Identity());
+  setSE3(b.get(), {0.4, 1, 0}, Eigen::Quaterniond::Identity());
+  EXPECT_TRUE(si->checkMotion(a.get(), b.get()));
+  EXPECT_LT(oracleFirstCollidingSample(*si, *robot, *env, a.get(), b.get(), 2000), 0.0);
+  // Clearance at (0, 0.5, 0): the pillar's face y = 0.1 is 0.4 away, minus the radius.
+  ob::ScopedState<> s(space);
+  setSE3(s.get(), {0, 0.5, 0}, Eigen::Quaterniond::Identity());
+  const double c = si->getStateValidityChecker()->clearance(s.get());
+  EXPECT_LE(c, 0.35 + 1e-9);
+  EXPECT_GT(c, 0.3);
 }
 
 TEST(Environment, OcTreeMergedAndLeafBoxesAgreeWithTheFclOcTreeAndStopATunnellingMotion) {

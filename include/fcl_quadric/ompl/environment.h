@@ -6,6 +6,8 @@
 /// Queries go through fcl_quadric's front doors (collision.h, distance.h), so ellipsoid robot
 /// bodies are answered by the exact QuadricSolver against every shape it supports (ellipsoid,
 /// sphere, box and OcTree leaves, triangle meshes, plane, half-space, capsule, cylinder, cone).
+/// Composite quadric models (quadric_shapes.h) are collision-checked exactly by the region engine;
+/// their distance term is a certified lower bound (ellipsoid_region_distance.h, robot_checker.h).
 /// No OMPL types here.
 ///
 /// Not thread-safe to modify; const queries may run concurrently (the manager is read-only).
