@@ -5,22 +5,26 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/sphere.h>
 
+#include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/continuous/ellipsoid_ccd.h"
 #include "fcl_quadric/continuous/motion_matrix.h"
 #include "fcl_quadric/fcl/collision.h"
 #include "fcl_quadric/fcl/distance.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
-#include "fcl_quadric/geometry/ellipsoid_region_distance.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
+#include "fcl_quadric/geometry/region_distance_bound.h"
 
 namespace fcl_quadric {
 namespace planning {
@@ -105,6 +109,87 @@ double ellipsoidBoxGapUpperBound(const fcl::Ellipsoid<double>& e, const fcl::Tra
   return std::max(0.0, (closest - c_local).norm() - e.radii.minCoeff());
 }
 
+/// A convex FCL shape as a region centred at its local origin with its local box and the radius of
+/// a ball about the origin that it contains (region_distance_bound.h); none for other geometry.
+struct ConvexRegion {
+  QuadricRegion region;
+  Box3 box;
+  double inradius;
+};
+
+std::optional<ConvexRegion> convexRegionOf(const fcl::CollisionGeometry<double>* g) {
+  using Op = QuadricRegion::Op;
+  auto capped = [](double r, double lz) {
+    return QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticCylinder(r, r)),
+                                                     QuadricRegion::halfspace({0, 0, 1}, 0.5 * lz),
+                                                     QuadricRegion::halfspace({0, 0, -1}, 0.5 * lz)});
+  };
+  switch (g->getNodeType()) {
+    case fcl::GEOM_ELLIPSOID: {
+      const Eigen::Vector3d r = static_cast<const fcl::Ellipsoid<double>*>(g)->radii;
+      return ConvexRegion{QuadricRegion::atom(quadric::ellipsoid(r)), Box3{-r, r}, r.minCoeff()};
+    }
+    case fcl::GEOM_SPHERE: {
+      const Eigen::Vector3d r = Eigen::Vector3d::Constant(static_cast<const fcl::Sphere<double>*>(g)->radius);
+      return ConvexRegion{QuadricRegion::atom(quadric::ellipsoid(r)), Box3{-r, r}, r[0]};
+    }
+    case fcl::GEOM_BOX: {
+      const Eigen::Vector3d h = 0.5 * static_cast<const fcl::Box<double>*>(g)->side;
+      std::vector<QuadricRegion> faces;
+      for (int i = 0; i < 3; ++i) {
+        faces.push_back(QuadricRegion::halfspace(Eigen::Vector3d::Unit(i), h[i]));
+        faces.push_back(QuadricRegion::halfspace(-Eigen::Vector3d::Unit(i), h[i]));
+      }
+      return ConvexRegion{QuadricRegion::combine(Op::Intersection, faces), Box3{-h, h}, h.minCoeff()};
+    }
+    case fcl::GEOM_CYLINDER: {
+      const auto* c = static_cast<const fcl::Cylinder<double>*>(g);
+      const Eigen::Vector3d h(c->radius, c->radius, 0.5 * c->lz);
+      return ConvexRegion{capped(c->radius, c->lz), Box3{-h, h}, std::min(c->radius, 0.5 * c->lz)};
+    }
+    case fcl::GEOM_CAPSULE: {
+      const auto* c = static_cast<const fcl::Capsule<double>*>(g);
+      const Eigen::Matrix4d ball = quadric::ellipsoid(Eigen::Vector3d::Constant(c->radius));
+      const QuadricRegion top = QuadricRegion::atom(ball).transformed(Eigen::Matrix3d::Identity(), {0, 0, 0.5 * c->lz});
+      const QuadricRegion bottom = QuadricRegion::atom(ball).transformed(Eigen::Matrix3d::Identity(), {0, 0, -0.5 * c->lz});
+      const Eigen::Vector3d h(c->radius, c->radius, 0.5 * c->lz + c->radius);
+      return ConvexRegion{QuadricRegion::combine(Op::Union, {capped(c->radius, c->lz), top, bottom}), Box3{-h, h},
+                          c->radius};
+    }
+    default:
+      return std::nullopt;
+  }
+}
+
+const QuadricShape<double>* asQuadricShape(const fcl::CollisionGeometry<double>* g) {
+  return g->getNodeType() == fcl::BV_UNKNOWN ? dynamic_cast<const QuadricShape<double>*>(g) : nullptr;
+}
+
+/// For a pair of one composite quadric model and one ellipsoid / convex shape (the only pairs
+/// without an exact distance that have a certified bound): a lower bound of their distance in
+/// [0, cap] (region_distance_bound.h). Nothing for every other pair, including two quadric
+/// models (fcl_quadric::distance then rejects them with std::invalid_argument).
+std::optional<double> quadricPairLowerBound(const fcl::CollisionGeometry<double>* g1, const fcl::Transform3<double>& X1,
+                                            const fcl::CollisionGeometry<double>* g2, const fcl::Transform3<double>& X2,
+                                            double cap) {
+  const QuadricShape<double>* q1 = asQuadricShape(g1);
+  const QuadricShape<double>* q2 = asQuadricShape(g2);
+  if ((q1 != nullptr) == (q2 != nullptr)) return std::nullopt;
+  const QuadricShape<double>& q = q1 ? *q1 : *q2;
+  const fcl::Transform3<double>& Xq = q1 ? X1 : X2;
+  const fcl::CollisionGeometry<double>* other = q1 ? g2 : g1;
+  const fcl::Transform3<double>& Xo = q1 ? X2 : X1;
+  if (isEllipsoidal(other)) {
+    return ellipsoidRegionDistanceLowerBound(ellipsoidOf(other, Eigen::Isometry3d(Xo.matrix())), q.region(), q.localBox(),
+                                             Xq.linear(), Xq.translation(), cap);
+  }
+  const std::optional<ConvexRegion> c = convexRegionOf(other);
+  if (!c) return std::nullopt;
+  const fcl::Transform3<double> X_qo = Xq.inverse() * Xo;
+  return regionConvexDistanceLowerBound(q.region(), q.localBox(), c->region, c->box, c->inradius, X_qo.linear(),
+                                        X_qo.translation(), cap);
+}
+
 bool distanceCallback(fcl::CollisionObject<double>* o1, fcl::CollisionObject<double>* o2, void* data, double& dist) {
   auto* d = static_cast<DistanceData*>(data);
   const fcl::CollisionGeometry<double>* g1 = o1->collisionGeometry().get();
@@ -113,21 +198,13 @@ bool distanceCallback(fcl::CollisionObject<double>* o1, fcl::CollisionObject<dou
     dist = d->base.result.min_distance;
     return d->base.done;
   }
-  // Composite quadric obstacles (quadric_shapes.h) have no exact distance: a certified lower
-  // bound against an ellipsoidal body (ellipsoid_region_distance.h), capped at the running
-  // minimum; 0 when they may touch or overlap (no penetration depth). Both the advancement and
-  // clearance() only need a lower bound.
-  const auto* q1 = g1->getNodeType() == fcl::BV_UNKNOWN ? dynamic_cast<const QuadricShape<double>*>(g1) : nullptr;
-  const auto* q2 = g2->getNodeType() == fcl::BV_UNKNOWN ? dynamic_cast<const QuadricShape<double>*>(g2) : nullptr;
-  if ((q1 != nullptr) != (q2 != nullptr) && isEllipsoidal(q1 ? g2 : g1)) {
-    const QuadricShape<double>& q = q1 ? *q1 : *q2;
-    const fcl::Transform3<double>& Xq = (q1 ? o1 : o2)->getTransform();
-    const fcl::CollisionObject<double>* body = q1 ? o2 : o1;
-    const Ellipsoid e = ellipsoidOf(body->collisionGeometry().get(), Eigen::Isometry3d(body->getTransform().matrix()));
-    const double cap = std::min(d->base.result.min_distance, d->upper);
-    const double bound = ellipsoidRegionDistanceLowerBound(e, q.region(), q.localBox(), Xq.linear(), Xq.translation(), cap);
-    if (bound < d->base.result.min_distance) {
-      d->base.result.min_distance = bound;
+  // Composite quadric models (quadric_shapes.h) have no exact distance: a certified lower bound
+  // (region_distance_bound.h), capped at the running minimum; 0 when the two may touch or
+  // overlap (no penetration depth). Both the advancement and clearance() only need a lower bound.
+  const double cap = std::min(d->base.result.min_distance, d->upper);
+  if (const std::optional<double> bound = quadricPairLowerBound(g1, o1->getTransform(), g2, o2->getTransform(), cap)) {
+    if (*bound < d->base.result.min_distance) {
+      d->base.result.min_distance = *bound;
       d->base.result.o1 = g1;
       d->base.result.o2 = g2;
     }
@@ -199,6 +276,10 @@ bool environmentCollides(const Environment& env, const Body& body, const Eigen::
 
 double pairDistance(const Body& a, const Eigen::Isometry3d& Xa, const Body& b, const Eigen::Isometry3d& Xb,
                     bool signed_distance) {
+  if (const std::optional<double> bound = quadricPairLowerBound(a.geometry.get(), toFcl(Xa), b.geometry.get(), toFcl(Xb),
+                                                                 std::numeric_limits<double>::max())) {
+    return *bound;  // a composite quadric model: a certified lower bound, 0 on contact
+  }
   fcl::DistanceRequest<double> request;
   request.enable_signed_distance = signed_distance;
   fcl::DistanceResult<double> result;

@@ -438,6 +438,39 @@ TEST(Environment, AQuadricShapeObstacleStopsATunnellingMotionAndBoundsTheClearan
   EXPECT_GT(c, 0.3);
 }
 
+// A composite quadric robot body (an elliptic rod, semi-axes 0.05 x 0.03, length 0.3, along the
+// robot's z) crossing the thin wall of ThinWall: the advancement runs on the certified lower bound
+// of the rod against the wall box (regionConvexDistanceLowerBound) and stops just before the
+// wall; a motion parallel to the wall, 1 cm from it, is accepted.
+TEST(ContinuousMotionValidator, AQuadricShapeBodyIsStoppedByAThinWallAndPassesBesideIt) {
+  ThinWall w = thinWall(true);
+  auto robot = std::make_shared<RobotModel>(RobotModel::Base::Free);
+  robot->addBody(0, std::make_shared<fcl_quadric::EllipticCylinder<double>>(0.05, 0.03, 0.3));
+  auto si = makeSi(w.space, robot, w.env);
+  ob::ScopedState<> a(w.space), b(w.space);
+  setSE3(a.get(), {-1, 0, 0}, Eigen::Quaterniond::Identity());
+  setSE3(b.get(), {1, 0, 0}, Eigen::Quaterniond::Identity());
+  ASSERT_TRUE(si->isValid(a.get()));
+  ASSERT_TRUE(si->isValid(b.get()));
+  EXPECT_FALSE(si->checkMotion(a.get(), b.get()));
+  std::pair<ob::State*, double> last(si->allocState(), -1.0);
+  EXPECT_FALSE(si->getMotionValidator()->checkMotion(a.get(), b.get(), last));
+  // First contact: the rod's face x = +0.05 reaches the wall's face wall_x - 0.005.
+  const double t_star = ((w.wall_x - 0.005 - 0.05) + 1.0) / 2.0;
+  EXPECT_LE(last.second, t_star);
+  EXPECT_GT(last.second, t_star - 1e-3);
+  EXPECT_TRUE(si->isValid(last.first));
+  si->freeState(last.first);
+  // Parallel to the wall, 1 cm from it: valid, and clearance a certified lower bound of 0.01.
+  const double x = w.wall_x - 0.005 - 0.05 - 0.01;
+  setSE3(a.get(), {x, -1.5, -1}, Eigen::Quaterniond::Identity());
+  setSE3(b.get(), {x, 1.5, 1}, Eigen::Quaterniond::Identity());
+  EXPECT_TRUE(si->checkMotion(a.get(), b.get()));
+  const double c = si->getStateValidityChecker()->clearance(a.get());
+  EXPECT_LE(c, 0.01 + 1e-9);
+  EXPECT_GT(c, 0.005);
+}
+
 TEST(Environment, OcTreeMergedAndLeafBoxesAgreeWithTheFclOcTreeAndStopATunnellingMotion) {
   // A one-voxel (5 cm) wall of an octomap with a window; the same tree as merged boxes (default),
   // leaf boxes and one fcl::OcTree must give the same validity and clearance.

@@ -7,7 +7,8 @@
 /// bodies are answered by the exact QuadricSolver against every shape it supports (ellipsoid,
 /// sphere, box and OcTree leaves, triangle meshes, plane, half-space, capsule, cylinder, cone).
 /// Composite quadric models (quadric_shapes.h) are collision-checked exactly by the region engine;
-/// their distance term is a certified lower bound (ellipsoid_region_distance.h, robot_checker.h).
+/// their distance term against ellipsoid / convex bodies is a certified lower bound
+/// (region_distance_bound.h, robot_checker.cpp).
 /// No OMPL types here.
 ///
 /// Not thread-safe to modify; const queries may run concurrently (the manager is read-only).

@@ -1,8 +1,9 @@
-// ellipsoidRegionDistanceLowerBound (ellipsoid_region_distance.h): never above the true distance
-// (a sphere against a capped cylinder, where the distance is known in closed form; random
-// ellipsoids against a CSG ring, bounded above by the distance to certified interior points),
-// close to it for spheres (the scaled sphere is exactly the delta-neighbourhood), 0 on contact,
-// cap far away, bad input rejected.
+// region_distance_bound.h: ellipsoidRegionDistanceLowerBound and regionConvexDistanceLowerBound
+// never above the true distance (spheres and cubes against a capped cylinder, where the distance
+// is known in closed form; random ellipsoids against a CSG ring, bounded above by the distance to
+// certified interior points), close to it where the scaled solid is exactly the
+// delta-neighbourhood (a sphere; a cube seen face-on), 0 on contact, cap far away, bad input
+// rejected.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,7 +13,7 @@
 #include <vector>
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
-#include "fcl_quadric/geometry/ellipsoid_region_distance.h"
+#include "fcl_quadric/geometry/region_distance_bound.h"
 #include "fcl_quadric/geometry/point_ellipsoid.h"
 #include "support/random_ellipsoids.h"
 
@@ -96,6 +97,70 @@ TEST(EllipsoidRegionDistance, RandomEllipsoidsAgainstARingNeverExceedTheDistance
   }
   EXPECT_GT(positive, 5);  // the bound is not trivially 0
   EXPECT_GT(zero, 0);      // and some pairs touch or overlap
+}
+
+QuadricRegion cube(double h) {
+  std::vector<QuadricRegion> faces;
+  for (int i = 0; i < 3; ++i) {
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    n[i] = 1.0;
+    faces.push_back(QuadricRegion::halfspace(n, h));
+    faces.push_back(QuadricRegion::halfspace(-n, h));
+  }
+  return QuadricRegion::combine(Op::Intersection, faces);
+}
+
+TEST(RegionConvexDistance, SpheresAndCubesAgainstACappedCylinderAreBelowAndNearTheClosedForm) {
+  const double r = 0.5, L = 2.0;
+  const QuadricRegion cyl = cappedCylinder(r, L);
+  const Box3 cyl_box{Eigen::Vector3d(-r, -r, -0.5 * L), Eigen::Vector3d(r, r, 0.5 * L)};
+  const double cap = 3.0;
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> u(-2.5, 2.5), rad(0.1, 0.6);
+  for (int k = 0; k < 30; ++k) {
+    // A sphere anywhere (the scaled sphere is its delta-neighbourhood: the bound is tight).
+    const double x = u(rng), y = u(rng), z = u(rng), rho = rad(rng);
+    const QuadricRegion ball = QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(rho)));
+    const Box3 ball_box{Eigen::Vector3d::Constant(-rho), Eigen::Vector3d::Constant(rho)};
+    const Eigen::Vector3d c(x, y, z);
+    const double truth = pointCylinderDistance(c, r, L) - rho;
+    const double lb = regionConvexDistanceLowerBound(cyl, cyl_box, ball, ball_box, rho, test::randomRotation(rng), c, cap);
+    SCOPED_TRACE(testing::Message() << "sphere k = " << k << " truth " << truth << " bound " << lb);
+    EXPECT_GE(lb, 0.0);
+    EXPECT_LE(lb, std::max(truth, 0.0) + 1e-9);
+    if (truth > 1e-6) {
+      EXPECT_GE(lb, truth - cap / 1000.0 - 1e-6);
+    } else if (truth < -1e-6) {
+      EXPECT_EQ(lb, 0.0);
+    }
+  }
+  for (int k = 0; k < 20; ++k) {
+    // An axis-aligned cube beside the cylinder along x, overlapping it in z: distance X - r - h,
+    // and the cube scaled about its centre moves its facing face out by exactly delta.
+    const double h = rad(rng), X = r + h + 0.05 * k;
+    const Box3 cube_box{Eigen::Vector3d::Constant(-h), Eigen::Vector3d::Constant(h)};
+    const double lb = regionConvexDistanceLowerBound(cyl, cyl_box, cube(h), cube_box, h, Eigen::Matrix3d::Identity(),
+                                                     Eigen::Vector3d(X, 0, 0), cap);
+    const double truth = X - r - h;
+    SCOPED_TRACE(testing::Message() << "cube k = " << k << " truth " << truth << " bound " << lb);
+    EXPECT_LE(lb, truth + 1e-9);
+    if (truth > 1e-6) {
+      EXPECT_GT(lb, 0.0);
+      EXPECT_GE(lb, truth - cap / 1000.0 - 1e-6);
+    }
+  }
+  // Bad input.
+  const QuadricRegion ball = QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(0.2)));
+  const Box3 ball_box{Eigen::Vector3d::Constant(-0.2), Eigen::Vector3d::Constant(0.2)};
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d far(3, 0, 0);
+  EXPECT_THROW(regionConvexDistanceLowerBound(cyl, cyl_box, ball, ball_box, 0.0, I, far, 1.0), std::invalid_argument);
+  EXPECT_THROW(regionConvexDistanceLowerBound(cyl, cyl_box, ball, ball_box, std::nan(""), I, far, 1.0), std::invalid_argument);
+  EXPECT_THROW(regionConvexDistanceLowerBound(cyl, cyl_box, ball, ball_box, 0.2, I, far, -1.0), std::invalid_argument);
+  EXPECT_THROW(regionConvexDistanceLowerBound(cyl, cyl_box, ball, ball_box, 0.2, 2.0 * I, far, 1.0), std::invalid_argument);
+  EXPECT_THROW(regionConvexDistanceLowerBound(cyl, Box3{Eigen::Vector3d::Ones(), Eigen::Vector3d::Zero()}, ball, ball_box,
+                                              0.2, I, far, 1.0),
+               std::invalid_argument);
 }
 
 TEST(EllipsoidRegionDistance, ContactFarAndBadInput) {

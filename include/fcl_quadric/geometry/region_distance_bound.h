@@ -1,8 +1,8 @@
 #pragma once
-/// \file ellipsoid_region_distance.h
-/// A certified lower bound of the distance between an ellipsoid and a composite quadric model
-/// (quadric_region.h), for the queries that need only a bound: conservative advancement and
-/// clearance in the OMPL layer. No exact distance for composite models exists in the library yet
+/// \file region_distance_bound.h
+/// Certified lower bounds of the distance between a composite quadric model (quadric_region.h) and
+/// an ellipsoid or any convex solid given as a region, for the queries that need only a bound:
+/// conservative advancement and clearance in the OMPL layer. No exact distance for composite models exists in the library yet
 /// (fcl_quadric::distance rejects them); this bound never exceeds the true distance.
 ///
 /// Method. For delta >= 0 the ellipsoid scaled about its centre by s = 1 + delta / r_min contains
@@ -11,7 +11,9 @@
 /// engine (collideRegions) reports the scaled ellipsoid Separated from the region, the distance
 /// is at least delta. The bound is the larger of the distance to the region's bounding box
 /// (signedDistanceEllipsoidBox: the box contains the region) and the largest delta certified by
-/// bisection on [that, cap]. Pure geometry (std + Eigen).
+/// bisection on [that, cap]. The same holds for any convex solid K that contains the ball of radius
+/// rho about a point c: K scaled about c by 1 + delta / rho has support h_K(n) + (delta / rho)
+/// (h_K(n) - n.c) >= h_K(n) + delta (regionConvexDistanceLowerBound). Pure geometry (std + Eigen).
 
 #include <Eigen/Core>
 
@@ -34,5 +36,17 @@ constexpr int kRegionDistanceBisections = 10;
 /// (R, p) is not a finite rigid transform.
 double ellipsoidRegionDistanceLowerBound(const Ellipsoid& e, const QuadricRegion& region, const Box3& region_box,
                                          const Eigen::Matrix3d& R, const Eigen::Vector3d& p, double cap);
+
+/// Certified lower bound of the distance between region a (its local frame; bounding box a_box)
+/// and a convex solid b given as a region in its own frame that contains the ball of radius
+/// `b_inradius` about its origin (bounding box b_box), b posed in a's frame by x -> R_AB x + p_AB;
+/// in [0, cap]: 0 when they may touch or overlap, else the largest delta (to 2^-10 of the search
+/// range) for which b scaled by 1 + delta / b_inradius about its origin is certified separate.
+/// \pre b is convex (not checked: for a non-convex b the scaled copy need not contain b's
+/// neighbourhood). \throws std::invalid_argument if cap is negative or NaN, b_inradius is not
+/// finite and > 0, a box is empty or not finite, or (R_AB, p_AB) is not a finite rigid transform.
+double regionConvexDistanceLowerBound(const QuadricRegion& a, const Box3& a_box, const QuadricRegion& b,
+                                      const Box3& b_box, double b_inradius, const Eigen::Matrix3d& R_AB,
+                                      const Eigen::Vector3d& p_AB, double cap);
 
 }  // namespace fcl_quadric
