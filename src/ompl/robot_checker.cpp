@@ -119,6 +119,11 @@ struct ConvexRegion {
 
 std::optional<ConvexRegion> convexRegionOf(const fcl::CollisionGeometry<double>* g) {
   using Op = QuadricRegion::Op;
+  if (g->getNodeType() == fcl::BV_UNKNOWN) {  // a capped elliptic cylinder is convex (centred, axis z)
+    const auto* c = dynamic_cast<const EllipticCylinder<double>*>(g);
+    if (c == nullptr) return std::nullopt;
+    return ConvexRegion{c->region(), c->localBox(), std::min({c->a(), c->b(), 0.5 * c->lz()})};
+  }
   auto capped = [](double r, double lz) {
     return QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticCylinder(r, r)),
                                                      QuadricRegion::halfspace({0, 0, 1}, 0.5 * lz),
@@ -165,20 +170,26 @@ const QuadricShape<double>* asQuadricShape(const fcl::CollisionGeometry<double>*
   return g->getNodeType() == fcl::BV_UNKNOWN ? dynamic_cast<const QuadricShape<double>*>(g) : nullptr;
 }
 
-/// For a pair of one composite quadric model and one ellipsoid / convex shape (the only pairs
-/// without an exact distance that have a certified bound): a lower bound of their distance in
-/// [0, cap] (region_distance_bound.h). Nothing for every other pair, including two quadric
-/// models (fcl_quadric::distance then rejects them with std::invalid_argument).
+/// For a pair of one composite quadric model and one ellipsoid / convex shape, or of two models one
+/// of which is a capped elliptic cylinder (the pairs without an exact distance that have a
+/// certified bound): a lower bound of their distance in [0, cap] (region_distance_bound.h).
+/// Nothing for every other pair (fcl_quadric::distance then rejects the composite ones with
+/// std::invalid_argument).
 std::optional<double> quadricPairLowerBound(const fcl::CollisionGeometry<double>* g1, const fcl::Transform3<double>& X1,
                                             const fcl::CollisionGeometry<double>* g2, const fcl::Transform3<double>& X2,
                                             double cap) {
   const QuadricShape<double>* q1 = asQuadricShape(g1);
   const QuadricShape<double>* q2 = asQuadricShape(g2);
-  if ((q1 != nullptr) == (q2 != nullptr)) return std::nullopt;
-  const QuadricShape<double>& q = q1 ? *q1 : *q2;
-  const fcl::Transform3<double>& Xq = q1 ? X1 : X2;
-  const fcl::CollisionGeometry<double>* other = q1 ? g2 : g1;
-  const fcl::Transform3<double>& Xo = q1 ? X2 : X1;
+  if (q1 == nullptr && q2 == nullptr) return std::nullopt;
+  if (q1 != nullptr && q2 != nullptr && convexRegionOf(g2) == std::nullopt) {
+    if (convexRegionOf(g1) == std::nullopt) return std::nullopt;  // two non-convex models
+    return quadricPairLowerBound(g2, X2, g1, X1, cap);             // the convex one second
+  }
+  if (q1 == nullptr) return quadricPairLowerBound(g2, X2, g1, X1, cap);  // the model first
+  const QuadricShape<double>& q = *q1;
+  const fcl::Transform3<double>& Xq = X1;
+  const fcl::CollisionGeometry<double>* other = g2;
+  const fcl::Transform3<double>& Xo = X2;
   if (isEllipsoidal(other)) {
     return ellipsoidRegionDistanceLowerBound(ellipsoidOf(other, Eigen::Isometry3d(Xo.matrix())), q.region(), q.localBox(),
                                              Xq.linear(), Xq.translation(), cap);

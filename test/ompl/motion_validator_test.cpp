@@ -471,6 +471,29 @@ TEST(ContinuousMotionValidator, AQuadricShapeBodyIsStoppedByAThinWallAndPassesBe
   EXPECT_GT(c, 0.005);
 }
 
+// Two composite models: the elliptic rod (semi-axes 0.05 x 0.03, length 0.3) against the elliptic
+// pillar (0.3 x 0.1, height 2): the pillar is the convex partner of the bound.
+TEST(ContinuousMotionValidator, AQuadricShapeBodyAgainstAQuadricShapeObstacle) {
+  auto robot = std::make_shared<RobotModel>(RobotModel::Base::Free);
+  robot->addBody(0, std::make_shared<fcl_quadric::EllipticCylinder<double>>(0.05, 0.03, 0.3));
+  auto env = std::make_shared<Environment>();
+  env->add(std::make_shared<fcl_quadric::EllipticCylinder<double>>(0.3, 0.1, 2.0), Eigen::Isometry3d::Identity());
+  const ob::StateSpacePtr space = makeStateSpace(*robot, Eigen::Vector3d::Constant(-5), Eigen::Vector3d::Constant(5), true);
+  auto si = makeSi(space, robot, env);
+  ob::ScopedState<> a(space), b(space);
+  setSE3(a.get(), {0, -1, 0}, Eigen::Quaterniond::Identity());
+  setSE3(b.get(), {0, 1, 0}, Eigen::Quaterniond::Identity());
+  std::pair<ob::State*, double> last(si->allocState(), -1.0);
+  EXPECT_FALSE(si->getMotionValidator()->checkMotion(a.get(), b.get(), last));
+  const double t_star = (1.0 - 0.1 - 0.03) / 2.0;  // the rod's y semi-axis 0.03 meets the face y = -0.1
+  EXPECT_LE(last.second, t_star);
+  EXPECT_GT(last.second, t_star - 1e-3);
+  si->freeState(last.first);
+  setSE3(a.get(), {0.4, -1, 0}, Eigen::Quaterniond::Identity());  // 0.05 beyond the pillar's x extent
+  setSE3(b.get(), {0.4, 1, 0}, Eigen::Quaterniond::Identity());
+  EXPECT_TRUE(si->checkMotion(a.get(), b.get()));
+}
+
 TEST(Environment, OcTreeMergedAndLeafBoxesAgreeWithTheFclOcTreeAndStopATunnellingMotion) {
   // A one-voxel (5 cm) wall of an octomap with a window; the same tree as merged boxes (default),
   // leaf boxes and one fcl::OcTree must give the same validity and clearance.
