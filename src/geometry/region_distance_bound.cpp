@@ -83,6 +83,13 @@ double regionConvexDistanceLowerBound(const QuadricRegion& a, const Box3& a_box,
   }
   checkBox(a_box, who + ": a's box");
   checkBox(b_box, who + ": b's box");
+  // The ball of radius b_inradius about b's origin lies in b, hence in its box.
+  for (int i = 0; i < 3; ++i) {
+    if (!(b_box.lo[i] <= -b_inradius && b_box.hi[i] >= b_inradius)) {
+      throw std::invalid_argument(who + ": b's box does not contain the ball of radius b_inradius = " +
+                                  std::to_string(b_inradius) + " about b's origin");
+    }
+  }
   detail::checkFinite(p_AB, "regionConvexDistanceLowerBound: translation");
   detail::checkRotation(R_AB, "regionConvexDistanceLowerBound: rotation");
   auto separated = [&](double delta) {

@@ -157,6 +157,8 @@ TEST(RegionConvexDistance, SpheresAndCubesAgainstACappedCylinderAreBelowAndNearT
   EXPECT_THROW(regionConvexDistanceLowerBound(cyl, cyl_box, ball, ball_box, 0.0, I, far, 1.0), std::invalid_argument);
   EXPECT_THROW(regionConvexDistanceLowerBound(cyl, cyl_box, ball, ball_box, std::nan(""), I, far, 1.0), std::invalid_argument);
   EXPECT_THROW(regionConvexDistanceLowerBound(cyl, cyl_box, ball, ball_box, 0.2, I, far, -1.0), std::invalid_argument);
+  EXPECT_THROW(regionConvexDistanceLowerBound(cyl, cyl_box, ball, ball_box, 0.3, I, far, 1.0), std::invalid_argument);
+  EXPECT_THROW(regionConvexDistanceLowerBound(cyl, cyl_box, ball, Box3{}, 0.2, I, far, 1.0), std::invalid_argument);
   EXPECT_THROW(regionConvexDistanceLowerBound(cyl, cyl_box, ball, ball_box, 0.2, 2.0 * I, far, 1.0), std::invalid_argument);
   EXPECT_THROW(regionConvexDistanceLowerBound(cyl, Box3{Eigen::Vector3d::Ones(), Eigen::Vector3d::Zero()}, ball, ball_box,
                                               0.2, I, far, 1.0),

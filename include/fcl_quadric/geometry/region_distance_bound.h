@@ -44,7 +44,8 @@ double ellipsoidRegionDistanceLowerBound(const Ellipsoid& e, const QuadricRegion
 /// range) for which b scaled by 1 + delta / b_inradius about its origin is certified separate.
 /// \pre b is convex (not checked: for a non-convex b the scaled copy need not contain b's
 /// neighbourhood). \throws std::invalid_argument if cap is negative or NaN, b_inradius is not
-/// finite and > 0, a box is empty or not finite, or (R_AB, p_AB) is not a finite rigid transform.
+/// finite and > 0, a box is empty or not finite, b's box does not contain that ball, or (R_AB,
+/// p_AB) is not a finite rigid transform.
 double regionConvexDistanceLowerBound(const QuadricRegion& a, const Box3& a_box, const QuadricRegion& b,
                                       const Box3& b_box, double b_inradius, const Eigen::Matrix3d& R_AB,
                                       const Eigen::Vector3d& p_AB, double cap);
