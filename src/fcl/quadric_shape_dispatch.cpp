@@ -2,6 +2,7 @@
 // the pair is classified by collideRegions-style certified search (docs/algorithms.md section 9).
 #include "fcl/quadric_shape_dispatch.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -30,6 +31,7 @@
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
 #include "fcl_quadric/geometry/quadric_region.h"
+#include "fcl_quadric/geometry/region_distance_bound.h"
 
 namespace fcl_quadric {
 namespace detail {
@@ -266,5 +268,57 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
 
 }  // namespace
 
+namespace {
+
+/// The radius of a ball about the local origin that the shape contains, for the convex shapes the
+/// distance bound can scale (region_distance_bound.h); none otherwise.
+std::optional<double> convexInradius(const fcl::CollisionGeometry<double>* g) {
+  switch (g->getNodeType()) {
+    case fcl::GEOM_ELLIPSOID: return static_cast<const fcl::Ellipsoid<double>*>(g)->radii.minCoeff();
+    case fcl::GEOM_SPHERE: return static_cast<const fcl::Sphere<double>*>(g)->radius;
+    case fcl::GEOM_BOX: return 0.5 * static_cast<const fcl::Box<double>*>(g)->side.minCoeff();
+    case fcl::GEOM_CYLINDER: {
+      const auto* c = static_cast<const fcl::Cylinder<double>*>(g);
+      return std::min(c->radius, 0.5 * c->lz);
+    }
+    case fcl::GEOM_CAPSULE: return static_cast<const fcl::Capsule<double>*>(g)->radius;
+    case fcl::BV_UNKNOWN:
+      if (const auto* c = dynamic_cast<const EllipticCylinder<double>*>(g)) return std::min({c->a(), c->b(), 0.5 * c->lz()});
+      return std::nullopt;
+    default: return std::nullopt;
+  }
+}
+
+}  // namespace
+
 }  // namespace detail
+
+std::optional<double> distanceLowerBound(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
+                                         const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
+                                         double cap) {
+  if (o1 == nullptr || o2 == nullptr) throw std::invalid_argument("fcl_quadric::distanceLowerBound: null geometry");
+  const bool q1 = detail::isQuadricShape(o1), q2 = detail::isQuadricShape(o2);
+  if (!q1 && !q2) return std::nullopt;
+  // The model first and the convex partner second; of two models, a convex one is the partner.
+  if (!q1) return distanceLowerBound(o2, tf2, o1, tf1, cap);
+  if (q2 && !detail::convexInradius(o2)) {
+    if (!detail::convexInradius(o1)) return std::nullopt;  // two models, neither convex
+    return distanceLowerBound(o2, tf2, o1, tf1, cap);
+  }
+  const QuadricShape<double>& q = *static_cast<const QuadricShape<double>*>(o1);
+  if (o2->getNodeType() == fcl::GEOM_ELLIPSOID || o2->getNodeType() == fcl::GEOM_SPHERE) {
+    const Eigen::Vector3d radii = o2->getNodeType() == fcl::GEOM_ELLIPSOID
+                                      ? static_cast<const fcl::Ellipsoid<double>*>(o2)->radii
+                                      : Eigen::Vector3d::Constant(static_cast<const fcl::Sphere<double>*>(o2)->radius);
+    return ellipsoidRegionDistanceLowerBound(Ellipsoid(radii, tf2.linear(), tf2.translation()), q.region(), q.localBox(),
+                                             tf1.linear(), tf1.translation(), cap);
+  }
+  const std::optional<double> inradius = detail::convexInradius(o2);
+  if (!inradius) return std::nullopt;
+  const detail::LocalSolid partner = detail::localSolid(o2, "o2");
+  const fcl::Transform3<double> X_12 = tf1.inverse() * tf2;
+  return regionConvexDistanceLowerBound(q.region(), q.localBox(), partner.region, *partner.box, *inradius,
+                                        X_12.linear(), X_12.translation(), cap);
+}
+
 }  // namespace fcl_quadric

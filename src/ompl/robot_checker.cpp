@@ -12,19 +12,14 @@
 
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/geometry/shape/box.h>
-#include <fcl/geometry/shape/capsule.h>
-#include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/sphere.h>
 
-#include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/continuous/ellipsoid_ccd.h"
 #include "fcl_quadric/continuous/motion_matrix.h"
 #include "fcl_quadric/fcl/collision.h"
 #include "fcl_quadric/fcl/distance.h"
-#include "fcl_quadric/fcl/quadric_shapes.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
-#include "fcl_quadric/geometry/region_distance_bound.h"
 
 namespace fcl_quadric {
 namespace planning {
@@ -109,98 +104,6 @@ double ellipsoidBoxGapUpperBound(const fcl::Ellipsoid<double>& e, const fcl::Tra
   return std::max(0.0, (closest - c_local).norm() - e.radii.minCoeff());
 }
 
-/// A convex FCL shape as a region centred at its local origin with its local box and the radius of
-/// a ball about the origin that it contains (region_distance_bound.h); none for other geometry.
-struct ConvexRegion {
-  QuadricRegion region;
-  Box3 box;
-  double inradius;
-};
-
-std::optional<ConvexRegion> convexRegionOf(const fcl::CollisionGeometry<double>* g) {
-  using Op = QuadricRegion::Op;
-  if (g->getNodeType() == fcl::BV_UNKNOWN) {  // a capped elliptic cylinder is convex (centred, axis z)
-    const auto* c = dynamic_cast<const EllipticCylinder<double>*>(g);
-    if (c == nullptr) return std::nullopt;
-    return ConvexRegion{c->region(), c->localBox(), std::min({c->a(), c->b(), 0.5 * c->lz()})};
-  }
-  auto capped = [](double r, double lz) {
-    return QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticCylinder(r, r)),
-                                                     QuadricRegion::halfspace({0, 0, 1}, 0.5 * lz),
-                                                     QuadricRegion::halfspace({0, 0, -1}, 0.5 * lz)});
-  };
-  switch (g->getNodeType()) {
-    case fcl::GEOM_ELLIPSOID: {
-      const Eigen::Vector3d r = static_cast<const fcl::Ellipsoid<double>*>(g)->radii;
-      return ConvexRegion{QuadricRegion::atom(quadric::ellipsoid(r)), Box3{-r, r}, r.minCoeff()};
-    }
-    case fcl::GEOM_SPHERE: {
-      const Eigen::Vector3d r = Eigen::Vector3d::Constant(static_cast<const fcl::Sphere<double>*>(g)->radius);
-      return ConvexRegion{QuadricRegion::atom(quadric::ellipsoid(r)), Box3{-r, r}, r[0]};
-    }
-    case fcl::GEOM_BOX: {
-      const Eigen::Vector3d h = 0.5 * static_cast<const fcl::Box<double>*>(g)->side;
-      std::vector<QuadricRegion> faces;
-      for (int i = 0; i < 3; ++i) {
-        faces.push_back(QuadricRegion::halfspace(Eigen::Vector3d::Unit(i), h[i]));
-        faces.push_back(QuadricRegion::halfspace(-Eigen::Vector3d::Unit(i), h[i]));
-      }
-      return ConvexRegion{QuadricRegion::combine(Op::Intersection, faces), Box3{-h, h}, h.minCoeff()};
-    }
-    case fcl::GEOM_CYLINDER: {
-      const auto* c = static_cast<const fcl::Cylinder<double>*>(g);
-      const Eigen::Vector3d h(c->radius, c->radius, 0.5 * c->lz);
-      return ConvexRegion{capped(c->radius, c->lz), Box3{-h, h}, std::min(c->radius, 0.5 * c->lz)};
-    }
-    case fcl::GEOM_CAPSULE: {
-      const auto* c = static_cast<const fcl::Capsule<double>*>(g);
-      const Eigen::Matrix4d ball = quadric::ellipsoid(Eigen::Vector3d::Constant(c->radius));
-      const QuadricRegion top = QuadricRegion::atom(ball).transformed(Eigen::Matrix3d::Identity(), {0, 0, 0.5 * c->lz});
-      const QuadricRegion bottom = QuadricRegion::atom(ball).transformed(Eigen::Matrix3d::Identity(), {0, 0, -0.5 * c->lz});
-      const Eigen::Vector3d h(c->radius, c->radius, 0.5 * c->lz + c->radius);
-      return ConvexRegion{QuadricRegion::combine(Op::Union, {capped(c->radius, c->lz), top, bottom}), Box3{-h, h},
-                          c->radius};
-    }
-    default:
-      return std::nullopt;
-  }
-}
-
-const QuadricShape<double>* asQuadricShape(const fcl::CollisionGeometry<double>* g) {
-  return g->getNodeType() == fcl::BV_UNKNOWN ? dynamic_cast<const QuadricShape<double>*>(g) : nullptr;
-}
-
-/// For a pair of one composite quadric model and one ellipsoid / convex shape, or of two models one
-/// of which is a capped elliptic cylinder (the pairs without an exact distance that have a
-/// certified bound): a lower bound of their distance in [0, cap] (region_distance_bound.h).
-/// Nothing for every other pair (fcl_quadric::distance then rejects the composite ones with
-/// std::invalid_argument).
-std::optional<double> quadricPairLowerBound(const fcl::CollisionGeometry<double>* g1, const fcl::Transform3<double>& X1,
-                                            const fcl::CollisionGeometry<double>* g2, const fcl::Transform3<double>& X2,
-                                            double cap) {
-  const QuadricShape<double>* q1 = asQuadricShape(g1);
-  const QuadricShape<double>* q2 = asQuadricShape(g2);
-  if (q1 == nullptr && q2 == nullptr) return std::nullopt;
-  if (q1 != nullptr && q2 != nullptr && convexRegionOf(g2) == std::nullopt) {
-    if (convexRegionOf(g1) == std::nullopt) return std::nullopt;  // two non-convex models
-    return quadricPairLowerBound(g2, X2, g1, X1, cap);             // the convex one second
-  }
-  if (q1 == nullptr) return quadricPairLowerBound(g2, X2, g1, X1, cap);  // the model first
-  const QuadricShape<double>& q = *q1;
-  const fcl::Transform3<double>& Xq = X1;
-  const fcl::CollisionGeometry<double>* other = g2;
-  const fcl::Transform3<double>& Xo = X2;
-  if (isEllipsoidal(other)) {
-    return ellipsoidRegionDistanceLowerBound(ellipsoidOf(other, Eigen::Isometry3d(Xo.matrix())), q.region(), q.localBox(),
-                                             Xq.linear(), Xq.translation(), cap);
-  }
-  const std::optional<ConvexRegion> c = convexRegionOf(other);
-  if (!c) return std::nullopt;
-  const fcl::Transform3<double> X_qo = Xq.inverse() * Xo;
-  return regionConvexDistanceLowerBound(q.region(), q.localBox(), c->region, c->box, c->inradius, X_qo.linear(),
-                                        X_qo.translation(), cap);
-}
-
 bool distanceCallback(fcl::CollisionObject<double>* o1, fcl::CollisionObject<double>* o2, void* data, double& dist) {
   auto* d = static_cast<DistanceData*>(data);
   const fcl::CollisionGeometry<double>* g1 = o1->collisionGeometry().get();
@@ -210,10 +113,10 @@ bool distanceCallback(fcl::CollisionObject<double>* o1, fcl::CollisionObject<dou
     return d->base.done;
   }
   // Composite quadric models (quadric_shapes.h) have no exact distance: a certified lower bound
-  // (region_distance_bound.h), capped at the running minimum; 0 when the two may touch or
+  // (fcl_quadric::distanceLowerBound), capped at the running minimum; 0 when the two may touch or
   // overlap (no penetration depth). Both the advancement and clearance() only need a lower bound.
   const double cap = std::min(d->base.result.min_distance, d->upper);
-  if (const std::optional<double> bound = quadricPairLowerBound(g1, o1->getTransform(), g2, o2->getTransform(), cap)) {
+  if (const std::optional<double> bound = fcl_quadric::distanceLowerBound(g1, o1->getTransform(), g2, o2->getTransform(), cap)) {
     if (*bound < d->base.result.min_distance) {
       d->base.result.min_distance = *bound;
       d->base.result.o1 = g1;
@@ -287,8 +190,8 @@ bool environmentCollides(const Environment& env, const Body& body, const Eigen::
 
 double pairDistance(const Body& a, const Eigen::Isometry3d& Xa, const Body& b, const Eigen::Isometry3d& Xb,
                     bool signed_distance) {
-  if (const std::optional<double> bound = quadricPairLowerBound(a.geometry.get(), toFcl(Xa), b.geometry.get(), toFcl(Xb),
-                                                                 std::numeric_limits<double>::max())) {
+  if (const std::optional<double> bound = fcl_quadric::distanceLowerBound(a.geometry.get(), toFcl(Xa), b.geometry.get(),
+                                                                           toFcl(Xb), std::numeric_limits<double>::max())) {
     return *bound;  // a composite quadric model: a certified lower bound, 0 on contact
   }
   fcl::DistanceRequest<double> request;

@@ -333,5 +333,37 @@ TEST(QuadricShapeDispatch, BroadPhaseManagerFindsExactlyThePairwiseContacts) {
   EXPECT_EQ(found, expected);
 }
 
+// distanceLowerBound: a sphere beside a capped cylinder (closed-form distance) in either argument
+// order; a cube and a second (convex) composite model beside it; nothing for a pair without a
+// composite model; bad input.
+TEST(QuadricShapes, DistanceLowerBoundIsBelowTheClosedFormAndNamesItsPairs) {
+  const EllipticCylinder<double> cyl(0.5, 0.5, 2.0);
+  const fcl::Sphere<double> ball(0.2);
+  const fcl::Box<double> cube(0.4, 0.4, 0.4);
+  fcl::Transform3d I = fcl::Transform3d::Identity(), beside = fcl::Transform3d::Identity();
+  beside.translation() = Eigen::Vector3d(1.5, 0, 0);  // 1.0 from the axis: 0.5 - 0.2 = 0.3 apart
+  for (const bool swap : {false, true}) {
+    const std::optional<double> d = swap ? distanceLowerBound(&ball, beside, &cyl, I, 2.0)
+                                         : distanceLowerBound(&cyl, I, &ball, beside, 2.0);
+    ASSERT_TRUE(d.has_value());
+    EXPECT_LE(*d, 0.8 + 1e-9);
+    EXPECT_GE(*d, 0.8 - 2.0 / 1000.0 - 1e-6);
+  }
+  const std::optional<double> c = distanceLowerBound(&cyl, I, &cube, beside, 2.0);  // face-on: 1.5 - 0.5 - 0.2
+  ASSERT_TRUE(c.has_value());
+  EXPECT_LE(*c, 0.8 + 1e-9);
+  EXPECT_GT(*c, 0.7);
+  // Two models: the rod is the convex partner. Its inradius 0.1 is half its semi-axis 0.2 along x,
+  // so scaling it moves its facing side 2 delta: the bound is about half the distance 0.8.
+  const EllipticCylinder<double> rod(0.2, 0.1, 0.5);
+  const std::optional<double> r = distanceLowerBound(&cyl, I, &rod, beside, 2.0);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_LE(*r, 0.8 + 1e-9);
+  EXPECT_GT(*r, 0.35);
+  EXPECT_FALSE(distanceLowerBound(&ball, I, &cube, beside, 2.0).has_value());  // no composite model
+  EXPECT_THROW(distanceLowerBound(nullptr, I, &ball, beside, 2.0), std::invalid_argument);
+  EXPECT_THROW(distanceLowerBound(&cyl, I, &ball, beside, -1.0), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace fcl_quadric

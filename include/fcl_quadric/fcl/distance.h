@@ -21,6 +21,8 @@
 ///
 /// Call it qualified (fcl_quadric::distance), see collision.h. Only S = double is instantiated.
 
+#include <optional>
+
 #include <fcl/common/types.h>
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance_request.h>
@@ -47,6 +49,20 @@ S distance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1, c
 /// \throws std::invalid_argument if data is null (FCL's version asserts), or from distance().
 template <typename S>
 bool defaultDistanceFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<S>* o2, void* data, S& dist);
+
+/// Certified lower bound, in [0, cap], of the distance between o1 posed at tf1 and o2 posed at
+/// tf2 for the pairs distance() cannot answer exactly: one composite quadric model
+/// (quadric_shapes.h) and one fcl Sphere / Ellipsoid / Box / Cylinder / Capsule or capped
+/// EllipticCylinder (two models when one of them is an EllipticCylinder). 0 when they may touch or
+/// overlap; cap when nothing closer than cap is possible. Method: the convex partner scaled about
+/// its centre contains its neighbourhood, and the region engine certifies the scaled copy
+/// separate (region_distance_bound.h; docs/algorithms.md section 9, after thesis ch.6's CQM
+/// classification). \return std::nullopt for every other pair (no composite model, or no convex
+/// partner). \throws std::invalid_argument for a null geometry, a cap < 0 or NaN, or a transform
+/// that is not finite and rigid.
+std::optional<double> distanceLowerBound(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
+                                         const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
+                                         double cap);
 
 extern template double distance(const fcl::CollisionObject<double>*, const fcl::CollisionObject<double>*,
                                 const fcl::DistanceRequest<double>&, fcl::DistanceResult<double>&);

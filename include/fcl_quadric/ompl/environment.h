@@ -8,7 +8,7 @@
 /// sphere, box and OcTree leaves, triangle meshes, plane, half-space, capsule, cylinder, cone).
 /// Composite quadric models (quadric_shapes.h) are collision-checked exactly by the region engine;
 /// their distance term against ellipsoid / convex bodies is a certified lower bound
-/// (region_distance_bound.h, robot_checker.cpp).
+/// (fcl_quadric::distanceLowerBound, distance.h).
 /// No OMPL types here.
 ///
 /// Not thread-safe to modify; const queries may run concurrently (the manager is read-only).
