@@ -61,13 +61,17 @@ inline std::vector<CylinderPair> makeCylinderPairs(std::size_t n) {
   return pairs;
 }
 
-/// The certified relation of a cylinder pair (the region engine).
+/// The certified relation (the region engine) of capped elliptic cylinders (a1, b1, L1) at the
+/// identity and (a2, b2, L2) posed by (R, p).
+inline RegionRelation cappedCylindersRelation(double a1, double b1, double L1, double a2, double b2, double L2,
+                                              const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
+  const Box3 box1{Eigen::Vector3d(-a1, -b1, -0.5 * L1), Eigen::Vector3d(a1, b1, 0.5 * L1)};
+  const Box3 box2{Eigen::Vector3d(-a2, -b2, -0.5 * L2), Eigen::Vector3d(a2, b2, 0.5 * L2)};
+  return collideRegions(cappedCylinderRegion(a1, b1, L1), box1, cappedCylinderRegion(a2, b2, L2), box2, R, p).relation;
+}
+
 inline RegionRelation cylinderPairRelation(const CylinderPair& c) {
-  const Box3 b1{Eigen::Vector3d(-c.r1, -c.r1, -0.5 * c.L1), Eigen::Vector3d(c.r1, c.r1, 0.5 * c.L1)};
-  const Box3 b2{Eigen::Vector3d(-c.r2, -c.r2, -0.5 * c.L2), Eigen::Vector3d(c.r2, c.r2, 0.5 * c.L2)};
-  return collideRegions(cappedCylinderRegion(c.r1, c.r1, c.L1), b1, cappedCylinderRegion(c.r2, c.r2, c.L2), b2, c.R,
-                        c.p)
-      .relation;
+  return cappedCylindersRelation(c.r1, c.r1, c.L1, c.r2, c.r2, c.L2, c.R, c.p);
 }
 
 struct EllipticCylinderPair {
@@ -90,11 +94,7 @@ inline std::vector<EllipticCylinderPair> makeEllipticCylinderPairs(std::size_t n
 }
 
 inline RegionRelation ellipticCylinderPairRelation(const EllipticCylinderPair& c) {
-  const Box3 b1{Eigen::Vector3d(-c.a1, -c.b1, -0.5 * c.L1), Eigen::Vector3d(c.a1, c.b1, 0.5 * c.L1)};
-  const Box3 b2{Eigen::Vector3d(-c.a2, -c.b2, -0.5 * c.L2), Eigen::Vector3d(c.a2, c.b2, 0.5 * c.L2)};
-  return collideRegions(cappedCylinderRegion(c.a1, c.b1, c.L1), b1, cappedCylinderRegion(c.a2, c.b2, c.L2), b2, c.R,
-                        c.p)
-      .relation;
+  return cappedCylindersRelation(c.a1, c.b1, c.L1, c.a2, c.b2, c.L2, c.R, c.p);
 }
 
 /// The capped elliptic cylinder as the prism over a polygon of k vertices inscribed in its
