@@ -18,10 +18,16 @@
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
+#include "region_formula.h"
 
 namespace fcl_quadric {
 
 using namespace tolerance_region;
+using detail::Formula;
+using detail::FormulaBox;
+using detail::goldenPositive;
+using detail::chooseSplitAxis;
+using detail::Tri;
 
 const char* toString(FaceShape s) {
   switch (s) {
@@ -210,50 +216,7 @@ std::vector<Eigen::Matrix4d> QuadricRegion::signedAtoms() const {
 
 namespace {
 
-/// The region as an and/or formula over signed atoms (differences pushed to the atoms).
-struct Formula {
-  struct Node {
-    bool is_and = true;
-    std::vector<int> atoms;
-    std::vector<int> nodes;
-  };
-  std::vector<Eigen::Matrix4d> atoms;
-  std::vector<Node> nodes;
-  int root = 0;  // always a node
 
-  int addAtom(const Eigen::Matrix4d& Q) {
-    atoms.push_back(Q);
-    return static_cast<int>(atoms.size()) - 1;
-  }
-  // Adds the subtree of r (negated if neg) as children of node `parent`.
-  void addInto(int parent, const QuadricRegion& r, bool neg) {
-    using Op = QuadricRegion::Op;
-    if (r.op() == Op::Atom) {
-      const int a = addAtom(neg ? Eigen::Matrix4d(-r.matrix()) : r.matrix());
-      nodes[parent].atoms.push_back(a);
-      return;
-    }
-    bool is_and = r.op() != Op::Union;
-    if (neg) is_and = !is_and;
-    int target = parent;
-    if (nodes[parent].is_and != is_and) {
-      nodes.push_back(Node{is_and, {}, {}});
-      target = static_cast<int>(nodes.size()) - 1;
-      nodes[parent].nodes.push_back(target);
-    }
-    for (std::size_t i = 0; i < r.children().size(); ++i) {
-      const bool sub = r.op() == Op::Difference && i > 0;
-      addInto(target, r.children()[i], neg != sub);
-    }
-  }
-  explicit Formula(const QuadricRegion& r) {
-    nodes.push_back(Node{true, {}, {}});
-    root = 0;
-    addInto(0, r, false);
-  }
-};
-
-enum class Tri { In, Out, Unknown };
 
 struct Enclosure {
   double lo, hi;
@@ -304,18 +267,15 @@ Tri atomBox(const Eigen::Matrix4d& Q, const Eigen::Vector3d& c, const Eigen::Vec
 class BoxEval {
  public:
   BoxEval(const Formula& f, const Eigen::Vector3d& c, const Eigen::Vector3d& r)
-      : f_(f), c_(c), r_(r), atom_(f.atoms.size()), node_(f.nodes.size(), Tri::Unknown) {
-    for (std::size_t i = 0; i < f.atoms.size(); ++i) atom_[i] = atomBox(f.atoms[i], c, r);
-    root_ = eval(f.root);
-  }
-  Tri root() const { return root_; }
+      : f_(f), c_(c), r_(r), box_(f, atomStates(f, c, r)) {}
+  Tri root() const { return box_.root(); }
 
   /// Heuristic depth of a point: the largest normalised value f / |grad f| of the undecided atoms
   /// (an approximate signed distance to the deciding surface). Only orders the search.
   double depth(const Eigen::Vector3d& x) const {
     double worst = -std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < f_.atoms.size(); ++k) {
-      if (atom_[k] != Tri::Unknown) continue;
+      if (box_.atom(static_cast<int>(k)) != Tri::Unknown) continue;
       const Eigen::Matrix4d& Q = f_.atoms[k];
       const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
       const Eigen::Vector4d QX = Q * X;
@@ -332,7 +292,7 @@ class BoxEval {
   int splitAxis(double min_width, double max_aspect) const {
     Eigen::Vector3d score = Eigen::Vector3d::Zero();
     for (std::size_t k = 0; k < f_.atoms.size(); ++k) {
-      if (atom_[k] != Tri::Unknown) continue;
+      if (box_.atom(static_cast<int>(k)) != Tri::Unknown) continue;
       const Eigen::Matrix4d& Q = f_.atoms[k];
       const double s = 1.0 / Q.cwiseAbs().maxCoeff();
       const Eigen::Matrix3d A = Q.topLeftCorner<3, 3>();
@@ -343,97 +303,20 @@ class BoxEval {
         score[i] += s * t;
       }
     }
-    int axis = -1;
-    double best = 0.0;
-    for (int i = 0; i < 3; ++i) {
-      if (2.0 * r_[i] <= min_width) continue;
-      if (axis < 0 || score[i] > best) {
-        if (score[i] > 0.0 || axis < 0) {
-          axis = i;
-          best = score[i];
-        }
-      }
-    }
-    if (axis < 0) return axis;
-    // The longest edge when nothing depends on the others, or when the box would become more
-    // elongated than max_aspect (tolerance_region::kRegionMaxAspect for findPoint; its centre must
-    // still be able to land inside thin lenses).
-    int longest = 0;
-    r_.maxCoeff(&longest);
-    if (best == 0.0 || r_[longest] > max_aspect * r_[axis]) axis = longest;
-    return axis;
+    return chooseSplitAxis(score, r_, min_width, max_aspect);
   }
 
-  /// True if the box provably holds no point of the formula: for each disjunctive branch of the
-  /// simplified formula, some atom pair has a certified-positive pencil (§4.2 analogue).
+  /// True if the box provably holds no point of the formula (FormulaBox::excluded with the
+  /// pencils below).
   bool excluded() {
-    if (root_ == Tri::Out) return true;
-    if (root_ == Tri::In) return false;
-    work_ = 0;
-    std::vector<int> atoms;
-    std::vector<int> ors;
-    if (f_.nodes[f_.root].is_and) {
-      gather(f_.root, &atoms, &ors);
-    } else {
-      ors.push_back(f_.root);
-    }
-    return excludedConj(atoms, ors);
+    return box_.excluded([this](const std::vector<int>& atoms) { return pencilExcluded(atoms); });
   }
 
  private:
-  static constexpr int kMaxBranches = 64;  // disjunctive branches examined; beyond: not excluded
-
-  Tri eval(int n) {
-    const Formula::Node& node = f_.nodes[n];
-    bool any_unknown = false;
-    auto fold = [&](Tri t) -> bool {  // returns true when decided
-      if (node.is_and && t == Tri::Out) return true;
-      if (!node.is_and && t == Tri::In) return true;
-      if (t == Tri::Unknown) any_unknown = true;
-      return false;
-    };
-    for (int a : node.atoms)
-      if (fold(atom_[a])) return node_[n] = node.is_and ? Tri::Out : Tri::In;
-    for (int m : node.nodes)
-      if (fold(eval(m))) return node_[n] = node.is_and ? Tri::Out : Tri::In;
-    if (any_unknown) return node_[n] = Tri::Unknown;
-    return node_[n] = node.is_and ? Tri::In : Tri::Out;
-  }
-
-  void gather(int n, std::vector<int>* atoms, std::vector<int>* ors) const {
-    const Formula::Node& node = f_.nodes[n];
-    for (int a : node.atoms)
-      if (atom_[a] == Tri::Unknown) atoms->push_back(a);
-    for (int m : node.nodes) {
-      if (node_[m] != Tri::Unknown) continue;
-      if (f_.nodes[m].is_and) {
-        gather(m, atoms, ors);
-      } else {
-        ors->push_back(m);
-      }
-    }
-  }
-
-  bool excludedConj(const std::vector<int>& atoms, std::vector<int> ors) {
-    if (++work_ > kMaxBranches) return false;
-    if (ors.empty()) return pencilExcluded(atoms);
-    const int o = ors.back();
-    ors.pop_back();
-    const Formula::Node& node = f_.nodes[o];
-    for (int a : node.atoms) {
-      if (atom_[a] != Tri::Unknown) continue;  // Out branches are excluded already
-      std::vector<int> at = atoms;
-      at.push_back(a);
-      if (!excludedConj(at, ors)) return false;
-    }
-    for (int m : node.nodes) {
-      if (node_[m] != Tri::Unknown) continue;
-      std::vector<int> at = atoms;
-      std::vector<int> os = ors;
-      gather(m, &at, &os);
-      if (!excludedConj(at, os)) return false;
-    }
-    return true;
+  static std::vector<Tri> atomStates(const Formula& f, const Eigen::Vector3d& c, const Eigen::Vector3d& r) {
+    std::vector<Tri> out(f.atoms.size());
+    for (std::size_t i = 0; i < f.atoms.size(); ++i) out[i] = atomBox(f.atoms[i], c, r);
+    return out;
   }
 
   // Lower bound of the centred form of mu f + (1 - mu) g is concave in mu (a linear term minus
@@ -449,27 +332,7 @@ class BoxEval {
         auto lower = [&](double mu) {
           return enclose(mu * sf * F + (1.0 - mu) * sg * G, mu * Fa + (1.0 - mu) * Ga, c_, r_).lo;
         };
-        double a = 0.0, b = 1.0;
-        const double phi = 0.6180339887498949;
-        double x1 = b - phi * (b - a), x2 = a + phi * (b - a);
-        double f1 = lower(x1), f2 = lower(x2);
-        for (int k = 0; k < kRegionPencilSteps; ++k) {
-          if (f1 > 0.0 || f2 > 0.0) return true;
-          if (f1 < f2) {
-            a = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = a + phi * (b - a);
-            f2 = lower(x2);
-          } else {
-            b = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = b - phi * (b - a);
-            f1 = lower(x1);
-          }
-        }
-        if (f1 > 0.0 || f2 > 0.0) return true;
+        if (goldenPositive(lower, kRegionPencilSteps)) return true;
       }
     }
     // Triples (an edge of the CQM against a third surface, e.g. a rim against a level plane):
@@ -503,31 +366,12 @@ class BoxEval {
 
   const Formula& f_;
   Eigen::Vector3d c_, r_;
-  std::vector<Tri> atom_;
-  std::vector<Tri> node_;
-  Tri root_ = Tri::Unknown;
-  int work_ = 0;
+  FormulaBox box_;
 };
 
 // Point membership of the formula with certified atom signs: In only if certified.
 Tri pointEval(const Formula& f, int n, const Eigen::Vector3d& x) {
-  const Formula::Node& node = f.nodes[n];
-  bool any_unknown = false;
-  for (int a : node.atoms) {
-    const int s = atomPointSign(f.atoms[a], x);
-    const Tri t = s < 0 ? Tri::In : (s > 0 ? Tri::Out : Tri::Unknown);
-    if (node.is_and && t == Tri::Out) return Tri::Out;
-    if (!node.is_and && t == Tri::In) return Tri::In;
-    if (t == Tri::Unknown) any_unknown = true;
-  }
-  for (int m : node.nodes) {
-    const Tri t = pointEval(f, m, x);
-    if (node.is_and && t == Tri::Out) return Tri::Out;
-    if (!node.is_and && t == Tri::In) return Tri::In;
-    if (t == Tri::Unknown) any_unknown = true;
-  }
-  if (any_unknown) return Tri::Unknown;
-  return node.is_and ? Tri::In : Tri::Out;
+  return detail::pointEval(f, n, [&](int a) { return atomPointSign(f.atoms[a], x); });
 }
 
 double maxEdge(const Box3& b) { return (b.hi - b.lo).maxCoeff(); }
