@@ -5,6 +5,14 @@
 // cyclically; `--pairs N` (default 2,000). After the timed runs the program prints the agreement on the
 // cylinder pairs: FCL's boolean against the engine's certified answers (Touching pairs counted
 // apart: within the engine's tolerance band, neither answer is wrong).
+//
+// Continuous (continuous/region_ccd.h): the second cylinder of each of the first `--motions N`
+// pairs (default 32) translates from p + d to p - d (|d| = 2.5, random direction, rotation
+// fixed: an fcl::TranslationMotion, the one motion both libraries run exactly alike) against
+// FCL's continuousCollide on fcl::Cylinder with CCDC_NAIVE (10 time samples, FCL's default) and
+// CCDC_CONSERVATIVE_ADVANCEMENT (GJK distances); afterwards their misses against the certified
+// answers. CSG ring-wedge pairs under motions of degree 1 (translation), 2 (from two poses:
+// rotation by quaternion interpolation) and 4 (two such motions composed).
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -13,7 +21,11 @@
 
 #include <benchmark/benchmark.h>
 #include <fcl/geometry/shape/cylinder.h>
+#include <fcl/math/motion/translation_motion.h>
 #include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/continuous_collision.h>
+
+#include "fcl_quadric/continuous/region_ccd.h"
 
 #include "bench_support.h"
 #include "quadric_shapes_scene.h"
@@ -69,6 +81,119 @@ void BM_CsgRingWedge(benchmark::State& state) {
   }
 }
 
+// --- Continuous -----------------------------------------------------------------------------
+
+struct CylinderMotion {
+  CylinderPair pair;
+  Eigen::Vector3d d;  // the second cylinder moves from p + d to p - d
+};
+
+std::vector<CylinderMotion>& cylinderMotions() {
+  static std::vector<CylinderMotion> motions;
+  return motions;
+}
+
+fcl_quadric::RegionCcdResult regionCcd(const CylinderMotion& m) {
+  using fcl_quadric::MotionMatrix;
+  using fcl_quadric::PiecewiseMotion;
+  const CylinderPair& c = m.pair;
+  const fcl_quadric::MovingRegion a{fcl_quadric::bench::cappedCylinderRegion(c.r1, c.r1, c.L1),
+                                    Box3{Eigen::Vector3d(-c.r1, -c.r1, -0.5 * c.L1), Eigen::Vector3d(c.r1, c.r1, 0.5 * c.L1)},
+                                    PiecewiseMotion(MotionMatrix())};
+  const fcl_quadric::MovingRegion b{fcl_quadric::bench::cappedCylinderRegion(c.r2, c.r2, c.L2),
+                                    Box3{Eigen::Vector3d(-c.r2, -c.r2, -0.5 * c.L2), Eigen::Vector3d(c.r2, c.r2, 0.5 * c.L2)},
+                                    PiecewiseMotion(MotionMatrix::fromPoses(c.R, c.p + m.d, c.R, c.p - m.d))};
+  return fcl_quadric::continuousCollideRegions(a, b);
+}
+
+/// FCL's continuousCollide on the same translation: {collide, time of contact}.
+std::pair<bool, double> fclCcd(const CylinderMotion& m, fcl::CCDSolverType solver) {
+  const CylinderPair& c = m.pair;
+  const auto a = std::make_shared<fcl::Cylinderd>(c.r1, c.L1);
+  const auto b = std::make_shared<fcl::Cylinderd>(c.r2, c.L2);
+  fcl::Transform3d t2a = fcl::Transform3d::Identity(), t2b = fcl::Transform3d::Identity();
+  t2a.linear() = c.R;
+  t2b.linear() = c.R;
+  t2a.translation() = c.p + m.d;
+  t2b.translation() = c.p - m.d;
+  fcl::ContinuousCollisionRequestd req;
+  req.ccd_motion_type = fcl::CCDM_TRANS;
+  req.ccd_solver_type = solver;
+  req.gjk_solver_type = fcl::GST_LIBCCD;
+  fcl::ContinuousCollisionResultd res;
+  fcl::continuousCollide(a.get(), fcl::Transform3d::Identity(), fcl::Transform3d::Identity(), b.get(), t2a, t2b, req,
+                         res);
+  return {res.is_collide, res.time_of_contact};
+}
+
+void BM_CylindersCcdRegion(benchmark::State& state) {
+  const auto& motions = cylinderMotions();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(regionCcd(motions[i]));
+    i = (i + 1) % motions.size();
+  }
+}
+void BM_CylindersCcdFcl(benchmark::State& state, fcl::CCDSolverType solver) {
+  const auto& motions = cylinderMotions();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(fclCcd(motions[i], solver));
+    i = (i + 1) % motions.size();
+  }
+}
+
+// Ring (fixed) against the wedge moving from pose k to pose k + 1 of makeRingWedgePoses, shifted
+// so that the motion sweeps through the ring: degree 1 keeps the rotation, degree 2 interpolates
+// it, degree 4 composes the degree-2 motion with a rotation of the whole path about z.
+void BM_CsgRingWedgeCcd(benchmark::State& state) {
+  using fcl_quadric::MotionMatrix;
+  using fcl_quadric::PiecewiseMotion;
+  const int degree = static_cast<int>(state.range(0));
+  const QuadricRegion ring = fcl_quadric::bench::ringRegion(), wedge = fcl_quadric::bench::wedgeRegion();
+  const Box3 rb = fcl_quadric::regionAabb(ring), wb = fcl_quadric::regionAabb(wedge);
+  const auto poses = fcl_quadric::bench::makeRingWedgePoses(9);
+  std::vector<fcl_quadric::MovingRegion> moving;
+  for (std::size_t k = 0; k + 1 < poses.size(); ++k) {
+    const Eigen::Matrix3d R0 = poses[k].first, R1 = degree == 1 ? R0 : poses[k + 1].first;
+    const Eigen::Vector3d p0 = poses[k].second + Eigen::Vector3d(2.5, 0, 0), p1 = poses[k].second - Eigen::Vector3d(2.5, 0, 0);
+    MotionMatrix m = MotionMatrix::fromPoses(R0, p0, R1, p1);
+    if (degree == 4) {
+      const Eigen::Matrix3d Rz = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      m = MotionMatrix::compose(MotionMatrix::fromPoses(Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), Rz,
+                                                        Eigen::Vector3d::Zero()),
+                                m);
+    }
+    moving.push_back({wedge, wb, PiecewiseMotion(m)});
+  }
+  const fcl_quadric::MovingRegion still{ring, rb, PiecewiseMotion(MotionMatrix())};
+  std::size_t i = 0, collide = 0, boxes = 0, runs = 0;
+  for (auto _ : state) {
+    const fcl_quadric::RegionCcdResult r = fcl_quadric::continuousCollideRegions(still, moving[i]);
+    collide += r.collide;
+    boxes += r.boxes;
+    ++runs;
+    i = (i + 1) % moving.size();
+  }
+  state.counters["colliding"] = static_cast<double>(collide) / runs;
+  state.counters["boxes"] = static_cast<double>(boxes) / runs;
+}
+
+BENCHMARK(BM_CylindersCcdRegion)->Name("QuadricShapes/CylindersCcd/RegionCcd")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CylindersCcdFcl, naive, fcl::CCDC_NAIVE)
+    ->Name("QuadricShapes/CylindersCcd/FclNaive")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CylindersCcdFcl, ca, fcl::CCDC_CONSERVATIVE_ADVANCEMENT)
+    ->Name("QuadricShapes/CylindersCcd/FclConservativeAdvancement")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CsgRingWedgeCcd)
+    ->Name("QuadricShapes/CsgCcd/RingWedge")
+    ->ArgName("degree")
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(4)
+    ->Unit(benchmark::kMillisecond);
+
 BENCHMARK(BM_CylindersRegionEngine)->Name("QuadricShapes/Cylinders/RegionEngine")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CylindersFclGjkLibccd)->Name("QuadricShapes/Cylinders/FclGjkLibccd")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CsgRingWedge)->Name("QuadricShapes/Csg/RingWedge")->Unit(benchmark::kMicrosecond);
@@ -77,7 +202,16 @@ BENCHMARK(BM_CsgRingWedge)->Name("QuadricShapes/Csg/RingWedge")->Unit(benchmark:
 
 int main(int argc, char** argv) {
   const std::size_t n = fcl_quadric::bench::takeSizeOption(&argc, argv, "pairs", "FCL_QUADRIC_BENCH_PAIRS", 2000);
+  const std::size_t nm = fcl_quadric::bench::takeSizeOption(&argc, argv, "motions", "FCL_QUADRIC_BENCH_MOTIONS", 32);
   cylinderPairs() = fcl_quadric::bench::makeCylinderPairs(n);
+  {
+    std::mt19937_64 rng(17);
+    std::normal_distribution<double> g(0.0, 1.0);
+    for (std::size_t k = 0; k < nm && k < cylinderPairs().size(); ++k) {
+      const double x = g(rng), y = g(rng), z = g(rng);
+      cylinderMotions().push_back({cylinderPairs()[k], 2.5 * Eigen::Vector3d(x, y, z).normalized()});
+    }
+  }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   // Agreement (outside the timed loops).
@@ -100,5 +234,25 @@ int main(int argc, char** argv) {
   std::printf("Agreement on %zu cylinder pairs: %d colliding (certified), %d touching (band), FCL GJK disagrees "
               "on %d (%d missed collisions, %d false collisions)\n",
               cylinderPairs().size(), hits, touching, disagree, fcl_misses, fcl_false);
+  // Continuous: FCL's answers against the certified first contacts. A miss: the pair collides
+  // (certified) and FCL reports no collision; late: FCL's time exceeds the certified one by more
+  // than 1e-3; false: FCL reports a collision where the region CCD certified none.
+  int ccd_hits = 0, near = 0;
+  int misses[2] = {0, 0}, late[2] = {0, 0}, falses[2] = {0, 0};
+  const fcl::CCDSolverType solvers[2] = {fcl::CCDC_NAIVE, fcl::CCDC_CONSERVATIVE_ADVANCEMENT};
+  for (const CylinderMotion& m : cylinderMotions()) {
+    const fcl_quadric::RegionCcdResult r = regionCcd(m);
+    ccd_hits += r.collide;
+    near += r.near_tangent;
+    for (int s = 0; s < 2; ++s) {
+      const auto [collide, toc] = fclCcd(m, solvers[s]);
+      if (r.collide && !collide) ++misses[s];
+      if (r.collide && collide && toc > r.time + 1e-3) ++late[s];
+      if (!r.collide && collide) ++falses[s];
+    }
+  }
+  std::printf("Continuous, %zu cylinder translations: %d colliding (certified; %d near-tangent); FCL CCDC_NAIVE: "
+              "%d missed, %d late by > 1e-3, %d false; FCL conservative advancement: %d missed, %d late, %d false\n",
+              cylinderMotions().size(), ccd_hits, near, misses[0], late[0], falses[0], misses[1], late[1], falses[1]);
   return 0;
 }

@@ -1,5 +1,8 @@
 #include "fcl_quadric/ccd_command.h"
 
+#include "fcl_quadric/check_command.h"
+#include "fcl_quadric/continuous/region_ccd.h"
+
 namespace fcl_quadric {
 namespace cli {
 
@@ -61,6 +64,44 @@ nlohmann::ordered_json ccdScene2(const Scene& scene) {
 
 }  // namespace
 
+namespace {
+
+PiecewiseMotion motionOf(const SceneObject& object) {
+  if (object.motion) return *object.motion;
+  return PiecewiseMotion(MotionMatrix::constant(object.pose.linear(), object.pose.translation()));
+}
+
+// A pair with a quadric shape or a box: the certified space-time search of region_ccd.h (first
+// contact only; the contacting boundary elements labelled per object).
+nlohmann::ordered_json regionPair(const SceneObject& a, const SceneObject& b) {
+  const auto [ra, ba] = asRegion(a.shape);
+  const auto [rb, bb] = asRegion(b.shape);
+  if (!ba && !bb) throw SceneError("/pairs", "objects " + a.name + " and " + b.name + " are both unbounded (half-spaces)");
+  const RegionCcdResult r = continuousCollideRegions(MovingRegion{ra, ba, motionOf(a)}, MovingRegion{rb, bb, motionOf(b)});
+  nlohmann::ordered_json entry;
+  entry["a"] = a.name;
+  entry["b"] = b.name;
+  entry["collide"] = r.collide;
+  entry["first_contact_time"] = r.collide ? nlohmann::ordered_json(r.time) : nlohmann::ordered_json(nullptr);
+  entry["contact_point"] = r.collide ? toJson(r.point) : nlohmann::ordered_json(nullptr);
+  entry["overlap_intervals"] = nullptr;  // the region CCD finds the first contact only
+  entry["near_tangent"] = r.near_tangent || r.capped;
+  nlohmann::ordered_json elements = nlohmann::ordered_json::array();
+  if (r.collide) {
+    auto label = [](const QuadricRegion& region, const std::optional<Box3>& box, const std::vector<int>& active) {
+      if (active.empty()) return std::string();
+      const Box3 search = box ? *box : Box3{Eigen::Vector3d::Constant(-1e3), Eigen::Vector3d::Constant(1e3)};
+      return boundaryElementLabel(boundaryElements(region, search), active);
+    };
+    elements.push_back(label(ra, ba, r.active_a));
+    elements.push_back(label(rb, bb, r.active_b));
+  }
+  entry["elements"] = std::move(elements);
+  return entry;
+}
+
+}  // namespace
+
 nlohmann::ordered_json ccdScene(const Scene& scene) {
   if (scene.dimension == 2) return ccdScene2(scene);
   CcdOptions options;
@@ -70,6 +111,10 @@ nlohmann::ordered_json ccdScene(const Scene& scene) {
   for (const auto& [i, j] : scene.pairs) {
     const SceneObject& a = scene.objects.at(i);
     const SceneObject& b = scene.objects.at(j);
+    if (!isEllipsoidal(a.shape) || !isEllipsoidal(b.shape)) {
+      pairs.push_back(regionPair(a, b));
+      continue;
+    }
     const EllipsoidCcdResult r = continuousCollideEllipsoids(movingEllipsoid(a, i), movingEllipsoid(b, j), options);
     nlohmann::ordered_json entry;
     entry["a"] = a.name;

@@ -1,7 +1,8 @@
 #pragma once
 /// \file ccd_command.h
-/// `fcl_quadric ccd SCENE.json`: continuous collision of the scene's moving ellipsoids over
-/// t in [0, 1] (thesis ch.5; continuousCollideEllipsoids).
+/// `fcl_quadric ccd SCENE.json`: continuous collision of the scene's moving objects over
+/// t in [0, 1]: ellipsoid pairs by thesis ch.5 (continuousCollideEllipsoids), pairs with quadric
+/// shapes or boxes by the region CCD (continuous/region_ccd.h).
 
 #include <ostream>
 #include <string>
@@ -29,7 +30,13 @@ MovingEllipse2 movingEllipse2(const SceneObject& object);
 /// overlap_intervals lists the maximal collision intervals [t0, t1] (t0 == t1 for a grazing
 /// contact; with "all_intervals": false only the first contact, as [t, t]). Objects without a
 /// motion stay at their pose.
-/// \throws SceneError (pointer of the object) for an object that is not an ellipsoid or sphere.
+/// Pairs with a quadric shape or a box (anything but two ellipsoids / spheres) are solved by the
+/// region CCD (continuous/region_ccd.h): first contact only, so overlap_intervals is null, and
+/// the entry adds "elements": the labels of the contacting boundary elements of a and b
+/// ("F<i>" face, "E<i>" edge, "V<i>" vertex, indices into the shape's boundaryElements; [] when
+/// there is no contact). near_tangent: the contact lies within the tolerance band (or the work
+/// cap was reached: reported early, conservatively).
+/// \throws SceneError for two unbounded objects (half-spaces) in a pair.
 nlohmann::ordered_json ccdScene(const Scene& scene);
 
 /// Runs `ccd`: reads the scene, solves every pair and writes the JSON (2-space indent, newline).

@@ -53,9 +53,6 @@ PairReport exactBoxReport(const Ellipsoid& e, const SceneObject& box, bool box_f
   return report;
 }
 
-namespace {
-
-/// Any 3D scene shape as a region in its body frame with its local AABB (none: unbounded).
 std::pair<QuadricRegion, std::optional<Box3>> asRegion(const Shape& shape) {
   if (shape.region) return {*shape.region, shape.box};
   if (shape.type == ShapeType::Box) {
@@ -71,8 +68,6 @@ std::pair<QuadricRegion, std::optional<Box3>> asRegion(const Shape& shape) {
   }
   return {QuadricRegion::atom(quadric::ellipsoid(shape.dimensions)), Box3{-shape.dimensions, shape.dimensions}};
 }
-
-}  // namespace
 
 PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
   const auto [ra, ba] = asRegion(a.shape);

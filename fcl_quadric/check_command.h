@@ -2,8 +2,10 @@
 /// \file check_command.h
 /// `fcl_quadric check SCENE.json`: classify and measure every requested pair of a scene.
 
+#include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -21,6 +23,11 @@ PairReport exactPairReport(const Ellipsoid& a, const Ellipsoid& b);
 /// distance, witness points and normal from signedDistanceEllipsoidBox(), turned around when the
 /// box is the first object of the pair (`box_first`). `method` is PairMethod::Exact.
 PairReport exactBoxReport(const Ellipsoid& e, const SceneObject& box, bool box_first);
+
+/// Any 3D scene shape (not an ellipse) as a region in its body frame with its local AABB (none:
+/// unbounded): quadric shapes as parsed, a box as six half-spaces, an ellipsoid or sphere as one
+/// atom.
+std::pair<QuadricRegion, std::optional<Box3>> asRegion(const Shape& shape);
 
 /// Report for a pair with at least one quadric shape (elliptic_cylinder, cylinder, halfspace,
 /// quadric, csg; the other may be any 3D shape): the certified classification of the composite-

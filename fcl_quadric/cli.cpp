@@ -64,8 +64,9 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
 
   std::string ccd_scene_path;
   CLI::App* ccd = app.add_subcommand(
-      "ccd", "Continuous collision over t in [0, 1] of the scene's moving ellipsoids (objects with a "
-             "\"motion\"): first contact time, contact point and every overlap interval of each pair, as JSON.");
+      "ccd", "Continuous collision over t in [0, 1] of the scene's moving objects (objects with a "
+             "\"motion\"): first contact time, contact point and every overlap interval of each ellipsoid pair; "
+             "first contact and the contacting boundary elements for pairs with quadric shapes or boxes; as JSON.");
   ccd->add_option("SCENE", ccd_scene_path, "Scene file (JSON with motions; see examples/README.md)")->required();
 
   std::string render_scene_path, render_output;

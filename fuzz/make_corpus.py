@@ -135,10 +135,11 @@ write("fuzz_motion", "nan_coefficient", motion([[[float("nan")] * 4] * 4]))
 
 # --- fuzz_scene: mode byte (0 check, 1 ccd, 2 command line, 3 render, 4 plot, 5 bench) + body
 examples = os.path.join(HERE, "..", "examples")
-# scene_quadrics.json is left out: its CSG shapes take about 100 s per execution under ASan (the
-# quadric-region engine's AABB and point searches at -O1); quadrics_small below stands in for it.
+# scene_quadrics.json and scene_quadrics_ccd.json are left out: their CSG shapes take about 100 s
+# (check) and several seconds (ccd: a rim contact) per execution under ASan (the quadric-region
+# engines at -O1); quadrics_small and ccd_quadrics_small below stand in for them.
 for name in sorted(os.listdir(examples)):
-    if name.endswith(".json") and name != "scene_quadrics.json":
+    if name.endswith(".json") and name not in ("scene_quadrics.json", "scene_quadrics_ccd.json"):
         text = open(os.path.join(examples, name), "rb").read()
         write("fuzz_scene", "check_" + name, b"\x00" + text)
         write("fuzz_scene", "ccd_" + name, b"\x01" + text)
@@ -151,6 +152,12 @@ write("fuzz_scene", "ccd_polynomial_high_degree", b"\x01" + b'{"objects":[{"name
       b'[0,0,0,[1,0,0,0,0,0,1e-6]]]}},{"name":"B","shape":{"type":"ellipsoid","radii":[1,2,0.5]}}]}')
 write("fuzz_scene", "check_huge_numbers", b"\x00" + b'{"objects":[{"name":"A","shape":{"type":"ellipsoid",'
       b'"radii":[1e-300,1e300,1]}},{"name":"B","shape":{"type":"sphere","radius":1e308},"pose":{"translation":[1e400,0,0]}}]}')
+# The region CCD's cheap paths: a ball passing a capped cylinder far away (certified free in a few
+# boxes) and a box overlapping an elliptic cylinder at t = 0 (a witness at once).
+write("fuzz_scene", "ccd_quadrics_small", b"\x01" + b'{"objects":[{"name":"P","shape":{"type":"cylinder","radius":0.5,'
+      b'"length":1}},{"name":"Q","shape":{"type":"sphere","radius":0.25},"motion":{"type":"linear",'
+      b'"from":{"translation":[3,2,0]},"to":{"translation":[3,-2,0]}}},{"name":"R","shape":{"type":"box",'
+      b'"size":[1,1,1]},"pose":{"translation":[0.2,0,0]}}],"pairs":[["P","Q"],["R","P"]]}')
 write("fuzz_scene", "demo_small", b"\x02demo\n--frames\n3\n--objects\n4")
 write("fuzz_scene", "demo_seed_max", b"\x02demo\n--seed\n18446744073709551615\n--frames\n2\n--objects\n2")
 write("fuzz_scene", "help", b"\x02--help")

@@ -28,6 +28,42 @@ constexpr int kMaxCoef = kRegionCcdMaxDegree + 1;
 /// certified slab when that is more); a slab of width kRegionCcdTimeTolerance gets
 /// kRegionCcdMaxBoxes.
 constexpr int kRegionCcdSlabBudget = 500;
+/// Triple pencils: rounds of coordinate ascent over the weight simplex, and golden-section steps
+/// per direction (0.618^20 ~ 7e-5 of the edge).
+constexpr int kTripleRounds = 2;
+constexpr int kTripleSteps = 14;
+/// Golden-section steps of a pair pencil's weight (0.618^30 ~ 5e-7 of [0, 1]).
+constexpr int kPairSteps = 30;
+
+/// Golden-section maximisation of a concave function on [0, 1]: true as soon as a positive value
+/// is seen; otherwise *best is the best point found.
+template <class Fn>
+bool goldenArgmax(const Fn& f, int steps, double* best) {
+  double a = 0.0, b = 1.0;
+  const double phi = 0.6180339887498949;
+  double x1 = b - phi * (b - a), x2 = a + phi * (b - a);
+  double f1 = f(x1), f2 = f(x2);
+  for (int k = 0; k < steps; ++k) {
+    if (f1 > 0.0 || f2 > 0.0) return true;
+    if (f1 < f2) {
+      a = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = a + phi * (b - a);
+      f2 = f(x2);
+    } else {
+      b = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = b - phi * (b - a);
+      f1 = f(x1);
+    }
+  }
+  if (f1 > 0.0 || f2 > 0.0) return true;
+  *best = f1 >= f2 ? x1 : x2;
+  return false;
+}
+
 /// In a slab of the final width, boxes searched for a witness after the first undecided one.
 constexpr int kRegionCcdExtraBoxesAfterUndecided = 256;
 /// Bisection steps that move a witness (c, t1) to the earliest certified-inside instant of c.
@@ -40,6 +76,7 @@ struct MovingAtom {
   std::vector<Eigen::Matrix4d> S;
   Eigen::Matrix4d abs = Eigen::Matrix4d::Zero();
   double scale = 1.0;  // 1 / max |abs|: normalises atoms for pencils and split scores
+  bool constant = false;  // S_m = 0 for m >= 1 (the search frame's own atoms)
 };
 
 // The ten polynomials of an atom's centred form on a box (v, g_0..2, A_00, A_11, A_22, A_01,
@@ -49,6 +86,7 @@ struct AtomOnBox {
   double vmin = 0, vmax = 0;
   std::array<double, 3> gmax{}, amin{}, amax{}, aoff{};  // aoff: |A_01|, |A_02|, |A_12| maxima
   Eigen::Vector3d gmid = Eigen::Vector3d::Zero();        // gradient at (c, time midpoint)
+  double pad = 0.0;                                      // rounding pad on the box
   Tri state = Tri::Unknown;
 };
 
@@ -68,40 +106,35 @@ class SpaceTimeEngine {
   FormulaBox evaluate(const Eigen::Vector3d& c, const Eigen::Vector3d& r, double t0, double t1) {
     c_ = c;
     r_ = r;
-    t0_ = t0;
-    t1_ = t1;
+    if (t0 != t0_ || t1 != t1_) setSlab(t0, t1);
     const Eigen::Vector4d C(c[0], c[1], c[2], 1.0);
     const Eigen::Vector4d Xa((c.cwiseAbs() + r)[0], (c.cwiseAbs() + r)[1], (c.cwiseAbs() + r)[2], 1.0);
     const double tm = 0.5 * (t0 + t1), tau = t1 - t0;
     std::vector<Tri> states(atoms_.size());
-    std::array<std::array<double, kMaxCoef>, 10> p;
+    std::array<std::array<double, kMaxCoef>, 4> p;
     for (std::size_t k = 0; k < atoms_.size(); ++k) {
       const MovingAtom& m = atoms_[k];
       AtomOnBox& e = on_box_[k];
-      for (int d = 0; d <= n_; ++d) {
+      // v and g depend on the centre; the A entries were set for the slab (setSlab).
+      const int top = m.constant ? 0 : n_;
+      for (int d = 0; d <= top; ++d) {
         const Eigen::Matrix4d& S = m.S[d];
         const Eigen::Vector4d SC = S * C;
         p[0][d] = C.dot(SC);
         p[1][d] = 2.0 * SC[0];
         p[2][d] = 2.0 * SC[1];
         p[3][d] = 2.0 * SC[2];
-        p[4][d] = S(0, 0);
-        p[5][d] = S(1, 1);
-        p[6][d] = S(2, 2);
-        p[7][d] = S(0, 1);
-        p[8][d] = S(0, 2);
-        p[9][d] = S(1, 2);
       }
-      for (int i = 0; i < 3; ++i) e.gmid[i] = horner(p[1 + i].data(), tm);
-      for (int q = 0; q < 10; ++q) bernstein(p[q].data(), t0, tau, e.b[q].data());
+      if (m.constant) {
+        for (int q = 0; q < 4; ++q) std::fill(e.b[q].begin(), e.b[q].begin() + n_ + 1, p[q][0]);
+        for (int i = 0; i < 3; ++i) e.gmid[i] = p[1 + i][0];
+      } else {
+        for (int i = 0; i < 3; ++i) e.gmid[i] = horner(p[1 + i].data(), tm);
+        for (int q = 0; q < 4; ++q) bernstein(p[q].data(), t0, tau, e.b[q].data());
+      }
       e.vmin = minOf(e.b[0]);
       e.vmax = maxOf(e.b[0]);
-      for (int i = 0; i < 3; ++i) {
-        e.gmax[i] = maxAbsOf(e.b[1 + i]);
-        e.amin[i] = minOf(e.b[4 + i]);
-        e.amax[i] = maxOf(e.b[4 + i]);
-        e.aoff[i] = maxAbsOf(e.b[7 + i]);
-      }
+      for (int i = 0; i < 3; ++i) e.gmax[i] = maxAbsOf(e.b[1 + i]);
       const double lin = e.gmax[0] * r[0] + e.gmax[1] * r[1] + e.gmax[2] * r[2];
       const double off = 2.0 * (e.aoff[0] * r[0] * r[1] + e.aoff[1] * r[0] * r[2] + e.aoff[2] * r[1] * r[2]);
       double qlo = -off, qhi = off;
@@ -110,6 +143,7 @@ class SpaceTimeEngine {
         qhi += std::max(0.0, e.amax[i]) * r[i] * r[i];
       }
       const double pad = sign_relative_ * Xa.dot(m.abs * Xa);
+      e.pad = pad;
       if (e.vmin - lin + qlo - pad > 0.0) {
         e.state = Tri::Out;
       } else if (e.vmax + lin + qhi + pad < 0.0) {
@@ -120,6 +154,32 @@ class SpaceTimeEngine {
       states[k] = e.state;
     }
     return FormulaBox(f_, std::move(states));
+  }
+
+  /// The A entries (second-order part) of every atom over [t0, t1]: they do not depend on the
+  /// box centre, so a slab computes them once.
+  void setSlab(double t0, double t1) {
+    t0_ = t0;
+    t1_ = t1;
+    std::array<double, kMaxCoef> p;
+    static constexpr int kIndex[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
+    for (std::size_t k = 0; k < atoms_.size(); ++k) {
+      const MovingAtom& m = atoms_[k];
+      AtomOnBox& e = on_box_[k];
+      for (int q = 0; q < 6; ++q) {
+        if (m.constant) {
+          std::fill(e.b[4 + q].begin(), e.b[4 + q].begin() + n_ + 1, m.S[0](kIndex[q][0], kIndex[q][1]));
+        } else {
+          for (int d = 0; d <= n_; ++d) p[d] = m.S[d](kIndex[q][0], kIndex[q][1]);
+          bernstein(p.data(), t0, t1 - t0, e.b[4 + q].data());
+        }
+      }
+      for (int i = 0; i < 3; ++i) {
+        e.amin[i] = minOf(e.b[4 + i]);
+        e.amax[i] = maxOf(e.b[4 + i]);
+        e.aoff[i] = maxAbsOf(e.b[7 + i]);
+      }
+    }
   }
 
   /// Pencil exclusion of the last evaluated box: some pair (golden section on the weight) or
@@ -133,7 +193,7 @@ class SpaceTimeEngine {
           const double w[2] = {mu * atoms_[ids[0]].scale, (1.0 - mu) * atoms_[ids[1]].scale};
           return pencilLower(ids, w, 2);
         };
-        if (detail::goldenPositive(lower, kRegionPencilSteps)) return true;
+        if (detail::goldenPositive(lower, kPairSteps)) return true;
       }
     for (std::size_t i = 0; i < atoms.size(); ++i)
       for (std::size_t j = i + 1; j < atoms.size(); ++j)
@@ -146,11 +206,42 @@ class SpaceTimeEngine {
           K.block<3, 1>(0, 3) = Eigen::Vector3d::Ones();
           K.block<1, 3>(3, 0) = Eigen::RowVector3d::Ones();
           const Eigen::Vector4d sol = K.fullPivLu().solve(Eigen::Vector4d(0, 0, 0, 1));
-          if (!sol.allFinite()) continue;
-          if ((sol.head<3>().array() < 0.0).any()) continue;
-          double w[3];
-          for (int m = 0; m < 3; ++m) w[m] = sol[m] * atoms_[ids[m]].scale;
-          if (pencilLower(ids, w, 3) > 0.0) return true;
+          // Start from the first-order weights projected onto the simplex (the centroid when they
+          // are not finite), then coordinate ascent by golden section along the two edges through
+          // the third vertex: the lower bound is concave in the weights, and any positive value
+          // certifies the box (an edge of one solid against a face of the other, or a rim).
+          Eigen::Vector3d mu = Eigen::Vector3d::Constant(1.0 / 3.0);
+          if (sol.allFinite()) {
+            mu = sol.head<3>().cwiseMax(0.0);
+            if (mu.sum() > 0.0) mu /= mu.sum();
+            else mu.setConstant(1.0 / 3.0);
+          }
+          auto lower3 = [&](const Eigen::Vector3d& m) {
+            double w[3];
+            for (int q = 0; q < 3; ++q) w[q] = m[q] * atoms_[ids[q]].scale;
+            return pencilLower(ids, w, 3);
+          };
+          if (lower3(mu) > 0.0) return true;
+          for (int round = 0; round < kTripleRounds; ++round) {
+            for (int axis = 0; axis < 2; ++axis) {
+              // mu(s) = mu + s (e_axis - e_2), s in [-mu_axis, mu_2], mapped to [0, 1].
+              const double s_lo = -mu[axis], s_hi = mu[2];
+              if (!(s_hi - s_lo > 1e-12)) continue;
+              auto along = [&](double x) {
+                Eigen::Vector3d m = mu;
+                const double s = s_lo + x * (s_hi - s_lo);
+                m[axis] += s;
+                m[2] -= s;
+                return lower3(m.cwiseMax(0.0));
+              };
+              double best_x = -s_lo / (s_hi - s_lo);
+              if (goldenArgmax(along, kTripleSteps, &best_x)) return true;
+              const double s = s_lo + best_x * (s_hi - s_lo);
+              mu[axis] += s;
+              mu[2] -= s;
+              mu = mu.cwiseMax(0.0);
+            }
+          }
         }
     return false;
   }
@@ -268,30 +359,37 @@ class SpaceTimeEngine {
   }
 
   // Lower bound of the centred form of sum_i w_i f_ids[i] (w_i >= 0) on the last box: the
-  // Bernstein coefficients of the combination are the combinations of the coefficients.
+  // Bernstein coefficients of the combination are the combinations of the coefficients, and the
+  // rounding pad is the same combination of the atoms' pads (set by evaluate).
   double pencilLower(const int* ids, const double* w, int count) const {
-    auto combined = [&](int q, int i) {
-      double v = 0.0;
-      for (int m = 0; m < count; ++m) v += w[m] * on_box_[ids[m]].b[q][i];
-      return v;
-    };
-    double vmin = std::numeric_limits<double>::infinity();
-    std::array<double, 10> ext{};  // max |.| of g and off-diagonal; min of diagonal A
-    for (int q = 4; q <= 6; ++q) ext[q] = std::numeric_limits<double>::infinity();
-    for (int i = 0; i <= n_; ++i) {
-      vmin = std::min(vmin, combined(0, i));
-      for (int q = 1; q <= 3; ++q) ext[q] = std::max(ext[q], std::fabs(combined(q, i)));
-      for (int q = 4; q <= 6; ++q) ext[q] = std::min(ext[q], combined(q, i));
-      for (int q = 7; q <= 9; ++q) ext[q] = std::max(ext[q], std::fabs(combined(q, i)));
+    const int N = n_ + 1;
+    double ext[10];
+    double tmp[kMaxCoef];
+    for (int q = 0; q < 10; ++q) {
+      const double* b0 = on_box_[ids[0]].b[q].data();
+      for (int i = 0; i < N; ++i) tmp[i] = w[0] * b0[i];
+      for (int m = 1; m < count; ++m) {
+        const double* bm = on_box_[ids[m]].b[q].data();
+        const double wm = w[m];
+        for (int i = 0; i < N; ++i) tmp[i] += wm * bm[i];
+      }
+      double e;
+      if (q == 0 || (q >= 4 && q <= 6)) {  // minima: v and the diagonal of A
+        e = tmp[0];
+        for (int i = 1; i < N; ++i) e = std::min(e, tmp[i]);
+      } else {  // maxima of |.|: g and the off-diagonal of A
+        e = 0.0;
+        for (int i = 0; i < N; ++i) e = std::max(e, std::fabs(tmp[i]));
+      }
+      ext[q] = e;
     }
     const Eigen::Vector3d& r = r_;
-    double lo = vmin - (ext[1] * r[0] + ext[2] * r[1] + ext[3] * r[2]);
+    double lo = ext[0] - (ext[1] * r[0] + ext[2] * r[1] + ext[3] * r[2]);
     for (int i = 0; i < 3; ++i) lo += std::min(0.0, ext[4 + i]) * r[i] * r[i];
     lo -= 2.0 * (ext[7] * r[0] * r[1] + ext[8] * r[0] * r[2] + ext[9] * r[1] * r[2]);
-    Eigen::Matrix4d abs = Eigen::Matrix4d::Zero();
-    for (int m = 0; m < count; ++m) abs += w[m] * atoms_[ids[m]].abs;
-    const Eigen::Vector4d Xa((c_.cwiseAbs() + r)[0], (c_.cwiseAbs() + r)[1], (c_.cwiseAbs() + r)[2], 1.0);
-    return lo - sign_relative_ * Xa.dot(abs * Xa);
+    double pad = 0.0;
+    for (int m = 0; m < count; ++m) pad += w[m] * on_box_[ids[m]].pad;
+    return lo - pad;
   }
 
   const Formula& f_;
@@ -303,7 +401,7 @@ class SpaceTimeEngine {
   std::vector<double> ratio_;
   std::vector<AtomOnBox> on_box_;
   Eigen::Vector3d c_ = Eigen::Vector3d::Zero(), r_ = Eigen::Vector3d::Zero();
-  double t0_ = 0.0, t1_ = 1.0;
+  double t0_ = -1.0, t1_ = -1.0;  // the slab of the A entries (none yet)
 };
 
 struct PieceAnswer {
@@ -479,7 +577,11 @@ PieceAnswer searchPiece(const Formula& f, std::vector<MovingAtom> atoms, int deg
     break;
   }
   if (ans.collide) {
-    const double b = std::max(ans.band, 1e-7 * (box.hi - box.lo).maxCoeff());
+    // A witness within t_tol of the front lies in a thin lens at the contact: its distance to the
+    // touching surfaces is tiny whatever the size of the box it came from. An undecided box holds
+    // the contact somewhere inside: its own size is the band.
+    const double floor = 1e-6 * (box.hi - box.lo).maxCoeff();
+    const double b = (ans.near_tangent || ans.capped) ? std::max(ans.band, floor) : floor;
     for (int k = 0; k < engine.size(); ++k)
       if (engine.surfaceDistance(k, ans.point, ans.time) <= b) active->push_back(k);
   }
@@ -536,6 +638,7 @@ RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegi
       throw std::invalid_argument(os.str());
     }
     for (MovingAtom& m : atoms) {
+      m.constant = m.S.size() == 1;
       m.S.resize(degree + 1, Eigen::Matrix4d::Zero());
       const double mx = m.abs.maxCoeff();
       m.scale = mx > 0.0 ? 1.0 / mx : 1.0;

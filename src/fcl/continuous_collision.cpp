@@ -37,6 +37,7 @@
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/geometry/signed_distance.h"
 #include "fcl/input_checks.h"
+#include "fcl/quadric_shape_dispatch.h"
 
 // --- Reading the bounding volume / triangle and direction of FCL's motion-bound visitors -------
 // TBVMotionBoundVisitor<BV> and TriangleMotionBoundVisitor<S> keep bv / (a, b, c) and n protected
@@ -680,6 +681,30 @@ double advancementPair(AdvancingSolid a, AdvancingSolid b, fcl::ContinuousCollis
   return result.time_of_contact;
 }
 
+// Quadric shapes (EllipticCylinder, Quadric, QuadricCSG) against each other or FCL primitives:
+// the certified space-time search of region_ccd.h under the exact rational motions.
+double quadricShapePair(const fcl::CollisionGeometry<double>* o1, const fcl::MotionBase<double>* m1, MotionKind k1,
+                        const fcl::CollisionGeometry<double>* o2, const fcl::MotionBase<double>* m2, MotionKind k2,
+                        fcl::ContinuousCollisionResult<double>& result) {
+  for (const auto& [k, which] : {std::pair(k1, "motion1"), std::pair(k2, "motion2")}) {
+    if (k != MotionKind::Rational && k != MotionKind::Translation)
+      throw std::invalid_argument(std::string(kWhere) + ": " + which + " is an " + kindName(k) +
+                                  "; quadric shapes (EllipticCylinder, Quadric, QuadricCSG) need "
+                                  "fcl_quadric::RationalMotion or fcl::TranslationMotion (exact rational motions)");
+  }
+  const RegionCcdResult r = detail::continuousCollideQuadricShapes(o1, rationalOf(m1, k1, "motion1"), o2,
+                                                                   rationalOf(m2, k2, "motion2"), kWhere, nullptr, nullptr);
+  g_stats.path = ContinuousCollideStats::Path::Exact;
+  g_stats.steps = r.boxes;
+  g_stats.near_tangent = r.near_tangent || r.capped;
+  g_stats.step_cap = r.capped;
+  g_stats.contact_point = r.point;
+  result.is_collide = r.collide;
+  result.time_of_contact = r.collide ? r.time : 1.0;
+  if (r.collide) setContactPoses(m1, m2, result.time_of_contact, result);
+  return result.time_of_contact;
+}
+
 double delegate(const fcl::CollisionGeometry<double>* o1, const fcl::MotionBase<double>* motion1,
                 const fcl::CollisionGeometry<double>* o2, const fcl::MotionBase<double>* motion2,
                 const fcl::ContinuousCollisionRequest<double>& request,
@@ -707,6 +732,8 @@ S continuousCollide(const fcl::CollisionGeometry<S>* o1, const fcl::MotionBase<S
   checkMotion(motion2, "motion2");
   g_stats = ContinuousCollideStats();
   const MotionKind k1 = kindOf(motion1), k2 = kindOf(motion2);
+  if (detail::isQuadricShape(o1) || detail::isQuadricShape(o2))
+    return quadricShapePair(o1, motion1, k1, o2, motion2, k2, result);
   const std::optional<Eigen::Vector3d> r1 = quadricRadii(o1), r2 = quadricRadii(o2);
 
   if (r1 && r2) {
@@ -758,6 +785,17 @@ S continuousCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S
   detail::checkPose(tf1_end, kWhere, "tf1_end");
   detail::checkPose(tf2_beg, kWhere, "tf2_beg");
   detail::checkPose(tf2_end, kWhere, "tf2_end");
+  if (detail::isQuadricShape(o1) || detail::isQuadricShape(o2)) {
+    // Only translations are rational among FCL's motion types (FCL's CCDM_LINEAR / CCDM_SCREW
+    // rotate at a constant angular velocity, which no rational motion reproduces).
+    if (request.ccd_motion_type != fcl::CCDM_TRANS)
+      throw std::invalid_argument(std::string(kWhere) +
+                                  ": quadric shapes (EllipticCylinder, Quadric, QuadricCSG) need request.ccd_motion_type "
+                                  "CCDM_TRANS with two poses, or fcl_quadric::RationalMotion objects "
+                                  "(RationalMotion(tf_beg, tf_end) interpolates the rotation rationally)");
+    const fcl::TranslationMotion<S> m1(tf1_beg, tf1_end), m2(tf2_beg, tf2_end);
+    return fcl_quadric::continuousCollide(o1, &m1, o2, &m2, request, result);
+  }
   if (!(quadricRadii(o1) && quadricRadii(o2))) {
     g_stats = ContinuousCollideStats();
     g_stats.path = ContinuousCollideStats::Path::Delegated;
@@ -979,14 +1017,21 @@ bool broadPhaseCallback(fcl::CollisionObject<double>* o1, fcl::CollisionObject<d
     fcl::ContinuousCollisionResult<double> r;
     fcl_quadric::continuousCollide(o1->collisionGeometry().get(), &m1, o2->collisionGeometry().get(), &m2,
                                    d.request->delegated_request, r);
-    ++d.result->delegated;
+    const ContinuousCollideStats& stats = lastContinuousCollideStats();
+    const bool exact = stats.path == ContinuousCollideStats::Path::Exact;  // quadric shapes
+    if (exact) {
+      ++d.result->exact_solves;
+    } else {
+      ++d.result->delegated;
+    }
     if (r.is_collide && r.time_of_contact >= 0.0 && r.time_of_contact <= 1.0) {
       ContinuousContactPair c;
       c.o1 = o1;
       c.o2 = o2;
       c.time_of_contact = r.time_of_contact;
-      c.contact_point = 0.5 * (r.contact_tf1.translation() + r.contact_tf2.translation());
-      c.exact = false;
+      c.contact_point = exact ? stats.contact_point : 0.5 * (r.contact_tf1.translation() + r.contact_tf2.translation());
+      c.exact = exact;
+      c.near_tangent = exact && stats.near_tangent;
       report(d, c);
     }
   }

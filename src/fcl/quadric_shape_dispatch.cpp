@@ -119,7 +119,8 @@ QuadricRegion slab(double half) {
 }
 
 /// FCL's primitives as quadric regions (FCL's local conventions, fcl/geometry/shape/*.h).
-LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which) {
+LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which,
+                      const char* where = "fcl_quadric::collide") {
   if (const auto* q = dynamic_cast<const QuadricShape<double>*>(g)) {
     if (!q->bounded()) return {q->region(), std::nullopt};
     return {q->region(), q->localBox()};
@@ -184,7 +185,7 @@ LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which
     default: break;
   }
   std::ostringstream os;
-  os << "fcl_quadric::collide: " << which << " has node type " << g->getNodeType()
+  os << where << ": " << which << " has node type " << g->getNodeType()
      << ", which is not supported against fcl_quadric quadric shapes (supported: quadric shapes, Sphere, "
         "Ellipsoid, Box, Cylinder, Cone, Capsule, Halfspace, BVH meshes, OcTree)";
   throw std::invalid_argument(os.str());
@@ -267,6 +268,36 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
 }
 
 }  // namespace
+
+RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const PiecewiseMotion& m1,
+                                               const fcl::CollisionGeometry<double>* o2, const PiecewiseMotion& m2,
+                                               const char* where, std::string* elements1, std::string* elements2) {
+  std::vector<LocalSolid> pieces;
+  for (const auto& [g, which] : {std::pair(o1, "o1"), std::pair(o2, "o2")}) {
+    if (compositePieces(g, &pieces))
+      throw std::invalid_argument(std::string(where) + ": " + which +
+                                  " is a BVH mesh or an OcTree: continuous collision of quadric shapes against meshes "
+                                  "and octrees is not implemented");
+  }
+  const LocalSolid a = localSolid(o1, "o1", where), b = localSolid(o2, "o2", where);
+  if (!a.box && !b.box)
+    throw std::invalid_argument(std::string(where) + ": both operands are unbounded (half-spaces or unclipped quadrics)");
+  const RegionCcdResult r = continuousCollideRegions(MovingRegion{a.region, a.box, m1}, MovingRegion{b.region, b.box, m2});
+  if (elements1) elements1->clear();
+  if (elements2) elements2->clear();
+  if (r.collide && elements1 && elements2) {
+    // Boundary elements are searched in the local AABB (a generous box for unbounded operands:
+    // they are only labelled, never used to decide).
+    auto label = [](const LocalSolid& s, const std::vector<int>& active) {
+      if (active.empty()) return std::string();
+      const Box3 box = s.box ? *s.box : Box3{Eigen::Vector3d::Constant(-1e3), Eigen::Vector3d::Constant(1e3)};
+      return boundaryElementLabel(boundaryElements(s.region, box), active);
+    };
+    *elements1 = label(a, r.active_a);
+    *elements2 = label(b, r.active_b);
+  }
+  return r;
+}
 
 namespace {
 

@@ -3,11 +3,15 @@
 // FCL's NODE_TYPE tables do not know (they report fcl::BV_UNKNOWN). docs/fcl_integration.md,
 // section "Quadric shapes".
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include <fcl/common/types.h>
 #include <fcl/geometry/collision_geometry.h>
 #include <fcl/narrowphase/collision_request.h>
 #include <fcl/narrowphase/collision_result.h>
+
+#include "fcl_quadric/continuous/region_ccd.h"
 
 namespace fcl_quadric {
 namespace detail {
@@ -31,6 +35,17 @@ bool isQuadricShape(const fcl::CollisionGeometry<double>* g);
 std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
                                  const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
                                  const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result);
+
+/// First contact over t in [0, 1] of o1 moving by m1 and o2 moving by m2 (body -> world), at
+/// least one a QuadricShape, the other a QuadricShape or one of the FCL primitives above
+/// (continuousCollideRegions, region_ccd.h). When both are non-null, `elements1` / `elements2`
+/// receive the labels of the boundary elements in contact (boundaryElementLabel over
+/// boundaryElements: extra certified searches; empty when there is no contact).
+/// \throws std::invalid_argument (message starting with `where`) for BVH meshes, OcTrees and any
+/// other unsupported geometry, or two unbounded operands.
+RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const PiecewiseMotion& m1,
+                                               const fcl::CollisionGeometry<double>* o2, const PiecewiseMotion& m2,
+                                               const char* where, std::string* elements1, std::string* elements2);
 
 }  // namespace detail
 }  // namespace fcl_quadric

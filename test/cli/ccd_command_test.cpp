@@ -14,6 +14,7 @@
 #include "fcl_quadric/continuous/ellipsoid_ccd.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/geometry/signed_distance.h"
+#include "fcl_quadric/scene.h"
 
 namespace fcl_quadric {
 namespace cli {
@@ -102,15 +103,58 @@ TEST(CcdCommand, FirstContactOnlyReportsOneInstant) {
   EXPECT_NEAR(p["first_contact_time"].get<double>(), 2.5 / 8, 1e-10);
 }
 
-TEST(CcdCommand, BoxesAreRejectedWithTheObjectPointer) {
+TEST(CcdCommand, BoxPairsUseTheRegionCcdAtTheClosedFormTime) {
+  // A sphere (r = 0.5) falls from z = 4 to z = -4 onto a unit box at rest: contact when z = 1 at
+  // t = 3 / 8, on the box's top face.
   const std::string text = R"({"objects":[
-    {"name":"A","shape":{"type":"sphere","radius":1}},
+    {"name":"A","shape":{"type":"sphere","radius":0.5},
+     "motion":{"type":"linear","from":{"translation":[0.1,0.2,4]},"to":{"translation":[0.1,0.2,-4]}}},
     {"name":"B","shape":{"type":"box","size":[1,1,1]}}]})";
   const RunResult r = runCcdText(text, "ccd_box");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  const auto& p = doc["pairs"][0];
+  EXPECT_TRUE(p["collide"].get<bool>());
+  EXPECT_NEAR(p["first_contact_time"].get<double>(), 3.0 / 8, 1e-7);
+  EXPECT_LE(p["first_contact_time"].get<double>(), 3.0 / 8 + 1e-12);
+  EXPECT_NEAR(p["contact_point"][2].get<double>(), 0.5, 1e-6);
+  EXPECT_TRUE(p["overlap_intervals"].is_null());
+  ASSERT_EQ(p["elements"].size(), 2u);
+  EXPECT_EQ(p["elements"][0], "F0");
+  EXPECT_EQ(p["elements"][1].get<std::string>().substr(0, 1), "F") << "a face of the box";
+}
+
+TEST(CcdCommand, TwoHalfspacesAreABadPair) {
+  const std::string text = R"({"objects":[
+    {"name":"A","shape":{"type":"halfspace","normal":[0,0,1],"offset":0}},
+    {"name":"B","shape":{"type":"halfspace","normal":[1,0,0],"offset":0}}]})";
+  const RunResult r = runCcdText(text, "ccd_halfspaces");
   EXPECT_EQ(r.status, kExitBadInput);
   EXPECT_TRUE(r.out.empty());
-  EXPECT_NE(r.err.find("/objects/1/shape"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("unbounded"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+}
+
+TEST(CcdCommand, QuadricExampleSceneHasTheHandCheckedRimContactAndMiss) {
+  // examples/scene_quadrics_ccd.json: a ball (r = 0.3) falls along x = 0.3 through a ring
+  // (ellipsoid (1, 1, 0.5) minus a cylinder of radius 0.4): it first touches the rim circle
+  // (radius 0.4, z_rim = 0.5 sqrt(0.84)) at (0.4, 0, z_rim) when its centre is at
+  // z_rim + sqrt(0.3^2 - 0.1^2); the probe passes the pillar's vertex 0.01 away.
+  const std::string path = std::string(FCL_QUADRIC_SOURCE_DIR) + "/examples/scene_quadrics_ccd.json";
+  const nlohmann::ordered_json doc = ccdScene(readSceneFile(path));
+  const double z_rim = 0.5 * std::sqrt(0.84), z = z_rim + std::sqrt(0.08);
+  const auto& rim = doc["pairs"][0];
+  ASSERT_TRUE(rim["collide"].get<bool>());
+  EXPECT_NEAR(rim["first_contact_time"].get<double>(), (3.0 - z) / 6.0, 1e-7);
+  EXPECT_NEAR(rim["contact_point"][0].get<double>(), 0.4, 1e-5);
+  EXPECT_NEAR(rim["contact_point"][2].get<double>(), z_rim, 1e-5);
+  // The ring's element is the edge between its outer face (the ellipsoid) and the bore.
+  EXPECT_EQ(rim["elements"][0], "E0");
+  EXPECT_EQ(rim["elements"][1], "F0");
+  const auto& miss = doc["pairs"][1];
+  EXPECT_FALSE(miss["collide"].get<bool>());
+  EXPECT_TRUE(miss["first_contact_time"].is_null());
+  EXPECT_TRUE(miss["elements"].empty());
 }
 
 TEST(CcdCommand, SingularMotionExitsWithStatusTwoAndThePath) {

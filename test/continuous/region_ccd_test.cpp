@@ -9,6 +9,8 @@
 #include <cmath>
 #include <optional>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include <Eigen/Geometry>
 
@@ -78,6 +80,71 @@ TEST(RegionCcd, NearMissesAreCertifiedFree) {
                          translation({5, 0, h + r + gap}, {-5, 0, h + r + gap})};
     const RegionCcdResult res = continuousCollideRegions(cyl, b);
     EXPECT_FALSE(res.collide) << "gap " << gap << " time " << res.time << " boxes " << res.boxes;
+  }
+}
+
+TEST(RegionCcd, ContactElementsAreLabelledAndBadInputThrows) {
+  // A ball falling onto the top cap of a capped cylinder at its centre touches face "cap"; onto
+  // the rim it touches the edge between the side and the cap.
+  const double R = 1.0, h = 1.0, r = 0.5;
+  const QuadricRegion cyl = cappedCylinder(R, R, 2 * h);
+  const Box3 box = centredBox({R, R, h});
+  const BoundaryElements elements = boundaryElements(cyl, box);
+  const MovingRegion still_cyl{cyl, box, still()};
+  const MovingRegion on_cap{ball(r), centredBox(Eigen::Vector3d::Constant(r)), translation({0.2, 0, 4}, {0.2, 0, -4})};
+  RegionCcdResult res = continuousCollideRegions(still_cyl, on_cap);
+  ASSERT_TRUE(res.collide);
+  ASSERT_EQ(res.active_a.size(), 1u);
+  EXPECT_EQ(res.active_a[0], 1) << "the atom z <= h";
+  EXPECT_EQ(boundaryElementLabel(elements, res.active_a), "F1");
+  EXPECT_EQ(boundaryElementLabel(boundaryElements(ball(r), centredBox(Eigen::Vector3d::Constant(r))), res.active_b), "F0");
+  const MovingRegion on_rim{ball(r), centredBox(Eigen::Vector3d::Constant(r)), translation({1.2, 0, 4}, {1.2, 0, -4})};
+  res = continuousCollideRegions(still_cyl, on_rim);
+  ASSERT_TRUE(res.collide);
+  const std::string rim = boundaryElementLabel(elements, res.active_a);
+  ASSERT_EQ(rim.substr(0, 1), "E") << rim;
+  const BoundaryEdge& edge = elements.edges[std::stoi(rim.substr(1))];
+  EXPECT_EQ(std::min(edge.face0, edge.face1), 0);
+  EXPECT_EQ(std::max(edge.face0, edge.face1), 1);
+  EXPECT_EQ(boundaryElementLabel(elements, {}), "");
+
+  const MovingRegion plane_a{QuadricRegion::halfspace({0, 0, 1}, 0.0), std::nullopt, still()};
+  const MovingRegion plane_b{QuadricRegion::halfspace({1, 0, 0}, 0.0), std::nullopt, still()};
+  EXPECT_THROW(continuousCollideRegions(plane_a, plane_b), std::invalid_argument);
+  // A half-space against a bounded solid is fine: the ball falls onto the floor z <= 0.
+  res = continuousCollideRegions(plane_a, on_cap);
+  ASSERT_TRUE(res.collide);
+  EXPECT_NEAR(res.time, (4.0 - r) / 8.0, 1e-7);
+}
+
+// Degenerate configurations with closed-form times: parallel cylinder axes (a line contact),
+// coplanar caps (a surface contact), crossed axes (the two side surfaces meet at a point), and a
+// ball that touches a cap exactly at t = 1 or leaves it from a touch at t = 0 (both contacts).
+TEST(RegionCcd, DegenerateContactsAreFoundAtTheirClosedFormTimes) {
+  const MovingRegion c1{cappedCylinder(0.5, 0.5, 2.0), centredBox({0.5, 0.5, 1.0}), still()};
+  const MovingRegion c2{cappedCylinder(0.5, 0.5, 1.0), centredBox({0.5, 0.5, 0.5}), still()};
+  const Eigen::Matrix3d Ry = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Box3 ball_box = centredBox(Eigen::Vector3d::Constant(0.3));
+  struct Case {
+    const char* name;
+    MovingRegion a, b;
+    double expected;
+  };
+  const Case cases[] = {
+      {"parallel axes", c1, {cappedCylinder(0.5, 0.5, 2.0), centredBox({0.5, 0.5, 1.0}), translation({3, 0, 0.3}, {-1, 0, 0.3})}, 0.5},
+      {"coplanar caps", c2, {cappedCylinder(0.5, 0.5, 1.0), centredBox({0.5, 0.5, 0.5}), translation({0.2, 0, 3}, {0.2, 0, -1})}, 0.5},
+      {"crossed axes", c1,
+       {cappedCylinder(0.5, 0.5, 2.0), centredBox({0.5, 0.5, 1.0}),
+        PiecewiseMotion(MotionMatrix::fromPoses(Ry, {0, 0, 4}, Ry, {0, 0, 0}))},
+       (4.0 - 1.5) / 4.0},
+      {"touch at t = 1", c2, {ball(0.3), ball_box, translation({0, 0, 3}, {0, 0, 0.8})}, 1.0},
+      {"touch at t = 0", c2, {ball(0.3), ball_box, translation({0, 0, 0.8}, {0, 0, 3})}, 0.0},
+  };
+  for (const Case& c : cases) {
+    const RegionCcdResult res = continuousCollideRegions(c.a, c.b);
+    ASSERT_TRUE(res.collide) << c.name;
+    EXPECT_LE(res.time, c.expected + 1e-12) << c.name;
+    EXPECT_NEAR(res.time, c.expected, 1e-7) << c.name << " boxes " << res.boxes;
   }
 }
 

@@ -43,8 +43,8 @@
 namespace fcl_quadric {
 
 namespace tolerance_region {
-/// Time resolution of the region CCD (fraction of the motion's [0, 1]): 2^-30 ~ 9.3e-10.
-constexpr double kRegionCcdTimeTolerance = 9.313225746154785e-10;
+/// Time resolution of the region CCD (fraction of the motion's [0, 1]): 2^-27 ~ 7.5e-9.
+constexpr double kRegionCcdTimeTolerance = 7.450580596923828e-09;
 /// Spatial resolution of the region CCD (fraction of the search box's largest edge): 2^-36 ~
 /// 1.5e-11. Finer than the static engine's kRegionMinBoxRelative because a contact time is
 /// ill-conditioned where the gap closes slowly (a grazing approach): the time error of a
@@ -73,8 +73,9 @@ struct RegionCcdResult {
   /// The contact point in world coordinates at `time` (the witness or the undecided box centre).
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   /// Indices into a.region.signedAtoms() / b.region.signedAtoms() of the atoms whose surfaces
-  /// pass through the final box (within its size, or 1e-7 of the search box, of the point): the
-  /// boundary elements of each body involved in the contact (see boundaryElementLabel).
+  /// pass near the point (|f| / |grad f| within 1e-6 of the search box, or within the undecided
+  /// box's size for a near-tangent answer): the boundary elements of each body involved in the
+  /// contact (see boundaryElementLabel). Empty for a deep overlap at t = 0.
   std::vector<int> active_a, active_b;
   bool near_tangent = false;  ///< the contact is an undecided box within the tolerance band
   bool capped = false;        ///< kRegionCcdMaxBoxes reached: conservative contact

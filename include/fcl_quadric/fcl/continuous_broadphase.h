@@ -10,6 +10,8 @@
 /// continuousCollideBroadPhase runs manager->collide(data, callback) once. For each candidate pair
 /// the callback runs:
 ///  - ellipsoid / sphere pairs: the exact CCD (continuousCollideEllipsoids, first contact only);
+///  - pairs with a quadric shape (quadric_shapes.h): fcl_quadric::continuousCollide's exact
+///    region CCD (continuous/region_ccd.h; counted in exact_solves, contact point exact);
 ///  - any other pair: fcl_quadric::continuousCollide with RationalMotion objects (delegated to
 ///    fcl::continuousCollide with request.delegated_request; not certified).
 /// Two modes:

@@ -27,6 +27,17 @@
 ///  - some motion fcl::SplineMotion, or another MotionBase: no certified bound is available:
 ///    delegated to fcl::continuousCollide (NOT certified: FCL's naive sampling or its conservative
 ///    advancement, per request.ccd_solver_type).
+/// Quadric shapes (quadric_shapes.h: EllipticCylinder, Quadric, QuadricCSG) against each other or
+/// an fcl Sphere / Ellipsoid / Box / Cylinder / Cone / Capsule / Halfspace:
+///  - both motions RationalMotion (rigid or affine) or fcl::TranslationMotion: EXACT up to the
+///    stated band, the certified space-time search of continuous/region_ccd.h. "No collision" is
+///    certified; a contact time is never later than the true first contact and within
+///    kRegionCcdTimeTolerance (~1e-9) of it unless the pair only comes within the band (then the
+///    contact is reported early: stats near_tangent) or the box cap is reached (step_cap). Stats
+///    contact_point holds the contact point. request's solver settings are ignored.
+///  - any other motion type, a BVH mesh or an OcTree partner: std::invalid_argument (no certified
+///    method; FCL's own solvers do not know these shapes). The transforms overload accepts only
+///    CCDM_TRANS for them.
 /// Every other pair of geometries is delegated unchanged to fcl::continuousCollide with the same
 /// request (a RationalMotion works there with CCDC_NAIVE and CCDC_CONSERVATIVE_ADVANCEMENT).
 ///
@@ -95,6 +106,9 @@ struct ContinuousCollideStats {
   int steps = 0;            ///< advancement steps, or the exact solver's work count
   bool step_cap = false;    ///< the advancement stopped on kAdvancementMaxSteps
   bool near_tangent = false;  ///< exact path: a decision was taken in the touching band
+  /// Exact path of quadric shapes (region_ccd.h) with a contact: the contact point (world) at
+  /// the contact time.
+  Eigen::Vector3d contact_point = Eigen::Vector3d::Zero();
 };
 const ContinuousCollideStats& lastContinuousCollideStats();
 
