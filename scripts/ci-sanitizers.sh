@@ -65,6 +65,8 @@ heavy+='|QuadricRegionCollision.(EllipticCylinderPairsVsDenseExactSampling|Spher
 heavy+='|BroadPhaseManagers.(CoherentCollisionFunctionMatchesBruteForceEveryFrame|EveryManagerTypeFindsTheBruteForceMinimumDistance|EveryManagerTypeFindsExactlyTheBruteForceCollidingPairs)'
 heavy+='|EllipsoidTriangle.AgreesWithProjectedGradientOracle|SignedDistance.PenetrationDepthIsAtLeastAsGoodAsDenseSampling|ExactBvhMesh.IcosphereMatchesBruteForceOverTriangles'
 heavy+='|Planning\.'
+heavy+='|RegionCcd.(BallAndCylinderUnderRandomRationalMotionsMatchTheDistanceOracle|DegenerateContactsAreFoundAtTheirClosedFormTimes)'
+heavy+='|QuadricShapeCcd.(CircularEllipticCylinderMatchesLibccdSampledAlongRandomRationalMotions|BallDownTheBoreOfARingPassesOrTouchesTheRimAtTheAnalyticTime)'
 step "asan+ubsan tests" ctest --test-dir "$prefix-asan" -LE 'long|install' -E "$heavy" --timeout 900 --output-on-failure -j"$jobs"
 
 step "tsan configure" cmake -S . -B "$prefix-tsan" "${common[@]}" -DFCL_QUADRIC_SANITIZE=thread \

@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 #include <utility>
 
 #include "../geometry/region_formula.h"
@@ -36,15 +37,15 @@ constexpr int kTripleSteps = 14;
 constexpr int kPairSteps = 30;
 
 /// Golden-section maximisation of a concave function on [0, 1]: true as soon as a positive value
-/// is seen; otherwise *best is the best point found.
+/// is seen; *best is the best point found (the positive one when true).
 template <class Fn>
 bool goldenArgmax(const Fn& f, int steps, double* best) {
   double a = 0.0, b = 1.0;
   const double phi = 0.6180339887498949;
   double x1 = b - phi * (b - a), x2 = a + phi * (b - a);
   double f1 = f(x1), f2 = f(x2);
-  for (int k = 0; k < steps; ++k) {
-    if (f1 > 0.0 || f2 > 0.0) return true;
+  for (int k = 0;; ++k) {
+    if (f1 > 0.0 || f2 > 0.0 || k == steps) break;
     if (f1 < f2) {
       a = x1;
       x1 = x2;
@@ -59,9 +60,8 @@ bool goldenArgmax(const Fn& f, int steps, double* best) {
       f1 = f(x1);
     }
   }
-  if (f1 > 0.0 || f2 > 0.0) return true;
   *best = f1 >= f2 ? x1 : x2;
-  return false;
+  return f1 > 0.0 || f2 > 0.0;
 }
 
 /// In a slab of the final width, boxes searched for a witness after the first undecided one.
@@ -186,14 +186,28 @@ class SpaceTimeEngine {
   /// triple (weights from the first-order condition at the box centre) of the conjoined atoms
   /// with a certified-positive combination.
   bool pencilExcluded(const std::vector<int>& atoms) const {
+    // Warm start: the weights that certified a neighbouring box (the search is depth-first, so
+    // the last certificate of a pair or triple is usually valid for its sibling too).
     for (std::size_t i = 0; i < atoms.size(); ++i)
       for (std::size_t j = i + 1; j < atoms.size(); ++j) {
-        const int ids[2] = {atoms[i], atoms[j]};
-        auto lower = [&](double mu) {
-          const double w[2] = {mu * atoms_[ids[0]].scale, (1.0 - mu) * atoms_[ids[1]].scale};
-          return pencilLower(ids, w, 2);
-        };
-        if (detail::goldenPositive(lower, kPairSteps)) return true;
+        const auto it = pair_mu_.find(key(atoms[i], atoms[j]));
+        if (it != pair_mu_.end() && pairLower(atoms[i], atoms[j], it->second) > 0.0) return true;
+      }
+    for (std::size_t i = 0; i < atoms.size(); ++i)
+      for (std::size_t j = i + 1; j < atoms.size(); ++j)
+        for (std::size_t k = j + 1; k < atoms.size(); ++k) {
+          const int ids[3] = {atoms[i], atoms[j], atoms[k]};
+          const auto it = triple_mu_.find(key(ids[0], ids[1], ids[2]));
+          if (it != triple_mu_.end() && tripleLower(ids, it->second) > 0.0) return true;
+        }
+    for (std::size_t i = 0; i < atoms.size(); ++i)
+      for (std::size_t j = i + 1; j < atoms.size(); ++j) {
+        const int a = atoms[i], b = atoms[j];
+        double mu = 0.5;
+        if (goldenArgmax([&](double x) { return pairLower(a, b, x); }, kPairSteps, &mu)) {
+          pair_mu_[key(a, b)] = mu;
+          return true;
+        }
       }
     for (std::size_t i = 0; i < atoms.size(); ++i)
       for (std::size_t j = i + 1; j < atoms.size(); ++j)
@@ -216,30 +230,29 @@ class SpaceTimeEngine {
             if (mu.sum() > 0.0) mu /= mu.sum();
             else mu.setConstant(1.0 / 3.0);
           }
-          auto lower3 = [&](const Eigen::Vector3d& m) {
-            double w[3];
-            for (int q = 0; q < 3; ++q) w[q] = m[q] * atoms_[ids[q]].scale;
-            return pencilLower(ids, w, 3);
-          };
-          if (lower3(mu) > 0.0) return true;
+          if (tripleLower(ids, mu) > 0.0) {
+            triple_mu_[key(ids[0], ids[1], ids[2])] = mu;
+            return true;
+          }
           for (int round = 0; round < kTripleRounds; ++round) {
             for (int axis = 0; axis < 2; ++axis) {
               // mu(s) = mu + s (e_axis - e_2), s in [-mu_axis, mu_2], mapped to [0, 1].
               const double s_lo = -mu[axis], s_hi = mu[2];
               if (!(s_hi - s_lo > 1e-12)) continue;
-              auto along = [&](double x) {
+              auto at = [&](double x) {
                 Eigen::Vector3d m = mu;
                 const double s = s_lo + x * (s_hi - s_lo);
                 m[axis] += s;
                 m[2] -= s;
-                return lower3(m.cwiseMax(0.0));
+                return Eigen::Vector3d(m.cwiseMax(0.0));
               };
               double best_x = -s_lo / (s_hi - s_lo);
-              if (goldenArgmax(along, kTripleSteps, &best_x)) return true;
-              const double s = s_lo + best_x * (s_hi - s_lo);
-              mu[axis] += s;
-              mu[2] -= s;
-              mu = mu.cwiseMax(0.0);
+              const bool found = goldenArgmax([&](double x) { return tripleLower(ids, at(x)); }, kTripleSteps, &best_x);
+              mu = at(best_x);
+              if (found) {
+                triple_mu_[key(ids[0], ids[1], ids[2])] = mu;
+                return true;
+              }
             }
           }
         }
@@ -358,6 +371,20 @@ class SpaceTimeEngine {
     return m;
   }
 
+  static long long key(int a, int b, int c = -1) {
+    return (static_cast<long long>(a) << 40) ^ (static_cast<long long>(b) << 20) ^ static_cast<long long>(c + 1);
+  }
+  double pairLower(int a, int b, double mu) const {
+    const int ids[2] = {a, b};
+    const double w[2] = {mu * atoms_[a].scale, (1.0 - mu) * atoms_[b].scale};
+    return pencilLower(ids, w, 2);
+  }
+  double tripleLower(const int* ids, const Eigen::Vector3d& mu) const {
+    double w[3];
+    for (int q = 0; q < 3; ++q) w[q] = mu[q] * atoms_[ids[q]].scale;
+    return pencilLower(ids, w, 3);
+  }
+
   // Lower bound of the centred form of sum_i w_i f_ids[i] (w_i >= 0) on the last box: the
   // Bernstein coefficients of the combination are the combinations of the coefficients, and the
   // rounding pad is the same combination of the atoms' pads (set by evaluate).
@@ -402,6 +429,10 @@ class SpaceTimeEngine {
   std::vector<AtomOnBox> on_box_;
   Eigen::Vector3d c_ = Eigen::Vector3d::Zero(), r_ = Eigen::Vector3d::Zero();
   double t0_ = -1.0, t1_ = -1.0;  // the slab of the A entries (none yet)
+  // The last certifying weights of each pair / triple of atoms (warm starts; any weights are a
+  // valid certificate, so a stale entry costs one evaluation and never a wrong exclusion).
+  mutable std::unordered_map<long long, double> pair_mu_;
+  mutable std::unordered_map<long long, Eigen::Vector3d> triple_mu_;
 };
 
 struct PieceAnswer {
