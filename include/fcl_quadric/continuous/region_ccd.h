@@ -5,27 +5,29 @@
 /// the first time in [0, 1] at which the two solids touch, by certified space-time subdivision
 /// (docs/algorithms.md section 10).
 ///
-/// Method. Points are written in the frame of one body (the one with the smaller local AABB, or
-/// the bounded one); the other body's atoms are carried into that frame by the relative motion
-/// N(t) = c(t) M_A(t)^{-1} M_B(t), so that each atom is X^T S(t) X with a polynomial matrix S(t)
-/// (thesis §5.1: the moving quadric up to a positive factor). The search space is that body's
+/// Method. Points are written in the frame F of one body (the one with the smaller local AABB, or
+/// the bounded one); the other body O's atoms Q are carried into that frame by the relative motion
+/// P(t) = c(t) M_O(t)^{-1} M_F(t), as X^T S(t) X with S = P^T Q P a polynomial matrix (thesis §5.1:
+/// the moving quadric up to the positive factor c(t)^2). The search space is that body's
 /// local AABB times [0, 1]. On a box c ± r times [t0, t1] each atom is enclosed by its centred form
 /// in space, f(c + h, t) = v(t) + g(t).h + h^T A(t) h, with the ranges of v, g and A over
 /// [t0, t1] taken from their Bernstein coefficients (convex hull property). A box is dropped when
 /// the CSG formula is certified empty on it (an atom positive on the box, or a positive pencil of
 /// two or three conjoined atoms: the separating pencil of thesis §4.2 made local in space and
-/// time). Boxes are processed in order of their start time t0, so every instant before the
-/// smallest t0 in the queue is certified collision-free; a certified interior point at (c, t1)
-/// is a witness that the solids overlap at t1. The first contact time lies between the two.
+/// time). The time axis is covered by an advancing front of slabs: [0, L) is certified free (every
+/// box of the slab excluded), and a certified interior point at some instant U (a witness) bounds
+/// the first contact from above; each slab [L, L + dt] is searched depth-first in space with a box
+/// budget, dt doubling after a certified slab and halving after a witness or an inconclusive slab.
 ///
-/// Contact is reported at the certified lower end (never later than the true first contact):
-///  - when the upper end (a witness) comes within kRegionCcdTimeTolerance of it;
-///  - when a box narrower than kRegionCcdTimeTolerance in time and kRegionCcdMinBoxRelative of the
-///    search box in space is neither excluded nor certified inside (the boundaries are within the
-///    tolerance band of contact there: near_tangent);
+/// Contact is reported at the certified front L (never later than the true first contact):
+///  - when the witness time U comes within kRegionCcdTimeTolerance of it;
+///  - when, in a slab of width kRegionCcdTimeTolerance, a box of kRegionCcdMinBoxRelative of the
+///    search box is neither excluded nor certified inside (the boundaries are within the tolerance
+///    band of contact there: near_tangent);
 ///  - when kRegionCcdMaxBoxes boxes have been visited (capped: a conservative contact).
 /// So a reported "no collision" is certified, and a reported contact time is a lower bound of the
-/// true one up to the band (within kRegionCcdTimeTolerance when the contact is transversal).
+/// true one, within kRegionCcdTimeTolerance of it unless the pair only comes within the band
+/// (then it is early by about the band over the approach speed) or the cap is reached.
 ///
 /// This is not the dimension reduction of thesis §6.2.2 (subproblems per pair of boundary
 /// elements with subresultant sequences); it answers the same question for every pair of element

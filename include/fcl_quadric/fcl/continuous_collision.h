@@ -32,7 +32,7 @@
 ///  - both motions RationalMotion (rigid or affine) or fcl::TranslationMotion: EXACT up to the
 ///    stated band, the certified space-time search of continuous/region_ccd.h. "No collision" is
 ///    certified; a contact time is never later than the true first contact and within
-///    kRegionCcdTimeTolerance (~1e-9) of it unless the pair only comes within the band (then the
+///    kRegionCcdTimeTolerance (2^-27 ~ 7.5e-9) of it unless the pair only comes within the band (then the
 ///    contact is reported early: stats near_tangent) or the box cap is reached (step_cap). Stats
 ///    contact_point holds the contact point. request's solver settings are ignored.
 ///  - any other motion type, a BVH mesh or an OcTree partner: std::invalid_argument (no certified
