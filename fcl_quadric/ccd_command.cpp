@@ -1,5 +1,7 @@
 #include "fcl_quadric/ccd_command.h"
 
+#include <algorithm>
+
 #include "fcl_quadric/check_command.h"
 #include "fcl_quadric/continuous/region_ccd.h"
 
@@ -91,7 +93,7 @@ nlohmann::ordered_json regionPair(const SceneObject& a, const SceneObject& b) {
     auto label = [](const QuadricRegion& region, const std::optional<Box3>& box, const std::vector<int>& active) {
       if (active.empty()) return std::string();
       const Box3 search = box ? *box : Box3{Eigen::Vector3d::Constant(-1e3), Eigen::Vector3d::Constant(1e3)};
-      return boundaryElementLabel(boundaryElements(region, search), active);
+      return boundaryElementLabel(boundaryElements(region, search, static_cast<int>(std::min<std::size_t>(active.size(), 3))), active);
     };
     elements.push_back(label(ra, ba, r.active_a));
     elements.push_back(label(rb, bb, r.active_b));

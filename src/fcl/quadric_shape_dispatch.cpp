@@ -291,7 +291,7 @@ RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<doub
     auto label = [](const LocalSolid& s, const std::vector<int>& active) {
       if (active.empty()) return std::string();
       const Box3 box = s.box ? *s.box : Box3{Eigen::Vector3d::Constant(-1e3), Eigen::Vector3d::Constant(1e3)};
-      return boundaryElementLabel(boundaryElements(s.region, box), active);
+      return boundaryElementLabel(boundaryElements(s.region, box, static_cast<int>(std::min<std::size_t>(active.size(), 3))), active);
     };
     *elements1 = label(a, r.active_a);
     *elements2 = label(b, r.active_b);

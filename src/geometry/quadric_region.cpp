@@ -824,7 +824,7 @@ MassProperties regionMassProperties(const QuadricRegion& region, const Box3& box
 
 // --- Boundary elements ----------------------------------------------------------------------
 
-BoundaryElements boundaryElements(const QuadricRegion& region, const Box3& box) {
+BoundaryElements boundaryElements(const QuadricRegion& region, const Box3& box, int max_order) {
   BoundaryElements out;
   const std::vector<Eigen::Matrix4d> atoms = region.signedAtoms();
   // A face / edge / vertex exists unless the region intersected with the equalities of its
@@ -835,13 +835,16 @@ BoundaryElements boundaryElements(const QuadricRegion& region, const Box3& box) 
       parts.push_back(QuadricRegion::atom(atoms[i]));
       parts.push_back(QuadricRegion::atom(-atoms[i]));
     }
-    return findPoint(QuadricRegion::combine(QuadricRegion::Op::Intersection, parts), box).status != PointSearch::Empty;
+    // Only a certified Empty drops the element: stop at the first undecided box (a face or edge
+    // set has no interior, so a search for a witness would only run to its extra-box cap).
+    return findPoint(QuadricRegion::combine(QuadricRegion::Op::Intersection, parts), box, 0).status != PointSearch::Empty;
   };
   for (std::size_t i = 0; i < atoms.size(); ++i) {
     if (!mayMeet({static_cast<int>(i)})) continue;
     out.faces.push_back(BoundaryFace{static_cast<int>(i), classifyFace(atoms[i])});
   }
   const int nf = static_cast<int>(out.faces.size());
+  if (max_order < 2) return out;
   for (int i = 0; i < nf; ++i) {
     for (int j = i + 1; j < nf; ++j) {
       const BoundaryFace &fi = out.faces[i], &fj = out.faces[j];
@@ -892,6 +895,7 @@ BoundaryElements boundaryElements(const QuadricRegion& region, const Box3& box) 
       out.edges.push_back(e);
     }
   }
+  if (max_order < 3) return out;
   for (int i = 0; i < nf; ++i)
     for (int j = i + 1; j < nf; ++j)
       for (int k = j + 1; k < nf; ++k) {

@@ -191,7 +191,9 @@ struct BoundaryElements {
   std::vector<BoundaryEdge> edges;
   std::vector<BoundaryVertex> vertices;
 };
-BoundaryElements boundaryElements(const QuadricRegion& region, const Box3& box);
+/// `max_order` 1 stops after the faces, 2 after the edges (the lists computed are the same
+/// prefixes as for 3: indices do not depend on it).
+BoundaryElements boundaryElements(const QuadricRegion& region, const Box3& box, int max_order = 3);
 
 /// Static classification of two regions posed in a common frame (a in its frame, b posed by
 /// X_AB). Separated: certified (every box excluded). Overlapping: a certified common interior
