@@ -20,6 +20,7 @@ namespace fcl_quadric {
 using namespace tolerance_region;
 using detail::Formula;
 using detail::FormulaBox;
+using detail::goldenArgmax;
 using detail::Tri;
 
 namespace {
@@ -35,34 +36,6 @@ constexpr int kTripleRounds = 2;
 constexpr int kTripleSteps = 14;
 /// Golden-section steps of a pair pencil's weight (0.618^30 ~ 5e-7 of [0, 1]).
 constexpr int kPairSteps = 30;
-
-/// Golden-section maximisation of a concave function on [0, 1]: true as soon as a positive value
-/// is seen; *best is the best point found (the positive one when true).
-template <class Fn>
-bool goldenArgmax(const Fn& f, int steps, double* best) {
-  double a = 0.0, b = 1.0;
-  const double phi = 0.6180339887498949;
-  double x1 = b - phi * (b - a), x2 = a + phi * (b - a);
-  double f1 = f(x1), f2 = f(x2);
-  for (int k = 0;; ++k) {
-    if (f1 > 0.0 || f2 > 0.0 || k == steps) break;
-    if (f1 < f2) {
-      a = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = a + phi * (b - a);
-      f2 = f(x2);
-    } else {
-      b = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = b - phi * (b - a);
-      f1 = f(x1);
-    }
-  }
-  *best = f1 >= f2 ? x1 : x2;
-  return f1 > 0.0 || f2 > 0.0;
-}
 
 /// In a slab of the final width, boxes searched for a witness after the first undecided one.
 constexpr int kRegionCcdExtraBoxesAfterUndecided = 256;
@@ -259,11 +232,10 @@ class SpaceTimeEngine {
     return false;
   }
 
-  /// Split choice for the last evaluated box: 0..2 a spatial axis, 3 time, -1 none (every edge
-  /// at its resolution limit).
-  int splitAxis(double min_width, double min_time) const {
+  /// The spatial axis to split for the last evaluated box (slabs are searched in space only), -1
+  /// when every edge is at the resolution limit.
+  int splitAxis(double min_width) const {
     Eigen::Vector3d score = Eigen::Vector3d::Zero();
-    double tscore = 0.0;
     for (std::size_t k = 0; k < atoms_.size(); ++k) {
       const AtomOnBox& e = on_box_[k];
       if (e.state != Tri::Unknown) continue;
@@ -276,20 +248,22 @@ class SpaceTimeEngine {
         for (int j = 0; j < 3; ++j) t += a[i][j] * r_[i] * r_[j];
         score[i] += s * t;
       }
-      tscore += s * (e.vmax - e.vmin);
     }
-    const bool time_ok = t1_ - t0_ > min_time;
-    const int axis = detail::chooseSplitAxis(score, r_, min_width, kRegionMaxAspect);
-    if (axis < 0) return time_ok ? 3 : -1;
-    if (time_ok && tscore > score[axis]) return 3;
-    return axis;
+    return detail::chooseSplitAxis(score, r_, min_width, kRegionMaxAspect);
+  }
+
+  /// S(t) of atom k (Horner on the coefficient matrices).
+  Eigen::Matrix4d matrixAt(int k, double t) const {
+    const MovingAtom& m = atoms_[k];
+    Eigen::Matrix4d S = m.S[n_];
+    for (int d = n_ - 1; d >= 0; --d) S = S * t + m.S[d];
+    return S;
   }
 
   /// Certified sign of atom k at (x, t): -1 inside, +1 outside, 0 within the rounding band.
   int pointSign(int k, const Eigen::Vector3d& x, double t) const {
     const MovingAtom& m = atoms_[k];
-    Eigen::Matrix4d S = m.S[n_];
-    for (int d = n_ - 1; d >= 0; --d) S = S * t + m.S[d];
+    const Eigen::Matrix4d S = matrixAt(k, t);
     const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
     const double v = X.dot(S * X);
     const Eigen::Vector4d Xa = X.cwiseAbs();
@@ -301,11 +275,8 @@ class SpaceTimeEngine {
 
   /// Approximate distance of x to atom k's surface at t (|f| / |grad f|), to name the elements.
   double surfaceDistance(int k, const Eigen::Vector3d& x, double t) const {
-    const MovingAtom& m = atoms_[k];
-    Eigen::Matrix4d S = m.S[n_];
-    for (int d = n_ - 1; d >= 0; --d) S = S * t + m.S[d];
     const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
-    const Eigen::Vector4d SX = S * X;
+    const Eigen::Vector4d SX = matrixAt(k, t) * X;
     const double g = 2.0 * SX.head<3>().norm();
     if (!(g > 0.0)) return std::numeric_limits<double>::infinity();
     return std::fabs(X.dot(SX)) / g;
@@ -316,11 +287,8 @@ class SpaceTimeEngine {
     double worst = -std::numeric_limits<double>::infinity();
     for (int k = 0; k < size(); ++k) {
       if (on_box_[k].state != Tri::Unknown) continue;
-      const MovingAtom& m = atoms_[k];
-      Eigen::Matrix4d S = m.S[n_];
-      for (int d = n_ - 1; d >= 0; --d) S = S * t + m.S[d];
       const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
-      const Eigen::Vector4d SX = S * X;
+      const Eigen::Vector4d SX = matrixAt(k, t) * X;
       worst = std::max(worst, X.dot(SX) / std::max(2.0 * SX.head<3>().norm(), 1e-300));
     }
     return worst;
@@ -522,7 +490,7 @@ SlabAnswer searchSlab(SpaceTimeEngine& engine, const Box3& box, double t0, doubl
       ans.outcome = SlabOutcome::Inconclusive;
       return ans;
     }
-    const int axis = engine.splitAxis(min_width, std::numeric_limits<double>::infinity());
+    const int axis = engine.splitAxis(min_width);
     if (axis < 0) {
       // Within the band: keep looking for a witness for a while (as findPoint does).
       if (undecided_at < 0) {

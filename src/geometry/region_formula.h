@@ -185,32 +185,40 @@ class FormulaBox {
 };
 
 /// Golden-section maximisation of a concave function on [0, 1] that stops as soon as a value is
-/// positive: true if one is found within `steps` steps (the lower bound of a pencil's centred-form
-/// enclosure is concave in the weight mu: a linear term minus absolute values of affine functions
-/// of mu).
+/// positive: true if one is found within `steps` steps; *best is the best point found (the
+/// positive one when true). The lower bound of a pencil's centred-form enclosure is concave in
+/// its weight mu (a linear term minus absolute values of affine functions of mu).
 template <class Fn>
-bool goldenPositive(const Fn& lower, int steps) {
+bool goldenArgmax(const Fn& f, int steps, double* best) {
   double a = 0.0, b = 1.0;
   const double phi = 0.6180339887498949;
   double x1 = b - phi * (b - a), x2 = a + phi * (b - a);
-  double f1 = lower(x1), f2 = lower(x2);
-  for (int k = 0; k < steps; ++k) {
-    if (f1 > 0.0 || f2 > 0.0) return true;
+  double f1 = f(x1), f2 = f(x2);
+  for (int k = 0;; ++k) {
+    if (f1 > 0.0 || f2 > 0.0 || k == steps) break;
     if (f1 < f2) {
       a = x1;
       x1 = x2;
       f1 = f2;
       x2 = a + phi * (b - a);
-      f2 = lower(x2);
+      f2 = f(x2);
     } else {
       b = x2;
       x2 = x1;
       f2 = f1;
       x1 = b - phi * (b - a);
-      f1 = lower(x1);
+      f1 = f(x1);
     }
   }
+  *best = f1 >= f2 ? x1 : x2;
   return f1 > 0.0 || f2 > 0.0;
+}
+
+/// goldenArgmax when only the verdict matters.
+template <class Fn>
+bool goldenPositive(const Fn& lower, int steps) {
+  double best = 0.0;
+  return goldenArgmax(lower, steps, &best);
 }
 
 /// The spatial axis to split: the one with the largest score (its contribution to the undecided
