@@ -92,7 +92,8 @@ RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegi
 /// The label of the boundary element (thesis §6.1-6.2) formed by the given atoms of a CQM:
 /// "F<i>" for one atom (faces[i]), "E<i>" for two (edges[i]), "V<i>" for three (vertices[i]),
 /// indices from 0 into `elements`; for more atoms, or a combination that is not an element, the
-/// labels of the faces joined by "+" (e.g. "F0+F2"); "" for none.
+/// labels of the faces joined by "+" (e.g. "F0+F2"); "" for none. No failure mode: atoms that
+/// are not faces of `elements` are ignored.
 std::string boundaryElementLabel(const BoundaryElements& elements, const std::vector<int>& atoms);
 
 }  // namespace fcl_quadric
