@@ -13,6 +13,13 @@
 // CCDC_CONSERVATIVE_ADVANCEMENT (GJK distances); afterwards their misses against the certified
 // answers. CSG ring-wedge pairs under motions of degree 1 (translation), 2 (from two poses:
 // rotation by quaternion interpolation) and 4 (two such motions composed).
+//
+// Small ellipsoids (geometry/ellipsoid_quadric.h): fcl::Ellipsoid (radii U(0.1, 0.35), random
+// rotation, centre in the shape's AABB grown by 0.5 and within ~0.5 of the quadric surface) against
+// three clipped quadrics (a
+// paraboloid cup, a hyperboloid waist, a capped elliptic cylinder) through fcl_quadric::collide,
+// which tries the seed paper's filter first, against the region engine alone on the same pairs
+// (the path before the filter); afterwards their agreement.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -27,6 +34,8 @@
 #include <fcl/narrowphase/continuous_collision.h>
 
 #include "fcl_quadric/continuous/region_ccd.h"
+#include "fcl_quadric/fcl/collision.h"
+#include "fcl_quadric/fcl/quadric_shapes.h"
 
 #include "bench_support.h"
 #include "quadric_shapes_scene.h"
@@ -199,6 +208,83 @@ BENCHMARK(BM_CylindersRegionEngine)->Name("QuadricShapes/Cylinders/RegionEngine"
 BENCHMARK(BM_CylindersFclGjkLibccd)->Name("QuadricShapes/Cylinders/FclGjkLibccd")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CsgRingWedge)->Name("QuadricShapes/Csg/RingWedge")->Unit(benchmark::kMicrosecond);
 
+struct SmallEllipsoidPair {
+  std::shared_ptr<fcl_quadric::Quadric<double>> shape;  // at the identity
+  Eigen::Vector3d radii;
+  fcl::Transform3d pose;  // of the ellipsoid, in the shape's frame
+};
+
+std::vector<SmallEllipsoidPair>& smallEllipsoidPairs() {
+  static std::vector<SmallEllipsoidPair> pairs;
+  return pairs;
+}
+
+std::vector<SmallEllipsoidPair> makeSmallEllipsoidPairs(std::size_t n) {
+  using Q = fcl_quadric::Quadric<double>;
+  const std::vector<std::shared_ptr<Q>> shapes = {
+      std::make_shared<Q>(Q::ellipticParaboloid(1.0, 1.0, {{Eigen::Vector3d::UnitZ(), 3.0}})),
+      std::make_shared<Q>(Q::hyperboloidOneSheet(1.0, 1.0, 1.0, {{Eigen::Vector3d::UnitZ(), 2.0}, {-Eigen::Vector3d::UnitZ(), 2.0}})),
+      std::make_shared<Q>(Q::ellipticCylinder(1.2, 0.9, {{Eigen::Vector3d::UnitZ(), 1.5}, {-Eigen::Vector3d::UnitZ(), 1.5}})),
+  };
+  std::mt19937_64 rng(19);
+  std::uniform_real_distribution<double> r(0.1, 0.35), u(0.0, 1.0);
+  std::vector<SmallEllipsoidPair> pairs;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& shape = shapes[i % shapes.size()];
+    const double a = r(rng), b = r(rng), c = r(rng);
+    fcl::Transform3d pose = fcl::Transform3d::Identity();
+    pose.linear() = fcl_quadric::bench::quadricSceneRotation(rng);
+    // Near the quadric surface (|f| / |grad f| <= 0.5 at the centre), where both answers are hard.
+    const Box3& box = shape->localBox();
+    const Eigen::Matrix4d& Qm = shape->matrix();
+    for (;;) {
+      Eigen::Vector4d X(0, 0, 0, 1);
+      for (int k = 0; k < 3; ++k) X[k] = box.lo[k] - 0.5 + u(rng) * (box.hi[k] - box.lo[k] + 1.0);
+      const double grad = 2.0 * (Qm * X).head<3>().norm();
+      if (std::fabs(X.dot(Qm * X)) <= 0.5 * grad) {
+        pose.translation() = X.head<3>();
+        break;
+      }
+    }
+    pairs.push_back({shape, Eigen::Vector3d(a, b, c), pose});
+  }
+  return pairs;
+}
+
+bool smallEllipsoidCollide(const SmallEllipsoidPair& s) {
+  const fcl::Ellipsoidd e(s.radii);
+  fcl::CollisionRequestd req;
+  fcl::CollisionResultd res;
+  return fcl_quadric::collide(&e, s.pose, s.shape.get(), fcl::Transform3d::Identity(), req, res) > 0;
+}
+
+fcl_quadric::RegionRelation smallEllipsoidEngine(const SmallEllipsoidPair& s) {
+  const QuadricRegion e = QuadricRegion::atom(fcl_quadric::quadric::ellipsoid(s.radii));
+  const Box3 eb{-s.radii, s.radii};
+  return fcl_quadric::collideRegions(s.shape->region(), s.shape->localBox(), e, eb, s.pose.linear(),
+                                     s.pose.translation())
+      .relation;
+}
+
+void BM_SmallEllipsoidCollide(benchmark::State& state) {
+  const auto& pairs = smallEllipsoidPairs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(smallEllipsoidCollide(pairs[i]));
+    i = (i + 1) % pairs.size();
+  }
+}
+void BM_SmallEllipsoidEngine(benchmark::State& state) {
+  const auto& pairs = smallEllipsoidPairs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(smallEllipsoidEngine(pairs[i]));
+    i = (i + 1) % pairs.size();
+  }
+}
+BENCHMARK(BM_SmallEllipsoidCollide)->Name("QuadricShapes/SmallEllipsoid/SeedFilterThenEngine")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SmallEllipsoidEngine)->Name("QuadricShapes/SmallEllipsoid/RegionEngine")->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -213,8 +299,25 @@ int main(int argc, char** argv) {
       cylinderMotions().push_back({cylinderPairs()[k], 2.5 * Eigen::Vector3d(x, y, z).normalized()});
     }
   }
+  smallEllipsoidPairs() = makeSmallEllipsoidPairs(n);
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
+  {
+    int colliding = 0, band = 0, differ = 0;
+    for (const SmallEllipsoidPair& s : smallEllipsoidPairs()) {
+      const fcl_quadric::RegionRelation rel = smallEllipsoidEngine(s);
+      const bool ours = smallEllipsoidCollide(s);
+      if (rel == fcl_quadric::RegionRelation::Touching) {
+        ++band;
+        continue;
+      }
+      colliding += rel == fcl_quadric::RegionRelation::Overlapping;
+      differ += ours != (rel == fcl_quadric::RegionRelation::Overlapping);
+    }
+    std::printf("Small ellipsoids, %zu pairs: %d colliding (certified), %d in the engine's band; fcl_quadric::collide "
+                "(filter first) differs from the engine on %d\n",
+                smallEllipsoidPairs().size(), colliding, band, differ);
+  }
   // Agreement (outside the timed loops).
   int touching = 0, disagree = 0, fcl_misses = 0, fcl_false = 0, hits = 0;
   for (const CylinderPair& c : cylinderPairs()) {

@@ -30,6 +30,9 @@
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
+#include "fcl_quadric/geometry/ellipsoid.h"
+#include "fcl_quadric/geometry/ellipsoid_plane.h"
+#include "fcl_quadric/geometry/ellipsoid_quadric.h"
 #include "fcl_quadric/geometry/quadric_region.h"
 #include "fcl_quadric/geometry/region_distance_bound.h"
 
@@ -53,6 +56,8 @@ struct LocalSolid {
   QuadricRegion region;
   std::optional<Box3> box;
   bool thin = false;
+  /// Set for FCL spheres and ellipsoids: the small-ellipsoid filter applies (collidePair).
+  std::optional<Eigen::Vector3d> ellipsoid_radii = std::nullopt;
 };
 
 /// A triangle as the region {n.x = d} intersected with its three edge half-spaces (in-plane),
@@ -129,11 +134,11 @@ LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which
     case fcl::GEOM_SPHERE: {
       const double r = static_cast<const fcl::Sphere<double>*>(g)->radius;
       return {QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(r))),
-              symmetricBox(Eigen::Vector3d::Constant(r))};
+              symmetricBox(Eigen::Vector3d::Constant(r)), false, Eigen::Vector3d::Constant(r)};
     }
     case fcl::GEOM_ELLIPSOID: {
       const Eigen::Vector3d r = static_cast<const fcl::Ellipsoid<double>*>(g)->radii;
-      return {QuadricRegion::atom(quadric::ellipsoid(r)), symmetricBox(r)};
+      return {QuadricRegion::atom(quadric::ellipsoid(r)), symmetricBox(r), false, r};
     }
     case fcl::GEOM_BOX: {
       const Eigen::Vector3d h = 0.5 * static_cast<const fcl::Box<double>*>(g)->side;
@@ -220,6 +225,74 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
 
 namespace {
 
+/// The seed paper's small-ellipsoid filter with zones (ellipsoid_quadric.h, docs/algorithms.md
+/// section 11): `e` an FCL sphere / ellipsoid posed by (R, p), `other` (world frame) one quadric
+/// atom intersected with half-spaces. The ellipsoid strictly outside one half-space -> Outside;
+/// strictly inside all of them -> the zone of the quadric, decided by classifyEllipsoidQuadric.
+/// nullopt whenever no certificate holds (the exact engine decides).
+std::optional<EllipsoidQuadricRelation> smallEllipsoidVerdict(const LocalSolid& e, const Eigen::Matrix3d& R,
+                                                              const Eigen::Vector3d& p, const QuadricRegion& other) {
+  if (!e.ellipsoid_radii) return std::nullopt;
+  const Eigen::Matrix4d* quadric_atom = nullptr;
+  std::vector<const Eigen::Matrix4d*> planes;
+  auto take = [&](const QuadricRegion& r) {
+    if (r.op() != Op::Atom) return false;
+    if (r.matrix().topLeftCorner<3, 3>().isZero(0.0)) {
+      planes.push_back(&r.matrix());
+      return true;
+    }
+    if (quadric_atom) return false;
+    quadric_atom = &r.matrix();
+    return true;
+  };
+  if (other.op() == Op::Atom) {
+    if (!take(other)) return std::nullopt;
+  } else if (other.op() == Op::Intersection) {
+    for (const QuadricRegion& c : other.children())
+      if (!take(c)) return std::nullopt;
+  } else {
+    return std::nullopt;
+  }
+  const Ellipsoid ell(*e.ellipsoid_radii, R, p);
+  for (const Eigen::Matrix4d* P : planes) {  // X^T P X = 2 q.x + q0 <= 0: n = 2q, d = -q0
+    const PlaneRelation rel = classifyEllipsoidPlane(ell, 2.0 * P->topRightCorner<3, 1>(), -(*P)(3, 3)).relation;
+    if (rel == PlaneRelation::PositiveSide) return EllipsoidQuadricRelation::Outside;
+    if (rel != PlaneRelation::NegativeSide) return std::nullopt;
+  }
+  if (!quadric_atom) return EllipsoidQuadricRelation::Inside;
+  const EllipsoidQuadricRelation rel = classifyEllipsoidQuadric(ell, *quadric_atom).relation;
+  if (rel == EllipsoidQuadricRelation::Undecided) return std::nullopt;
+  return rel;
+}
+
+/// A certified common interior point of a small ellipsoid `e` (posed by R, p; `ew` its world
+/// region) and `other` (world) after a Transversal verdict: the surfaces cross, so some point of
+/// the ellipsoid lies inside `other`. Tried: the centre, then points at 0.999 of the way to the
+/// surface towards decreasing f (the quadric's gradient mapped into the ellipsoid's frame) and
+/// along the six semi-axes; each accepted only if both regions classify it as interior
+/// (QuadricRegion::classifyPoint, certified signs). NaN vector if none qualifies (the caller
+/// runs the exact search).
+Eigen::Vector3d transversalWitness(const LocalSolid& e, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                                   const QuadricRegion& ew, const QuadricRegion& other) {
+  const Eigen::Matrix3d RS = R * e.ellipsoid_radii->asDiagonal();
+  auto ok = [&](const Eigen::Vector3d& x) { return other.classifyPoint(x) > 0 && ew.classifyPoint(x) > 0; };
+  if (ok(p)) return p;
+  std::vector<Eigen::Vector3d> dirs;
+  for (const Eigen::Matrix4d& Q : other.signedAtoms()) {
+    if (Q.topLeftCorner<3, 3>().isZero(0.0)) continue;
+    const Eigen::Vector3d g = Q.topLeftCorner<3, 3>() * p + Q.topRightCorner<3, 1>();
+    const Eigen::Vector3d u = -(RS.transpose() * g);
+    if (u.squaredNorm() > 0.0) dirs.push_back(u.normalized());
+  }
+  for (int i = 0; i < 3; ++i)
+    for (double sgn : {1.0, -1.0}) dirs.push_back(sgn * Eigen::Vector3d::Unit(i));
+  for (const Eigen::Vector3d& u : dirs) {
+    const Eigen::Vector3d x = p + RS * (0.999 * u);
+    if (ok(x)) return x;
+  }
+  return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+}
+
 void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
                  const fcl::Transform3<double>& tf2, const fcl::CollisionGeometry<double>* o1,
                  const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
@@ -243,8 +316,27 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
   if (!box)
     throw std::invalid_argument("fcl_quadric::collide: both operands are unbounded (half-spaces or unclipped quadrics)");
   if (box->empty()) return;
-  const PointSearchResult s = findPoint(QuadricRegion::combine(Op::Intersection, {wa, wb}), *box,
-                                        a.thin || b.thin ? 0 : tolerance_region::kRegionExtraBoxesAfterUndecided);
+  // Fast certified answers for a small ellipsoid (separated, or contained: its centre is a common
+  // interior point); a transversal verdict still needs the engine's witness point.
+  bool a_is_small = true;
+  std::optional<EllipsoidQuadricRelation> verdict = smallEllipsoidVerdict(a, R1, p1, wb);
+  if (!verdict) {
+    verdict = smallEllipsoidVerdict(b, R2, p2, wa);
+    a_is_small = false;
+  }
+  if (verdict == EllipsoidQuadricRelation::Outside) return;
+  PointSearchResult s;
+  if (verdict == EllipsoidQuadricRelation::Inside) {
+    s.status = PointSearch::Found;
+    s.point = a_is_small ? p1 : p2;
+  } else if (verdict == EllipsoidQuadricRelation::Transversal &&
+             (s.point = a_is_small ? transversalWitness(a, R1, p1, wa, wb) : transversalWitness(b, R2, p2, wb, wa),
+              s.point.allFinite())) {
+    s.status = PointSearch::Found;
+  } else {
+    s = findPoint(QuadricRegion::combine(Op::Intersection, {wa, wb}), *box,
+                  a.thin || b.thin ? 0 : tolerance_region::kRegionExtraBoxesAfterUndecided);
+  }
   if (s.status == PointSearch::Empty) return;
   if (result.numContacts() < request.num_max_contacts) {
     // Normal: o1's atom with the smallest |f| / |grad f| at the point, outward (as used).

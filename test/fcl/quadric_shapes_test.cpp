@@ -29,6 +29,7 @@
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 
+#include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/fcl/collision.h"
 #include "fcl_quadric/fcl/distance.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
@@ -212,6 +213,60 @@ TEST(QuadricShapeTypes, BadInputThrowsNamingTheValue) {
   expectThrow([&] { Csg(Op::Union, {{ballShape, skew}}); }, "child 0 pose");
   expectThrow([&] { Csg(Op::Intersection, {{ballShape, pose(Eigen::Matrix3d::Identity(), {5, 0, 0})}, {ballShape, Transform::Identity()}}); },
               "empty");
+}
+
+// fcl_quadric::collide tries the seed paper's small-ellipsoid filter (ellipsoid_quadric.h, zones
+// split by the clip planes) before the region engine. Its answers, and its contact points, against
+// the region engine alone on the same pairs: ellipsoids placed near clipped quadric surfaces, in
+// both argument orders.
+TEST(QuadricShapeDispatch, SmallEllipsoidFilterAgreesWithTheRegionEngineAndItsPointsAreInterior) {
+  using Q = Quadric<double>;
+  const std::vector<Q> shapes = {
+      Q::ellipticParaboloid(1.0, 1.0, {{Eigen::Vector3d::UnitZ(), 3.0}}),
+      Q::hyperboloidOneSheet(1.0, 0.8, 1.0, {{Eigen::Vector3d::UnitZ(), 2.0}, {-Eigen::Vector3d::UnitZ(), 2.0}}),
+      Q::hyperboloidTwoSheets(1.0, 1.0, 0.7, {{-Eigen::Vector3d::UnitZ(), -0.5}, {Eigen::Vector3d::UnitZ(), 3.0}}),
+      Q::ellipticCylinder(1.2, 0.9, {{Eigen::Vector3d::UnitZ(), 1.5}, {-Eigen::Vector3d::UnitZ(), 1.5}}),
+      Q::planePair(Eigen::Vector3d(1, 1, 0), 0.2, 0.6,
+                   {{Eigen::Vector3d::UnitZ(), 1.0}, {-Eigen::Vector3d::UnitZ(), 1.0},
+                    {Eigen::Vector3d(1, -1, 0), 2.0}, {Eigen::Vector3d(-1, 1, 0), 2.0}}),
+  };
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(0.0, 1.0), r(0.08, 0.4);
+  int colliding = 0, separated = 0;
+  for (int i = 0; i < 1500; ++i) {
+    const Q& shape = shapes[i % shapes.size()];
+    const Box3& box = shape.localBox();
+    Eigen::Vector4d X(0, 0, 0, 1);
+    do {
+      for (int k = 0; k < 3; ++k) X[k] = box.lo[k] - 0.5 + u(rng) * (box.hi[k] - box.lo[k] + 1.0);
+    } while (std::fabs(X.dot(shape.matrix() * X)) > 0.6 * 2.0 * (shape.matrix() * X).head<3>().norm());
+    const Eigen::Vector3d radii(r(rng), r(rng), r(rng));
+    Transform pose = Transform::Identity();
+    pose.linear() = test::randomRotation(rng);
+    pose.translation() = X.head<3>();
+    const Box3 eb{-radii, radii};
+    const RegionRelation truth =
+        collideRegions(shape.region(), box, QuadricRegion::atom(quadric::ellipsoid(radii)), eb, pose.linear(),
+                       pose.translation())
+            .relation;
+    if (truth == RegionRelation::Touching) continue;
+    const fcl::Ellipsoid<double> e(radii);
+    for (bool swap : {false, true}) {
+      fcl::CollisionRequest<double> req;
+      fcl::CollisionResult<double> res;
+      const std::size_t n = swap ? fcl_quadric::collide<double>(&shape, Transform::Identity(), &e, pose, req, res)
+                                 : fcl_quadric::collide<double>(&e, pose, &shape, Transform::Identity(), req, res);
+      ASSERT_EQ(n > 0, truth == RegionRelation::Overlapping) << "pair " << i << (swap ? " (swapped)" : "");
+      if (n == 0) continue;
+      // The reported point is interior to both solids (certified point classification).
+      const Eigen::Vector3d x = res.getContact(0).pos;
+      EXPECT_GE(shape.region().classifyPoint(x), 0) << "pair " << i;
+      EXPECT_LE(Ellipsoid(radii, pose.linear(), pose.translation()).implicit(x), 1e-12) << "pair " << i;
+    }
+    (truth == RegionRelation::Overlapping ? colliding : separated)++;
+  }
+  EXPECT_GT(colliding, 200);
+  EXPECT_GT(separated, 200);
 }
 
 TEST(QuadricShapeDispatch, PlainFclCollideWithStockSolverDoesNotCrashAndReportsNothing) {
