@@ -225,14 +225,24 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
 
 namespace {
 
-/// The seed paper's small-ellipsoid filter with zones (ellipsoid_quadric.h, docs/algorithms.md
-/// section 11): `e` an FCL sphere / ellipsoid posed by (R, p), `other` (world frame) one quadric
-/// atom intersected with half-spaces. The ellipsoid strictly outside one half-space -> Outside;
-/// strictly inside all of them -> the zone of the quadric, decided by classifyEllipsoidQuadric.
-/// nullopt whenever no certificate holds (the exact engine decides).
-std::optional<EllipsoidQuadricRelation> smallEllipsoidVerdict(const LocalSolid& e, const Eigen::Matrix3d& R,
-                                                              const Eigen::Vector3d& p, const QuadricRegion& other) {
-  if (!e.ellipsoid_radii) return std::nullopt;
+/// What the seed paper's small-ellipsoid filter (ellipsoid_quadric.h) tells collidePair.
+enum class SmallEllipsoidVerdict {
+  Disjoint,    ///< certified: no common point
+  Contained,   ///< certified: the ellipsoid lies in the other solid (its centre is a witness)
+  TryWitness,  ///< the surfaces cross (certified) somewhere: look for a common interior point
+  Engine,      ///< no certificate: the region engine decides
+};
+
+/// The filter with zones (docs/algorithms.md section 11): `e` an FCL sphere / ellipsoid posed by
+/// (R, p), `other` (world frame) one quadric atom intersected with half-spaces. Strictly outside
+/// one half-space, or certified outside the quadric -> Disjoint; inside the quadric and strictly
+/// inside every half-space -> Contained; inside or crossing the quadric while straddling a clip
+/// plane, or crossing it -> TryWitness (the common part may still be empty across a clip plane,
+/// so only a certified witness point decides, else the engine).
+SmallEllipsoidVerdict smallEllipsoidVerdict(const LocalSolid& e, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                                            const QuadricRegion& other) {
+  using V = SmallEllipsoidVerdict;
+  if (!e.ellipsoid_radii) return V::Engine;
   const Eigen::Matrix4d* quadric_atom = nullptr;
   std::vector<const Eigen::Matrix4d*> planes;
   auto take = [&](const QuadricRegion& r) {
@@ -246,30 +256,34 @@ std::optional<EllipsoidQuadricRelation> smallEllipsoidVerdict(const LocalSolid& 
     return true;
   };
   if (other.op() == Op::Atom) {
-    if (!take(other)) return std::nullopt;
+    if (!take(other)) return V::Engine;
   } else if (other.op() == Op::Intersection) {
     for (const QuadricRegion& c : other.children())
-      if (!take(c)) return std::nullopt;
+      if (!take(c)) return V::Engine;
   } else {
-    return std::nullopt;
+    return V::Engine;
   }
   const Ellipsoid ell(*e.ellipsoid_radii, R, p);
+  bool straddles = false;
   for (const Eigen::Matrix4d* P : planes) {  // X^T P X = 2 q.x + q0 <= 0: n = 2q, d = -q0
     const PlaneRelation rel = classifyEllipsoidPlane(ell, 2.0 * P->topRightCorner<3, 1>(), -(*P)(3, 3)).relation;
-    if (rel == PlaneRelation::PositiveSide) return EllipsoidQuadricRelation::Outside;
-    if (rel != PlaneRelation::NegativeSide) return std::nullopt;
+    if (rel == PlaneRelation::PositiveSide) return V::Disjoint;
+    straddles |= rel != PlaneRelation::NegativeSide;
   }
-  if (!quadric_atom) return EllipsoidQuadricRelation::Inside;
-  const EllipsoidQuadricRelation rel = classifyEllipsoidQuadric(ell, *quadric_atom).relation;
-  if (rel == EllipsoidQuadricRelation::Undecided) return std::nullopt;
-  return rel;
+  if (!quadric_atom) return straddles ? V::TryWitness : V::Contained;
+  switch (classifyEllipsoidQuadric(ell, *quadric_atom).relation) {
+    case EllipsoidQuadricRelation::Outside: return V::Disjoint;
+    case EllipsoidQuadricRelation::Inside: return straddles ? V::TryWitness : V::Contained;
+    case EllipsoidQuadricRelation::Transversal: return V::TryWitness;
+    case EllipsoidQuadricRelation::Undecided: break;
+  }
+  return V::Engine;
 }
 
 /// A certified common interior point of a small ellipsoid `e` (posed by R, p; `ew` its world
-/// region) and `other` (world) after a Transversal verdict: the surfaces cross, so some point of
-/// the ellipsoid lies inside `other`. Tried: the centre, then points at 0.999 of the way to the
-/// surface towards decreasing f (the quadric's gradient mapped into the ellipsoid's frame) and
-/// along the six semi-axes; each accepted only if both regions classify it as interior
+/// region) and `other` (world) after a TryWitness verdict. Tried: the centre, then points at 0.999
+/// of the way to the ellipsoid's surface towards decreasing f of each atom of `other` (its
+/// gradient at the centre mapped into the ellipsoid's frame) and along the six semi-axes; each accepted only if both regions classify it as interior
 /// (QuadricRegion::classifyPoint, certified signs). NaN vector if none qualifies (the caller
 /// runs the exact search).
 Eigen::Vector3d transversalWitness(const LocalSolid& e, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
@@ -279,7 +293,6 @@ Eigen::Vector3d transversalWitness(const LocalSolid& e, const Eigen::Matrix3d& R
   if (ok(p)) return p;
   std::vector<Eigen::Vector3d> dirs;
   for (const Eigen::Matrix4d& Q : other.signedAtoms()) {
-    if (Q.topLeftCorner<3, 3>().isZero(0.0)) continue;
     const Eigen::Vector3d g = Q.topLeftCorner<3, 3>() * p + Q.topRightCorner<3, 1>();
     const Eigen::Vector3d u = -(RS.transpose() * g);
     if (u.squaredNorm() > 0.0) dirs.push_back(u.normalized());
@@ -319,17 +332,17 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
   // Fast certified answers for a small ellipsoid (separated, or contained: its centre is a common
   // interior point); a transversal verdict still needs the engine's witness point.
   bool a_is_small = true;
-  std::optional<EllipsoidQuadricRelation> verdict = smallEllipsoidVerdict(a, R1, p1, wb);
-  if (!verdict) {
+  SmallEllipsoidVerdict verdict = smallEllipsoidVerdict(a, R1, p1, wb);
+  if (verdict == SmallEllipsoidVerdict::Engine) {
     verdict = smallEllipsoidVerdict(b, R2, p2, wa);
     a_is_small = false;
   }
-  if (verdict == EllipsoidQuadricRelation::Outside) return;
+  if (verdict == SmallEllipsoidVerdict::Disjoint) return;
   PointSearchResult s;
-  if (verdict == EllipsoidQuadricRelation::Inside) {
+  if (verdict == SmallEllipsoidVerdict::Contained) {
     s.status = PointSearch::Found;
     s.point = a_is_small ? p1 : p2;
-  } else if (verdict == EllipsoidQuadricRelation::Transversal &&
+  } else if (verdict == SmallEllipsoidVerdict::TryWitness &&
              (s.point = a_is_small ? transversalWitness(a, R1, p1, wa, wb) : transversalWitness(b, R2, p2, wb, wa),
               s.point.allFinite())) {
     s.status = PointSearch::Found;
