@@ -35,6 +35,7 @@
 #include "fcl_quadric/geometry/ellipsoid_quadric.h"
 #include "fcl_quadric/geometry/quadric_region.h"
 #include "fcl_quadric/geometry/region_distance_bound.h"
+#include "geometry/region_formula.h"
 
 namespace fcl_quadric {
 namespace detail {
@@ -233,51 +234,47 @@ enum class SmallEllipsoidVerdict {
   Engine,      ///< no certificate: the region engine decides
 };
 
-/// The filter with zones (docs/algorithms.md section 11): `e` an FCL sphere / ellipsoid posed by
-/// (R, p), `other` (world frame) one quadric atom intersected with half-spaces. Strictly outside
-/// one half-space, or certified outside the quadric -> Disjoint; inside the quadric and strictly
-/// inside every half-space -> Contained; inside or crossing the quadric while straddling a clip
-/// plane, or crossing it -> TryWitness (the common part may still be empty across a clip plane,
-/// so only a certified witness point decides, else the engine).
+/// The filter over the other solid's CSG formula (docs/algorithms.md section 11): `e` an FCL
+/// sphere / ellipsoid posed by (R, p), `other` in the world frame. Each atom (signed as the
+/// formula uses it) is classified against the whole ellipsoid: a half-space by section 4, a quadric
+/// by classifyEllipsoidQuadric; certified inside -> the atom is true on all of the ellipsoid,
+/// certified outside -> false on all of it, else unknown. The formula's three-valued value
+/// (region_formula.h, evaluated lazily: quadrics only where the planes leave it open) is then
+/// Out -> Disjoint, In -> Contained, Unknown -> TryWitness when every atom looked at was decided
+/// or certified crossing (only a certified witness point decides, else the engine), Engine when
+/// one was undecided (near tangency, or not small). For one quadric clipped by half-spaces these are the seed paper's
+/// zones split by planes.
 SmallEllipsoidVerdict smallEllipsoidVerdict(const LocalSolid& e, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
                                             const QuadricRegion& other) {
   using V = SmallEllipsoidVerdict;
   if (!e.ellipsoid_radii) return V::Engine;
-  const Eigen::Matrix4d* quadric_atom = nullptr;
-  std::vector<const Eigen::Matrix4d*> planes;
-  auto take = [&](const QuadricRegion& r) {
-    if (r.op() != Op::Atom) return false;
-    if (r.matrix().topLeftCorner<3, 3>().isZero(0.0)) {
-      planes.push_back(&r.matrix());
-      return true;
-    }
-    if (quadric_atom) return false;
-    quadric_atom = &r.matrix();
-    return true;
-  };
-  if (other.op() == Op::Atom) {
-    if (!take(other)) return V::Engine;
-  } else if (other.op() == Op::Intersection) {
-    for (const QuadricRegion& c : other.children())
-      if (!take(c)) return V::Engine;
-  } else {
-    return V::Engine;
-  }
+  const detail::Formula f(other);
   const Ellipsoid ell(*e.ellipsoid_radii, R, p);
-  bool straddles = false;
-  for (const Eigen::Matrix4d* P : planes) {  // X^T P X = 2 q.x + q0 <= 0: n = 2q, d = -q0
-    const PlaneRelation rel = classifyEllipsoidPlane(ell, 2.0 * P->topRightCorner<3, 1>(), -(*P)(3, 3)).relation;
-    if (rel == PlaneRelation::PositiveSide) return V::Disjoint;
-    straddles |= rel != PlaneRelation::NegativeSide;
+  std::vector<int> sign(f.atoms.size(), 2);  // 2: not computed yet
+  bool uncertain = false;                     // an atom near tangency or not small: skip the witness search
+  auto atomSign = [&](int k) {
+    if (sign[k] != 2) return sign[k];
+    const Eigen::Matrix4d& Q = f.atoms[k];
+    if (Q.topLeftCorner<3, 3>().isZero(0.0)) {  // X^T Q X = 2 q.x + q0 <= 0: n = 2q, d = -q0
+      const PlaneRelation rel = classifyEllipsoidPlane(ell, 2.0 * Q.topRightCorner<3, 1>(), -Q(3, 3)).relation;
+      sign[k] = rel == PlaneRelation::NegativeSide ? -1 : (rel == PlaneRelation::PositiveSide ? 1 : 0);
+      uncertain |= rel == PlaneRelation::Touching;
+    } else {
+      const EllipsoidQuadricRelation rel = classifyEllipsoidQuadric(ell, Q).relation;
+      sign[k] = rel == EllipsoidQuadricRelation::Inside ? -1 : (rel == EllipsoidQuadricRelation::Outside ? 1 : 0);
+      uncertain |= rel == EllipsoidQuadricRelation::Undecided;
+    }
+    return sign[k];
+  };
+  // Half-spaces first: they are cheap and often decide alone.
+  for (std::size_t k = 0; k < f.atoms.size(); ++k)
+    if (f.atoms[k].topLeftCorner<3, 3>().isZero(0.0)) atomSign(static_cast<int>(k));
+  switch (detail::pointEval(f, f.root, atomSign)) {
+    case detail::Tri::Out: return V::Disjoint;
+    case detail::Tri::In: return V::Contained;
+    case detail::Tri::Unknown: break;
   }
-  if (!quadric_atom) return straddles ? V::TryWitness : V::Contained;
-  switch (classifyEllipsoidQuadric(ell, *quadric_atom).relation) {
-    case EllipsoidQuadricRelation::Outside: return V::Disjoint;
-    case EllipsoidQuadricRelation::Inside: return straddles ? V::TryWitness : V::Contained;
-    case EllipsoidQuadricRelation::Transversal: return V::TryWitness;
-    case EllipsoidQuadricRelation::Undecided: break;
-  }
-  return V::Engine;
+  return uncertain ? V::Engine : V::TryWitness;
 }
 
 /// A certified common interior point of a small ellipsoid `e` (posed by R, p; `ew` its world
@@ -331,9 +328,10 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
   if (box->empty()) return;
   // Fast certified answers for a small ellipsoid (separated, or contained: its centre is a common
   // interior point); a transversal verdict still needs the engine's witness point.
+  // (Not against a triangle: it has no interior, the engine's undecided box is its answer.)
   bool a_is_small = true;
-  SmallEllipsoidVerdict verdict = smallEllipsoidVerdict(a, R1, p1, wb);
-  if (verdict == SmallEllipsoidVerdict::Engine) {
+  SmallEllipsoidVerdict verdict = b.thin ? SmallEllipsoidVerdict::Engine : smallEllipsoidVerdict(a, R1, p1, wb);
+  if (verdict == SmallEllipsoidVerdict::Engine && !a.thin) {
     verdict = smallEllipsoidVerdict(b, R2, p2, wa);
     a_is_small = false;
   }
