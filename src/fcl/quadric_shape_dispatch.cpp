@@ -242,8 +242,8 @@ enum class SmallEllipsoidVerdict {
 /// (region_formula.h, evaluated lazily: quadrics only where the planes leave it open) is then
 /// Out -> Disjoint, In -> Contained, Unknown -> TryWitness when every atom looked at was decided
 /// or certified crossing (only a certified witness point decides, else the engine), Engine when
-/// one was undecided (near tangency, or not small). For one quadric clipped by half-spaces these are the seed paper's
-/// zones split by planes.
+/// one was undecided (near tangency, or not small). For one quadric clipped by half-spaces these
+/// are the seed paper's zones split by planes.
 SmallEllipsoidVerdict smallEllipsoidVerdict(const LocalSolid& e, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
                                             const QuadricRegion& other) {
   using V = SmallEllipsoidVerdict;
@@ -280,9 +280,9 @@ SmallEllipsoidVerdict smallEllipsoidVerdict(const LocalSolid& e, const Eigen::Ma
 /// A certified common interior point of a small ellipsoid `e` (posed by R, p; `ew` its world
 /// region) and `other` (world) after a TryWitness verdict. Tried: the centre, then points at 0.999
 /// of the way to the ellipsoid's surface towards decreasing f of each atom of `other` (its
-/// gradient at the centre mapped into the ellipsoid's frame) and along the six semi-axes; each accepted only if both regions classify it as interior
-/// (QuadricRegion::classifyPoint, certified signs). NaN vector if none qualifies (the caller
-/// runs the exact search).
+/// gradient at the centre mapped into the ellipsoid's frame) and along the six semi-axes; each
+/// accepted only if both regions classify it as interior (QuadricRegion::classifyPoint, certified
+/// signs). NaN vector if none qualifies (the caller runs the exact search).
 Eigen::Vector3d transversalWitness(const LocalSolid& e, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
                                    const QuadricRegion& ew, const QuadricRegion& other) {
   const Eigen::Matrix3d RS = R * e.ellipsoid_radii->asDiagonal();
@@ -326,9 +326,9 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
   if (!box)
     throw std::invalid_argument("fcl_quadric::collide: both operands are unbounded (half-spaces or unclipped quadrics)");
   if (box->empty()) return;
-  // Fast certified answers for a small ellipsoid (separated, or contained: its centre is a common
-  // interior point); a transversal verdict still needs the engine's witness point.
-  // (Not against a triangle: it has no interior, the engine's undecided box is its answer.)
+  // Fast certified answers for a small ellipsoid: disjoint; contained (its centre is a common
+  // interior point); crossing, when a cheap certified witness point is found. Not against a
+  // triangle: it has no interior, and the engine's undecided box is its answer.
   bool a_is_small = true;
   SmallEllipsoidVerdict verdict = b.thin ? SmallEllipsoidVerdict::Engine : smallEllipsoidVerdict(a, R1, p1, wb);
   if (verdict == SmallEllipsoidVerdict::Engine && !a.thin) {
