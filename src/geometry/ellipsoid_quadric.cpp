@@ -43,7 +43,8 @@ const char* toString(EllipsoidQuadricRelation r) {
 namespace {
 
 void checkQuadric(const Eigen::Matrix4d& Q) {
-  if (!Q.allFinite()) {
+  // Element by element: Eigen's allFinite() computes x - x, which raises FE_INVALID on an infinity.
+  if (!std::all_of(Q.data(), Q.data() + 16, [](double v) { return std::isfinite(v); })) {
     std::ostringstream os;
     os << "quadric matrix must be finite, got\n" << Q;
     throw std::invalid_argument(os.str());

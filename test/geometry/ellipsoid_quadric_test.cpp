@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
 #include <random>
 
 #include <Eigen/Eigenvalues>
@@ -122,6 +125,45 @@ TEST(QuadricSurface, GapsOfTwoSheetedSurfacesAreTheVertexDistances) {
   plane(0, 3) = plane(3, 0) = 0.5;
   EXPECT_EQ(classifyQuadricSurface(plane).type, T::Plane);
   EXPECT_THROW(classifyQuadricSurface(Eigen::Matrix4d::Constant(std::nan(""))), std::invalid_argument);
+}
+
+TEST(EllipsoidQuadric, BadQuadricsThrowNamingTheMatrixAndZeroIsUndecided) {
+  const Ellipsoid e = Ellipsoid::sphere(0.2, {0, 0, 0});
+  Eigen::Matrix4d Q = quadric::ellipticCylinder(1.0, 1.0);
+  Q(0, 1) = 0.5;  // not symmetric
+  try {
+    classifyEllipsoidQuadric(e, Q);
+    ADD_FAILURE() << "a non-symmetric matrix was accepted";
+  } catch (const std::invalid_argument& ex) {
+    EXPECT_NE(std::string(ex.what()).find("symmetric"), std::string::npos) << ex.what();
+  }
+  Q = quadric::ellipticCylinder(1.0, 1.0);
+  Q(2, 2) = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(classifyEllipsoidQuadric(e, Q), std::invalid_argument);
+  const EllipsoidQuadricResult zero = classifyEllipsoidQuadric(e, Eigen::Matrix4d::Zero());
+  EXPECT_EQ(zero.relation, EllipsoidQuadricRelation::Undecided);
+  EXPECT_EQ(zero.surface.type, QuadricSurfaceType::Other);
+  EXPECT_STREQ(toString(EllipsoidQuadricRelation::Transversal), "transversal");
+  EXPECT_STREQ(toString(QuadricSurfaceType::HyperboloidTwoSheets), "hyperboloid of two sheets");
+}
+
+TEST(EllipsoidQuadric, VerdictIsInvariantUnderRigidMotionAndScalingOfQ) {
+  // The same configuration posed anywhere, with Q scaled by any positive factor, gets the same
+  // verdict (the roots scale, the certified signs do not change).
+  std::mt19937_64 rng(3);
+  const Eigen::Matrix4d Q0 = quadric::hyperboloidOneSheet(1.0, 1.5, 0.8);
+  for (double x : {0.3, 0.75, 0.95, 1.05, 1.3}) {
+    const Ellipsoid e0({0.2, 0.15, 0.1}, Eigen::Matrix3d::Identity(), Eigen::Vector3d(x, 0, 0.1));
+    const EllipsoidQuadricRelation ref = classifyEllipsoidQuadric(e0, Q0).relation;
+    EXPECT_NE(ref, EllipsoidQuadricRelation::Undecided) << "x = " << x;
+    for (int k = 0; k < 10; ++k) {
+      const Eigen::Matrix3d R = test::randomRotation(rng);
+      const Eigen::Vector3d p = 1e3 * test::randomUnitVector(rng);
+      const double scale = std::pow(10.0, std::uniform_real_distribution<double>(-6, 6)(rng));
+      const Ellipsoid e({0.2, 0.15, 0.1}, R, R * e0.center() + p);
+      EXPECT_EQ(classifyEllipsoidQuadric(e, scale * posed(Q0, R, p)).relation, ref) << "x = " << x;
+    }
+  }
 }
 
 TEST(EllipsoidQuadric, SmallnessFollowsCurvatureAndGap) {
