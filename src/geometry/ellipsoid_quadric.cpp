@@ -154,10 +154,10 @@ QuadricSurfaceShape classifyQuadricSurface(const Eigen::Matrix4d& Q_in) {
   // beta is compared with sqrt(mu_max |k|) (scale-free: a cylinder of radius r has mu ~ 1/r^2,
   // k ~ -1); k with the magnitude of the terms it was formed from.
   const int k_sign = bandSign(k, k_scale);
-  if (k_sign == 2) return out;
   const int beta_band = nZ == 0 ? 0 : bandSign(beta, std::sqrt(mu_max * std::max(std::fabs(k), 0.0)));
   if (beta_band == 2) return out;
   const bool parabolic = nZ > 0 && beta_band != 0;
+  if (k_sign == 2 && !parabolic) return out;  // (a paraboloid's k only moves its vertex)
 
   if (nN == 3) {
     if (k_sign == 0) {
