@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include <Eigen/Core>
+
 namespace fcl_quadric {
 namespace detail {
 
@@ -26,6 +28,26 @@ inline void checkCoefficients(const char* where, const std::vector<double>& c, b
       os << where << ": non-finite coefficient c[" << i << "] = " << c[i];
       throw std::invalid_argument(os.str());
     }
+  }
+}
+
+/// A 4x4 quadric matrix: every entry finite (checked entry by entry: Eigen's allFinite() computes
+/// x - x, which raises FE_INVALID on an infinity) and symmetric to 1e-12 relative to its largest
+/// entry. A zero matrix passes (callers that reject it say so).
+inline void checkQuadricMatrix(const Eigen::Matrix4d& Q) {
+  for (int i = 0; i < 16; ++i) {
+    if (!std::isfinite(Q.data()[i])) {
+      std::ostringstream os;
+      os << "quadric matrix must be finite, got\n" << Q;
+      throw std::invalid_argument(os.str());
+    }
+  }
+  const double scale = Q.cwiseAbs().maxCoeff();
+  const double asym = (Q - Q.transpose()).cwiseAbs().maxCoeff();
+  if (asym > 1e-12 * scale) {
+    std::ostringstream os;
+    os << "quadric matrix must be symmetric (max |Q - Q^T| = " << asym << ", relative tolerance 1e-12), got\n" << Q;
+    throw std::invalid_argument(os.str());
   }
 }
 

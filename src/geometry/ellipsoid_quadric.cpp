@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
-#include <stdexcept>
 
 #include <Eigen/Eigenvalues>
 
+#include "algebra/input_checks.h"
 #include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
@@ -41,21 +40,6 @@ const char* toString(EllipsoidQuadricRelation r) {
 }
 
 namespace {
-
-void checkQuadric(const Eigen::Matrix4d& Q) {
-  // Element by element: Eigen's allFinite() computes x - x, which raises FE_INVALID on an infinity.
-  if (!std::all_of(Q.data(), Q.data() + 16, [](double v) { return std::isfinite(v); })) {
-    std::ostringstream os;
-    os << "quadric matrix must be finite, got\n" << Q;
-    throw std::invalid_argument(os.str());
-  }
-  const double scale = Q.cwiseAbs().maxCoeff();
-  if ((Q - Q.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale) {
-    std::ostringstream os;
-    os << "quadric matrix must be symmetric, got\n" << Q;
-    throw std::invalid_argument(os.str());
-  }
-}
 
 /// -1 / 0 / +1 for a value that is (relative to `scale`) negative, zero, positive; 2 when it is
 /// in the ambiguous band between kQuadricTypeRelativeZero and kQuadricTypeAmbiguity.
@@ -121,7 +105,7 @@ MinorSum principalMinorSum(const Eigen::Matrix4d& C, const Eigen::Matrix4d& E, i
 }  // namespace
 
 QuadricSurfaceShape classifyQuadricSurface(const Eigen::Matrix4d& Q_in) {
-  checkQuadric(Q_in);
+  detail::checkQuadricMatrix(Q_in);
   QuadricSurfaceShape out;
   const double s = Q_in.cwiseAbs().maxCoeff();
   if (!(s > 0.0)) return out;

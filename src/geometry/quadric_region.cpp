@@ -18,6 +18,7 @@
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
+#include "algebra/input_checks.h"
 #include "region_formula.h"
 
 namespace fcl_quadric {
@@ -76,19 +77,8 @@ FaceShape classifyFace(const Eigen::Matrix4d& Q) {
 // --- QuadricRegion ------------------------------------------------------------------------------
 
 QuadricRegion QuadricRegion::atom(const Eigen::Matrix4d& Q) {
-  if (!Q.allFinite()) {
-    std::ostringstream os;
-    os << "quadric matrix must be finite, got\n" << Q;
-    throw std::invalid_argument(os.str());
-  }
-  const double scale = Q.cwiseAbs().maxCoeff();
-  if (!(scale > 0.0)) throw std::invalid_argument("quadric matrix must not be zero");
-  const double asym = (Q - Q.transpose()).cwiseAbs().maxCoeff();
-  if (asym > 1e-12 * scale) {
-    std::ostringstream os;
-    os << "quadric matrix must be symmetric (max |Q - Q^T| = " << asym << ", relative tolerance 1e-12), got\n" << Q;
-    throw std::invalid_argument(os.str());
-  }
+  detail::checkQuadricMatrix(Q);
+  if (!(Q.cwiseAbs().maxCoeff() > 0.0)) throw std::invalid_argument("quadric matrix must not be zero");
   QuadricRegion r;
   r.op_ = Op::Atom;
   r.Q_ = 0.5 * (Q + Q.transpose());

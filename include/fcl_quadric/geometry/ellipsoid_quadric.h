@@ -76,7 +76,8 @@ constexpr double kSmallnessRelativeMargin = 1e-9;
 
 /// Definition 1 via Lemma 3 and Lemma 4 (rebuilt): e is small with respect to the surface iff
 /// the surface's largest normal curvature is at most e's smallest one, a3 / a1^2 (radii
-/// a1 >= a2 >= a3), and e's diameter 2 a1 is at most the surface's min_gap.
+/// a1 >= a2 >= a3), and e's diameter 2 a1 is at most the surface's min_gap. No failure mode
+/// (Cone, IntersectingPlanes, Plane and Other are never small).
 bool isSmall(const Ellipsoid& e, const QuadricSurfaceShape& q);
 
 enum class EllipsoidQuadricRelation {
