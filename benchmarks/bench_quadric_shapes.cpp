@@ -20,6 +20,11 @@
 // paraboloid cup, a hyperboloid waist, a capped elliptic cylinder) through fcl_quadric::collide,
 // which tries the seed paper's filter first, against the region engine alone on the same pairs
 // (the path before the filter); afterwards their agreement.
+//
+// Distance (geometry/convex_distance.h): fcl_quadric::distance on EllipticCylinder pairs (GJK on
+// exact support mappings) against fcl::distance on the same fcl::Cylinder poses (libccd GJK,
+// FCL's default solver and distance_tolerance); afterwards FCL's relative error on the separated
+// pairs, against ours.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -32,9 +37,11 @@
 #include <fcl/math/motion/translation_motion.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/continuous_collision.h>
+#include <fcl/narrowphase/distance.h>
 
 #include "fcl_quadric/continuous/region_ccd.h"
 #include "fcl_quadric/fcl/collision.h"
+#include "fcl_quadric/fcl/distance.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
 
 #include "bench_support.h"
@@ -207,6 +214,60 @@ BENCHMARK(BM_CsgRingWedgeCcd)
 BENCHMARK(BM_CylindersRegionEngine)->Name("QuadricShapes/Cylinders/RegionEngine")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CylindersFclGjkLibccd)->Name("QuadricShapes/Cylinders/FclGjkLibccd")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CsgRingWedge)->Name("QuadricShapes/Csg/RingWedge")->Unit(benchmark::kMicrosecond);
+/// The cylinder pairs as prebuilt shapes (both libraries' shapes are built once, outside the
+/// timed loops: an EllipticCylinder computes its AABB and mass properties on construction).
+struct DistancePair {
+  std::shared_ptr<fcl_quadric::EllipticCylinder<double>> a, b;
+  std::shared_ptr<fcl::Cylinderd> fa, fb;
+  fcl::Transform3d tb;
+};
+std::vector<DistancePair>& distancePairs() {
+  static std::vector<DistancePair> pairs;
+  return pairs;
+}
+std::vector<DistancePair> makeDistancePairs(const std::vector<CylinderPair>& cylinders) {
+  std::vector<DistancePair> out;
+  for (const CylinderPair& c : cylinders) {
+    DistancePair d;
+    d.a = std::make_shared<fcl_quadric::EllipticCylinder<double>>(c.r1, c.r1, c.L1);
+    d.b = std::make_shared<fcl_quadric::EllipticCylinder<double>>(c.r2, c.r2, c.L2);
+    d.fa = std::make_shared<fcl::Cylinderd>(c.r1, c.L1);
+    d.fb = std::make_shared<fcl::Cylinderd>(c.r2, c.L2);
+    d.tb = fcl::Transform3d::Identity();
+    d.tb.linear() = c.R;
+    d.tb.translation() = c.p;
+    out.push_back(d);
+  }
+  return out;
+}
+double quadricDistance(const DistancePair& c) {
+  fcl::DistanceRequestd req;
+  fcl::DistanceResultd res;
+  return fcl_quadric::distance(c.a.get(), fcl::Transform3d::Identity(), c.b.get(), c.tb, req, res);
+}
+double fclDistance(const DistancePair& c) {
+  fcl::DistanceRequestd req;
+  fcl::DistanceResultd res;
+  return fcl::distance(c.fa.get(), fcl::Transform3d::Identity(), c.fb.get(), c.tb, req, res);
+}
+void BM_CylindersDistanceOurs(benchmark::State& state) {
+  const auto& pairs = distancePairs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(quadricDistance(pairs[i]));
+    i = (i + 1) % pairs.size();
+  }
+}
+void BM_CylindersDistanceFcl(benchmark::State& state) {
+  const auto& pairs = distancePairs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(fclDistance(pairs[i]));
+    i = (i + 1) % pairs.size();
+  }
+}
+BENCHMARK(BM_CylindersDistanceOurs)->Name("QuadricShapes/CylindersDistance/fcl_quadric")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CylindersDistanceFcl)->Name("QuadricShapes/CylindersDistance/FclGjkLibccd")->Unit(benchmark::kMicrosecond);
 
 struct SmallEllipsoidPair {
   std::shared_ptr<fcl_quadric::Quadric<double>> shape;  // at the identity
@@ -300,6 +361,7 @@ int main(int argc, char** argv) {
     }
   }
   smallEllipsoidPairs() = makeSmallEllipsoidPairs(n);
+  distancePairs() = makeDistancePairs(cylinderPairs());
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   {
@@ -317,6 +379,24 @@ int main(int argc, char** argv) {
     std::printf("Small ellipsoids, %zu pairs: %d colliding (certified), %d in the engine's band; fcl_quadric::collide "
                 "(filter first) differs from the engine on %d\n",
                 smallEllipsoidPairs().size(), colliding, band, differ);
+  }
+  {
+    // Distance: FCL's relative error on the pairs both call separated; sign disagreements.
+    std::vector<double> err;
+    int sign_differ = 0, separated = 0;
+    for (const DistancePair& c : distancePairs()) {
+      const double ours = quadricDistance(c), theirs = fclDistance(c);
+      if ((ours > 0) != (theirs > 0)) ++sign_differ;
+      if (ours > 0 && theirs > 0) {
+        ++separated;
+        err.push_back(std::fabs(theirs - ours) / ours);
+      }
+    }
+    std::sort(err.begin(), err.end());
+    std::printf("Distance, %zu cylinder pairs: %d separated for both; FCL libccd relative error median %.3g, max %.3g; "
+                "sign differs on %d\n",
+                cylinderPairs().size(), separated, err.empty() ? 0.0 : err[err.size() / 2],
+                err.empty() ? 0.0 : err.back(), sign_differ);
   }
   // Agreement (outside the timed loops).
   int touching = 0, disagree = 0, fcl_misses = 0, fcl_false = 0, hits = 0;

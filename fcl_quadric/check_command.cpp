@@ -9,6 +9,8 @@
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/fcl_fallback.h"
+#include "fcl_quadric/geometry/convex_distance.h"
+#include "fcl_quadric/geometry/convex_support.h"
 #include "fcl_quadric/geometry/quadric_region.h"
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "fcl_quadric/geometry/signed_distance.h"
@@ -97,6 +99,24 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
   }
   report.collide = report.status != Separation::Separated;
   report.point_a = report.point_b = s.point;
+  // Convex pairs (both bounded; docs/algorithms.md section 12) also get the signed distance with
+  // witness points and normal, when GJK / EPA certifies the engine's status (touching: 0).
+  if (ba && bb) {
+    const std::optional<ConvexSupport> ca = ConvexSupport::fromRegion(ra, *ba), cb = ConvexSupport::fromRegion(rb, *bb);
+    if (ca && cb) {
+      const SignedDistanceResult d =
+          convexSignedDistance(*ca, a.pose.linear(), a.pose.translation(), *cb, b.pose.linear(), b.pose.translation());
+      if (report.status == Separation::Touching) {
+        report.signed_distance = 0.0;
+      } else if (d.status == report.status) {
+        report.signed_distance = d.distance;
+        report.point_a = d.point_a;
+        report.point_b = d.point_b;
+        report.normal = d.normal;
+        return report;
+      }
+    }
+  }
   // Normal: a's surface nearest to the point (outward), as the FCL front door reports it.
   double best = std::numeric_limits<double>::infinity();
   for (const Eigen::Matrix4d& Q : wa.signedAtoms()) {
@@ -132,8 +152,14 @@ nlohmann::ordered_json checkScene(const Scene& scene) {
     entry["b"] = b.name;
     entry["status"] = toString(r.status);
     entry["collide"] = r.collide;
-    if (r.method == PairMethod::QuadricRegion) {
-      // No distance for quadric shapes; a witness (contact point) and normal only on contact.
+    if (r.method == PairMethod::QuadricRegion && !std::isnan(r.signed_distance)) {
+      // A convex quadric pair: distance, witnesses and normal as for the other pairs.
+      entry["signed_distance"] = r.signed_distance;
+      entry["points"] = nlohmann::ordered_json::array({toJson(r.point_a), toJson(r.point_b)});
+      entry["normal"] = toJson(r.normal);
+    } else if (r.method == PairMethod::QuadricRegion) {
+      // No distance for non-convex quadric shapes (or half-spaces); a witness (contact point) and
+      // normal only on contact.
       entry["signed_distance"] = nullptr;
       entry["points"] = r.collide ? nlohmann::ordered_json::array({toJson(r.point_a), toJson(r.point_b)})
                                   : nlohmann::ordered_json(nullptr);

@@ -68,6 +68,9 @@ heavy+='|Planning\.'
 heavy+='|RegionCcd.(BallAndCylinderUnderRandomRationalMotionsMatchTheDistanceOracle|DegenerateContactsAreFoundAtTheirClosedFormTimes)'
 heavy+='|QuadricShapeCcd.(CircularEllipticCylinderMatchesLibccdSampledAlongRandomRationalMotions|BallDownTheBoreOfARingPassesOrTouchesTheRimAtTheAnalyticTime)'
 heavy+='|QuadricShapeDispatch.SmallEllipsoidFilterAgreesWithTheRegionEngineAndItsPointsAreInterior'  # 156 s (2026-11-22)
+# The region engine as oracle (maxLinear, collideRegions per pair); the closed-form agreements of
+# the same GJK / EPA and support code stay in the sanitizer run.
+heavy+='|ConvexSupport.RegionSupportMatchesTheCertifiedMaxLinearBound|ConvexDistance.RegionPairsAgreeWithTheCertifiedStaticEngineAlongTheNormal'
 step "asan+ubsan tests" ctest --test-dir "$prefix-asan" -LE 'long|install' -E "$heavy" --timeout 900 --output-on-failure -j"$jobs"
 
 step "tsan configure" cmake -S . -B "$prefix-tsan" "${common[@]}" -DFCL_QUADRIC_SANITIZE=thread \

@@ -136,13 +136,11 @@ S distance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1, c
   detail::checkPosedPair(o1, tf1, o2, tf2, "fcl_quadric::distance");
   QuadricSolver<S> solver;
   solver.libccd().distance_tolerance = request.distance_tolerance;
-  // fcl_quadric's quadric shapes (BV_UNKNOWN for FCL): distance is not implemented for them yet;
-  // say so rather than let FCL print "not supported" and return a meaningless value.
+  // fcl_quadric's quadric shapes (BV_UNKNOWN for FCL): their own dispatch (convex ones by GJK / EPA
+  // on support mappings; quadric_shape_dispatch.h).
   if constexpr (std::is_same_v<S, double>) {
     if (detail::isQuadricShape(o1) || detail::isQuadricShape(o2))
-      throw std::invalid_argument(
-          "fcl_quadric::distance: distance queries on EllipticCylinder / Quadric / QuadricCSG are not supported "
-          "yet (use fcl_quadric::collide)");
+      return detail::distanceQuadricShapes(o1, tf1, o2, tf2, request, result);
   }
   return fcl::distance(o1, tf1, o2, tf2, &solver, request, result);
 }

@@ -30,6 +30,8 @@
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
+#include "fcl_quadric/geometry/convex_distance.h"
+#include "fcl_quadric/geometry/convex_support.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
 #include "fcl_quadric/geometry/ellipsoid_plane.h"
 #include "fcl_quadric/geometry/ellipsoid_quadric.h"
@@ -81,6 +83,18 @@ std::optional<LocalSolid> triangleSolid(const Eigen::Vector3d& p0, const Eigen::
   return LocalSolid{QuadricRegion::combine(QuadricRegion::Op::Intersection, parts), Box3{lo - pad, hi + pad}, true};
 }
 
+/// The axis-aligned box c +- h as six half-spaces.
+QuadricRegion boxRegion(const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
+  std::vector<QuadricRegion> planes;
+  for (int i = 0; i < 3; ++i) {
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    n[i] = 1.0;
+    planes.push_back(QuadricRegion::halfspace(n, c[i] + h[i]));
+    planes.push_back(QuadricRegion::halfspace(-n, -(c[i] - h[i])));
+  }
+  return QuadricRegion::combine(QuadricRegion::Op::Intersection, planes);
+}
+
 template <typename BV>
 bool meshPieces(const fcl::CollisionGeometry<double>* g, std::vector<LocalSolid>* out) {
   const auto* m = dynamic_cast<const fcl::BVHModel<BV>*>(g);
@@ -103,14 +117,7 @@ bool compositePieces(const fcl::CollisionGeometry<double>* g, std::vector<LocalS
     for (const std::array<double, 6>& b : tree->toBoxes()) {
       const Eigen::Vector3d c(b[0], b[1], b[2]);
       const Eigen::Vector3d h = Eigen::Vector3d::Constant(0.5 * b[3]);
-      std::vector<QuadricRegion> planes;
-      for (int i = 0; i < 3; ++i) {
-        Eigen::Vector3d n = Eigen::Vector3d::Zero();
-        n[i] = 1.0;
-        planes.push_back(QuadricRegion::halfspace(n, c[i] + h[i]));
-        planes.push_back(QuadricRegion::halfspace(-n, -(c[i] - h[i])));
-      }
-      out->push_back(LocalSolid{QuadricRegion::combine(QuadricRegion::Op::Intersection, planes), Box3{c - h, c + h}, false});
+      out->push_back(LocalSolid{boxRegion(c, h), Box3{c - h, c + h}, false});
     }
     return true;
   }
@@ -143,14 +150,7 @@ LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which
     }
     case fcl::GEOM_BOX: {
       const Eigen::Vector3d h = 0.5 * static_cast<const fcl::Box<double>*>(g)->side;
-      std::vector<QuadricRegion> planes;
-      for (int i = 0; i < 3; ++i) {
-        Eigen::Vector3d n = Eigen::Vector3d::Zero();
-        n[i] = 1.0;
-        planes.push_back(QuadricRegion::halfspace(n, h[i]));
-        planes.push_back(QuadricRegion::halfspace(-n, h[i]));
-      }
-      return {QuadricRegion::combine(Op::Intersection, planes), symmetricBox(h)};
+      return {boxRegion(Eigen::Vector3d::Zero(), h), symmetricBox(h)};
     }
     case fcl::GEOM_CYLINDER: {
       const auto* c = static_cast<const fcl::Cylinder<double>*>(g);
@@ -423,7 +423,191 @@ std::optional<double> convexInradius(const fcl::CollisionGeometry<double>* g) {
   }
 }
 
+/// An FCL convex primitive or a convex quadric shape as a support mapping (local frame); none
+/// for any other geometry. \throws std::invalid_argument for an unbounded quadric shape.
+std::optional<ConvexSupport> convexSupportOf(const fcl::CollisionGeometry<double>* g, const char* which) {
+  if (const auto* q = dynamic_cast<const QuadricShape<double>*>(g)) {
+    if (const auto* c = dynamic_cast<const EllipticCylinder<double>*>(g))
+      return ConvexSupport::ellipticCylinder(c->a(), c->b(), 0.5 * c->lz());
+    if (!q->bounded())
+      throw std::invalid_argument(std::string("fcl_quadric::distance: ") + which +
+                                  " is an unbounded quadric shape (a CSG operand only)");
+    return ConvexSupport::fromRegion(q->region(), q->localBox());
+  }
+  switch (g->getNodeType()) {
+    case fcl::GEOM_SPHERE:
+      return ConvexSupport::ellipsoid(Eigen::Vector3d::Constant(static_cast<const fcl::Sphere<double>*>(g)->radius));
+    case fcl::GEOM_ELLIPSOID: return ConvexSupport::ellipsoid(static_cast<const fcl::Ellipsoid<double>*>(g)->radii);
+    case fcl::GEOM_BOX: return ConvexSupport::box(0.5 * static_cast<const fcl::Box<double>*>(g)->side);
+    case fcl::GEOM_CYLINDER: {
+      const auto* c = static_cast<const fcl::Cylinder<double>*>(g);
+      return ConvexSupport::ellipticCylinder(c->radius, c->radius, 0.5 * c->lz);
+    }
+    case fcl::GEOM_CONE: {
+      const auto* c = static_cast<const fcl::Cone<double>*>(g);
+      return ConvexSupport::cone(c->radius, 0.5 * c->lz);
+    }
+    case fcl::GEOM_CAPSULE: {
+      const auto* c = static_cast<const fcl::Capsule<double>*>(g);
+      return ConvexSupport::capsule(c->radius, 0.5 * c->lz);
+    }
+    default: return std::nullopt;
+  }
+}
+
+/// A convex piece posed in the world, with the FCL primitive index it reports (-1: none) and
+/// what rebuilds its region for collidePair: a primitive (the geometry itself), a triangle
+/// (vertices v[0..2], mesh frame) or an OcTree leaf (centre v[0], half widths v[1], tree frame).
+struct PosedConvex {
+  enum Kind { Primitive, Triangle, Leaf };
+  ConvexSupport support;
+  Eigen::Matrix3d R;
+  Eigen::Vector3d p;
+  int index = -1;
+  Kind kind = Primitive;
+  std::array<Eigen::Vector3d, 3> v{};
+};
+
+/// World AABB of a posed convex piece from six support points (exact for the support mapping).
+Box3 worldBox(const PosedConvex& c) {
+  Box3 b;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d e = c.R.row(i).transpose();
+    b.hi[i] = c.R.row(i).dot(c.support.support(e)) + c.p[i];
+    b.lo[i] = c.R.row(i).dot(c.support.support(-e)) + c.p[i];
+  }
+  return b;
+}
+
+double boxGap(const Box3& a, const Box3& b) {
+  const Eigen::Vector3d gap = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0);
+  return gap.norm();
+}
+
+/// BVH triangles / OcTree leaves as convex pieces (world frame); false if g is neither.
+template <typename BV>
+bool meshConvexPieces(const fcl::CollisionGeometry<double>* g, const fcl::Transform3<double>& tf,
+                      std::vector<PosedConvex>* out) {
+  const auto* m = dynamic_cast<const fcl::BVHModel<BV>*>(g);
+  if (m == nullptr) return false;
+  for (int t = 0; t < m->num_tris; ++t) {
+    const fcl::Triangle& tri = m->tri_indices[t];
+    const std::array<Eigen::Vector3d, 3> v{m->vertices[tri[0]], m->vertices[tri[1]], m->vertices[tri[2]]};
+    out->push_back(PosedConvex{ConvexSupport::points({v[0], v[1], v[2]}), tf.linear(), tf.translation(), t,
+                               PosedConvex::Triangle, v});
+  }
+  return true;
+}
+
+bool convexPieces(const fcl::CollisionGeometry<double>* g, const fcl::Transform3<double>& tf,
+                  std::vector<PosedConvex>* out) {
+  if (meshConvexPieces<fcl::OBBRSS<double>>(g, tf, out) || meshConvexPieces<fcl::OBB<double>>(g, tf, out) ||
+      meshConvexPieces<fcl::RSS<double>>(g, tf, out) || meshConvexPieces<fcl::AABB<double>>(g, tf, out) ||
+      meshConvexPieces<fcl::kIOS<double>>(g, tf, out) || meshConvexPieces<fcl::KDOP<double, 16>>(g, tf, out) ||
+      meshConvexPieces<fcl::KDOP<double, 18>>(g, tf, out) || meshConvexPieces<fcl::KDOP<double, 24>>(g, tf, out))
+    return true;
+  if (const auto* tree = dynamic_cast<const fcl::OcTree<double>*>(g)) {
+    int index = 0;
+    for (const std::array<double, 6>& b : tree->toBoxes()) {
+      const Eigen::Vector3d c(b[0], b[1], b[2]);
+      const Eigen::Vector3d h = Eigen::Vector3d::Constant(0.5 * b[3]);
+      out->push_back(PosedConvex{ConvexSupport::box(h), tf.linear(), tf.linear() * c + tf.translation(), index++,
+                                 PosedConvex::Leaf, {c, h, Eigen::Vector3d::Zero()}});
+    }
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
+
+double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
+                             const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
+                             const fcl::DistanceRequest<double>& request, fcl::DistanceResult<double>& result) {
+  const char* where = "fcl_quadric::distance";
+  // The quadric shape (o1 or o2) as one convex piece; the partner as one piece, or as the pieces of
+  // a mesh / octree, or a half-space.
+  auto shapeOf = [&](const fcl::CollisionGeometry<double>* g, const fcl::Transform3<double>& tf, const char* which) {
+    std::optional<ConvexSupport> s = convexSupportOf(g, which);
+    if (!s)
+      throw std::invalid_argument(std::string(where) + ": " + which +
+                                  (isQuadricShape(g)
+                                       ? " is a quadric shape that is not convex (a union, a difference of curved "
+                                         "solids, two curved atoms, or a non-convex quadric): distance is implemented "
+                                         "for convex quadric shapes only (fcl_quadric::distanceLowerBound gives a "
+                                         "certified bound)"
+                                       : (" has node type " + std::to_string(g->getNodeType()) +
+                                          ", which is not supported against fcl_quadric quadric shapes (supported: "
+                                          "convex quadric shapes, Sphere, Ellipsoid, Box, Cylinder, Cone, Capsule, "
+                                          "Halfspace, BVH meshes, OcTree)"))
+                                      .c_str());
+    return PosedConvex{*s, tf.linear(), tf.translation(), -1, PosedConvex::Primitive, {}};
+  };
+  const bool swap = !isQuadricShape(o1);  // the quadric shape first
+  const fcl::CollisionGeometry<double>* gs = swap ? o2 : o1;
+  const fcl::CollisionGeometry<double>* gp = swap ? o1 : o2;
+  const fcl::Transform3<double>& tfs = swap ? tf2 : tf1;
+  const fcl::Transform3<double>& tfp = swap ? tf1 : tf2;
+  const PosedConvex shape = shapeOf(gs, tfs, swap ? "o2" : "o1");
+
+  // Reports d with witnesses (x on the shape, y on the partner) in FCL's argument order.
+  auto report = [&](double d, const Eigen::Vector3d& x, const Eigen::Vector3d& y, int partner_index) {
+    const double value = d < 0.0 && !request.enable_signed_distance ? -1.0 : d;
+    result.update(value, o1, o2, swap ? partner_index : fcl::DistanceResult<double>::NONE,
+                  swap ? fcl::DistanceResult<double>::NONE : partner_index, swap ? y : x, swap ? x : y);
+  };
+
+  if (gp->getNodeType() == fcl::GEOM_HALFSPACE) {
+    // min over the shape of n.x - d is reached at its support point towards -n.
+    const auto* hs = static_cast<const fcl::Halfspace<double>*>(gp);
+    const Eigen::Vector3d n = tfp.linear() * hs->n.normalized();
+    const double off = hs->d / hs->n.norm() + n.dot(tfp.translation());
+    const Eigen::Vector3d x = shape.R * shape.support.support(-(shape.R.transpose() * n)) + shape.p;
+    double s = n.dot(x) - off;
+    const double band = tolerance_convex::kConvexSeparationRelative *
+                        (shape.support.size() + (shape.R * shape.support.center() + shape.p).norm() + std::abs(off));
+    if (std::abs(s) <= band) s = 0.0;  // touching: contact
+    report(s, x, x - s * n, -1);
+    return result.min_distance;
+  }
+
+  std::vector<PosedConvex> pieces;
+  if (!convexPieces(gp, tfp, &pieces)) pieces.push_back(shapeOf(gp, tfp, swap ? "o1" : "o2"));
+  const Box3 shape_box = worldBox(shape);
+  double best = std::numeric_limits<double>::infinity();
+  for (const PosedConvex& piece : pieces) {
+    if (pieces.size() > 1 && boxGap(shape_box, worldBox(piece)) >= best) continue;
+    SignedDistanceResult d =
+        convexSignedDistance(shape.support, shape.R, shape.p, piece.support, piece.R, piece.p, request.enable_signed_distance);
+    // Near contact the front door's own collide decides the sign, so distance and collide agree.
+    const double scale = shape.support.size() + piece.support.size() + (shape.p - piece.p).norm();
+    // (An overlap certified without its depth, want_depth = false, reports distance 0: not near.)
+    const bool depth_unknown = d.status == Separation::Overlapping && !request.enable_signed_distance;
+    if (!depth_unknown && std::abs(d.distance) <= 1e-8 * scale) {
+      fcl::CollisionRequest<double> creq(1);
+      fcl::CollisionResult<double> cres;
+      std::optional<LocalSolid> b;
+      if (piece.kind == PosedConvex::Primitive) b = localSolid(gp, "o2", where);
+      else if (piece.kind == PosedConvex::Triangle) b = triangleSolid(piece.v[0], piece.v[1], piece.v[2]);
+      else b = LocalSolid{boxRegion(piece.v[0], piece.v[1]), Box3{piece.v[0] - piece.v[1], piece.v[0] + piece.v[1]}};
+      if (b) {  // (a zero-area triangle has no region: GJK's answer stands)
+        collidePair(localSolid(gs, "o1", where), tfs, *b, tfp, gs, gp, creq, cres);
+        if (cres.numContacts() > 0) {
+          if (d.status == Separation::Separated) d.status = Separation::Touching;
+          d.distance = std::min(d.distance, 0.0);
+        } else {
+          d.status = Separation::Separated;
+          d.distance = std::max(d.distance, (d.point_b - d.point_a).norm());
+        }
+      }
+    }
+    const double value = d.status == Separation::Overlapping && !request.enable_signed_distance ? -1.0 : d.distance;
+    if (value < best) best = value;
+    report(value, d.point_a, d.point_b, piece.index);
+    if (value < 0.0 && !request.enable_signed_distance) break;  // colliding: FCL's -1, nothing more to learn
+  }
+  return result.min_distance;
+}
 
 }  // namespace detail
 
@@ -433,6 +617,28 @@ std::optional<double> distanceLowerBound(const fcl::CollisionGeometry<double>* o
   if (o1 == nullptr || o2 == nullptr) throw std::invalid_argument("fcl_quadric::distanceLowerBound: null geometry");
   const bool q1 = detail::isQuadricShape(o1), q2 = detail::isQuadricShape(o2);
   if (!q1 && !q2) return std::nullopt;
+  if (std::isnan(cap) || cap < 0.0)  // isnan first: an ordered comparison with NaN raises FE_INVALID
+    throw std::invalid_argument("fcl_quadric::distanceLowerBound: cap must be >= 0, got " + std::to_string(cap));
+  // Two convex operands: GJK's certified bound (docs/algorithms.md section 12), when it converged.
+  const auto bounded = [](const fcl::CollisionGeometry<double>* g) {
+    const auto* q = dynamic_cast<const QuadricShape<double>*>(g);
+    return q == nullptr || q->bounded();
+  };
+  if (bounded(o1) && bounded(o2)) {
+    const std::optional<ConvexSupport> c1 = detail::convexSupportOf(o1, "o1"), c2 = detail::convexSupportOf(o2, "o2");
+    if (c1 && c2) {
+      const SignedDistanceResult d =
+          convexSignedDistance(*c1, tf1.linear(), tf1.translation(), *c2, tf2.linear(), tf2.translation(), false);
+      if (d.converged) {
+        if (d.status != Separation::Separated) return 0.0;
+        // |v| exceeds the distance by at most kConvexDistanceRelative |v| + 1e-14 scale; the support
+        // points may lie 1e-12 of the size outside the solids (ConvexSupport's tolerance).
+        const double scale = c1->size() + c2->size() + (tf1.translation() - tf2.translation()).norm();
+        const double lower = d.distance * (1.0 - tolerance_convex::kConvexDistanceRelative) - 1e-11 * scale;
+        return std::clamp(lower, 0.0, cap);
+      }
+    }
+  }
   // The model first and the convex partner second; of two models, a convex one is the partner.
   if (!q1) return distanceLowerBound(o2, tf2, o1, tf1, cap);
   if (q2 && !detail::convexInradius(o2)) {

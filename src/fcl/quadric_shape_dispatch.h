@@ -10,6 +10,8 @@
 #include <fcl/geometry/collision_geometry.h>
 #include <fcl/narrowphase/collision_request.h>
 #include <fcl/narrowphase/collision_result.h>
+#include <fcl/narrowphase/distance_request.h>
+#include <fcl/narrowphase/distance_result.h>
 
 #include "fcl_quadric/continuous/region_ccd.h"
 
@@ -35,6 +37,21 @@ bool isQuadricShape(const fcl::CollisionGeometry<double>* g);
 std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
                                  const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
                                  const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result);
+
+/// Distance of o1 (posed tf1) and o2 (posed tf2), at least one a QuadricShape, by GJK / EPA on
+/// support mappings (convex_distance.h): the quadric shape must be convex (ConvexSupport::
+/// fromRegion, or an EllipticCylinder); the partner a convex quadric shape, an fcl Sphere /
+/// Ellipsoid / Box / Cylinder / Cone / Capsule (one piece), a Halfspace (closed form), a BVH mesh
+/// (each triangle) or an OcTree (each occupied leaf box), pieces pruned by their AABB gap. FCL's
+/// semantics: result.update with the distance, -1 for an overlapping pair unless
+/// request.enable_signed_distance (then minus the penetration depth), nearest points in the world
+/// frame, b1 / b2 = the triangle or leaf index of a mesh / octree partner. Within 1e-8 of the
+/// pair's scale of contact, the sign is the one fcl_quadric::collide gives the same pair (touching
+/// = 0). \return result.min_distance. \throws std::invalid_argument for a non-convex quadric
+/// shape, an unbounded one, or any other partner (the message names it).
+double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
+                             const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
+                             const fcl::DistanceRequest<double>& request, fcl::DistanceResult<double>& result);
 
 /// First contact over t in [0, 1] of o1 moving by m1 and o2 moving by m2 (body -> world), at
 /// least one a QuadricShape, the other a QuadricShape or one of the FCL primitives above

@@ -308,8 +308,9 @@ TEST(QuadricShapeDispatch, PlainFclCollideWithStockSolverDoesNotCrashAndReportsN
   EXPECT_EQ(fcl_quadric::collide(&a, &b, fcl::CollisionRequest<double>(), ours), 1u);
   ASSERT_EQ(ours.numContacts(), 1u);
   EXPECT_NEAR(ours.getContact(0).normal.norm(), 1.0, 1e-12);
-  // Distance on quadric shapes is refused, not silently wrong.
-  EXPECT_THROW(fcl_quadric::distance(&a, &b, dreq, dres), std::invalid_argument);
+  // The front door's distance answers too: overlapping, FCL's -1 without signed distance.
+  fcl::DistanceResult<double> our_d;
+  EXPECT_EQ(fcl_quadric::distance(&a, &b, dreq, our_d), -1.0);
 }
 
 TEST(QuadricShapeDispatch, UnsupportedPartnersThrowNamingTheNodeType) {
@@ -421,20 +422,33 @@ TEST(QuadricShapes, DistanceLowerBoundIsBelowTheClosedFormAndNamesItsPairs) {
     const std::optional<double> d = swap ? distanceLowerBound(&ball, beside, &cyl, I, 2.0)
                                          : distanceLowerBound(&cyl, I, &ball, beside, 2.0);
     ASSERT_TRUE(d.has_value());
-    EXPECT_LE(*d, 0.8 + 1e-9);
-    EXPECT_GE(*d, 0.8 - 2.0 / 1000.0 - 1e-6);
+    // Both convex: GJK's distance less its certified error.
+    EXPECT_LE(*d, 0.8);
+    EXPECT_GE(*d, 0.8 - 1e-9);
   }
   const std::optional<double> c = distanceLowerBound(&cyl, I, &cube, beside, 2.0);  // face-on: 1.5 - 0.5 - 0.2
   ASSERT_TRUE(c.has_value());
-  EXPECT_LE(*c, 0.8 + 1e-9);
-  EXPECT_GT(*c, 0.7);
-  // Two models: the rod is the convex partner. Its inradius 0.1 is half its semi-axis 0.2 along x,
-  // so scaling it moves its facing side 2 delta: the bound is about half the distance 0.8.
-  const EllipticCylinder<double> rod(0.2, 0.1, 0.5);
+  EXPECT_LE(*c, 0.8);
+  EXPECT_GE(*c, 0.8 - 1e-9);
+  const EllipticCylinder<double> rod(0.2, 0.1, 0.5);  // facing side at 1.5 - 0.2
   const std::optional<double> r = distanceLowerBound(&cyl, I, &rod, beside, 2.0);
   ASSERT_TRUE(r.has_value());
-  EXPECT_LE(*r, 0.8 + 1e-9);
-  EXPECT_GT(*r, 0.35);
+  EXPECT_LE(*r, 0.8);
+  EXPECT_GE(*r, 0.8 - 1e-9);
+  EXPECT_EQ(*distanceLowerBound(&cyl, I, &rod, I, 2.0), 0.0);  // overlapping
+  EXPECT_EQ(*distanceLowerBound(&cyl, I, &ball, beside, 0.5), 0.5);  // capped
+  // A non-convex model (a ring: ellipsoid minus bore) and the ball beside it: the scaled-partner
+  // bound (region_distance_bound.h). The ball's centre is 2.0 from the axis, the ring's outer
+  // equator at 1.0: distance 0.8; the bound is below it and within the bisection's resolution.
+  auto outer = std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(1.0, 1.0, 0.4));
+  auto bore = std::make_shared<Quadric<double>>(Quadric<double>::ellipticCylinder(0.5, 0.5));
+  const QuadricCSG<double> ring(Op::Difference, {{outer, I}, {bore, I}});
+  fcl::Transform3d far = fcl::Transform3d::Identity();
+  far.translation() = Eigen::Vector3d(2.0, 0, 0);
+  const std::optional<double> g = distanceLowerBound(&ring, I, &ball, far, 2.0);
+  ASSERT_TRUE(g.has_value());
+  EXPECT_LE(*g, 0.8 + 1e-9);
+  EXPECT_GE(*g, 0.8 - 2.0 / 1000.0 - 1e-6);
   EXPECT_FALSE(distanceLowerBound(&ball, I, &cube, beside, 2.0).has_value());  // no composite model
   EXPECT_THROW(distanceLowerBound(nullptr, I, &ball, beside, 2.0), std::invalid_argument);
   EXPECT_THROW(distanceLowerBound(&cyl, I, &ball, beside, -1.0), std::invalid_argument);

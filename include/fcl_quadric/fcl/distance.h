@@ -14,8 +14,11 @@
 ///  - the libccd fallback gets distance_tolerance = request.distance_tolerance, as fcl::distance
 ///    does for GST_LIBCCD; request.gjk_solver_type is ignored.
 ///  - bad input (null object / geometry, non-finite transform) throws std::invalid_argument;
-///  - so does a quadric shape (EllipticCylinder, Quadric, QuadricCSG): distance is not
-///    implemented for them yet (fcl_quadric::collide is).
+///  - quadric shapes (EllipticCylinder, Quadric, QuadricCSG): convex ones are answered by GJK / EPA
+///    on support mappings (docs/algorithms.md section 12; relative accuracy 1e-10; against
+///    another convex quadric shape, FCL's convex primitives, half-spaces, meshes and octrees, whose
+///    triangle / leaf index goes to b1 / b2); near contact the sign is fcl_quadric::collide's. A
+///    non-convex quadric shape, or an unsupported partner, throws std::invalid_argument naming it.
 /// Kept from FCL: pairs FCL has no function for print FCL's warning and return
 /// std::numeric_limits<S>::max() with `result` untouched.
 ///
@@ -54,7 +57,8 @@ bool defaultDistanceFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<S
 /// tf2 for the pairs distance() cannot answer exactly: one composite quadric model
 /// (quadric_shapes.h) and one fcl Sphere / Ellipsoid / Box / Cylinder / Capsule or capped
 /// EllipticCylinder (two models when one of them is an EllipticCylinder). 0 when they may touch or
-/// overlap; cap when nothing closer than cap is possible. Method: the convex partner scaled about
+/// overlap; cap when nothing closer than cap is possible. Two convex operands (a convex quadric
+/// shape, docs/algorithms.md section 12): GJK's distance less its certified error. Otherwise: the convex partner scaled about
 /// its centre contains its neighbourhood, and the region engine certifies the scaled copy
 /// separate (region_distance_bound.h; docs/algorithms.md section 9, after thesis ch.6's CQM
 /// classification). \return std::nullopt for every other pair (no composite model, or no convex

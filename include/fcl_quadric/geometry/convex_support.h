@@ -1,0 +1,113 @@
+#pragma once
+/// \file convex_support.h
+/// Convex solids described by their support mapping s(n) = a point of the solid maximising n.x,
+/// in the solid's local frame: the input of the GJK / EPA distance of convex_distance.h, which
+/// gives distance and penetration depth between the convex quadric shapes (quadric_shapes.h) and
+/// FCL's convex primitives (docs/algorithms.md section 12). Pure geometry (std + Eigen).
+///
+/// Kinds:
+///  - closed forms: ellipsoid (and sphere), box, capped elliptic cylinder (and fcl::Cylinder),
+///    cone (fcl::Cone: base disk at z = -h, apex at z = +h), capsule, the convex hull of a few
+///    points (a triangle);
+///  - `fromRegion`: a CSG formula (quadric_region.h) that is a conjunction of half-spaces and at
+///    most one curved atom {x^T A x + 2 b.x + c <= 0} with A positive semidefinite (ellipsoid,
+///    elliptic paraboloid, elliptic or parabolic cylinder, slab): such a set is convex (a sublevel
+///    set of a convex function cut by half-spaces). Its support is found by enumerating the
+///    Karush-Kuhn-Tucker active sets of max n.x: the smooth point of the curved atom with normal
+///    n, the smooth point of each planar section (a conic) of it, and the ends of each line where
+///    two planes meet, clipped by every other constraint (vertices included). The region's
+///    certified bounding box is added as six more half-spaces, so every maximum is attained at a
+///    finite candidate. A candidate is accepted when it satisfies the other constraints to
+///    kSupportFeasibilityRelative; the support value is then exact to about that fraction of the
+///    solid's size.
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "fcl_quadric/geometry/quadric_region.h"
+
+namespace fcl_quadric {
+
+namespace tolerance_support {
+/// A support candidate is feasible when every constraint it does not lie on is satisfied up to
+/// this times the constraint's absolute-value expression at the candidate (|h||x| + |d| for a
+/// plane; |x|^T|A||x| + 2|b||x| + |c| for the curved atom). Dimensionless. Rounding of the
+/// candidates is ~1e-15 relative for well-conditioned sections; 1e-12 leaves a wide margin and
+/// bounds how far outside the solid an accepted support point can be.
+constexpr double kSupportFeasibilityRelative = 1e-12;
+/// Eigenvalues of the curved atom's quadratic part (or of a section's) below this fraction of the
+/// largest are treated as zero (null directions of cylinders and paraboloids).
+constexpr double kSupportNullEigenRelative = 1e-12;
+}  // namespace tolerance_support
+
+class ConvexSupport {
+ public:
+  enum class Kind { Ellipsoid, Box, EllipticCylinder, Cone, Capsule, Points, Region };
+
+  /// \throws std::invalid_argument unless every size is finite and > 0 (>= 0 for a cylinder's,
+  /// cone's or capsule's length), naming the value.
+  static ConvexSupport ellipsoid(const Eigen::Vector3d& radii);
+  static ConvexSupport box(const Eigen::Vector3d& half_sides);
+  /// { x^2/a^2 + y^2/b^2 <= 1, |z| <= h } (fcl::Cylinder: a = b = radius, h = lz / 2).
+  static ConvexSupport ellipticCylinder(double a, double b, double half_length);
+  /// fcl::Cone(radius, 2h): base disk of radius r at z = -h, apex at z = +h.
+  static ConvexSupport cone(double radius, double half_length);
+  /// fcl::Capsule(radius, 2h): the segment z in [-h, h] grown by the radius.
+  static ConvexSupport capsule(double radius, double half_length);
+  /// Convex hull of 1..8 finite points (a triangle of a mesh). \throws std::invalid_argument if
+  /// there are none, more than 8, or one is not finite.
+  static ConvexSupport points(const std::vector<Eigen::Vector3d>& pts);
+  /// The region as a convex support mapping, or nullopt when its formula is not a conjunction of
+  /// half-spaces and at most one positive-semidefinite curved atom (unions, differences other
+  /// than of half-spaces, hyperboloids, cones' double nappes, two curved atoms). `box` is a
+  /// bounding box of the region (QuadricShape::localBox()). \throws std::invalid_argument if the
+  /// box is empty or not finite.
+  static std::optional<ConvexSupport> fromRegion(const QuadricRegion& region, const Box3& box);
+
+  Kind kind() const { return kind_; }
+  /// A point of the solid maximising n.x (local frame). n need not be unit; for n = 0 a point
+  /// of the solid is returned. No failure mode for finite n (a Region whose enumeration finds no
+  /// feasible candidate, which only a numerically empty region can cause, returns center()).
+  Eigen::Vector3d support(const Eigen::Vector3d& n) const;
+  /// A point of the solid (for Region: the last feasible candidate's box centre is not used; the
+  /// bounding-box centre, which need not be inside, serves only as GJK's first direction).
+  Eigen::Vector3d center() const { return center_; }
+  /// Half the diagonal of a bounding box: the length scale of the tolerances.
+  double size() const { return size_; }
+
+ private:
+  Eigen::Vector3d regionSupport(const Eigen::Vector3d& n) const;
+
+  Kind kind_ = Kind::Points;
+  Eigen::Vector3d dims_ = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> points_;
+  // Region: the curved atom (if any) and the planes h.x <= d.
+  bool has_curved_ = false;
+  Eigen::Matrix3d A_ = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b_ = Eigen::Vector3d::Zero();
+  double c_ = 0.0;
+  std::vector<Eigen::Vector3d> plane_h_;
+  std::vector<double> plane_d_;
+  /// Eigen-decompositions of the curved atom and of its section by each plane (x = x0 + U y),
+  /// computed once: a support query then costs only arithmetic.
+  struct Curved {
+    Eigen::Vector3d lam = Eigen::Vector3d::Zero(), bz = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d V = Eigen::Matrix3d::Identity();
+    double b_tol = 0.0;
+  } curved_;
+  struct Section {
+    Eigen::Matrix<double, 3, 2> U = Eigen::Matrix<double, 3, 2>::Zero();
+    Eigen::Vector3d x0 = Eigen::Vector3d::Zero();
+    Eigen::Vector2d lam = Eigen::Vector2d::Zero(), bz = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d V = Eigen::Matrix2d::Identity();
+    double c = 0.0, b_tol = 0.0;
+  };
+  std::vector<Section> sections_;
+  Eigen::Vector3d center_ = Eigen::Vector3d::Zero();
+  double size_ = 0.0;
+};
+
+}  // namespace fcl_quadric

@@ -1,0 +1,381 @@
+// GJK and EPA on support mappings (docs/algorithms.md section 12).
+#include "fcl_quadric/geometry/convex_distance.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <utility>
+#include <stdexcept>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace fcl_quadric {
+
+namespace {
+
+/// A point w = a - b of the Minkowski difference with its two support points (world frame).
+struct Vertex {
+  Eigen::Vector3d w, a, b;
+};
+
+struct Minkowski {
+  const ConvexSupport& A;
+  const Eigen::Matrix3d& Ra;
+  const Eigen::Vector3d& pa;
+  const ConvexSupport& B;
+  const Eigen::Matrix3d& Rb;
+  const Eigen::Vector3d& pb;
+  /// The point of D = A - B maximising d.x: s_A(d) - s_B(-d).
+  Vertex support(const Eigen::Vector3d& d) const {
+    Vertex v;
+    v.a = Ra * A.support(Ra.transpose() * d) + pa;
+    v.b = Rb * B.support(-(Rb.transpose() * d)) + pb;
+    v.w = v.a - v.b;
+    return v;
+  }
+};
+
+/// Affine projection of the origin on the hull of the s points W[idx[0..s-1]] (s = 2..4):
+/// barycentric coordinates l (all > 0 required) and the point p (the origin itself for s = 4).
+/// Fixed-size arithmetic (no allocation: this runs 15 times per GJK step). False for an affinely
+/// degenerate subset or a coordinate <= 0.
+template <int K>
+bool affineProjectionK(const std::vector<Vertex>& W, const int* idx, std::array<double, 4>* l, Eigen::Vector3d* p) {
+  const Eigen::Vector3d& w0 = W[idx[0]].w;
+  Eigen::Matrix<double, 3, K> E;
+  for (int i = 0; i < K; ++i) E.col(i) = W[idx[i + 1]].w - w0;
+  const Eigen::Matrix<double, K, K> G = E.transpose() * E;
+  const Eigen::Matrix<double, K, 1> rhs = -(E.transpose() * w0);
+  const Eigen::LDLT<Eigen::Matrix<double, K, K>> ldlt(G);
+  const double gscale = G.diagonal().maxCoeff();
+  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().cwiseAbs().minCoeff() > 1e-13 * gscale)) return false;
+  const Eigen::Matrix<double, K, 1> mu = ldlt.solve(rhs);
+  double sum = 0.0;
+  for (int i = 0; i < K; ++i) {
+    if (!(mu[i] > 0.0)) return false;
+    (*l)[i + 1] = mu[i];
+    sum += mu[i];
+  }
+  (*l)[0] = 1.0 - sum;
+  if (!((*l)[0] > 0.0)) return false;
+  *p = K == 3 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(w0 + E * mu);  // K = 3: the origin is inside
+  return true;
+}
+
+bool affineProjection(const std::vector<Vertex>& W, const int* idx, int s, std::array<double, 4>* l,
+                      Eigen::Vector3d* p) {
+  switch (s) {
+    case 2: return affineProjectionK<1>(W, idx, l, p);
+    case 3: return affineProjectionK<2>(W, idx, l, p);
+    default: return affineProjectionK<3>(W, idx, l, p);
+  }
+}
+
+/// Closest point to the origin of the convex hull of W (1..4 vertices): among the subsets that
+/// contain the newest point, the affine projection of the origin whose barycentric coordinates are all > 0 and
+/// which is nearest. Every such projection is a point of the hull and the true closest point is
+/// one of them, so the minimum is exact up to rounding (affinely degenerate subsets are skipped).
+/// On return W is reduced to the subset and lambda holds its coordinates. False if no subset
+/// qualifies (only possible for a fully degenerate W).
+bool closestPoint(std::vector<Vertex>* W, std::vector<double>* lambda, Eigen::Vector3d* v) {
+  const int k = static_cast<int>(W->size());
+  double best = std::numeric_limits<double>::infinity();
+  int best_mask = 0;
+  std::array<double, 4> best_l{};
+  for (int mask = 1; mask < (1 << k); ++mask) {
+    // GJK's newest point (the last) belongs to the new simplex: a subset without it would give
+    // back the previous closest point, which the caller treats as a stall anyway.
+    if (!(mask & (1 << (k - 1)))) continue;
+    int idx[4], s = 0;
+    for (int i = 0; i < k; ++i)
+      if (mask & (1 << i)) idx[s++] = i;
+    std::array<double, 4> l{};
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    const Eigen::Vector3d& w0 = (*W)[idx[0]].w;
+    if (s == 1) {
+      l[0] = 1.0;
+      p = w0;
+    } else if (!affineProjection(*W, idx, s, &l, &p)) {
+      continue;
+    }
+    const double d = p.squaredNorm();
+    if (d < best) {
+      best = d;
+      best_mask = mask;
+      best_l = l;
+      *v = p;
+    }
+  }
+  if (best_mask == 0) return false;
+  std::vector<Vertex> reduced;
+  lambda->clear();
+  int s = 0;
+  for (int i = 0; i < k; ++i)
+    if (best_mask & (1 << i)) {
+      reduced.push_back((*W)[i]);
+      lambda->push_back(best_l[s++]);
+    }
+  *W = reduced;
+  return true;
+}
+
+/// Distance of p from the affine hull of W (1..3 points).
+double distanceToHull(const std::vector<Vertex>& W, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d d = p - W[0].w;
+  if (W.size() == 1) return d.norm();
+  if (W.size() == 2) {
+    const Eigen::Vector3d e = (W[1].w - W[0].w).normalized();
+    return (d - d.dot(e) * e).norm();
+  }
+  const Eigen::Vector3d n = (W[1].w - W[0].w).cross(W[2].w - W[0].w).normalized();
+  return std::abs(d.dot(n));
+}
+
+struct Face {
+  int v[3];
+  Eigen::Vector3d n;
+  double d;
+  bool alive;
+};
+
+}  // namespace
+
+SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::Matrix3d& R_a, const Eigen::Vector3d& p_a,
+                                          const ConvexSupport& b, const Eigen::Matrix3d& R_b, const Eigen::Vector3d& p_b,
+                                          bool want_depth) {
+  if (!R_a.allFinite() || !p_a.allFinite() || !R_b.allFinite() || !p_b.allFinite())
+    throw std::invalid_argument("convexSignedDistance: a pose is not finite");
+  using namespace tolerance_convex;
+  const Minkowski D{a, R_a, p_a, b, R_b, p_b};
+  const Eigen::Vector3d ca = R_a * a.center() + p_a, cb = R_b * b.center() + p_b;
+  const double scale = a.size() + b.size() + (ca - cb).norm();
+  const double margin = kConvexSeparationRelative * scale;
+  const double tiny = 1e-14 * scale;
+
+  SignedDistanceResult out;
+  // --- GJK ---------------------------------------------------------------------------------------
+  Eigen::Vector3d dir = ca - cb;
+  if (!(dir.norm() > tiny)) dir = Eigen::Vector3d::UnitX();
+  std::vector<Vertex> W{D.support(-dir)};
+  std::vector<double> lambda{1.0};
+  Eigen::Vector3d v = W[0].w;
+  double lower = 0.0;
+  bool origin_in_hull = false;
+  int it = 0;
+  for (; it < kMaxGjkIterations; ++it) {
+    const double vn = v.norm();
+    if (!(vn > tiny)) {
+      origin_in_hull = true;
+      break;
+    }
+    const Vertex w = D.support(-v);
+    lower = std::max(lower, v.dot(w.w) / vn);
+    if (vn - lower <= kConvexDistanceRelative * vn + tiny) {
+      out.converged = true;
+      break;
+    }
+    bool repeat = false;
+    for (const Vertex& x : W) repeat = repeat || (x.w - w.w).norm() <= tiny;
+    if (repeat) {  // no new support point: v is as close as this arithmetic gets
+      out.converged = vn - lower <= 1e-6 * vn + tiny;
+      break;
+    }
+    W.push_back(w);
+    Eigen::Vector3d v_new = Eigen::Vector3d::Zero();
+    if (!closestPoint(&W, &lambda, &v_new)) break;
+    if (W.size() == 4) {
+      origin_in_hull = true;
+      v = v_new;
+      break;
+    }
+    if (!(v_new.norm() < vn)) {  // rounding stalled the descent
+      out.converged = vn - lower <= 1e-6 * vn + tiny;
+      break;
+    }
+    v = v_new;
+  }
+  out.iterations = it;
+
+  if (!origin_in_hull) {
+    const double vn = v.norm();
+    Eigen::Vector3d pa = Eigen::Vector3d::Zero(), pb = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < W.size(); ++i) {
+      pa += lambda[i] * W[i].a;
+      pb += lambda[i] * W[i].b;
+    }
+    out.point_a = pa;
+    out.point_b = pb;
+    out.normal = vn > 0.0 ? Eigen::Vector3d(-v / vn) : Eigen::Vector3d::UnitX();
+    if (lower > margin) {
+      out.status = Separation::Separated;
+      out.distance = vn;  // the upper bound: within the stopping gap of the distance
+    } else {
+      out.status = Separation::Touching;
+      out.distance = 0.0;
+    }
+    return out;
+  }
+
+  // --- The origin is in D (or within rounding of it): a tetrahedron containing it -------------------
+  // A lower-dimensional simplex containing the origin is grown by support points off its hull; if
+  // D is flat in every direction tried (no interior) the pair is touching with depth 0.
+  {
+    const Eigen::Vector3d axes[3] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ()};
+    while (W.size() < 4) {
+      std::vector<Eigen::Vector3d> dirs;
+      if (W.size() == 1) {
+        for (const auto& e : axes) {
+          dirs.push_back(e);
+          dirs.push_back(-e);
+        }
+      } else if (W.size() == 2) {
+        const Eigen::Vector3d e = W[1].w - W[0].w;
+        int k = 0;
+        e.cwiseAbs().minCoeff(&k);
+        const Eigen::Vector3d d1 = e.cross(axes[k]).normalized(), d2 = e.cross(d1).normalized();
+        for (const auto& d : {d1, d2}) {
+          dirs.push_back(d);
+          dirs.push_back(-d);
+        }
+      } else {
+        const Eigen::Vector3d nrm = (W[1].w - W[0].w).cross(W[2].w - W[0].w).normalized();
+        dirs.push_back(nrm);
+        dirs.push_back(-nrm);
+      }
+      bool grown = false;
+      for (const auto& d : dirs) {
+        const Vertex w = D.support(d);
+        if (distanceToHull(W, w.w) > 1e-12 * scale) {
+          W.push_back(w);
+          grown = true;
+          break;
+        }
+      }
+      if (!grown) {
+        out.status = Separation::Touching;
+        out.distance = 0.0;
+        out.point_a = W[0].a;
+        out.point_b = W[0].b;
+        return out;
+      }
+    }
+  }
+  if (!want_depth) {
+    // Only the sign is wanted: certified by the tetrahedron's margin when it has one; otherwise
+    // (the origin on or near a face, as for concentric solids) EPA below decides.
+    const Eigen::Vector3d c = 0.25 * (W[0].w + W[1].w + W[2].w + W[3].w);
+    double dmin = std::numeric_limits<double>::infinity();
+    static const int fidx[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+    for (const auto& f : fidx) {
+      Eigen::Vector3d n = (W[f[1]].w - W[f[0]].w).cross(W[f[2]].w - W[f[0]].w);
+      if (n.dot(W[f[0]].w - c) < 0) n = -n;
+      const double len = n.norm();
+      dmin = len > 0 ? std::min(dmin, n.dot(W[f[0]].w) / len) : -1.0;
+    }
+    if (dmin > margin) {
+      out.status = Separation::Overlapping;
+      out.distance = 0.0;
+      out.point_a = W[0].a;  // not witnesses: only the sign was asked for
+      out.point_b = W[0].b;
+      out.converged = true;
+      return out;
+    }
+  }
+
+  // --- EPA ---------------------------------------------------------------------------------------
+  std::vector<Vertex> verts = W;
+  std::vector<Face> faces;
+  std::map<std::pair<int, int>, int> edge_face;  // directed edge (i, j) -> the face that has it
+  auto addFace = [&](int i, int j, int k) {
+    Face f{{i, j, k}, Eigen::Vector3d::Zero(), 0.0, true};
+    Eigen::Vector3d n = (verts[j].w - verts[i].w).cross(verts[k].w - verts[i].w);
+    const double len = n.norm();
+    f.n = len > 0.0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::UnitX();
+    f.d = f.n.dot(verts[i].w);
+    const int id = static_cast<int>(faces.size());
+    for (int e = 0; e < 3; ++e) edge_face[{f.v[e], f.v[(e + 1) % 3]}] = id;
+    faces.push_back(f);
+  };
+  // The initial tetrahedron, each face counter-clockwise seen from outside.
+  {
+    const bool positive = (verts[1].w - verts[0].w).cross(verts[2].w - verts[0].w).dot(verts[3].w - verts[0].w) < 0.0;
+    const int a = 0, b = positive ? 1 : 2, c = positive ? 2 : 1, d = 3;
+    addFace(a, b, c);
+    addFace(a, d, b);
+    addFace(b, d, c);
+    addFace(c, d, a);
+  }
+  double best_up = std::numeric_limits<double>::infinity();
+  int face_at_stop = -1;
+  bool epa_converged = false;
+  int eit = 0;
+  for (; eit < kMaxEpaIterations && faces.size() < kMaxEpaFaces; ++eit) {
+    int fi = -1;
+    for (int i = 0; i < static_cast<int>(faces.size()); ++i)
+      if (faces[i].alive && (fi < 0 || faces[i].d < faces[fi].d)) fi = i;
+    if (fi < 0) break;
+    face_at_stop = fi;
+    const Face f = faces[fi];
+    const Vertex w = D.support(f.n);
+    const double up = f.n.dot(w.w);
+    best_up = std::min(best_up, up);
+    if (best_up - f.d <= kConvexDistanceRelative * std::max(f.d, 0.0) + tiny || up - f.d <= tiny) {
+      epa_converged = true;
+      break;
+    }
+    // Expand: flood-fill the faces w sees from f across shared edges (a connected cap), remove
+    // them, and close the hole with faces from its horizon edges to w.
+    const int wi = static_cast<int>(verts.size());
+    verts.push_back(w);
+    std::vector<int> stack{fi};
+    std::vector<std::pair<int, int>> horizon;
+    faces[fi].alive = false;
+    while (!stack.empty()) {
+      const int g = stack.back();
+      stack.pop_back();
+      for (int e = 0; e < 3; ++e) {
+        const int a = faces[g].v[e], b = faces[g].v[(e + 1) % 3];
+        const auto it = edge_face.find({b, a});
+        const int h = it == edge_face.end() ? -1 : it->second;
+        if (h >= 0 && faces[h].alive && faces[h].n.dot(w.w - verts[faces[h].v[0]].w) > tiny) {
+          faces[h].alive = false;
+          stack.push_back(h);
+        } else if (h < 0 || faces[h].alive) {
+          horizon.emplace_back(a, b);
+        }
+      }
+    }
+    for (const auto& e : horizon) addFace(e.first, e.second, wi);
+  }
+  out.iterations += eit;
+  out.converged = epa_converged;
+  const Face& f = faces[face_at_stop];
+  const double depth = epa_converged ? f.d : best_up;  // at the cap: the overestimate (contact side)
+  // Witnesses: the projection f.d * n of the origin on the face, in barycentric coordinates.
+  const Eigen::Vector3d p = f.d * f.n;
+  const Eigen::Vector3d &w0 = verts[f.v[0]].w, &w1 = verts[f.v[1]].w, &w2 = verts[f.v[2]].w;
+  const Eigen::Vector3d n = (w1 - w0).cross(w2 - w0);
+  const double n2 = n.squaredNorm();
+  double l1 = 1.0 / 3.0, l2 = 1.0 / 3.0;
+  if (n2 > 0.0) {
+    l1 = (p - w0).cross(w2 - w0).dot(n) / n2;
+    l2 = (w1 - w0).cross(p - w0).dot(n) / n2;
+  }
+  const double l0 = 1.0 - l1 - l2;
+  out.point_a = l0 * verts[f.v[0]].a + l1 * verts[f.v[1]].a + l2 * verts[f.v[2]].a;
+  out.point_b = l0 * verts[f.v[0]].b + l1 * verts[f.v[1]].b + l2 * verts[f.v[2]].b;
+  out.normal = f.n;
+  if (f.d > margin) {
+    out.status = Separation::Overlapping;
+    out.distance = -depth;
+  } else {
+    out.status = Separation::Touching;
+    out.distance = 0.0;
+  }
+  return out;
+}
+
+}  // namespace fcl_quadric

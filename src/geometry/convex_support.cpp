@@ -1,0 +1,411 @@
+// Support mappings of convex solids (docs/algorithms.md section 12).
+#include "fcl_quadric/geometry/convex_support.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+
+namespace fcl_quadric {
+
+namespace {
+
+void requireSize(double v, const char* what, bool allow_zero) {
+  if (!std::isfinite(v) || v < 0.0 || (!allow_zero && v == 0.0)) {
+    std::ostringstream os;
+    os << "ConvexSupport: " << what << " = " << v << " must be finite and " << (allow_zero ? ">= 0" : "> 0");
+    throw std::invalid_argument(os.str());
+  }
+}
+
+/// The point of {y^T A y + 2 b.y + c <= 0} (A positive semidefinite, K = 2 or 3 dimensions,
+/// given by its eigen-decomposition A = V diag(lam) V^T and bz = V^T b) where m.y is largest, when
+/// it is a single smooth point of the surface: the KKT condition m = 2 mu (A y + b), mu > 0, on
+/// the surface, solved in the eigenbasis. nullopt when the maximum is not attained at a unique
+/// smooth point (unbounded along a null direction, a line of maximisers as on a cylinder's
+/// ruling, or an empty / degenerate set): the other active sets of the enumeration then hold it.
+/// `b_tol` decides whether a null direction carries a linear term (a paraboloid).
+template <int K>
+std::optional<Eigen::Matrix<double, K, 1>> smoothMax(const Eigen::Matrix<double, K, 1>& lam,
+                                                     const Eigen::Matrix<double, K, K>& V,
+                                                     const Eigen::Matrix<double, K, 1>& bz, double c,
+                                                     const Eigen::Matrix<double, K, 1>& m, double b_tol) {
+  using Vec = Eigen::Matrix<double, K, 1>;
+  const double lmax = lam.cwiseAbs().maxCoeff();
+  if (!(lmax > 0.0)) return std::nullopt;
+  const double null_tol = tolerance_support::kSupportNullEigenRelative * lmax;
+  if (lam.minCoeff() < -null_tol) return std::nullopt;
+  const Vec mz = V.transpose() * m;
+  int nulls = 0, i0 = -1;
+  for (int i = 0; i < K; ++i)
+    if (lam[i] <= null_tol) {
+      ++nulls;
+      i0 = i;
+    }
+  Vec z = Vec::Zero();
+  if (nulls == 0) {
+    double r = -c, s = 0.0;
+    for (int i = 0; i < K; ++i) {
+      r += bz[i] * bz[i] / lam[i];
+      s += mz[i] * mz[i] / lam[i];
+    }
+    if (!(r > 0.0)) return std::nullopt;
+    const double k = s > 0.0 ? std::sqrt(r / s) : 0.0;
+    for (int i = 0; i < K; ++i) z[i] = (-bz[i] + mz[i] * k) / lam[i];
+  } else {
+    // A paraboloid: exactly one null direction, carrying a linear term.
+    if (nulls != 1 || !(std::abs(bz[i0]) > b_tol)) return std::nullopt;
+    const double two_mu = mz[i0] / bz[i0];
+    if (!(two_mu > 0.0)) return std::nullopt;  // unbounded along the opening
+    double rest = c;
+    for (int i = 0; i < K; ++i) {
+      if (i == i0) continue;
+      z[i] = (mz[i] / two_mu - bz[i]) / lam[i];
+      rest += lam[i] * z[i] * z[i] + 2.0 * bz[i] * z[i];
+    }
+    z[i0] = -rest / (2.0 * bz[i0]);
+  }
+  const Vec y = V * z;
+  if (!y.allFinite()) return std::nullopt;
+  return y;
+}
+
+/// Collects the atoms of a conjunction (signed as the region uses them); false if the formula is
+/// not a conjunction.
+bool collectConjunction(const QuadricRegion& r, bool negate, std::vector<Eigen::Matrix4d>* atoms) {
+  using Op = QuadricRegion::Op;
+  const auto& ch = r.children();
+  switch (r.op()) {
+    case Op::Atom:
+      atoms->push_back(negate ? Eigen::Matrix4d(-r.matrix()) : r.matrix());
+      return true;
+    case Op::Intersection:
+      if (negate && ch.size() != 1) return false;
+      for (const auto& c : ch)
+        if (!collectConjunction(c, negate, atoms)) return false;
+      return true;
+    case Op::Union:
+      if (!negate && ch.size() != 1) return false;
+      for (const auto& c : ch)  // complement of a union: the conjunction of the complements
+        if (!collectConjunction(c, negate, atoms)) return false;
+      return true;
+    case Op::Difference:
+      if (negate) return false;
+      if (!collectConjunction(ch[0], false, atoms)) return false;
+      for (std::size_t i = 1; i < ch.size(); ++i)
+        if (!collectConjunction(ch[i], true, atoms)) return false;
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+ConvexSupport ConvexSupport::ellipsoid(const Eigen::Vector3d& radii) {
+  for (int i = 0; i < 3; ++i) requireSize(radii[i], "ellipsoid radius", false);
+  ConvexSupport s;
+  s.kind_ = Kind::Ellipsoid;
+  s.dims_ = radii;
+  s.size_ = radii.norm();
+  return s;
+}
+
+ConvexSupport ConvexSupport::box(const Eigen::Vector3d& half_sides) {
+  for (int i = 0; i < 3; ++i) requireSize(half_sides[i], "box half side", false);
+  ConvexSupport s;
+  s.kind_ = Kind::Box;
+  s.dims_ = half_sides;
+  s.size_ = half_sides.norm();
+  return s;
+}
+
+ConvexSupport ConvexSupport::ellipticCylinder(double a, double b, double half_length) {
+  requireSize(a, "cylinder semi-axis a", false);
+  requireSize(b, "cylinder semi-axis b", false);
+  requireSize(half_length, "cylinder half length", true);
+  ConvexSupport s;
+  s.kind_ = Kind::EllipticCylinder;
+  s.dims_ = Eigen::Vector3d(a, b, half_length);
+  s.size_ = s.dims_.norm();
+  return s;
+}
+
+ConvexSupport ConvexSupport::cone(double radius, double half_length) {
+  requireSize(radius, "cone radius", false);
+  requireSize(half_length, "cone half length", true);
+  ConvexSupport s;
+  s.kind_ = Kind::Cone;
+  s.dims_ = Eigen::Vector3d(radius, radius, half_length);
+  s.center_ = Eigen::Vector3d(0, 0, -0.5 * half_length);  // inside: on the axis, below the middle
+  s.size_ = s.dims_.norm();
+  return s;
+}
+
+ConvexSupport ConvexSupport::capsule(double radius, double half_length) {
+  requireSize(radius, "capsule radius", false);
+  requireSize(half_length, "capsule half length", true);
+  ConvexSupport s;
+  s.kind_ = Kind::Capsule;
+  s.dims_ = Eigen::Vector3d(radius, radius, half_length);
+  s.size_ = Eigen::Vector3d(radius, radius, half_length + radius).norm();
+  return s;
+}
+
+ConvexSupport ConvexSupport::points(const std::vector<Eigen::Vector3d>& pts) {
+  if (pts.empty() || pts.size() > 8)
+    throw std::invalid_argument("ConvexSupport::points: expected 1..8 points, got " + std::to_string(pts.size()));
+  ConvexSupport s;
+  s.kind_ = Kind::Points;
+  s.points_ = pts;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    if (!pts[i].allFinite())
+      throw std::invalid_argument("ConvexSupport::points: point " + std::to_string(i) + " is not finite");
+    mean += pts[i];
+  }
+  mean /= static_cast<double>(pts.size());
+  s.center_ = mean;
+  for (const auto& p : pts) s.size_ = std::max(s.size_, (p - mean).norm());
+  return s;
+}
+
+std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& region, const Box3& box) {
+  if (box.empty() || !box.lo.allFinite() || !box.hi.allFinite())
+    throw std::invalid_argument("ConvexSupport::fromRegion: the bounding box is empty or not finite");
+  std::vector<Eigen::Matrix4d> atoms;
+  if (!collectConjunction(region, false, &atoms)) return std::nullopt;
+  ConvexSupport s;
+  s.kind_ = Kind::Region;
+  s.center_ = box.center();
+  s.size_ = box.halfWidth().norm();
+  auto addPlane = [&s](Eigen::Vector3d h, double d) {
+    const double n = h.norm();
+    h /= n;
+    d /= n;
+    for (std::size_t k = 0; k < s.plane_h_.size(); ++k)  // drop exact repeats (the box's own faces)
+      if ((s.plane_h_[k] - h).cwiseAbs().maxCoeff() <= 1e-14 &&
+          std::abs(s.plane_d_[k] - d) <= 1e-14 * (std::abs(d) + s.size_ + s.center_.norm()))
+        return;
+    s.plane_h_.push_back(h);
+    s.plane_d_.push_back(d);
+  };
+  for (const Eigen::Matrix4d& M : atoms) {
+    const Eigen::Matrix3d A = M.topLeftCorner<3, 3>();
+    const Eigen::Vector3d b = M.topRightCorner<3, 1>();
+    const double c = M(3, 3);
+    const double amax = A.cwiseAbs().maxCoeff();
+    if (amax <= 1e-14 * b.norm() || amax == 0.0) {
+      if (b.norm() == 0.0) {
+        if (c <= 0.0) continue;  // the whole space
+        return std::nullopt;     // empty (the shapes' constructors reject empty regions)
+      }
+      addPlane(2.0 * b, -c);  // 2 b.x + c <= 0
+      continue;
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A, Eigen::EigenvaluesOnly);
+    const double lmax = es.eigenvalues().cwiseAbs().maxCoeff();
+    if (es.eigenvalues().minCoeff() < -tolerance_support::kSupportNullEigenRelative * lmax) return std::nullopt;
+    if (s.has_curved_) return std::nullopt;  // two curved atoms: no closed-form support here
+    s.has_curved_ = true;
+    s.A_ = A / lmax;
+    s.b_ = b / lmax;
+    s.c_ = c / lmax;
+  }
+  for (int i = 0; i < 3; ++i) {
+    Eigen::Vector3d e = Eigen::Vector3d::Zero();
+    e[i] = 1.0;
+    addPlane(e, box.hi[i]);
+    addPlane(-e, -box.lo[i]);
+  }
+  if (s.has_curved_) {
+    // Everything about the curved atom and its planar sections that does not depend on n.
+    const double length = s.size_ + s.center_.norm();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(s.A_);
+    s.curved_.lam = es.eigenvalues();
+    s.curved_.V = es.eigenvectors();
+    s.curved_.bz = es.eigenvectors().transpose() * s.b_;
+    s.curved_.b_tol = 1e-12 * (s.b_.norm() + s.curved_.lam.cwiseAbs().maxCoeff() * length);
+    for (std::size_t i = 0; i < s.plane_h_.size(); ++i) {
+      // The plane h.x = d as x0 + U y (U orthonormal, h unit).
+      const Eigen::Vector3d& h = s.plane_h_[i];
+      Section sec;
+      sec.x0 = s.plane_d_[i] * h;
+      const Eigen::Vector3d t = std::abs(h.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+      const Eigen::Vector3d u1 = (t - t.dot(h) * h).normalized();
+      sec.U << u1, h.cross(u1);
+      const Eigen::Matrix2d A2 = sec.U.transpose() * s.A_ * sec.U;
+      const Eigen::Vector2d b2 = sec.U.transpose() * (s.A_ * sec.x0 + s.b_);
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es2(A2);
+      sec.lam = es2.eigenvalues();
+      sec.V = es2.eigenvectors();
+      sec.bz = es2.eigenvectors().transpose() * b2;
+      sec.c = sec.x0.dot(s.A_ * sec.x0) + 2.0 * s.b_.dot(sec.x0) + s.c_;
+      sec.b_tol = 1e-12 * (b2.norm() + sec.lam.cwiseAbs().maxCoeff() * length);
+      s.sections_.push_back(sec);
+    }
+  }
+  return s;
+}
+
+Eigen::Vector3d ConvexSupport::support(const Eigen::Vector3d& n) const {
+  switch (kind_) {
+    case Kind::Ellipsoid: {
+      const Eigen::Vector3d rn = dims_.cwiseProduct(n);
+      const double len = rn.norm();
+      if (!(len > 0.0)) return Eigen::Vector3d::Zero();
+      return dims_.cwiseProduct(rn) / len;
+    }
+    case Kind::Box:
+      return Eigen::Vector3d(n.x() >= 0 ? dims_.x() : -dims_.x(), n.y() >= 0 ? dims_.y() : -dims_.y(),
+                             n.z() >= 0 ? dims_.z() : -dims_.z());
+    case Kind::EllipticCylinder: {
+      const double ax = dims_.x() * n.x(), by = dims_.y() * n.y();
+      const double len = std::hypot(ax, by);
+      Eigen::Vector3d p(0, 0, n.z() >= 0 ? dims_.z() : -dims_.z());
+      if (len > 0.0) {
+        p.x() = dims_.x() * ax / len;
+        p.y() = dims_.y() * by / len;
+      }
+      return p;
+    }
+    case Kind::Cone: {
+      const double r = dims_.x(), h = dims_.z();
+      const double nxy = std::hypot(n.x(), n.y());
+      const Eigen::Vector3d apex(0, 0, h);
+      Eigen::Vector3d rim(0, 0, -h);
+      if (nxy > 0.0) {
+        rim.x() = r * n.x() / nxy;
+        rim.y() = r * n.y() / nxy;
+      }
+      return n.dot(apex) >= n.dot(rim) ? apex : rim;
+    }
+    case Kind::Capsule: {
+      const double len = n.norm();
+      Eigen::Vector3d p(0, 0, n.z() >= 0 ? dims_.z() : -dims_.z());
+      if (len > 0.0) p += (dims_.x() / len) * n;
+      return p;
+    }
+    case Kind::Points: {
+      std::size_t best = 0;
+      double v = n.dot(points_[0]);
+      for (std::size_t i = 1; i < points_.size(); ++i) {
+        const double w = n.dot(points_[i]);
+        if (w > v) {
+          v = w;
+          best = i;
+        }
+      }
+      return points_[best];
+    }
+    case Kind::Region: return regionSupport(n);
+  }
+  return center_;
+}
+
+// KKT enumeration (file comment): every extreme point of the region is the unique smooth maximum
+// of the curved atom, of one of its planar sections, or an end of a line where two planes meet,
+// clipped by all other constraints; the best feasible candidate is the support.
+Eigen::Vector3d ConvexSupport::regionSupport(const Eigen::Vector3d& n) const {
+  constexpr double kFeas = tolerance_support::kSupportFeasibilityRelative;
+  const double length = size_ + center_.norm();
+  const std::size_t np = plane_h_.size();
+  auto curvedValue = [&](const Eigen::Vector3d& x, double* mag) {
+    *mag = x.cwiseAbs().dot(A_.cwiseAbs() * x.cwiseAbs()) + 2.0 * b_.cwiseAbs().dot(x.cwiseAbs()) + std::abs(c_);
+    return x.dot(A_ * x) + 2.0 * b_.dot(x) + c_;
+  };
+  auto feasible = [&](const Eigen::Vector3d& x) {
+    if (!x.allFinite()) return false;
+    const double xn = x.norm();
+    for (std::size_t k = 0; k < np; ++k)
+      if (plane_h_[k].dot(x) - plane_d_[k] > kFeas * (xn + std::abs(plane_d_[k]) + length)) return false;
+    if (has_curved_) {
+      double mag = 0.0;
+      if (curvedValue(x, &mag) > kFeas * mag) return false;
+    }
+    return true;
+  };
+  double best = -std::numeric_limits<double>::infinity();
+  Eigen::Vector3d best_x = center_;
+  auto consider = [&](const Eigen::Vector3d& x) {
+    const double v = n.dot(x);
+    if (v > best && feasible(x)) {
+      best = v;
+      best_x = x;
+    }
+  };
+  if (has_curved_) {
+    if (auto x = smoothMax<3>(curved_.lam, curved_.V, curved_.bz, c_, n, curved_.b_tol)) {
+      // The maximum over the curved atom alone: if the planes keep it, it is the maximum over the
+      // whole solid (which it bounds), and no other candidate can beat it.
+      if (feasible(*x)) return *x;
+    }
+    for (const Section& sec : sections_)
+      if (auto y = smoothMax<2>(sec.lam, sec.V, sec.bz, sec.c, Eigen::Vector2d(sec.U.transpose() * n), sec.b_tol))
+        consider(sec.x0 + sec.U * *y);
+  }
+  for (std::size_t i = 0; i < np; ++i) {
+    for (std::size_t j = i + 1; j < np; ++j) {
+      const Eigen::Vector3d& hi = plane_h_[i];
+      const Eigen::Vector3d& hj = plane_h_[j];
+      const Eigen::Vector3d u = hi.cross(hj);
+      const double un2 = u.squaredNorm();
+      if (!(un2 > 1e-24)) continue;  // parallel planes (unit normals)
+      // The point of both planes nearest the origin: x0 = (d_i (hj x u) + d_j (u x hi)) / |u|^2.
+      const Eigen::Vector3d x0 = (plane_d_[i] * hj.cross(u) + plane_d_[j] * u.cross(hi)) / un2;
+      double lo = -std::numeric_limits<double>::infinity(), hiT = std::numeric_limits<double>::infinity();
+      bool empty = false;
+      for (std::size_t k = 0; k < np && !empty; ++k) {
+        if (k == i || k == j) continue;
+        const double a = plane_h_[k].dot(u);
+        const double r = plane_d_[k] - plane_h_[k].dot(x0);
+        if (std::abs(a) <= 1e-14 * std::sqrt(un2)) {
+          if (r < -kFeas * (x0.norm() + std::abs(plane_d_[k]) + length)) empty = true;
+        } else if (a > 0) {
+          hiT = std::min(hiT, r / a);
+        } else {
+          lo = std::max(lo, r / a);
+        }
+      }
+      if (empty) continue;
+      if (has_curved_) {
+        // q(t) = qa t^2 + 2 qb t + qc <= 0 along x0 + t u.
+        const double qa = u.dot(A_ * u), qb = u.dot(A_ * x0 + b_);
+        double mag = 0.0;
+        const double qc = curvedValue(x0, &mag);
+        const double qa_tol = tolerance_support::kSupportNullEigenRelative * un2;
+        if (qa > qa_tol) {
+          const double disc = qb * qb - qa * qc;
+          if (disc < 0.0) continue;
+          const double sq = std::sqrt(disc);
+          // Stable roots: t1 = (-qb - sign(qb) sq) / qa, t2 = qc / (qa t1).
+          const double q = -(qb + std::copysign(sq, qb));
+          double t1 = q / qa, t2 = q != 0.0 ? qc / q : t1;
+          if (t1 > t2) std::swap(t1, t2);
+          lo = std::max(lo, t1);
+          hiT = std::min(hiT, t2);
+        } else if (std::abs(qb) > 1e-14 * (std::sqrt(un2) * (x0.norm() + length) + std::abs(qc))) {
+          const double t0 = -qc / (2.0 * qb);
+          if (qb > 0) hiT = std::min(hiT, t0);
+          else lo = std::max(lo, t0);
+        } else if (qc > kFeas * mag) {
+          continue;
+        }
+      }
+      if (lo > hiT) {
+        // Allow a rounding-size inversion (a vertex met by several planes).
+        if (lo - hiT > kFeas * (x0.norm() + length) / std::sqrt(un2)) continue;
+        hiT = lo = 0.5 * (lo + hiT);
+      }
+      const double s = n.dot(u);
+      const double t = s >= 0.0 ? hiT : lo;
+      if (!std::isfinite(t)) continue;
+      consider(x0 + t * u);
+      if (s == 0.0 && std::isfinite(lo)) consider(x0 + lo * u);
+    }
+  }
+  return best_x;
+}
+
+}  // namespace fcl_quadric

@@ -1,0 +1,218 @@
+// fcl_quadric::distance on the quadric shapes (convex ones, by GJK / EPA on support mappings):
+// against the library's closed-form ellipsoid-cylinder distance, analytic placements of meshes,
+// octree leaves and half-spaces, the sign of fcl_quadric::collide on the same poses, and a
+// broad-phase manager against the pairwise minimum.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/broadphase/default_broadphase_callbacks.h>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/octree/octree.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/plane.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <octomap/OcTree.h>
+
+#include "fcl_quadric/algebra/quadric_matrix.h"
+#include "fcl_quadric/fcl/collision.h"
+#include "fcl_quadric/fcl/distance.h"
+#include "fcl_quadric/fcl/quadric_shapes.h"
+#include "fcl_quadric/geometry/ellipsoid_cylinder.h"
+#include "support/expect_invalid.h"
+#include "support/random_ellipsoids.h"
+
+namespace fcl_quadric {
+namespace {
+
+using Transform = fcl::Transform3<double>;
+
+Transform pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
+  Transform tf = Transform::Identity();
+  tf.linear() = R;
+  tf.translation() = p;
+  return tf;
+}
+
+double dist(const fcl::CollisionGeometry<double>& a, const Transform& ta, const fcl::CollisionGeometry<double>& b,
+            const Transform& tb, bool signed_distance, fcl::DistanceResult<double>* out = nullptr) {
+  fcl::DistanceRequest<double> req(true);
+  req.enable_signed_distance = signed_distance;
+  fcl::DistanceResult<double> res;
+  const double d = fcl_quadric::distance(&a, ta, &b, tb, req, res);
+  EXPECT_EQ(d, res.min_distance);
+  if (out) *out = res;
+  return d;
+}
+
+bool collides(const fcl::CollisionGeometry<double>& a, const Transform& ta, const fcl::CollisionGeometry<double>& b,
+              const Transform& tb) {
+  fcl::CollisionRequest<double> req;
+  fcl::CollisionResult<double> res;
+  return fcl_quadric::collide(&a, ta, &b, tb, req, res) > 0;
+}
+
+TEST(QuadricShapeDistance, CircularCylinderAgainstAnEllipsoidMatchesTheClosedFormKernelInBothOrders) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0.3, 1.2);
+  int separated = 0, overlapping = 0;
+  for (int i = 0; i < 300; ++i) {
+    const double r = u(rng), L = 2 * u(rng);
+    const EllipticCylinder<double> cyl(r, r, L);
+    const Ellipsoid e = test::anchorEllipsoid(rng);
+    const fcl::Ellipsoid<double> fe(e.radii());
+    const Eigen::Matrix3d R = test::randomRotation(rng);
+    const Eigen::Vector3d p = e.center() + (e.maxRadius() + 2.0 * u(rng) - 1.0) * test::randomUnitVector(rng);
+    const SignedDistanceResult ref = signedDistanceEllipsoidCylinder(e, r, L, R, p);
+    if (ref.status == Separation::Touching) continue;
+    const Transform tc = pose(R, p), te = pose(e.rotation(), e.center());
+    for (bool order : {false, true}) {
+      fcl::DistanceResult<double> res;
+      const double d = order ? dist(fe, te, cyl, tc, true, &res) : dist(cyl, tc, fe, te, true, &res);
+      EXPECT_NEAR(d, ref.distance, 1e-7 * (1 + std::abs(ref.distance))) << i;
+      // Nearest points in FCL's argument order: p[0] on o1.
+      const Eigen::Vector3d on_e = order ? res.nearest_points[0] : res.nearest_points[1];
+      if (ref.status == Separation::Separated) {
+        EXPECT_NEAR(e.implicit(on_e), 0.0, 1e-7) << i;
+        EXPECT_NEAR((res.nearest_points[0] - res.nearest_points[1]).norm(), d, 1e-9) << i;
+      }
+      const double unsigned_d = order ? dist(fe, te, cyl, tc, false) : dist(cyl, tc, fe, te, false);
+      EXPECT_EQ(unsigned_d, ref.status == Separation::Overlapping ? -1.0 : d);
+    }
+    (ref.status == Separation::Separated ? separated : overlapping)++;
+  }
+  EXPECT_GT(separated, 60);
+  EXPECT_GT(overlapping, 60);
+}
+
+TEST(QuadricShapeDistance, SignAgreesWithCollideOnClippedQuadricsIncludingNearContact) {
+  // A paraboloid cup and an elliptic cylinder, random poses; half of them pushed to within 1e-9 of
+  // contact along the reported normal.
+  std::mt19937_64 rng(22);
+  const Quadric<double> cup = Quadric<double>::ellipticParaboloid(0.5, 0.7, {{Eigen::Vector3d(0, 0, 1), 1.0}});
+  const EllipticCylinder<double> rod(0.3, 0.15, 1.2);
+  std::uniform_real_distribution<double> c(-1.2, 1.2);
+  int disagreements = 0, near = 0;
+  for (int i = 0; i < 200; ++i) {
+    Transform ta = pose(test::randomRotation(rng), Eigen::Vector3d(c(rng), c(rng), c(rng)));
+    const Transform tb = pose(test::randomRotation(rng), Eigen::Vector3d(c(rng), c(rng), c(rng)));
+    fcl::DistanceResult<double> res;
+    double d = dist(cup, ta, rod, tb, true, &res);
+    if (i % 2 == 1 && d > 0) {  // move the cup to 1e-9 short of touching
+      const Eigen::Vector3d n = (res.nearest_points[1] - res.nearest_points[0]).normalized();
+      ta.translation() += (d - 1e-9) * n;
+      d = dist(cup, ta, rod, tb, true);
+      ++near;
+    }
+    disagreements += (d <= 0.0) != collides(cup, ta, rod, tb);
+  }
+  EXPECT_EQ(disagreements, 0);
+  EXPECT_GT(near, 40);
+}
+
+TEST(QuadricShapeDistance, MeshOctreeAndHalfspacePartnersAtAnalyticDistances) {
+  // An elliptic cylinder (semi-axes 0.5, 0.3, length 2) on the origin.
+  const EllipticCylinder<double> cyl(0.5, 0.3, 2.0);
+  const Transform I = Transform::Identity();
+  // A box mesh (12 triangles) of half side 0.25 centred at x = 2: distance 2 - 0.25 - 0.5.
+  fcl::BVHModel<fcl::OBBRSS<double>> mesh;
+  mesh.beginModel();
+  const fcl::Box<double> box(0.5, 0.5, 0.5);
+  std::vector<Eigen::Vector3d> v;
+  for (int k = 0; k < 8; ++k) v.emplace_back(k & 1 ? 0.25 : -0.25, k & 2 ? 0.25 : -0.25, k & 4 ? 0.25 : -0.25);
+  const int faces[12][3] = {{0, 1, 3}, {0, 3, 2}, {4, 6, 7}, {4, 7, 5}, {0, 4, 5}, {0, 5, 1},
+                            {2, 3, 7}, {2, 7, 6}, {0, 2, 6}, {0, 6, 4}, {1, 5, 7}, {1, 7, 3}};
+  for (const auto& f : faces) mesh.addTriangle(v[f[0]], v[f[1]], v[f[2]]);
+  mesh.endModel();
+  for (bool order : {false, true}) {
+    fcl::DistanceResult<double> res;
+    const Transform tm = pose(Eigen::Matrix3d::Identity(), {2, 0, 0});
+    const double d = order ? dist(mesh, tm, cyl, I, false, &res) : dist(cyl, I, mesh, tm, false, &res);
+    EXPECT_NEAR(d, 1.25, 1e-9);
+    const int tri = order ? res.b1 : res.b2;
+    ASSERT_GE(tri, 0);
+    ASSERT_LT(tri, 12);
+    // The reported triangle reaches the facing side x = 1.75, where its nearest point lies.
+    double x_min = 1e9;
+    for (int k = 0; k < 3; ++k) x_min = std::min(x_min, v[faces[tri][k]].x() + 2.0);
+    EXPECT_NEAR(x_min, 1.75, 1e-12);
+    EXPECT_NEAR((order ? res.nearest_points[0] : res.nearest_points[1]).x(), 1.75, 1e-9);
+    // Overlapping mesh: -1 (FCL's value) or minus the depth with signed distance.
+    const Transform inside = pose(Eigen::Matrix3d::Identity(), {0.6, 0, 0});  // box from 0.35 to 0.85
+    EXPECT_EQ(order ? dist(mesh, inside, cyl, I, false) : dist(cyl, I, mesh, inside, false), -1.0);
+    EXPECT_NEAR(order ? dist(mesh, inside, cyl, I, true) : dist(cyl, I, mesh, inside, true), -0.15, 1e-7);
+  }
+  // One octree leaf beside the cylinder's curved side along y (semi-axis 0.3).
+  auto tree = std::make_shared<octomap::OcTree>(0.1);
+  tree->updateNode(octomap::point3d(0.02f, 1.02f, 0.02f), true);
+  const fcl::OcTree<double> fcl_tree(tree);
+  const auto leaves = fcl_tree.toBoxes();
+  ASSERT_EQ(leaves.size(), 1u);
+  const double leaf_lo_y = leaves[0][1] - 0.5 * leaves[0][3];
+  const double x_lo = leaves[0][0] - 0.5 * leaves[0][3], x_hi = leaves[0][0] + 0.5 * leaves[0][3];
+  ASSERT_LE(x_lo, 0.0);
+  ASSERT_GE(x_hi, 0.0);  // the leaf spans x = 0, where the ellipse reaches y = 0.3
+  EXPECT_NEAR(dist(fcl_tree, I, cyl, I, false), leaf_lo_y - 0.3, 1e-9);
+  // A half-space z <= -1.5 below the cylinder tilted by theta about x: lowest point at
+  // -(b |sin| + h |cos|).
+  const fcl::Halfspace<double> floor(Eigen::Vector3d(0, 0, 1), -1.5);
+  for (double theta : {0.0, 0.4, 1.2, -2.0}) {
+    const Transform t = pose(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitX()).toRotationMatrix(), Eigen::Vector3d::Zero());
+    const double lowest = -(0.3 * std::abs(std::sin(theta)) + 1.0 * std::abs(std::cos(theta)));
+    EXPECT_NEAR(dist(cyl, t, floor, I, true), lowest + 1.5, 1e-12) << theta;
+    EXPECT_NEAR(dist(floor, I, cyl, t, true), lowest + 1.5, 1e-12) << theta;
+  }
+}
+
+TEST(QuadricShapeDistance, BroadPhaseDistanceIsThePairwiseMinimum) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> c(-4, 4);
+  std::vector<std::shared_ptr<fcl::CollisionGeometry<double>>> shapes = {
+      std::make_shared<EllipticCylinder<double>>(0.4, 0.2, 1.0),
+      std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(0.5, 0.3, 0.2, {{Eigen::Vector3d(1, 0, 0), 0.2}})),
+      std::make_shared<fcl::Sphere<double>>(0.3)};
+  std::vector<std::unique_ptr<fcl::CollisionObject<double>>> objects;
+  for (int i = 0; i < 12; ++i)
+    objects.push_back(std::make_unique<fcl::CollisionObject<double>>(
+        shapes[i % shapes.size()], pose(test::randomRotation(rng), Eigen::Vector3d(c(rng), c(rng), c(rng)))));
+  double expected = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    for (std::size_t j = i + 1; j < objects.size(); ++j) {
+      fcl::DistanceRequest<double> req;
+      fcl::DistanceResult<double> res;
+      expected = std::min(expected, fcl_quadric::distance(objects[i].get(), objects[j].get(), req, res));
+    }
+  fcl::DynamicAABBTreeCollisionManager<double> manager;
+  for (auto& o : objects) manager.registerObject(o.get());
+  manager.setup();
+  fcl::DefaultDistanceData<double> data;
+  manager.distance(&data, fcl_quadric::defaultDistanceFunction<double>);
+  EXPECT_NEAR(data.result.min_distance, expected, 1e-12);
+}
+
+TEST(QuadricShapeDistance, NonConvexAndUnsupportedShapesThrowNamingThem) {
+  using test::expectInvalid;
+  // A ring: an ellipsoid minus a cylinder (not convex).
+  auto ball = std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(1.0, 1.0, 0.4));
+  auto bore = std::make_shared<Quadric<double>>(Quadric<double>::ellipticCylinder(0.5, 0.5));
+  const QuadricCSG<double> ring(QuadricRegion::Op::Difference, {{ball, Transform::Identity()}, {bore, Transform::Identity()}});
+  const fcl::Sphere<double> s(0.2);
+  const Transform I = Transform::Identity(), far = pose(Eigen::Matrix3d::Identity(), {5, 0, 0});
+  fcl::DistanceRequest<double> req;
+  fcl::DistanceResult<double> res;
+  expectInvalid([&] { fcl_quadric::distance(&ring, I, &s, far, req, res); }, "o1 is a quadric shape that is not convex");
+  expectInvalid([&] { fcl_quadric::distance(&s, far, &ring, I, req, res); }, "o2 is a quadric shape that is not convex");
+  const fcl::Plane<double> plane(Eigen::Vector3d(0, 0, 1), 0.0);
+  const EllipticCylinder<double> cyl(1.0, 0.5, 2.0);
+  expectInvalid([&] { fcl_quadric::distance(&cyl, I, &plane, far, req, res); }, "o2 has node type");
+}
+
+}  // namespace
+}  // namespace fcl_quadric

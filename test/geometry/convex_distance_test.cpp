@@ -1,0 +1,296 @@
+// GJK / EPA on support mappings (convex_support.h, convex_distance.h) against independent
+// computations: the closed-form ellipsoid / cylinder / cone / box distances of the library, the
+// certified maxLinear bound of the region engine for support values, and the certified static
+// classification (collideRegions) of the pair translated along the reported normal.
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "fcl_quadric/algebra/quadric_matrix.h"
+#include "fcl_quadric/geometry/convex_distance.h"
+#include "fcl_quadric/geometry/convex_support.h"
+#include "fcl_quadric/geometry/ellipsoid_cylinder.h"
+#include "fcl_quadric/geometry/ellipsoid_polytope.h"
+#include "fcl_quadric/geometry/quadric_region.h"
+#include "fcl_quadric/geometry/signed_distance.h"
+#include "support/expect_invalid.h"
+#include "support/random_ellipsoids.h"
+
+namespace fcl_quadric {
+namespace {
+
+using Op = QuadricRegion::Op;
+using test::randomRotation;
+using test::randomUnitVector;
+
+QuadricRegion slab(double h) {
+  return QuadricRegion::combine(Op::Intersection,
+                                {QuadricRegion::halfspace({0, 0, 1}, h), QuadricRegion::halfspace({0, 0, -1}, h)});
+}
+
+QuadricRegion boxRegion(const Eigen::Vector3d& h) {
+  std::vector<QuadricRegion> planes;
+  for (int i = 0; i < 3; ++i) {
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    n[i] = 1.0;
+    planes.push_back(QuadricRegion::halfspace(n, h[i]));
+    planes.push_back(QuadricRegion::halfspace(-n, h[i]));
+  }
+  return QuadricRegion::combine(Op::Intersection, planes);
+}
+
+/// Convex test solids (local frame), each with a pose of its curved atom off the axes so that
+/// the matrices have cross and linear terms.
+std::vector<QuadricRegion> convexRegions() {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  std::vector<QuadricRegion> out;
+  // A clipped ellipsoid (two cuts).
+  out.push_back(QuadricRegion::combine(
+      Op::Intersection, {QuadricRegion::atom(quadric::posedEllipsoid({1.0, 0.6, 0.4}, R, {0.1, -0.2, 0.3})),
+                         QuadricRegion::halfspace({1, 0, 0}, 0.5), QuadricRegion::halfspace({0.3, 1, -0.2}, 0.1)}));
+  // A paraboloid cup cut by a tilted plane.
+  out.push_back(QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticParaboloid(0.5, 0.8)),
+                                                          QuadricRegion::halfspace({0.2, -0.1, 1}, 1.5)})
+                    .transformed(R, {0.3, 0.0, -0.4}));
+  // An elliptic cylinder between two caps, one of them tilted (a wedge).
+  out.push_back(QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticCylinder(0.5, 0.3)),
+                                                          QuadricRegion::halfspace({0, 0, -1}, 0.7),
+                                                          QuadricRegion::halfspace({0.4, 0, 1}, 0.5)})
+                    .transformed(R, {-0.2, 0.1, 0.0}));
+  // A rotated box as six half-spaces, written as a difference (box minus a half-space).
+  out.push_back(QuadricRegion::combine(Op::Difference, {boxRegion({0.4, 0.7, 0.3}), QuadricRegion::halfspace({1, 1, 1}, 0.6)})
+                    .transformed(R, {0, 0, 0.2}));
+  return out;
+}
+
+TEST(ConvexSupport, ClosedFormsAgreeWithTheirRegions) {
+  std::mt19937_64 rng(11);
+  struct Case {
+    ConvexSupport closed;
+    QuadricRegion region;
+  };
+  const Eigen::Matrix4d cone = [] {  // FCL's cone of radius 0.6, length 1.6 (dispatch's matrix)
+    const double k = 0.6 / 1.6, h = 0.8;
+    Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
+    Q(0, 0) = Q(1, 1) = 1.0;
+    Q(2, 2) = -k * k;
+    Q(2, 3) = Q(3, 2) = k * k * h;
+    Q(3, 3) = -k * k * h * h;
+    return Q;
+  }();
+  std::vector<Case> cases = {
+      {ConvexSupport::ellipsoid({1.0, 0.5, 0.2}), QuadricRegion::atom(quadric::ellipsoid({1.0, 0.5, 0.2}))},
+      {ConvexSupport::box({0.3, 0.6, 0.9}), boxRegion({0.3, 0.6, 0.9})},
+      {ConvexSupport::ellipticCylinder(0.7, 0.2, 0.5),
+       QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticCylinder(0.7, 0.2)), slab(0.5)})},
+  };
+  for (const Case& c : cases) {
+    const auto region = ConvexSupport::fromRegion(c.region, regionAabb(c.region));
+    ASSERT_TRUE(region.has_value());
+    for (int i = 0; i < 300; ++i) {
+      const Eigen::Vector3d n = randomUnitVector(rng);
+      EXPECT_NEAR(n.dot(region->support(n)), n.dot(c.closed.support(n)), 1e-10);
+    }
+  }
+  // The cone's double nappe is not convex: only with the slab that selects one nappe is the
+  // region a conjunction with a PSD atom? No: the cone's quadratic part is indefinite, so
+  // fromRegion refuses it, and the closed form is checked against sampled rim and apex points.
+  const QuadricRegion cone_region = QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(cone), slab(0.8)});
+  EXPECT_FALSE(ConvexSupport::fromRegion(cone_region, regionAabb(cone_region)).has_value());
+  const ConvexSupport cs = ConvexSupport::cone(0.6, 0.8);
+  for (int i = 0; i < 300; ++i) {
+    const Eigen::Vector3d n = randomUnitVector(rng);
+    double best = 0.8 * n.z();
+    for (int k = 0; k < 3600; ++k) {
+      const double t = 2 * M_PI * k / 3600;
+      best = std::max(best, n.dot(Eigen::Vector3d(0.6 * std::cos(t), 0.6 * std::sin(t), -0.8)));
+    }
+    const double got = n.dot(cs.support(n));
+    EXPECT_GE(got, best - 1e-12);
+    EXPECT_LE(got, best + 0.6 * (1 - std::cos(M_PI / 3600)) + 1e-12);
+  }
+}
+
+TEST(ConvexSupport, RegionSupportMatchesTheCertifiedMaxLinearBound) {
+  std::mt19937_64 rng(12);
+  for (const QuadricRegion& r : convexRegions()) {
+    const Box3 box = regionAabb(r);
+    const auto s = ConvexSupport::fromRegion(r, box);
+    ASSERT_TRUE(s.has_value());
+    const double extent = (box.hi - box.lo).maxCoeff();
+    for (int i = 0; i < 15; ++i) {
+      const Eigen::Vector3d n = randomUnitVector(rng);
+      double upper = 0.0;
+      ASSERT_TRUE(maxLinear(r, n, box, &upper));
+      const double got = n.dot(s->support(n));
+      // maxLinear is a certified upper bound within kRegionAabbRelative (1e-7) of the maximum.
+      EXPECT_LE(got, upper + 1e-12 * extent);
+      EXPECT_GE(got, upper - 2e-7 * extent);
+    }
+  }
+}
+
+TEST(ConvexSupport, NonConvexFormulasAreRefused) {
+  const Box3 box{Eigen::Vector3d::Constant(-3), Eigen::Vector3d::Constant(3)};
+  const QuadricRegion e1 = QuadricRegion::atom(quadric::ellipsoid({1, 1, 1}));
+  const QuadricRegion e2 = QuadricRegion::atom(quadric::posedEllipsoid({1, 1, 1}, Eigen::Matrix3d::Identity(), {1, 0, 0}));
+  EXPECT_FALSE(ConvexSupport::fromRegion(QuadricRegion::combine(Op::Union, {e1, e2}), box).has_value());
+  EXPECT_FALSE(ConvexSupport::fromRegion(QuadricRegion::combine(Op::Difference, {e1, e2}), box).has_value());
+  EXPECT_FALSE(ConvexSupport::fromRegion(QuadricRegion::combine(Op::Intersection, {e1, e2}), box).has_value());
+  EXPECT_FALSE(ConvexSupport::fromRegion(
+                   QuadricRegion::combine(Op::Intersection,
+                                          {QuadricRegion::atom(quadric::hyperboloidTwoSheets(1, 1, 1)), slab(2.0)}),
+                   box)
+                   .has_value());
+  // A difference of half-spaces stays convex.
+  EXPECT_TRUE(ConvexSupport::fromRegion(QuadricRegion::combine(Op::Difference, {e1, QuadricRegion::halfspace({1, 0, 0}, 0.2)}), box)
+                  .has_value());
+}
+
+TEST(ConvexSupport, BadInputThrowsNamingTheValue) {
+  using test::expectInvalid;
+  expectInvalid([] { ConvexSupport::ellipsoid({1, -1, 1}); }, "ellipsoid radius = -1");
+  expectInvalid([] { ConvexSupport::box({1, 1, NAN}); }, "box half side = nan");
+  expectInvalid([] { ConvexSupport::ellipticCylinder(1, 1, -2); }, "cylinder half length = -2");
+  expectInvalid([] { ConvexSupport::cone(0, 1); }, "cone radius = 0");
+  expectInvalid([] { ConvexSupport::capsule(1, INFINITY); }, "capsule half length = inf");
+  expectInvalid([] { ConvexSupport::points({}); }, "expected 1..8 points");
+  expectInvalid([] { ConvexSupport::points({Eigen::Vector3d(0, NAN, 0)}); }, "point 0 is not finite");
+  expectInvalid(
+      [] {
+        ConvexSupport::fromRegion(QuadricRegion::halfspace({1, 0, 0}, 0),
+                                  Box3{Eigen::Vector3d::Ones(), Eigen::Vector3d::Zero()});
+      },
+      "bounding box is empty");
+  const ConvexSupport e = ConvexSupport::ellipsoid({1, 1, 1});
+  Eigen::Matrix3d bad = Eigen::Matrix3d::Identity();
+  bad(0, 1) = NAN;
+  expectInvalid([&] { convexSignedDistance(e, bad, Eigen::Vector3d::Zero(), e, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()); },
+                "pose is not finite");
+}
+
+/// Checks one convex result against a reference signed distance (exact routine of the library).
+void expectAgrees(const SignedDistanceResult& got, const SignedDistanceResult& ref, double scale, int* compared) {
+  if (ref.status == Separation::Touching || got.status == Separation::Touching) return;
+  ++*compared;
+  EXPECT_EQ(got.status, ref.status);
+  if (ref.status == Separation::Separated) {
+    EXPECT_NEAR(got.distance, ref.distance, 1e-9 * scale);
+    EXPECT_NEAR((got.point_b - got.point_a).norm(), got.distance, 1e-9 * scale);
+    EXPECT_GT(got.normal.dot(ref.normal), 1.0 - 1e-6);
+  } else {
+    EXPECT_NEAR(got.distance, ref.distance, 1e-7 * scale);
+  }
+}
+
+TEST(ConvexDistance, AgreesWithTheEllipsoidSignedDistance) {
+  std::mt19937_64 rng(13);
+  int compared = 0, overlapping = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Ellipsoid a = test::anchorEllipsoid(rng), b = test::anchorEllipsoid(rng);
+    const SignedDistanceResult ref = signedDistance(a, b);
+    const SignedDistanceResult got = convexSignedDistance(ConvexSupport::ellipsoid(a.radii()), a.rotation(), a.center(),
+                                                          ConvexSupport::ellipsoid(b.radii()), b.rotation(), b.center());
+    EXPECT_TRUE(got.converged) << i;
+    const double scale = a.maxRadius() + b.maxRadius() + (a.center() - b.center()).norm();
+    expectAgrees(got, ref, scale, &compared);
+    overlapping += ref.status == Separation::Overlapping;
+  }
+  EXPECT_GT(compared, 1900);
+  EXPECT_GT(overlapping, 400);
+}
+
+TEST(ConvexDistance, AgreesWithTheEllipsoidCylinderConeAndBoxDistances) {
+  std::mt19937_64 rng(14);
+  std::uniform_real_distribution<double> u(0.3, 1.5), c(-2.0, 2.0);
+  int compared = 0;
+  for (int i = 0; i < 600; ++i) {
+    const Ellipsoid e = test::anchorEllipsoid(rng);
+    const double r = u(rng), h = u(rng);
+    const Eigen::Vector3d half(u(rng), u(rng), u(rng));
+    const Eigen::Matrix3d R = randomRotation(rng);
+    const Eigen::Vector3d p(c(rng), c(rng), c(rng));
+    const double scale = e.maxRadius() + 2 * r + 2 * h + half.norm() + (e.center() - p).norm();
+    const ConvexSupport es = ConvexSupport::ellipsoid(e.radii());
+    expectAgrees(convexSignedDistance(es, e.rotation(), e.center(), ConvexSupport::ellipticCylinder(r, r, h), R, p),
+                 signedDistanceEllipsoidCylinder(e, r, 2 * h, R, p), scale, &compared);
+    expectAgrees(convexSignedDistance(es, e.rotation(), e.center(), ConvexSupport::cone(r, h), R, p),
+                 signedDistanceEllipsoidCone(e, r, 2 * h, R, p), scale, &compared);
+    expectAgrees(convexSignedDistance(es, e.rotation(), e.center(), ConvexSupport::box(half), R, p),
+                 signedDistanceEllipsoidBox(e, half, R, p), scale, &compared);
+  }
+  EXPECT_GT(compared, 1600);
+}
+
+TEST(ConvexDistance, RegionPairsAgreeWithTheCertifiedStaticEngineAlongTheNormal) {
+  // Translating b by -distance * normal makes the pair touch: 1e-5 of the distance short of that
+  // the engine must not find an overlap, 1e-5 beyond it it must not certify separation. For
+  // penetration the same with the roles of the sides exchanged.
+  std::mt19937_64 rng(15);
+  const std::vector<QuadricRegion> regions = convexRegions();
+  std::vector<Box3> boxes;
+  std::vector<ConvexSupport> supports;
+  for (const auto& r : regions) {
+    boxes.push_back(regionAabb(r));
+    supports.push_back(*ConvexSupport::fromRegion(r, boxes.back()));
+  }
+  std::uniform_real_distribution<double> c(-1.6, 1.6);
+  int separated = 0, overlapping = 0;
+  for (int i = 0; i < 70; ++i) {
+    const int ia = static_cast<int>(rng() % regions.size()), ib = static_cast<int>(rng() % regions.size());
+    const Eigen::Matrix3d R = randomRotation(rng);
+    const Eigen::Vector3d p(c(rng), c(rng), c(rng));
+    const SignedDistanceResult d =
+        convexSignedDistance(supports[ia], Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), supports[ib], R, p);
+    ASSERT_TRUE(d.converged) << i;
+    if (d.status == Separation::Touching) continue;
+    const double mag = std::abs(d.distance);
+    auto relation = [&](double t) {  // b translated by t * normal
+      return collideRegions(regions[ia], boxes[ia], regions[ib], boxes[ib], R, p + t * d.normal).relation;
+    };
+    if (d.status == Separation::Separated) {
+      ++separated;
+      EXPECT_NE(relation(-(1 - 1e-5) * mag), RegionRelation::Overlapping) << i;
+      EXPECT_NE(relation(-(1 + 1e-5) * mag), RegionRelation::Separated) << i;
+      EXPECT_NEAR((d.point_b - d.point_a).norm(), mag, 1e-9);
+    } else {
+      ++overlapping;
+      EXPECT_NE(relation((1 - 1e-5) * mag), RegionRelation::Separated) << i;
+      EXPECT_NE(relation((1 + 1e-5) * mag), RegionRelation::Overlapping) << i;
+      // No sampled direction separates with a shorter translation (support values from the
+      // region engine's certified maxLinear, an independent computation).
+      for (const Eigen::Vector3d& m : test::fibonacciSphere(8)) {
+        double ha = 0.0, hb = 0.0;
+        ASSERT_TRUE(maxLinear(regions[ia], m, boxes[ia], &ha));
+        ASSERT_TRUE(maxLinear(regions[ib], -(R.transpose() * m), boxes[ib], &hb));
+        const double h_d = ha + hb - m.dot(p);  // support of A - B in direction m
+        EXPECT_GE(h_d, mag - 1e-6) << i;
+      }
+    }
+  }
+  EXPECT_GT(separated, 10);
+  EXPECT_GT(overlapping, 10);
+}
+
+TEST(ConvexDistance, TouchingAndFlatPairsErrTowardContact) {
+  // Two unit spheres touching exactly, and two coplanar triangles overlapping in their plane (the
+  // Minkowski difference has no interior).
+  const ConvexSupport s = ConvexSupport::ellipsoid({1, 1, 1});
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const SignedDistanceResult t = convexSignedDistance(s, I, Eigen::Vector3d::Zero(), s, I, Eigen::Vector3d(2, 0, 0));
+  EXPECT_EQ(t.status, Separation::Touching);
+  EXPECT_EQ(t.distance, 0.0);
+  const ConvexSupport tri = ConvexSupport::points({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  const SignedDistanceResult f = convexSignedDistance(tri, I, Eigen::Vector3d::Zero(), tri, I, Eigen::Vector3d(0.2, 0.2, 0));
+  EXPECT_EQ(f.status, Separation::Touching);
+  // Concentric shapes (the origin at the first simplex' centre): depth = the smaller extent sum.
+  const SignedDistanceResult c = convexSignedDistance(ConvexSupport::box({1, 2, 3}), I, Eigen::Vector3d::Zero(),
+                                                      ConvexSupport::box({0.5, 0.5, 0.5}), I, Eigen::Vector3d::Zero());
+  EXPECT_EQ(c.status, Separation::Overlapping);
+  EXPECT_NEAR(c.distance, -1.5, 1e-12);
+}
+
+}  // namespace
+}  // namespace fcl_quadric
