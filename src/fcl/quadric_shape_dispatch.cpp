@@ -564,9 +564,16 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
     const double off = hs->d / hs->n.norm() + n.dot(tfp.translation());
     const Eigen::Vector3d x = shape.R * shape.support.support(-(shape.R.transpose() * n)) + shape.p;
     double s = n.dot(x) - off;
-    const double band = tolerance_convex::kConvexSeparationRelative *
-                        (shape.support.size() + (shape.R * shape.support.center() + shape.p).norm() + std::abs(off));
-    if (std::abs(s) <= band) s = 0.0;  // touching: contact
+    const double scale = shape.support.size() + (shape.R * shape.support.center() + shape.p).norm() + std::abs(off);
+    if (std::abs(s) <= tolerance_convex::kConvexSeparationRelative * scale) {
+      s = 0.0;  // touching: contact
+    } else if (std::abs(s) <= 1e-8 * scale) {
+      // Near contact the front door's own collide decides, as for the other partners.
+      fcl::CollisionRequest<double> creq(1);
+      fcl::CollisionResult<double> cres;
+      collidePair(localSolid(gs, "o1", where), tfs, localSolid(gp, "o2", where), tfp, gs, gp, creq, cres);
+      s = cres.numContacts() > 0 ? std::min(s, 0.0) : std::abs(s);
+    }
     report(s, x, x - s * n, -1);
     return result.min_distance;
   }
@@ -576,7 +583,8 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
   const Box3 shape_box = worldBox(shape);
   double best = std::numeric_limits<double>::infinity();
   for (const PosedConvex& piece : pieces) {
-    if (pieces.size() > 1 && boxGap(shape_box, worldBox(piece)) >= best) continue;
+    // (Overlapping pieces are all visited: the deepest one is reported.)
+    if (pieces.size() > 1 && boxGap(shape_box, worldBox(piece)) >= std::max(best, 0.0)) continue;
     SignedDistanceResult d =
         convexSignedDistance(shape.support, shape.R, shape.p, piece.support, piece.R, piece.p, request.enable_signed_distance);
     // Near contact the front door's own collide decides the sign, so distance and collide agree.

@@ -168,6 +168,11 @@ TEST(QuadricShapeDistance, MeshOctreeAndHalfspacePartnersAtAnalyticDistances) {
     const double lowest = -(0.3 * std::abs(std::sin(theta)) + 1.0 * std::abs(std::cos(theta)));
     EXPECT_NEAR(dist(cyl, t, floor, I, true), lowest + 1.5, 1e-12) << theta;
     EXPECT_NEAR(dist(floor, I, cyl, t, true), lowest + 1.5, 1e-12) << theta;
+    // Within 1e-9 of contact the sign is collide's.
+    for (double gap : {1e-9, 1e-10, -1e-10, -1e-9}) {
+      const Transform near = pose(t.linear(), Eigen::Vector3d(0, 0, -1.5 - lowest + gap));
+      EXPECT_EQ(dist(cyl, near, floor, I, true) <= 0.0, collides(cyl, near, floor, I)) << theta << " " << gap;
+    }
   }
 }
 
