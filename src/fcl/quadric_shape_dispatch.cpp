@@ -6,6 +6,9 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <queue>
+#include <type_traits>
+#include <utility>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -95,33 +98,166 @@ QuadricRegion boxRegion(const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
   return QuadricRegion::combine(QuadricRegion::Op::Intersection, planes);
 }
 
+/// A box (local frame) that contains a BVH node's bounding volume: exact for AABB, from the OBB
+/// for OBB / OBBRSS / kIOS, otherwise the cube about the BV's centre with its half-diagonal (FCL's
+/// own conversion to AABB). Culling needs only a superset.
 template <typename BV>
-bool meshPieces(const fcl::CollisionGeometry<double>* g, std::vector<LocalSolid>* out) {
-  const auto* m = dynamic_cast<const fcl::BVHModel<BV>*>(g);
-  if (m == nullptr) return false;
-  for (int t = 0; t < m->num_tris; ++t) {
-    const fcl::Triangle& tri = m->tri_indices[t];
-    if (auto s = triangleSolid(m->vertices[tri[0]], m->vertices[tri[1]], m->vertices[tri[2]])) out->push_back(*s);
-  }
-  return true;
+Box3 nodeBox(const BV& bv) {
+  const Eigen::Vector3d c = bv.center();
+  const Eigen::Vector3d r = Eigen::Vector3d::Constant(0.5 * Eigen::Vector3d(bv.width(), bv.height(), bv.depth()).norm());
+  return Box3{c - r, c + r};
+}
+Box3 obbBox(const fcl::OBB<double>& o) {
+  const Eigen::Vector3d h = o.axis.cwiseAbs() * o.extent;
+  return Box3{o.To - h, o.To + h};
+}
+template <>
+Box3 nodeBox(const fcl::AABB<double>& bv) {
+  return Box3{bv.min_, bv.max_};
+}
+template <>
+Box3 nodeBox(const fcl::OBB<double>& bv) {
+  return obbBox(bv);
+}
+template <>
+Box3 nodeBox(const fcl::OBBRSS<double>& bv) {
+  return obbBox(bv.obb);
+}
+template <>
+Box3 nodeBox(const fcl::kIOS<double>& bv) {
+  return obbBox(bv.obb);
 }
 
-/// BVH meshes (every triangle) and OcTrees (every occupied leaf box) as pieces; false otherwise.
-bool compositePieces(const fcl::CollisionGeometry<double>* g, std::vector<LocalSolid>* out) {
-  if (meshPieces<fcl::OBBRSS<double>>(g, out) || meshPieces<fcl::OBB<double>>(g, out) ||
-      meshPieces<fcl::RSS<double>>(g, out) || meshPieces<fcl::AABB<double>>(g, out) ||
-      meshPieces<fcl::kIOS<double>>(g, out) || meshPieces<fcl::KDOP<double, 16>>(g, out) ||
-      meshPieces<fcl::KDOP<double, 18>>(g, out) || meshPieces<fcl::KDOP<double, 24>>(g, out))
-    return true;
-  if (const auto* tree = dynamic_cast<const fcl::OcTree<double>*>(g)) {
-    for (const std::array<double, 6>& b : tree->toBoxes()) {
-      const Eigen::Vector3d c(b[0], b[1], b[2]);
-      const Eigen::Vector3d h = Eigen::Vector3d::Constant(0.5 * b[3]);
-      out->push_back(LocalSolid{boxRegion(c, h), Box3{c - h, c + h}, false});
+bool boxesOverlap(const Box3& a, const Box3& b) {
+  return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
+}
+
+/// Euclidean gap between two boxes (0 when they overlap).
+double boxGap(const Box3& a, const Box3& b) { return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0).norm(); }
+
+/// Calls f(mesh) with g as its BVHModel type (the eight BV types FCL instantiates); false if g is
+/// not a BVH mesh.
+template <typename F>
+bool withMesh(const fcl::CollisionGeometry<double>* g, F&& f) {
+  bool found = false;
+  auto attempt = [&](auto* tag) {
+    using M = std::remove_pointer_t<decltype(tag)>;
+    if (found) return;
+    if (const auto* m = dynamic_cast<const M*>(g)) {
+      found = true;
+      f(*m);
     }
-    return true;
+  };
+  attempt(static_cast<fcl::BVHModel<fcl::OBBRSS<double>>*>(nullptr));
+  attempt(static_cast<fcl::BVHModel<fcl::OBB<double>>*>(nullptr));
+  attempt(static_cast<fcl::BVHModel<fcl::RSS<double>>*>(nullptr));
+  attempt(static_cast<fcl::BVHModel<fcl::AABB<double>>*>(nullptr));
+  attempt(static_cast<fcl::BVHModel<fcl::kIOS<double>>*>(nullptr));
+  attempt(static_cast<fcl::BVHModel<fcl::KDOP<double, 16>>*>(nullptr));
+  attempt(static_cast<fcl::BVHModel<fcl::KDOP<double, 18>>*>(nullptr));
+  attempt(static_cast<fcl::BVHModel<fcl::KDOP<double, 24>>*>(nullptr));
+  return found;
+}
+
+bool isMeshOrOcTree(const fcl::CollisionGeometry<double>* g) {
+  return withMesh(g, [](const auto&) {}) || dynamic_cast<const fcl::OcTree<double>*>(g) != nullptr;
+}
+
+/// Depth-first over the BVH: visit(triangle index, p0, p1, p2) for each triangle whose leaf box
+/// meets `query` (mesh frame), until visit returns true. A model without a hierarchy (no BVs) is
+/// walked triangle by triangle.
+template <typename BV, typename Visit>
+void visitMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, Visit&& visit) {
+  auto tri = [&](int t) {
+    const fcl::Triangle& f = m.tri_indices[t];
+    return visit(t, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]);
+  };
+  if (m.getNumBVs() == 0) {
+    for (int t = 0; t < m.num_tris; ++t)
+      if (tri(t)) return;
+    return;
   }
-  return false;
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const int id = stack.back();
+    stack.pop_back();
+    const fcl::BVNode<BV>& node = m.getBV(id);
+    if (!boxesOverlap(nodeBox(node.bv), query)) continue;
+    if (node.isLeaf()) {
+      if (tri(node.primitiveId())) return;
+    } else {
+      stack.push_back(node.rightChild());
+      stack.push_back(node.leftChild());
+    }
+  }
+}
+
+/// Best first over the BVH: visit(t, p0, p1, p2) returns the triangle's distance; the search ends
+/// at the first node whose box gap to `query` (mesh frame) is positive and not below the best
+/// distance so far (nodes whose boxes meet it are all visited: they may hold a deeper overlap).
+/// stop(best) ends it early.
+template <typename BV, typename Visit, typename Stop>
+void nearestMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, Visit&& visit, Stop&& stop) {
+  double best = std::numeric_limits<double>::infinity();
+  auto tri = [&](int t) {
+    const fcl::Triangle& f = m.tri_indices[t];
+    best = std::min(best, visit(t, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]));
+    return stop(best);
+  };
+  if (m.getNumBVs() == 0) {
+    for (int t = 0; t < m.num_tris; ++t)
+      if (tri(t)) return;
+    return;
+  }
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  queue.emplace(boxGap(nodeBox(m.getBV(0).bv), query), 0);
+  while (!queue.empty()) {
+    const auto [gap, id] = queue.top();
+    queue.pop();
+    if (gap > 0.0 && gap >= best) break;  // (boxes that meet may hold a deeper overlap)
+    const fcl::BVNode<BV>& node = m.getBV(id);
+    if (node.isLeaf()) {
+      if (tri(node.primitiveId())) return;
+    } else {
+      for (int child : {node.leftChild(), node.rightChild()})
+        queue.emplace(boxGap(nodeBox(m.getBV(child).bv), query), child);
+    }
+  }
+}
+
+/// The eight children of an octree cell box (FCL's computeChildBV order: bit 0 x, bit 1 y, bit 2 z).
+Box3 octreeChildBox(const Box3& b, unsigned i) {
+  const Eigen::Vector3d mid = 0.5 * (b.lo + b.hi);
+  Box3 c = b;
+  for (int k = 0; k < 3; ++k) {
+    if (i & (1u << k)) c.lo[k] = mid[k];
+    else c.hi[k] = mid[k];
+  }
+  return c;
+}
+
+/// The occupied leaves of an OcTree as (centre, half width) pairs, in the order of a traversal
+/// that skips cells whose box misses `query` (tree frame); visit returns true to stop. Leaves and
+/// occupancy as fcl::OcTree::toBoxes (occupied = fcl::OcTree::isNodeOccupied).
+template <typename Visit>
+void visitOcTreeLeaves(const fcl::OcTree<double>& tree, const Box3& query, Visit&& visit) {
+  const fcl::OcTree<double>::OcTreeNode* root = tree.getRoot();
+  if (root == nullptr) return;
+  const fcl::AABB<double> rb = tree.getRootBV();
+  std::vector<std::pair<const fcl::OcTree<double>::OcTreeNode*, Box3>> stack{{root, Box3{rb.min_, rb.max_}}};
+  while (!stack.empty()) {
+    const auto [node, box] = stack.back();
+    stack.pop_back();
+    if (!boxesOverlap(box, query)) continue;
+    bool leaf = true;
+    for (unsigned i = 0; i < 8; ++i) {
+      if (!tree.nodeChildExists(node, i)) continue;
+      leaf = false;
+      stack.emplace_back(tree.getNodeChild(node, i), octreeChildBox(box, i));
+    }
+    if (leaf && tree.isNodeOccupied(node) && visit(box.center(), box.halfWidth())) return;
+  }
 }
 
 Box3 symmetricBox(const Eigen::Vector3d& h) { return Box3{-h, h}; }
@@ -207,16 +343,36 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
 std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
                                  const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
                                  const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result) {
-  // Meshes and octrees: the pieces (triangles / occupied leaves) one by one, the first contact
-  // wins (docs/fcl_integration.md section 9).
-  std::vector<LocalSolid> pieces;
-  if (compositePieces(o1, &pieces) || compositePieces(o2, &pieces)) {
-    const bool pieces_first = !isQuadricShape(o1);
+  // Meshes and octrees: the pieces (triangles / occupied leaves) whose bounding boxes meet the
+  // shape's, found through the mesh's BVH or the octree's cells; the first contact wins
+  // (docs/fcl_integration.md section 9).
+  const bool pieces_first = isMeshOrOcTree(o1);
+  if (pieces_first || isMeshOrOcTree(o2)) {
+    const fcl::CollisionGeometry<double>* gp = pieces_first ? o1 : o2;
+    const fcl::Transform3<double>& tfp = pieces_first ? tf1 : tf2;
+    const fcl::Transform3<double>& tfs = pieces_first ? tf2 : tf1;
     const LocalSolid shape = pieces_first ? localSolid(o2, "o2") : localSolid(o1, "o1");
+    // The shape's box in the pieces' frame (everything, for an unbounded shape).
+    const fcl::Transform3<double> X = tfp.inverse() * tfs;
+    const Box3 query = shape.box ? transformBox(*shape.box, X.linear(), X.translation())
+                                 : Box3{Eigen::Vector3d::Constant(-std::numeric_limits<double>::max()),
+                                        Eigen::Vector3d::Constant(std::numeric_limits<double>::max())};
     const std::size_t before = result.numContacts();
-    for (const LocalSolid& piece : pieces) {
-      collidePair(pieces_first ? piece : shape, tf1, pieces_first ? shape : piece, tf2, o1, o2, request, result);
-      if (result.numContacts() > before || result.numContacts() >= request.num_max_contacts) break;
+    auto piece = [&](const LocalSolid& p) {
+      collidePair(pieces_first ? p : shape, tf1, pieces_first ? shape : p, tf2, o1, o2, request, result);
+      return result.numContacts() > before || result.numContacts() >= request.num_max_contacts;
+    };
+    if (!withMesh(gp, [&](const auto& m) {
+          visitMeshTriangles(m, query, [&](int, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                           const Eigen::Vector3d& p2) {
+            const std::optional<LocalSolid> t = triangleSolid(p0, p1, p2);
+            return t && piece(*t);
+          });
+        })) {
+      visitOcTreeLeaves(*static_cast<const fcl::OcTree<double>*>(gp), query,
+                        [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
+                          return piece(LocalSolid{boxRegion(c, h), Box3{c - h, c + h}, false});
+                        });
     }
     return result.numContacts();
   }
@@ -375,9 +531,8 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
 RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const PiecewiseMotion& m1,
                                                const fcl::CollisionGeometry<double>* o2, const PiecewiseMotion& m2,
                                                const char* where, std::string* elements1, std::string* elements2) {
-  std::vector<LocalSolid> pieces;
   for (const auto& [g, which] : {std::pair(o1, "o1"), std::pair(o2, "o2")}) {
-    if (compositePieces(g, &pieces))
+    if (isMeshOrOcTree(g))
       throw std::invalid_argument(std::string(where) + ": " + which +
                                   " is a BVH mesh or an OcTree: continuous collision of quadric shapes against meshes "
                                   "and octrees is not implemented");
@@ -468,57 +623,6 @@ struct PosedConvex {
   std::array<Eigen::Vector3d, 3> v{};
 };
 
-/// World AABB of a posed convex piece from six support points (exact for the support mapping).
-Box3 worldBox(const PosedConvex& c) {
-  Box3 b;
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector3d e = c.R.row(i).transpose();
-    b.hi[i] = c.R.row(i).dot(c.support.support(e)) + c.p[i];
-    b.lo[i] = c.R.row(i).dot(c.support.support(-e)) + c.p[i];
-  }
-  return b;
-}
-
-double boxGap(const Box3& a, const Box3& b) {
-  const Eigen::Vector3d gap = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0);
-  return gap.norm();
-}
-
-/// BVH triangles / OcTree leaves as convex pieces (world frame); false if g is neither.
-template <typename BV>
-bool meshConvexPieces(const fcl::CollisionGeometry<double>* g, const fcl::Transform3<double>& tf,
-                      std::vector<PosedConvex>* out) {
-  const auto* m = dynamic_cast<const fcl::BVHModel<BV>*>(g);
-  if (m == nullptr) return false;
-  for (int t = 0; t < m->num_tris; ++t) {
-    const fcl::Triangle& tri = m->tri_indices[t];
-    const std::array<Eigen::Vector3d, 3> v{m->vertices[tri[0]], m->vertices[tri[1]], m->vertices[tri[2]]};
-    out->push_back(PosedConvex{ConvexSupport::points({v[0], v[1], v[2]}), tf.linear(), tf.translation(), t,
-                               PosedConvex::Triangle, v});
-  }
-  return true;
-}
-
-bool convexPieces(const fcl::CollisionGeometry<double>* g, const fcl::Transform3<double>& tf,
-                  std::vector<PosedConvex>* out) {
-  if (meshConvexPieces<fcl::OBBRSS<double>>(g, tf, out) || meshConvexPieces<fcl::OBB<double>>(g, tf, out) ||
-      meshConvexPieces<fcl::RSS<double>>(g, tf, out) || meshConvexPieces<fcl::AABB<double>>(g, tf, out) ||
-      meshConvexPieces<fcl::kIOS<double>>(g, tf, out) || meshConvexPieces<fcl::KDOP<double, 16>>(g, tf, out) ||
-      meshConvexPieces<fcl::KDOP<double, 18>>(g, tf, out) || meshConvexPieces<fcl::KDOP<double, 24>>(g, tf, out))
-    return true;
-  if (const auto* tree = dynamic_cast<const fcl::OcTree<double>*>(g)) {
-    int index = 0;
-    for (const std::array<double, 6>& b : tree->toBoxes()) {
-      const Eigen::Vector3d c(b[0], b[1], b[2]);
-      const Eigen::Vector3d h = Eigen::Vector3d::Constant(0.5 * b[3]);
-      out->push_back(PosedConvex{ConvexSupport::box(h), tf.linear(), tf.linear() * c + tf.translation(), index++,
-                                 PosedConvex::Leaf, {c, h, Eigen::Vector3d::Zero()}});
-    }
-    return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
@@ -578,16 +682,11 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
     return result.min_distance;
   }
 
-  std::vector<PosedConvex> pieces;
-  if (!convexPieces(gp, tfp, &pieces)) pieces.push_back(shapeOf(gp, tfp, swap ? "o1" : "o2"));
-  const Box3 shape_box = worldBox(shape);
-  double best = std::numeric_limits<double>::infinity();
-  for (const PosedConvex& piece : pieces) {
-    // (Overlapping pieces are all visited: the deepest one is reported.)
-    if (pieces.size() > 1 && boxGap(shape_box, worldBox(piece)) >= std::max(best, 0.0)) continue;
+  // One piece: GJK / EPA, then near contact the front door's own collide decides the sign, so
+  // distance and collide agree. Returns the value reported (FCL's -1 for an unsigned overlap).
+  auto solve = [&](const PosedConvex& piece) {
     SignedDistanceResult d =
         convexSignedDistance(shape.support, shape.R, shape.p, piece.support, piece.R, piece.p, request.enable_signed_distance);
-    // Near contact the front door's own collide decides the sign, so distance and collide agree.
     const double scale = shape.support.size() + piece.support.size() + (shape.p - piece.p).norm();
     // (An overlap certified without its depth, want_depth = false, reports distance 0: not near.)
     const bool depth_unknown = d.status == Separation::Overlapping && !request.enable_signed_distance;
@@ -610,10 +709,49 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
       }
     }
     const double value = d.status == Separation::Overlapping && !request.enable_signed_distance ? -1.0 : d.distance;
-    if (value < best) best = value;
     report(value, d.point_a, d.point_b, piece.index);
-    if (value < 0.0 && !request.enable_signed_distance) break;  // colliding: FCL's -1, nothing more to learn
+    return value;
+  };
+  // Once an unsigned query has found an overlap (FCL's -1) nothing more is to be learnt; signed
+  // queries visit every overlapping piece and report the deepest.
+  auto done = [&](double best) { return best < 0.0 && !request.enable_signed_distance; };
+  // The shape's exact bounding box in the pieces' frame (six support points).
+  auto shapeBoxIn = [&](const fcl::Transform3<double>& frame) {
+    Box3 b;
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d e = frame.linear().col(i);  // the frame's axis i in the world
+      const Eigen::Vector3d local = shape.R.transpose() * e;
+      b.hi[i] = e.dot(shape.R * shape.support.support(local) + shape.p - frame.translation());
+      b.lo[i] = e.dot(shape.R * shape.support.support(-local) + shape.p - frame.translation());
+    }
+    return b;
+  };
+  const bool is_mesh = withMesh(gp, [&](const auto& m) {
+    nearestMeshTriangles(
+        m, shapeBoxIn(tfp),
+        [&](int t, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+          return solve(PosedConvex{ConvexSupport::points({p0, p1, p2}), tfp.linear(), tfp.translation(), t,
+                                   PosedConvex::Triangle, {p0, p1, p2}});
+        },
+        done);
+  });
+  if (is_mesh) return result.min_distance;
+  if (const auto* tree = dynamic_cast<const fcl::OcTree<double>*>(gp)) {
+    const Box3 query = shapeBoxIn(tfp);
+    double best = std::numeric_limits<double>::infinity();
+    const Box3 everything{Eigen::Vector3d::Constant(-std::numeric_limits<double>::max()),
+                          Eigen::Vector3d::Constant(std::numeric_limits<double>::max())};
+    visitOcTreeLeaves(*tree, everything, [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
+      const double gap = boxGap(query, Box3{c - h, c + h});
+      if (gap > 0.0 && gap >= best) return false;
+      best = std::min(best, solve(PosedConvex{ConvexSupport::box(h), tfp.linear(), tfp.linear() * c + tfp.translation(),
+                                              fcl::DistanceResult<double>::NONE, PosedConvex::Leaf,
+                                              {c, h, Eigen::Vector3d::Zero()}}));
+      return done(best);
+    });
+    return result.min_distance;
   }
+  solve(shapeOf(gp, tfp, swap ? "o1" : "o2"));
   return result.min_distance;
 }
 

@@ -26,8 +26,8 @@ bool isQuadricShape(const fcl::CollisionGeometry<double>* g);
 /// mesh (each non-degenerate triangle; zero-area triangles are skipped) or an OcTree (each
 /// occupied leaf box): collideRegions' certified classification (Touching counts as contact;
 /// a triangle has no interior, so a crossing triangle is found as an undecided box: contact).
-/// Meshes and octrees are walked piece by piece with AABB culling, not through FCL's BVH
-/// traversal nodes (cost linear in the pieces). On contact one
+/// Meshes and octrees are visited through their own hierarchies (the mesh's BVH, the octree's
+/// cells), only where their boxes meet the shape's box; FCL's traversal node templates are not used. On contact one
 /// fcl::Contact is added (if request.num_max_contacts allows): pos = the witness point (world),
 /// normal = unit outward normal of o1's nearest surface there, penetration_depth = 0 (not
 /// computed for these shapes). \return the number of contacts in result.
@@ -42,10 +42,10 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
 /// support mappings (convex_distance.h): the quadric shape must be convex (ConvexSupport::
 /// fromRegion, or an EllipticCylinder); the partner a convex quadric shape, an fcl Sphere /
 /// Ellipsoid / Box / Cylinder / Cone / Capsule (one piece), a Halfspace (closed form), a BVH mesh
-/// (each triangle) or an OcTree (each occupied leaf box), pieces pruned by their AABB gap. FCL's
+/// (best first over its BVH) or an OcTree (occupied leaves pruned by their box gap). FCL's
 /// semantics: result.update with the distance, -1 for an overlapping pair unless
-/// request.enable_signed_distance (then minus the penetration depth), nearest points in the world
-/// frame, b1 / b2 = the triangle or leaf index of a mesh / octree partner. Within 1e-8 of the
+/// request.enable_signed_distance (then minus the penetration depth of the deepest piece), nearest
+/// points in the world frame, b1 / b2 = the triangle index of a mesh partner (NONE for leaves). Within 1e-8 of the
 /// pair's scale of contact, the sign is the one fcl_quadric::collide gives the same pair (touching
 /// = 0). \return result.min_distance. \throws std::invalid_argument for a non-convex quadric
 /// shape, an unbounded one, or any other partner (the message names it).

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
+#include <limits>
 #include <memory>
 #include <random>
 #include <vector>
@@ -174,6 +176,67 @@ TEST(QuadricShapeDistance, MeshOctreeAndHalfspacePartnersAtAnalyticDistances) {
       EXPECT_EQ(dist(cyl, near, floor, I, true) <= 0.0, collides(cyl, near, floor, I)) << theta << " " << gap;
     }
   }
+}
+
+// The BVH / octree traversals (culling by node boxes, best-first pruning) against the same
+// queries answered piece by piece without them: each triangle as its own one-triangle mesh, each
+// occupied leaf as an fcl::Box at its centre.
+TEST(QuadricShapeDistance, MeshAndOcTreeTraversalsMatchPieceByPieceQueries) {
+  std::mt19937_64 rng(24);
+  std::uniform_real_distribution<double> u(-2.0, 2.0), small(-0.3, 0.3);
+  fcl::BVHModel<fcl::OBBRSS<double>> soup;
+  std::vector<std::array<Eigen::Vector3d, 3>> tris;
+  soup.beginModel();
+  for (int i = 0; i < 400; ++i) {
+    const Eigen::Vector3d c(u(rng), u(rng), u(rng));
+    const std::array<Eigen::Vector3d, 3> t{c + Eigen::Vector3d(small(rng), small(rng), small(rng)),
+                                           c + Eigen::Vector3d(small(rng), small(rng), small(rng)),
+                                           c + Eigen::Vector3d(small(rng), small(rng), small(rng))};
+    soup.addTriangle(t[0], t[1], t[2]);
+    tris.push_back(t);
+  }
+  soup.endModel();
+  auto octo = std::make_shared<octomap::OcTree>(0.25);
+  for (int i = 0; i < 150; ++i)
+    octo->updateNode(octomap::point3d(float(u(rng)), float(u(rng)), float(u(rng))), true);
+  const fcl::OcTree<double> tree(octo);
+  const auto leaves = tree.toBoxes();
+  const EllipticCylinder<double> cyl(0.35, 0.2, 0.8);
+  const Quadric<double> cup = Quadric<double>::ellipticParaboloid(0.4, 0.3, {{Eigen::Vector3d(0, 0, 1), 0.5}});
+  int collisions = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const fcl::CollisionGeometry<double>& shape = trial % 2 ? static_cast<const fcl::CollisionGeometry<double>&>(cyl) : cup;
+    const Transform ts = pose(test::randomRotation(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const Transform tm = pose(test::randomRotation(rng), Eigen::Vector3d(small(rng), small(rng), small(rng)));
+    // Mesh.
+    bool any = false;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& t : tris) {
+      fcl::BVHModel<fcl::OBBRSS<double>> one;
+      one.beginModel();
+      one.addTriangle(t[0], t[1], t[2]);
+      one.endModel();
+      any = any || collides(shape, ts, one, tm);
+      nearest = std::min(nearest, dist(shape, ts, one, tm, true));
+    }
+    EXPECT_EQ(collides(shape, ts, soup, tm), any) << trial;
+    EXPECT_EQ(collides(soup, tm, shape, ts), any) << trial;
+    EXPECT_NEAR(dist(shape, ts, soup, tm, true), nearest, 1e-12) << trial;
+    collisions += any;
+    // Octree.
+    any = false;
+    nearest = std::numeric_limits<double>::infinity();
+    for (const auto& b : leaves) {
+      const fcl::Box<double> box(b[3], b[3], b[3]);
+      const Transform tb = tm * pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(b[0], b[1], b[2]));
+      any = any || collides(shape, ts, box, tb);
+      nearest = std::min(nearest, dist(shape, ts, box, tb, true));
+    }
+    EXPECT_EQ(collides(shape, ts, tree, tm), any) << trial;
+    EXPECT_NEAR(dist(tree, tm, shape, ts, true), nearest, 1e-12) << trial;
+    collisions += any;
+  }
+  EXPECT_GT(collisions, 10);
 }
 
 TEST(QuadricShapeDistance, BroadPhaseDistanceIsThePairwiseMinimum) {
