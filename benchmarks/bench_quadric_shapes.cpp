@@ -25,6 +25,11 @@
 // exact support mappings) against fcl::distance on the same fcl::Cylinder poses (libccd GJK,
 // FCL's default solver and distance_tolerance); afterwards FCL's relative error on the separated
 // pairs, against ours.
+//
+// Terrain: a capped circular cylinder (r 0.3, length 1) at 200 random poses over a 40,000-triangle
+// height-field mesh (BVHModel<OBBRSS>): fcl_quadric::collide / distance on an EllipticCylinder
+// (our traversal of the mesh's BVH, exact per triangle) against fcl::collide / fcl::distance on
+// fcl::Cylinder (FCL's traversal nodes, libccd per triangle); afterwards their disagreements.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -33,6 +38,8 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/OBBRSS.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/math/motion/translation_motion.h>
 #include <fcl/narrowphase/collision.h>
@@ -269,6 +276,72 @@ void BM_CylindersDistanceFcl(benchmark::State& state) {
 BENCHMARK(BM_CylindersDistanceOurs)->Name("QuadricShapes/CylindersDistance/fcl_quadric")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CylindersDistanceFcl)->Name("QuadricShapes/CylindersDistance/FclGjkLibccd")->Unit(benchmark::kMicrosecond);
 
+struct TerrainScene {
+  std::shared_ptr<fcl::BVHModel<fcl::OBBRSS<double>>> mesh;
+  std::shared_ptr<fcl_quadric::EllipticCylinder<double>> ours;
+  std::shared_ptr<fcl::Cylinderd> theirs;
+  std::vector<fcl::Transform3d> poses;
+};
+TerrainScene& terrain() {
+  static TerrainScene t;
+  return t;
+}
+TerrainScene makeTerrain() {
+  TerrainScene t;
+  t.mesh = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
+  t.mesh->beginModel();
+  auto h = [](double x, double y) { return 0.2 * std::sin(x) * std::cos(y); };
+  for (int i = 0; i < 200; ++i)
+    for (int j = 0; j < 100; ++j) {
+      const double x0 = 0.1 * i, y0 = 0.1 * j, x1 = x0 + 0.1, y1 = y0 + 0.1;
+      const Eigen::Vector3d a(x0, y0, h(x0, y0)), b(x1, y0, h(x1, y0)), c(x1, y1, h(x1, y1)), d(x0, y1, h(x0, y1));
+      t.mesh->addTriangle(a, b, c);
+      t.mesh->addTriangle(a, c, d);
+    }
+  t.mesh->endModel();
+  t.ours = std::make_shared<fcl_quadric::EllipticCylinder<double>>(0.3, 0.3, 1.0);
+  t.theirs = std::make_shared<fcl::Cylinderd>(0.3, 1.0);
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> ux(1, 19), uy(1, 9), uz(-0.2, 1.0);
+  for (int q = 0; q < 200; ++q) {
+    fcl::Transform3d tf = fcl::Transform3d::Identity();
+    tf.linear() = fcl_quadric::bench::quadricSceneRotation(rng);
+    const double x = ux(rng), y = uy(rng), z = uz(rng);
+    tf.translation() = Eigen::Vector3d(x, y, z);
+    t.poses.push_back(tf);
+  }
+  return t;
+}
+template <bool Ours, bool Distance>
+double terrainQuery(const fcl::Transform3d& tf) {
+  const TerrainScene& t = terrain();
+  const fcl::CollisionGeometryd* g = Ours ? static_cast<const fcl::CollisionGeometryd*>(t.ours.get()) : t.theirs.get();
+  if constexpr (Distance) {
+    fcl::DistanceRequestd req;
+    fcl::DistanceResultd res;
+    return Ours ? fcl_quadric::distance(g, tf, t.mesh.get(), fcl::Transform3d::Identity(), req, res)
+                : fcl::distance(g, tf, t.mesh.get(), fcl::Transform3d::Identity(), req, res);
+  } else {
+    fcl::CollisionRequestd req;
+    fcl::CollisionResultd res;
+    return static_cast<double>(Ours ? fcl_quadric::collide(g, tf, t.mesh.get(), fcl::Transform3d::Identity(), req, res)
+                                    : fcl::collide(g, tf, t.mesh.get(), fcl::Transform3d::Identity(), req, res));
+  }
+}
+template <bool Ours, bool Distance>
+void BM_Terrain(benchmark::State& state) {
+  const auto& poses = terrain().poses;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(terrainQuery<Ours, Distance>(poses[i]));
+    i = (i + 1) % poses.size();
+  }
+}
+BENCHMARK(BM_Terrain<true, false>)->Name("QuadricShapes/TerrainCollide/fcl_quadric")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Terrain<false, false>)->Name("QuadricShapes/TerrainCollide/FclGjkLibccd")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Terrain<true, true>)->Name("QuadricShapes/TerrainDistance/fcl_quadric")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Terrain<false, true>)->Name("QuadricShapes/TerrainDistance/FclGjkLibccd")->Unit(benchmark::kMicrosecond);
+
 struct SmallEllipsoidPair {
   std::shared_ptr<fcl_quadric::Quadric<double>> shape;  // at the identity
   Eigen::Vector3d radii;
@@ -362,6 +435,7 @@ int main(int argc, char** argv) {
   }
   smallEllipsoidPairs() = makeSmallEllipsoidPairs(n);
   distancePairs() = makeDistancePairs(cylinderPairs());
+  terrain() = makeTerrain();
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   {
@@ -397,6 +471,21 @@ int main(int argc, char** argv) {
                 "sign differs on %d\n",
                 cylinderPairs().size(), separated, err.empty() ? 0.0 : err[err.size() / 2],
                 err.empty() ? 0.0 : err.back(), sign_differ);
+  }
+  {
+    // Terrain: collide flags and distances of the two libraries on the same poses.
+    int hits = 0, flags_differ = 0;
+    double worst = 0.0;
+    for (const fcl::Transform3d& tf : terrain().poses) {
+      const bool ours = terrainQuery<true, false>(tf) > 0, theirs = terrainQuery<false, false>(tf) > 0;
+      hits += ours;
+      flags_differ += ours != theirs;
+      const double d1 = terrainQuery<true, true>(tf), d2 = terrainQuery<false, true>(tf);
+      if (d1 > 0 && d2 > 0) worst = std::max(worst, std::fabs(d1 - d2) / d1);
+    }
+    std::printf("Terrain, %zu poses over 40,000 triangles: %d colliding (ours); FCL's collide flag differs on %d; "
+                "largest relative distance difference on pairs both call separated %.3g\n",
+                terrain().poses.size(), hits, flags_differ, worst);
   }
   // Agreement (outside the timed loops).
   int touching = 0, disagree = 0, fcl_misses = 0, fcl_false = 0, hits = 0;

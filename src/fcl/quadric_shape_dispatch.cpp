@@ -163,11 +163,30 @@ bool isMeshOrOcTree(const fcl::CollisionGeometry<double>* g) {
   return withMesh(g, [](const auto&) {}) || dynamic_cast<const fcl::OcTree<double>*>(g) != nullptr;
 }
 
-/// Depth-first over the BVH: visit(triangle index, p0, p1, p2) for each triangle whose leaf box
-/// meets `query` (mesh frame), until visit returns true. A model without a hierarchy (no BVs) is
-/// walked triangle by triangle.
+/// Does the node's BV meet the query: its box against `query`, then, for oriented BVs (OBB, OBBRSS,
+/// kIOS) and a given `obb`, FCL's separating-axis test of the node's OBB against it.
+template <typename BV>
+bool nodeMeets(const BV& bv, const Box3& query, const fcl::OBB<double>*) {
+  return boxesOverlap(nodeBox(bv), query);
+}
+template <>
+bool nodeMeets(const fcl::OBB<double>& bv, const Box3& query, const fcl::OBB<double>* obb) {
+  return boxesOverlap(nodeBox(bv), query) && (obb == nullptr || bv.overlap(*obb));
+}
+template <>
+bool nodeMeets(const fcl::OBBRSS<double>& bv, const Box3& query, const fcl::OBB<double>* obb) {
+  return boxesOverlap(nodeBox(bv), query) && (obb == nullptr || bv.obb.overlap(*obb));
+}
+template <>
+bool nodeMeets(const fcl::kIOS<double>& bv, const Box3& query, const fcl::OBB<double>* obb) {
+  return boxesOverlap(nodeBox(bv), query) && (obb == nullptr || bv.obb.overlap(*obb));
+}
+
+/// Depth-first over the BVH: visit(triangle index, p0, p1, p2) for each triangle whose leaf BV
+/// meets `query` (mesh frame; and `obb`, the shape's oriented box in the mesh frame, if given),
+/// until visit returns true. A model without a hierarchy (no BVs) is walked triangle by triangle.
 template <typename BV, typename Visit>
-void visitMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, Visit&& visit) {
+void visitMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, const fcl::OBB<double>* obb, Visit&& visit) {
   auto tri = [&](int t) {
     const fcl::Triangle& f = m.tri_indices[t];
     return visit(t, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]);
@@ -182,7 +201,7 @@ void visitMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, Visit&& v
     const int id = stack.back();
     stack.pop_back();
     const fcl::BVNode<BV>& node = m.getBV(id);
-    if (!boxesOverlap(nodeBox(node.bv), query)) continue;
+    if (!nodeMeets(node.bv, query, obb)) continue;
     if (node.isLeaf()) {
       if (tri(node.primitiveId())) return;
     } else {
@@ -338,6 +357,11 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
                  const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
                  fcl::CollisionResult<double>& result);
 
+std::optional<ConvexSupport> convexSupportOf(const fcl::CollisionGeometry<double>* g, const char* which);
+void addRegionContact(const QuadricRegion& wa, const Eigen::Vector3d& point, const fcl::CollisionGeometry<double>* o1,
+                      const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
+                      fcl::CollisionResult<double>& result);
+
 }  // namespace
 
 std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
@@ -362,16 +386,56 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
       collidePair(pieces_first ? p : shape, tf1, pieces_first ? shape : p, tf2, o1, o2, request, result);
       return result.numContacts() > before || result.numContacts() >= request.num_max_contacts;
     };
+    // A convex shape (docs/algorithms.md section 12): a piece that GJK certifies farther than 1e-8
+    // of the pair's scale (well outside the region engine's touching band, so no contact the engine
+    // would report is lost) is skipped without the engine.
+    const fcl::CollisionGeometry<double>* gs = pieces_first ? o2 : o1;
+    std::optional<ConvexSupport> convex;
+    if (const auto* q = dynamic_cast<const QuadricShape<double>*>(gs); q == nullptr || q->bounded())
+      convex = convexSupportOf(gs, "shape");
+    // A piece GJK certifies overlapping (the origin inside its tetrahedron with margin) is a contact
+    // at the common point GJK returns; the engine runs only for the pieces in between.
+    enum class Gjk { Far, Overlap, Engine };
+    auto gjk = [&](const ConvexSupport& p, const Eigen::Vector3d& p_W, Eigen::Vector3d* common) {
+      if (!convex) return Gjk::Engine;
+      const SignedDistanceResult d =
+          convexSignedDistance(*convex, tfs.linear(), tfs.translation(), p, tfp.linear(), p_W, false);
+      const double scale = convex->size() + p.size() + (tfs.translation() - p_W).norm();
+      if (d.status == Separation::Separated && d.converged && d.distance > 2e-8 * scale) return Gjk::Far;
+      if (d.status == Separation::Overlapping) {
+        *common = d.point_a;
+        return Gjk::Overlap;
+      }
+      return Gjk::Engine;
+    };
+    // o1's world region, for the contact normal.
+    auto contactAt = [&](const QuadricRegion& piece_local, const Eigen::Vector3d& x) {
+      const QuadricRegion wa = pieces_first ? piece_local.transformed(tf1.linear(), tf1.translation())
+                                            : shape.region.transformed(tf1.linear(), tf1.translation());
+      addRegionContact(wa, x, o1, o2, request, result);
+      return true;
+    };
+    // The shape's local box as an oriented box in the pieces' frame (tighter than `query`).
+    std::optional<fcl::OBB<double>> obb;
+    if (shape.box) obb = fcl::OBB<double>(X.linear(), X * shape.box->center(), shape.box->halfWidth());
     if (!withMesh(gp, [&](const auto& m) {
-          visitMeshTriangles(m, query, [&](int, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+          visitMeshTriangles(m, query, obb ? &*obb : nullptr, [&](int, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
                                            const Eigen::Vector3d& p2) {
+            Eigen::Vector3d x;
+            const Gjk g = gjk(ConvexSupport::points({p0, p1, p2}), tfp.translation(), &x);
+            if (g == Gjk::Far) return false;
             const std::optional<LocalSolid> t = triangleSolid(p0, p1, p2);
-            return t && piece(*t);
+            if (!t) return false;
+            return g == Gjk::Overlap ? contactAt(t->region, x) : piece(*t);
           });
         })) {
       visitOcTreeLeaves(*static_cast<const fcl::OcTree<double>*>(gp), query,
                         [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
-                          return piece(LocalSolid{boxRegion(c, h), Box3{c - h, c + h}, false});
+                          Eigen::Vector3d x;
+                          const Gjk g = gjk(ConvexSupport::box(h), tfp.linear() * c + tfp.translation(), &x);
+                          if (g == Gjk::Far) return false;
+                          const LocalSolid leaf{boxRegion(c, h), Box3{c - h, c + h}, false};
+                          return g == Gjk::Overlap ? contactAt(leaf.region, x) : piece(leaf);
                         });
     }
     return result.numContacts();
@@ -459,6 +523,30 @@ Eigen::Vector3d transversalWitness(const LocalSolid& e, const Eigen::Matrix3d& R
   return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 }
 
+/// Adds the contact at `point` (world) if request.num_max_contacts allows: normal = o1's atom (of
+/// `wa`, o1's world region) with the smallest |f| / |grad f| there, outward (as used).
+void addRegionContact(const QuadricRegion& wa, const Eigen::Vector3d& point, const fcl::CollisionGeometry<double>* o1,
+                      const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
+                      fcl::CollisionResult<double>& result) {
+  if (result.numContacts() >= request.num_max_contacts) return;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+  double best = std::numeric_limits<double>::infinity();
+  for (const Eigen::Matrix4d& Q : wa.signedAtoms()) {
+    const Eigen::Vector4d X(point[0], point[1], point[2], 1.0);
+    const Eigen::Vector4d QX = Q * X;
+    const Eigen::Vector3d g = 2.0 * QX.head<3>();
+    const double gn = g.norm();
+    if (!(gn > 0.0)) continue;
+    const double dist = std::fabs(X.dot(QX)) / gn;
+    if (dist < best) {
+      best = dist;
+      normal = g / gn;
+    }
+  }
+  result.addContact(fcl::Contact<double>(o1, o2, fcl::Contact<double>::NONE, fcl::Contact<double>::NONE, point,
+                                         normal, 0.0));
+}
+
 void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
                  const fcl::Transform3<double>& tf2, const fcl::CollisionGeometry<double>* o1,
                  const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
@@ -505,25 +593,7 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
                   a.thin || b.thin ? 0 : tolerance_region::kRegionExtraBoxesAfterUndecided);
   }
   if (s.status == PointSearch::Empty) return;
-  if (result.numContacts() < request.num_max_contacts) {
-    // Normal: o1's atom with the smallest |f| / |grad f| at the point, outward (as used).
-    Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
-    double best = std::numeric_limits<double>::infinity();
-    for (const Eigen::Matrix4d& Q : wa.signedAtoms()) {
-      const Eigen::Vector4d X(s.point[0], s.point[1], s.point[2], 1.0);
-      const Eigen::Vector4d QX = Q * X;
-      const Eigen::Vector3d g = 2.0 * QX.head<3>();
-      const double gn = g.norm();
-      if (!(gn > 0.0)) continue;
-      const double dist = std::fabs(X.dot(QX)) / gn;
-      if (dist < best) {
-        best = dist;
-        normal = g / gn;
-      }
-    }
-    result.addContact(fcl::Contact<double>(o1, o2, fcl::Contact<double>::NONE, fcl::Contact<double>::NONE, s.point,
-                                           normal, 0.0));
-  }
+  addRegionContact(wa, s.point, o1, o2, request, result);
 }
 
 }  // namespace

@@ -278,8 +278,14 @@ SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::M
     if (dmin > margin) {
       out.status = Separation::Overlapping;
       out.distance = 0.0;
-      out.point_a = W[0].a;  // not witnesses: only the sign was asked for
-      out.point_b = W[0].b;
+      // A common point: the origin's barycentric coordinates in the tetrahedron applied to the
+      // support points of a (and of b: the same point up to rounding).
+      Eigen::Matrix3d E;
+      E << W[1].w - W[0].w, W[2].w - W[0].w, W[3].w - W[0].w;
+      const Eigen::Vector3d mu = E.fullPivLu().solve(-W[0].w);
+      const double l0 = 1.0 - mu.sum();
+      out.point_a = l0 * W[0].a + mu[0] * W[1].a + mu[1] * W[2].a + mu[2] * W[3].a;
+      out.point_b = l0 * W[0].b + mu[0] * W[1].b + mu[1] * W[2].b + mu[2] * W[3].b;
       out.converged = true;
       return out;
     }

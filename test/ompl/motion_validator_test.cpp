@@ -6,6 +6,8 @@
 #include <random>
 
 #include <gtest/gtest.h>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/OBBRSS.h>
 #include <octomap/OcTree.h>
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/geometric/SimpleSetup.h>
@@ -528,6 +530,40 @@ TEST(ContinuousMotionValidator, AQuadricShapeBodyAgainstAQuadricShapeObstacle) {
   setSE3(a.get(), {0.4, -1, 0}, Eigen::Quaterniond::Identity());  // 0.05 beyond the pillar's x extent
   setSE3(b.get(), {0.4, 1, 0}, Eigen::Quaterniond::Identity());
   EXPECT_TRUE(si->checkMotion(a.get(), b.get()));
+}
+
+// A convex composite body against a thin *mesh* wall (two triangles in the plane x = 0.3): the
+// advancement runs on the GJK distance of the rod to the mesh (docs/algorithms.md section 12),
+// which fcl_quadric::distance refused before; it stops just before the wall, and a motion parallel
+// to it, 1 cm away, is accepted with a clearance of 1 cm.
+TEST(ContinuousMotionValidator, AQuadricShapeBodyIsStoppedByAThinMeshWallAndPassesBesideIt) {
+  auto wall = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
+  wall->beginModel();
+  wall->addTriangle(Eigen::Vector3d(0.3, -3, -3), Eigen::Vector3d(0.3, 3, -3), Eigen::Vector3d(0.3, 3, 3));
+  wall->addTriangle(Eigen::Vector3d(0.3, -3, -3), Eigen::Vector3d(0.3, 3, 3), Eigen::Vector3d(0.3, -3, 3));
+  wall->endModel();
+  auto env = std::make_shared<Environment>();
+  env->add(wall, Eigen::Isometry3d::Identity());
+  auto robot = std::make_shared<RobotModel>(RobotModel::Base::Free);
+  robot->addBody(0, std::make_shared<fcl_quadric::EllipticCylinder<double>>(0.05, 0.03, 0.3));
+  const ob::StateSpacePtr space = makeStateSpace(*robot, Eigen::Vector3d::Constant(-5), Eigen::Vector3d::Constant(5), true);
+  auto si = makeSi(space, robot, env);
+  ob::ScopedState<> a(space), b(space);
+  setSE3(a.get(), {-1, 0, 0}, Eigen::Quaterniond::Identity());
+  setSE3(b.get(), {1, 0, 0}, Eigen::Quaterniond::Identity());
+  ASSERT_TRUE(si->isValid(a.get()));
+  ASSERT_TRUE(si->isValid(b.get()));
+  std::pair<ob::State*, double> last(si->allocState(), -1.0);
+  EXPECT_FALSE(si->getMotionValidator()->checkMotion(a.get(), b.get(), last));
+  const double t_star = ((0.3 - 0.05) + 1.0) / 2.0;  // the rod's face x = +0.05 reaches the wall
+  EXPECT_LE(last.second, t_star);
+  EXPECT_GT(last.second, t_star - 1e-6);
+  EXPECT_TRUE(si->isValid(last.first));
+  si->freeState(last.first);
+  setSE3(a.get(), {0.24, -1.5, -1}, Eigen::Quaterniond::Identity());
+  setSE3(b.get(), {0.24, 1.5, 1}, Eigen::Quaterniond::Identity());
+  EXPECT_TRUE(si->checkMotion(a.get(), b.get()));
+  EXPECT_NEAR(si->getStateValidityChecker()->clearance(a.get()), 0.01, 1e-9);
 }
 
 TEST(Environment, OcTreeMergedAndLeafBoxesAgreeWithTheFclOcTreeAndStopATunnellingMotion) {

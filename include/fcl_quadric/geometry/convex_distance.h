@@ -47,8 +47,8 @@ constexpr std::size_t kMaxEpaFaces = 8192;
 /// penetration depth, 0 touching; point_a on a, point_b on b (world frame); normal from a to b
 /// (translating b by -distance * normal makes them touch). `iterations` counts GJK plus EPA steps.
 /// With want_depth = false an overlapping pair whose GJK tetrahedron certifies the overlap is not
-/// expanded: distance = 0 is returned with status Overlapping and points that are not witnesses
-/// (the caller only needs the sign).
+/// expanded: distance = 0 is returned with status Overlapping, and point_a, point_b are one common
+/// point of a and b (equal up to rounding; the caller only needs the sign and a witness).
 /// \throws std::invalid_argument if a pose is not finite.
 SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::Matrix3d& R_a, const Eigen::Vector3d& p_a,
                                           const ConvexSupport& b, const Eigen::Matrix3d& R_b, const Eigen::Vector3d& p_b,
