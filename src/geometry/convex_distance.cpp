@@ -180,7 +180,7 @@ SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::M
     bool repeat = false;
     for (const Vertex& x : W) repeat = repeat || (x.w - w.w).norm() <= tiny;
     if (repeat) {  // no new support point: v is as close as this arithmetic gets
-      out.converged = vn - lower <= 1e-6 * vn + tiny;
+      out.converged = vn - lower <= kConvexDistanceRelative * vn + tiny;
       break;
     }
     W.push_back(w);
@@ -192,7 +192,7 @@ SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::M
       break;
     }
     if (!(v_new.norm() < vn)) {  // rounding stalled the descent
-      out.converged = vn - lower <= 1e-6 * vn + tiny;
+      out.converged = vn - lower <= kConvexDistanceRelative * vn + tiny;
       break;
     }
     v = v_new;
