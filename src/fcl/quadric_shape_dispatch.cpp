@@ -7,7 +7,6 @@
 #include <limits>
 #include <optional>
 #include <queue>
-#include <type_traits>
 #include <utility>
 #include <sstream>
 #include <stdexcept>
@@ -136,31 +135,26 @@ bool boxesOverlap(const Box3& a, const Box3& b) {
 double boxGap(const Box3& a, const Box3& b) { return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0).norm(); }
 
 /// Calls f(mesh) with g as its BVHModel type (the eight BV types FCL instantiates); false if g is
-/// not a BVH mesh.
+/// not a BVH mesh. Dispatched on the node type with a static_cast, as FCL's own tables do: a
+/// dynamic_cast per candidate type would run on every query of every quadric shape.
 template <typename F>
 bool withMesh(const fcl::CollisionGeometry<double>* g, F&& f) {
-  bool found = false;
-  auto attempt = [&](auto* tag) {
-    using M = std::remove_pointer_t<decltype(tag)>;
-    if (found) return;
-    if (const auto* m = dynamic_cast<const M*>(g)) {
-      found = true;
-      f(*m);
-    }
-  };
-  attempt(static_cast<fcl::BVHModel<fcl::OBBRSS<double>>*>(nullptr));
-  attempt(static_cast<fcl::BVHModel<fcl::OBB<double>>*>(nullptr));
-  attempt(static_cast<fcl::BVHModel<fcl::RSS<double>>*>(nullptr));
-  attempt(static_cast<fcl::BVHModel<fcl::AABB<double>>*>(nullptr));
-  attempt(static_cast<fcl::BVHModel<fcl::kIOS<double>>*>(nullptr));
-  attempt(static_cast<fcl::BVHModel<fcl::KDOP<double, 16>>*>(nullptr));
-  attempt(static_cast<fcl::BVHModel<fcl::KDOP<double, 18>>*>(nullptr));
-  attempt(static_cast<fcl::BVHModel<fcl::KDOP<double, 24>>*>(nullptr));
-  return found;
+  if (g->getObjectType() != fcl::OT_BVH) return false;
+  switch (g->getNodeType()) {
+    case fcl::BV_OBBRSS: f(static_cast<const fcl::BVHModel<fcl::OBBRSS<double>>&>(*g)); return true;
+    case fcl::BV_OBB: f(static_cast<const fcl::BVHModel<fcl::OBB<double>>&>(*g)); return true;
+    case fcl::BV_RSS: f(static_cast<const fcl::BVHModel<fcl::RSS<double>>&>(*g)); return true;
+    case fcl::BV_AABB: f(static_cast<const fcl::BVHModel<fcl::AABB<double>>&>(*g)); return true;
+    case fcl::BV_kIOS: f(static_cast<const fcl::BVHModel<fcl::kIOS<double>>&>(*g)); return true;
+    case fcl::BV_KDOP16: f(static_cast<const fcl::BVHModel<fcl::KDOP<double, 16>>&>(*g)); return true;
+    case fcl::BV_KDOP18: f(static_cast<const fcl::BVHModel<fcl::KDOP<double, 18>>&>(*g)); return true;
+    case fcl::BV_KDOP24: f(static_cast<const fcl::BVHModel<fcl::KDOP<double, 24>>&>(*g)); return true;
+    default: return false;
+  }
 }
 
 bool isMeshOrOcTree(const fcl::CollisionGeometry<double>* g) {
-  return withMesh(g, [](const auto&) {}) || dynamic_cast<const fcl::OcTree<double>*>(g) != nullptr;
+  return g->getObjectType() == fcl::OT_BVH || g->getObjectType() == fcl::OT_OCTREE;
 }
 
 /// Does the node's BV meet the query: its box against `query`, then, for oriented BVs (OBB, OBBRSS,
@@ -428,7 +422,8 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
             if (!t) return false;
             return g == Gjk::Overlap ? contactAt(t->region, x) : piece(*t);
           });
-        })) {
+        }) &&
+        gp->getObjectType() == fcl::OT_OCTREE) {
       visitOcTreeLeaves(*static_cast<const fcl::OcTree<double>*>(gp), query,
                         [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
                           Eigen::Vector3d x;
@@ -806,7 +801,8 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
         done);
   });
   if (is_mesh) return result.min_distance;
-  if (const auto* tree = dynamic_cast<const fcl::OcTree<double>*>(gp)) {
+  if (gp->getObjectType() == fcl::OT_OCTREE) {
+    const auto* tree = static_cast<const fcl::OcTree<double>*>(gp);
     const Box3 query = shapeBoxIn(tfp);
     double best = std::numeric_limits<double>::infinity();
     const Box3 everything{Eigen::Vector3d::Constant(-std::numeric_limits<double>::max()),
