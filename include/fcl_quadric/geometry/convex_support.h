@@ -71,6 +71,8 @@ class ConvexSupport {
   /// A point of the solid maximising n.x (local frame). n need not be unit; for n = 0 a point
   /// of the solid is returned. No failure mode for finite n (a Region whose enumeration finds no
   /// feasible candidate, which only a numerically empty region can cause, returns center()).
+  /// \pre n finite: not checked (GJK's inner loop calls this; convexSignedDistance checks the
+  /// poses its directions come from). A non-finite n gives a non-finite point.
   Eigen::Vector3d support(const Eigen::Vector3d& n) const;
   /// A point of the solid (for Region: the last feasible candidate's box centre is not used; the
   /// bounding-box centre, which need not be inside, serves only as GJK's first direction).
