@@ -47,6 +47,25 @@ bool affineProjectionK(const std::vector<Vertex>& W, const int* idx, std::array<
   const Eigen::Vector3d& w0 = W[idx[0]].w;
   Eigen::Matrix<double, 3, K> E;
   for (int i = 0; i < K; ++i) E.col(i) = W[idx[i + 1]].w - w0;
+  if constexpr (K == 3) {
+    // The tetrahedron: Cramer's rule on the triple products, and degenerate unless its volume is
+    // above 1e-12 of the product of its edge lengths. (The Gram matrix's LDLT squares the
+    // conditioning: four coplanar support points of a face-to-face pair passed its pivot test on
+    // rounding noise and made GJK report the origin inside a flat tetrahedron.)
+    const Eigen::Vector3d c12 = E.col(1).cross(E.col(2)), c20 = E.col(2).cross(E.col(0)),
+                          c01 = E.col(0).cross(E.col(1));
+    const double det = E.col(0).dot(c12);
+    if (!(std::abs(det) > 1e-12 * E.col(0).norm() * E.col(1).norm() * E.col(2).norm())) return false;
+    const Eigen::Vector3d mu(-w0.dot(c12) / det, -w0.dot(c20) / det, -w0.dot(c01) / det);
+    if (!(mu.minCoeff() > 0.0)) return false;
+    (*l)[1] = mu[0];
+    (*l)[2] = mu[1];
+    (*l)[3] = mu[2];
+    (*l)[0] = 1.0 - mu.sum();
+    if (!((*l)[0] > 0.0)) return false;
+    *p = Eigen::Vector3d::Zero();  // the origin is inside
+    return true;
+  }
   const Eigen::Matrix<double, K, K> G = E.transpose() * E;
   const Eigen::Matrix<double, K, 1> rhs = -(E.transpose() * w0);
   const Eigen::LDLT<Eigen::Matrix<double, K, K>> ldlt(G);
@@ -61,7 +80,7 @@ bool affineProjectionK(const std::vector<Vertex>& W, const int* idx, std::array<
   }
   (*l)[0] = 1.0 - sum;
   if (!((*l)[0] > 0.0)) return false;
-  *p = K == 3 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(w0 + E * mu);  // K = 3: the origin is inside
+  *p = w0 + E * mu;
   return true;
 }
 
@@ -89,7 +108,7 @@ bool closestPoint(std::vector<Vertex>* W, std::vector<double>* lambda, Eigen::Ve
     // GJK's newest point (the last) belongs to the new simplex: a subset without it would give
     // back the previous closest point, which the caller treats as a stall anyway.
     if (!(mask & (1 << (k - 1)))) continue;
-    int idx[4], s = 0;
+    int idx[4] = {0, 0, 0, 0}, s = 0;
     for (int i = 0; i < k; ++i)
       if (mask & (1 << i)) idx[s++] = i;
     std::array<double, 4> l{};
@@ -145,7 +164,7 @@ struct Face {
 
 SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::Matrix3d& R_a, const Eigen::Vector3d& p_a,
                                           const ConvexSupport& b, const Eigen::Matrix3d& R_b, const Eigen::Vector3d& p_b,
-                                          bool want_depth) {
+                                          bool want_depth, double* lower_bound) {
   if (!R_a.allFinite() || !p_a.allFinite() || !R_b.allFinite() || !p_b.allFinite())
     throw std::invalid_argument("convexSignedDistance: a pose is not finite");
   using namespace tolerance_convex;
@@ -156,6 +175,7 @@ SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::M
   const double tiny = 1e-14 * scale;
 
   SignedDistanceResult out;
+  if (lower_bound) *lower_bound = 0.0;
   // --- GJK ---------------------------------------------------------------------------------------
   Eigen::Vector3d dir = ca - cb;
   if (!(dir.norm() > tiny)) dir = Eigen::Vector3d::UnitX();
@@ -212,6 +232,7 @@ SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::M
     if (lower > margin) {
       out.status = Separation::Separated;
       out.distance = vn;  // the upper bound: within the stopping gap of the distance
+      if (lower_bound) *lower_bound = lower;
     } else {
       out.status = Separation::Touching;
       out.distance = 0.0;

@@ -294,3 +294,47 @@ TEST(ConvexDistance, TouchingAndFlatPairsErrTowardContact) {
 
 }  // namespace
 }  // namespace fcl_quadric
+
+namespace fcl_quadric {
+namespace {
+
+// A rod whose flat side is parallel to a large wall triangle, slid along the wall at 0.01: four
+// support points on the two parallel faces are coplanar, and GJK once took that flat
+// tetrahedron for one containing the origin (the Gram-matrix pivot test passed on rounding
+// noise) and reported contact. The exact distance is 0.01 at every position; GJK's lower bound
+// must stay below it and within its stopping gap.
+TEST(ConvexDistance, FaceParallelToALargeTriangleIsSeparatedAtEveryPosition) {
+  const ConvexSupport rod = ConvexSupport::ellipticCylinder(0.05, 0.03, 0.15);
+  const std::vector<std::vector<Eigen::Vector3d>> walls = {{{0.3, -3, -3}, {0.3, 3, -3}, {0.3, 3, 3}},
+                                                           {{0.3, -3, -3}, {0.3, 3, 3}, {0.3, -3, 3}}};
+  int inside = 0;
+  for (int k = 0; k <= 2000; ++k) {
+    const double t = k / 2000.0;
+    const Eigen::Vector3d p(0.24, -1.5 + 3 * t, -1 + 2 * t);
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+      const auto& w = walls[i];
+      const ConvexSupport tri = ConvexSupport::points(w);
+      double lower = -1.0;
+      const SignedDistanceResult r =
+          convexSignedDistance(rod, Eigen::Matrix3d::Identity(), p, tri, Eigen::Matrix3d::Identity(),
+                               Eigen::Vector3d::Zero(), false, &lower);
+      // The rod's face nearest the wall is the segment y = p.y, |z - p.z| <= 0.15 at x = 0.29: the
+      // distance is 0.01 when some of it lies over the triangle (wall 0: z <= y; wall 1: z >= y),
+      // else the diagonal edge's (larger).
+      const bool over = i == 0 ? p.z() - 0.15 <= p.y() : p.z() + 0.15 >= p.y();
+      if (!over) {
+        EXPECT_GT(lower, 0.01 - 1e-10) << k;  // still a valid, separated bound
+        continue;
+      }
+      ++inside;
+      ASSERT_EQ(r.status, Separation::Separated) << k;
+      EXPECT_NEAR(r.distance, 0.01, 1e-12) << k;
+      EXPECT_LE(lower, 0.01 + 1e-15) << k;
+      EXPECT_GT(lower, 0.01 - 1e-10) << k;
+    }
+  }
+  EXPECT_GT(inside, 1500);
+}
+
+}  // namespace
+}  // namespace fcl_quadric

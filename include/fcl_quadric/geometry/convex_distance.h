@@ -49,9 +49,12 @@ constexpr std::size_t kMaxEpaFaces = 8192;
 /// With want_depth = false an overlapping pair whose GJK tetrahedron certifies the overlap is not
 /// expanded: distance = 0 is returned with status Overlapping, and point_a, point_b are one common
 /// point of a and b (equal up to rounding; the caller only needs the sign and a witness).
+/// If `lower_bound` is non-null it receives, for a Separated result, GJK's lower bound v.w / |v|
+/// (converged or not: a stall or the iteration cap leaves |v| an upper and this a lower bound of
+/// the distance, exact up to the support points' rounding and tolerance), else 0.
 /// \throws std::invalid_argument if a pose is not finite.
 SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::Matrix3d& R_a, const Eigen::Vector3d& p_a,
                                           const ConvexSupport& b, const Eigen::Matrix3d& R_b, const Eigen::Vector3d& p_b,
-                                          bool want_depth = true);
+                                          bool want_depth = true, double* lower_bound = nullptr);
 
 }  // namespace fcl_quadric
