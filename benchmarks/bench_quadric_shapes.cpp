@@ -342,6 +342,74 @@ BENCHMARK(BM_Terrain<false, false>)->Name("QuadricShapes/TerrainCollide/FclGjkLi
 BENCHMARK(BM_Terrain<true, true>)->Name("QuadricShapes/TerrainDistance/fcl_quadric")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Terrain<false, true>)->Name("QuadricShapes/TerrainDistance/FclGjkLibccd")->Unit(benchmark::kMicrosecond);
 
+// Certified distance lower bounds (distanceLowerBound, what the OMPL layer advances on): an
+// fcl::Cylinder and the same circular EllipticCylinder over the terrain (GJK's bound per
+// triangle), against FCL's own distance of the fcl::Cylinder (libccd GJK: not a bound); and a
+// ring (ellipsoid minus bore, non-convex) threaded on a thin 6-triangle pole, where the ring's
+// convex cover contains the pole and the region engine certifies each triangle's delta-prism.
+template <bool Quadric>
+void BM_TerrainLowerBound(benchmark::State& state) {
+  const TerrainScene& t = terrain();
+  const fcl::CollisionGeometryd* g = Quadric ? static_cast<const fcl::CollisionGeometryd*>(t.ours.get()) : t.theirs.get();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(fcl_quadric::distanceLowerBound(g, t.poses[i], t.mesh.get(), fcl::Transform3d::Identity(), 1e3));
+    i = (i + 1) % t.poses.size();
+  }
+}
+BENCHMARK(BM_TerrainLowerBound<false>)->Name("QuadricShapes/TerrainLowerBound/fcl_Cylinder")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TerrainLowerBound<true>)->Name("QuadricShapes/TerrainLowerBound/EllipticCylinder")->Unit(benchmark::kMicrosecond);
+
+struct RingPoleScene {
+  std::shared_ptr<fcl_quadric::QuadricCSG<double>> ring;
+  std::shared_ptr<fcl::BVHModel<fcl::OBBRSS<double>>> pole;
+  std::vector<fcl::Transform3d> poses;  // the ring's centre within 0.3 of the pole's axis, tilted up to 0.3 rad
+};
+RingPoleScene makeRingPole() {
+  RingPoleScene s;
+  auto outer = std::make_shared<fcl_quadric::Quadric<double>>(fcl_quadric::Quadric<double>::ellipsoid(1.0, 1.0, 0.4));
+  auto bore = std::make_shared<fcl_quadric::Quadric<double>>(fcl_quadric::Quadric<double>::ellipticCylinder(0.5, 0.5));
+  s.ring = std::make_shared<fcl_quadric::QuadricCSG<double>>(
+      fcl_quadric::QuadricRegion::Op::Difference,
+      std::vector<fcl_quadric::QuadricCSG<double>::Child>{{outer, fcl::Transform3d::Identity()},
+                                                          {bore, fcl::Transform3d::Identity()}});
+  s.pole = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
+  s.pole->beginModel();
+  Eigen::Vector3d rim[3];
+  for (int k = 0; k < 3; ++k) rim[k] = 0.1 * Eigen::Vector3d(std::cos(2 * M_PI * k / 3), std::sin(2 * M_PI * k / 3), 0);
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d a = rim[k], b = rim[(k + 1) % 3], up(0, 0, 2);
+    s.pole->addTriangle(a - up, b - up, b + up);
+    s.pole->addTriangle(a - up, b + up, a + up);
+  }
+  s.pole->endModel();
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  while (s.poses.size() < 32) {
+    const Eigen::Vector3d c(0.3 * u(rng), 0.3 * u(rng), 0.5 * u(rng));
+    if (c.head<2>().norm() > 0.3) continue;
+    fcl::Transform3d tf = fcl::Transform3d::Identity();
+    tf.linear() = Eigen::AngleAxisd(0.3 * u(rng), Eigen::Vector3d(u(rng), u(rng), 0).normalized()).toRotationMatrix();
+    tf.translation() = c;
+    s.poses.push_back(tf);
+  }
+  return s;
+}
+RingPoleScene& ringPole() {
+  static RingPoleScene s = makeRingPole();
+  return s;
+}
+void BM_RingPoleLowerBound(benchmark::State& state) {
+  const RingPoleScene& s = ringPole();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        fcl_quadric::distanceLowerBound(s.ring.get(), s.poses[i], s.pole.get(), fcl::Transform3d::Identity(), 1e3));
+    i = (i + 1) % s.poses.size();
+  }
+}
+BENCHMARK(BM_RingPoleLowerBound)->Name("QuadricShapes/RingPoleLowerBound/fcl_quadric")->Unit(benchmark::kMillisecond);
+
 struct SmallEllipsoidPair {
   std::shared_ptr<fcl_quadric::Quadric<double>> shape;  // at the identity
   Eigen::Vector3d radii;
@@ -486,6 +554,32 @@ int main(int argc, char** argv) {
     std::printf("Terrain, %zu poses over 40,000 triangles: %d colliding (ours); FCL's collide flag differs on %d; "
                 "largest relative distance difference on pairs both call separated %.3g\n",
                 terrain().poses.size(), hits, flags_differ, worst);
+  }
+  {
+    // Lower bounds: the terrain bound against our exact distance (both cylinders), the ring's
+    // bound against its poses (how many certified positive).
+    double worst = 0.0;
+    int below = 0, separated = 0, zero_on_contact = 0;
+    for (const fcl::Transform3d& tf : terrain().poses) {
+      const double d = terrainQuery<true, true>(tf);
+      const double b = *fcl_quadric::distanceLowerBound(terrain().theirs.get(), tf, terrain().mesh.get(),
+                                                        fcl::Transform3d::Identity(), 1e3);
+      if (d > 0) {
+        ++separated;
+        worst = std::max(worst, (d - b) / d);
+        below += b <= d;
+      } else {
+        zero_on_contact += b == 0.0;
+      }
+    }
+    int positive = 0;
+    for (const fcl::Transform3d& tf : ringPole().poses)
+      positive += *fcl_quadric::distanceLowerBound(ringPole().ring.get(), tf, ringPole().pole.get(),
+                                                   fcl::Transform3d::Identity(), 1e3) > 0.0;
+    std::printf("Lower bounds: terrain, %d of %d separated poses at or below the exact distance (largest relative "
+                "shortfall %.3g), %d of %zu colliding poses at 0; ring on pole, %d of %zu poses certified clear\n",
+                below, separated, worst, zero_on_contact, terrain().poses.size() - separated, positive,
+                ringPole().poses.size());
   }
   // Agreement (outside the timed loops).
   int touching = 0, disagree = 0, fcl_misses = 0, fcl_false = 0, hits = 0;

@@ -1,6 +1,7 @@
 // Front-door dispatch for the quadric shapes: FCL primitives are converted to QuadricRegions and
 // the pair is classified by collideRegions-style certified search (docs/algorithms.md section 9).
 #include "fcl/quadric_shape_dispatch.h"
+#include "fcl/shape_pieces.h"
 
 #include <algorithm>
 #include <cmath>
@@ -32,6 +33,7 @@
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
+#include "fcl_quadric/geometry/convex_cover.h"
 #include "fcl_quadric/geometry/convex_distance.h"
 #include "fcl_quadric/geometry/convex_support.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
@@ -55,15 +57,19 @@ namespace {
 
 using Op = QuadricRegion::Op;
 
-/// A solid in its local frame with its local AABB (none: unbounded). `thin`: no interior (a
-/// triangle), so the search stops at the first undecided box (contact within the band).
-struct LocalSolid {
-  QuadricRegion region;
-  std::optional<Box3> box;
-  bool thin = false;
-  /// Set for FCL spheres and ellipsoids: the small-ellipsoid filter applies (collidePair).
-  std::optional<Eigen::Vector3d> ellipsoid_radii = std::nullopt;
-};
+
+Box3 symmetricBox(const Eigen::Vector3d& h) { return Box3{-h, h}; }
+
+QuadricRegion slab(double half) {
+  return QuadricRegion::combine(Op::Intersection, {QuadricRegion::halfspace({0, 0, 1}, half),
+                                                   QuadricRegion::halfspace({0, 0, -1}, half)});
+}
+
+void addRegionContact(const QuadricRegion& wa, const Eigen::Vector3d& point, const fcl::CollisionGeometry<double>* o1,
+                      const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
+                      fcl::CollisionResult<double>& result);
+
+}  // namespace
 
 /// A triangle as the region {n.x = d} intersected with its three edge half-spaces (in-plane),
 /// with its AABB; none for a zero-area triangle (skipped: documented).
@@ -97,192 +103,8 @@ QuadricRegion boxRegion(const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
   return QuadricRegion::combine(QuadricRegion::Op::Intersection, planes);
 }
 
-/// A box (local frame) that contains a BVH node's bounding volume: exact for AABB, from the OBB
-/// for OBB / OBBRSS / kIOS, otherwise the cube about the BV's centre with its half-diagonal (FCL's
-/// own conversion to AABB). Culling needs only a superset.
-template <typename BV>
-Box3 nodeBox(const BV& bv) {
-  const Eigen::Vector3d c = bv.center();
-  const Eigen::Vector3d r = Eigen::Vector3d::Constant(0.5 * Eigen::Vector3d(bv.width(), bv.height(), bv.depth()).norm());
-  return Box3{c - r, c + r};
-}
-Box3 obbBox(const fcl::OBB<double>& o) {
-  const Eigen::Vector3d h = o.axis.cwiseAbs() * o.extent;
-  return Box3{o.To - h, o.To + h};
-}
-template <>
-Box3 nodeBox(const fcl::AABB<double>& bv) {
-  return Box3{bv.min_, bv.max_};
-}
-template <>
-Box3 nodeBox(const fcl::OBB<double>& bv) {
-  return obbBox(bv);
-}
-template <>
-Box3 nodeBox(const fcl::OBBRSS<double>& bv) {
-  return obbBox(bv.obb);
-}
-template <>
-Box3 nodeBox(const fcl::kIOS<double>& bv) {
-  return obbBox(bv.obb);
-}
-
-bool boxesOverlap(const Box3& a, const Box3& b) {
-  return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
-}
-
-/// Euclidean gap between two boxes (0 when they overlap).
-double boxGap(const Box3& a, const Box3& b) { return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0).norm(); }
-
-/// Calls f(mesh) with g as its BVHModel type (the eight BV types FCL instantiates); false if g is
-/// not a BVH mesh. Dispatched on the node type with a static_cast, as FCL's own tables do: a
-/// dynamic_cast per candidate type would run on every query of every quadric shape.
-template <typename F>
-bool withMesh(const fcl::CollisionGeometry<double>* g, F&& f) {
-  if (g->getObjectType() != fcl::OT_BVH) return false;
-  switch (g->getNodeType()) {
-    case fcl::BV_OBBRSS: f(static_cast<const fcl::BVHModel<fcl::OBBRSS<double>>&>(*g)); return true;
-    case fcl::BV_OBB: f(static_cast<const fcl::BVHModel<fcl::OBB<double>>&>(*g)); return true;
-    case fcl::BV_RSS: f(static_cast<const fcl::BVHModel<fcl::RSS<double>>&>(*g)); return true;
-    case fcl::BV_AABB: f(static_cast<const fcl::BVHModel<fcl::AABB<double>>&>(*g)); return true;
-    case fcl::BV_kIOS: f(static_cast<const fcl::BVHModel<fcl::kIOS<double>>&>(*g)); return true;
-    case fcl::BV_KDOP16: f(static_cast<const fcl::BVHModel<fcl::KDOP<double, 16>>&>(*g)); return true;
-    case fcl::BV_KDOP18: f(static_cast<const fcl::BVHModel<fcl::KDOP<double, 18>>&>(*g)); return true;
-    case fcl::BV_KDOP24: f(static_cast<const fcl::BVHModel<fcl::KDOP<double, 24>>&>(*g)); return true;
-    default: return false;
-  }
-}
-
-bool isMeshOrOcTree(const fcl::CollisionGeometry<double>* g) {
-  return g->getObjectType() == fcl::OT_BVH || g->getObjectType() == fcl::OT_OCTREE;
-}
-
-/// Does the node's BV meet the query: its box against `query`, then, for oriented BVs (OBB, OBBRSS,
-/// kIOS) and a given `obb`, FCL's separating-axis test of the node's OBB against it.
-template <typename BV>
-bool nodeMeets(const BV& bv, const Box3& query, const fcl::OBB<double>*) {
-  return boxesOverlap(nodeBox(bv), query);
-}
-template <>
-bool nodeMeets(const fcl::OBB<double>& bv, const Box3& query, const fcl::OBB<double>* obb) {
-  return boxesOverlap(nodeBox(bv), query) && (obb == nullptr || bv.overlap(*obb));
-}
-template <>
-bool nodeMeets(const fcl::OBBRSS<double>& bv, const Box3& query, const fcl::OBB<double>* obb) {
-  return boxesOverlap(nodeBox(bv), query) && (obb == nullptr || bv.obb.overlap(*obb));
-}
-template <>
-bool nodeMeets(const fcl::kIOS<double>& bv, const Box3& query, const fcl::OBB<double>* obb) {
-  return boxesOverlap(nodeBox(bv), query) && (obb == nullptr || bv.obb.overlap(*obb));
-}
-
-/// Depth-first over the BVH: visit(triangle index, p0, p1, p2) for each triangle whose leaf BV
-/// meets `query` (mesh frame; and `obb`, the shape's oriented box in the mesh frame, if given),
-/// until visit returns true. A model without a hierarchy (no BVs) is walked triangle by triangle.
-template <typename BV, typename Visit>
-void visitMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, const fcl::OBB<double>* obb, Visit&& visit) {
-  auto tri = [&](int t) {
-    const fcl::Triangle& f = m.tri_indices[t];
-    return visit(t, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]);
-  };
-  if (m.getNumBVs() == 0) {
-    for (int t = 0; t < m.num_tris; ++t)
-      if (tri(t)) return;
-    return;
-  }
-  std::vector<int> stack{0};
-  while (!stack.empty()) {
-    const int id = stack.back();
-    stack.pop_back();
-    const fcl::BVNode<BV>& node = m.getBV(id);
-    if (!nodeMeets(node.bv, query, obb)) continue;
-    if (node.isLeaf()) {
-      if (tri(node.primitiveId())) return;
-    } else {
-      stack.push_back(node.rightChild());
-      stack.push_back(node.leftChild());
-    }
-  }
-}
-
-/// Best first over the BVH: visit(t, p0, p1, p2) returns the triangle's distance; the search ends
-/// at the first node whose box gap to `query` (mesh frame) is positive and not below the best
-/// distance so far (nodes whose boxes meet it are all visited: they may hold a deeper overlap).
-/// stop(best) ends it early.
-template <typename BV, typename Visit, typename Stop>
-void nearestMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, Visit&& visit, Stop&& stop) {
-  double best = std::numeric_limits<double>::infinity();
-  auto tri = [&](int t) {
-    const fcl::Triangle& f = m.tri_indices[t];
-    best = std::min(best, visit(t, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]));
-    return stop(best);
-  };
-  if (m.getNumBVs() == 0) {
-    for (int t = 0; t < m.num_tris; ++t)
-      if (tri(t)) return;
-    return;
-  }
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  queue.emplace(boxGap(nodeBox(m.getBV(0).bv), query), 0);
-  while (!queue.empty()) {
-    const auto [gap, id] = queue.top();
-    queue.pop();
-    if (gap > 0.0 && gap >= best) break;  // (boxes that meet may hold a deeper overlap)
-    const fcl::BVNode<BV>& node = m.getBV(id);
-    if (node.isLeaf()) {
-      if (tri(node.primitiveId())) return;
-    } else {
-      for (int child : {node.leftChild(), node.rightChild()})
-        queue.emplace(boxGap(nodeBox(m.getBV(child).bv), query), child);
-    }
-  }
-}
-
-/// The eight children of an octree cell box (FCL's computeChildBV order: bit 0 x, bit 1 y, bit 2 z).
-Box3 octreeChildBox(const Box3& b, unsigned i) {
-  const Eigen::Vector3d mid = 0.5 * (b.lo + b.hi);
-  Box3 c = b;
-  for (int k = 0; k < 3; ++k) {
-    if (i & (1u << k)) c.lo[k] = mid[k];
-    else c.hi[k] = mid[k];
-  }
-  return c;
-}
-
-/// The occupied leaves of an OcTree as (centre, half width) pairs, in the order of a traversal
-/// that skips cells whose box misses `query` (tree frame); visit returns true to stop. Leaves and
-/// occupancy as fcl::OcTree::toBoxes (occupied = fcl::OcTree::isNodeOccupied).
-template <typename Visit>
-void visitOcTreeLeaves(const fcl::OcTree<double>& tree, const Box3& query, Visit&& visit) {
-  const fcl::OcTree<double>::OcTreeNode* root = tree.getRoot();
-  if (root == nullptr) return;
-  const fcl::AABB<double> rb = tree.getRootBV();
-  std::vector<std::pair<const fcl::OcTree<double>::OcTreeNode*, Box3>> stack{{root, Box3{rb.min_, rb.max_}}};
-  while (!stack.empty()) {
-    const auto [node, box] = stack.back();
-    stack.pop_back();
-    if (!boxesOverlap(box, query)) continue;
-    bool leaf = true;
-    for (unsigned i = 0; i < 8; ++i) {
-      if (!tree.nodeChildExists(node, i)) continue;
-      leaf = false;
-      stack.emplace_back(tree.getNodeChild(node, i), octreeChildBox(box, i));
-    }
-    if (leaf && tree.isNodeOccupied(node) && visit(box.center(), box.halfWidth())) return;
-  }
-}
-
-Box3 symmetricBox(const Eigen::Vector3d& h) { return Box3{-h, h}; }
-
-QuadricRegion slab(double half) {
-  return QuadricRegion::combine(Op::Intersection, {QuadricRegion::halfspace({0, 0, 1}, half),
-                                                   QuadricRegion::halfspace({0, 0, -1}, half)});
-}
-
 /// FCL's primitives as quadric regions (FCL's local conventions, fcl/geometry/shape/*.h).
-LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which,
-                      const char* where = "fcl_quadric::collide") {
+LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which, const char* where) {
   if (const auto* q = dynamic_cast<const QuadricShape<double>*>(g)) {
     if (!q->bounded()) return {q->region(), std::nullopt};
     return {q->region(), q->localBox()};
@@ -346,17 +168,6 @@ LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which
   throw std::invalid_argument(os.str());
 }
 
-void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
-                 const fcl::Transform3<double>& tf2, const fcl::CollisionGeometry<double>* o1,
-                 const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
-                 fcl::CollisionResult<double>& result);
-
-std::optional<ConvexSupport> convexSupportOf(const fcl::CollisionGeometry<double>* g, const char* which);
-void addRegionContact(const QuadricRegion& wa, const Eigen::Vector3d& point, const fcl::CollisionGeometry<double>* o1,
-                      const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
-                      fcl::CollisionResult<double>& result);
-
-}  // namespace
 
 std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
                                  const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
@@ -542,6 +353,8 @@ void addRegionContact(const QuadricRegion& wa, const Eigen::Vector3d& point, con
                                          normal, 0.0));
 }
 
+}  // namespace
+
 void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
                  const fcl::Transform3<double>& tf2, const fcl::CollisionGeometry<double>* o1,
                  const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
@@ -591,8 +404,6 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
   addRegionContact(wa, s.point, o1, o2, request, result);
 }
 
-}  // namespace
-
 RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const PiecewiseMotion& m1,
                                                const fcl::CollisionGeometry<double>* o2, const PiecewiseMotion& m2,
                                                const char* where, std::string* elements1, std::string* elements2) {
@@ -621,8 +432,6 @@ RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<doub
   }
   return r;
 }
-
-namespace {
 
 /// The radius of a ball about the local origin that the shape contains, for the convex shapes the
 /// distance bound can scale (region_distance_bound.h); none otherwise.
@@ -675,6 +484,8 @@ std::optional<ConvexSupport> convexSupportOf(const fcl::CollisionGeometry<double
   }
 }
 
+namespace {
+
 /// A convex piece posed in the world, with the FCL primitive index it reports (-1: none) and
 /// what rebuilds its region for collidePair: a primitive (the geometry itself), a triangle
 /// (vertices v[0..2], mesh frame) or an OcTree leaf (centre v[0], half widths v[1], tree frame).
@@ -696,28 +507,42 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
   const char* where = "fcl_quadric::distance";
   // The quadric shape (o1 or o2) as one convex piece; the partner as one piece, or as the pieces of
   // a mesh / octree, or a half-space.
-  auto shapeOf = [&](const fcl::CollisionGeometry<double>* g, const fcl::Transform3<double>& tf, const char* which) {
-    std::optional<ConvexSupport> s = convexSupportOf(g, which);
-    if (!s)
-      throw std::invalid_argument(std::string(where) + ": " + which +
-                                  (isQuadricShape(g)
-                                       ? " is a quadric shape that is not convex (a union, a difference of curved "
-                                         "solids, two curved atoms, or a non-convex quadric): distance is implemented "
-                                         "for convex quadric shapes only (fcl_quadric::distanceLowerBound gives a "
-                                         "certified bound)"
-                                       : (" has node type " + std::to_string(g->getNodeType()) +
-                                          ", which is not supported against fcl_quadric quadric shapes (supported: "
-                                          "convex quadric shapes, Sphere, Ellipsoid, Box, Cylinder, Cone, Capsule, "
-                                          "Halfspace, BVH meshes, OcTree)"))
-                                      .c_str());
-    return PosedConvex{*s, tf.linear(), tf.translation(), -1, PosedConvex::Primitive, {}};
+  // A convex operand as one piece; a quadric shape whose convex cover is exact (a union of convex
+  // solids, convex_cover.h) as its pieces: the distance to it is the smallest to a piece, its
+  // penetration depth reported is the deepest piece's (as for a mesh).
+  auto piecesOf = [&](const fcl::CollisionGeometry<double>* g, const fcl::Transform3<double>& tf, const char* which) {
+    std::vector<PosedConvex> out;
+    if (std::optional<ConvexSupport> s = convexSupportOf(g, which)) {
+      out.push_back(PosedConvex{*s, tf.linear(), tf.translation(), -1, PosedConvex::Primitive, {}});
+      return out;
+    }
+    if (isQuadricShape(g)) {
+      const auto& q = static_cast<const QuadricShape<double>&>(*g);
+      ConvexCover cover = convexCover(q.region(), q.localBox());
+      if (cover.exact) {
+        for (ConvexSupport& piece : cover.pieces)
+          out.push_back(PosedConvex{std::move(piece), tf.linear(), tf.translation(), -1, PosedConvex::Primitive, {}});
+        return out;
+      }
+    }
+    throw std::invalid_argument(std::string(where) + ": " + which +
+                                (isQuadricShape(g)
+                                     ? " is a quadric shape that is neither convex nor a union of convex solids (a "
+                                       "difference of curved solids, an intersection of two curved atoms, or a "
+                                       "non-convex quadric): distance is implemented for convex quadric shapes and "
+                                       "unions of them (fcl_quadric::distanceLowerBound gives a certified bound)"
+                                     : (" has node type " + std::to_string(g->getNodeType()) +
+                                        ", which is not supported against fcl_quadric quadric shapes (supported: "
+                                        "convex quadric shapes and unions of them, Sphere, Ellipsoid, Box, Cylinder, "
+                                        "Cone, Capsule, Halfspace, BVH meshes, OcTree)"))
+                                    .c_str());
   };
   const bool swap = !isQuadricShape(o1);  // the quadric shape first
   const fcl::CollisionGeometry<double>* gs = swap ? o2 : o1;
   const fcl::CollisionGeometry<double>* gp = swap ? o1 : o2;
   const fcl::Transform3<double>& tfs = swap ? tf2 : tf1;
   const fcl::Transform3<double>& tfp = swap ? tf1 : tf2;
-  const PosedConvex shape = shapeOf(gs, tfs, swap ? "o2" : "o1");
+  const std::vector<PosedConvex> shape_pieces = piecesOf(gs, tfs, swap ? "o2" : "o1");
 
   // Reports d with witnesses (x on the shape, y on the partner) in FCL's argument order.
   auto report = [&](double d, const Eigen::Vector3d& x, const Eigen::Vector3d& y, int partner_index) {
@@ -726,151 +551,111 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
                   swap ? fcl::DistanceResult<double>::NONE : partner_index, swap ? y : x, swap ? x : y);
   };
 
-  if (gp->getNodeType() == fcl::GEOM_HALFSPACE) {
-    // min over the shape of n.x - d is reached at its support point towards -n.
-    const auto* hs = static_cast<const fcl::Halfspace<double>*>(gp);
-    const Eigen::Vector3d n = tfp.linear() * hs->n.normalized();
-    const double off = hs->d / hs->n.norm() + n.dot(tfp.translation());
-    const Eigen::Vector3d x = shape.R * shape.support.support(-(shape.R.transpose() * n)) + shape.p;
-    double s = n.dot(x) - off;
-    const double scale = shape.support.size() + (shape.R * shape.support.center() + shape.p).norm() + std::abs(off);
-    if (std::abs(s) <= tolerance_convex::kConvexSeparationRelative * scale) {
-      s = 0.0;  // touching: contact
-    } else if (std::abs(s) <= 1e-8 * scale) {
-      // Near contact the front door's own collide decides, as for the other partners.
-      fcl::CollisionRequest<double> creq(1);
-      fcl::CollisionResult<double> cres;
-      collidePair(localSolid(gs, "o1", where), tfs, localSolid(gp, "o2", where), tfp, gs, gp, creq, cres);
-      s = cres.numContacts() > 0 ? std::min(s, 0.0) : std::abs(s);
+  // The distance from one convex piece of the shape to the partner.
+  auto fromShapePiece = [&](const PosedConvex& shape) {
+    if (gp->getNodeType() == fcl::GEOM_HALFSPACE) {
+      // min over the shape of n.x - d is reached at its support point towards -n.
+      const auto* hs = static_cast<const fcl::Halfspace<double>*>(gp);
+      const Eigen::Vector3d n = tfp.linear() * hs->n.normalized();
+      const double off = hs->d / hs->n.norm() + n.dot(tfp.translation());
+      const Eigen::Vector3d x = shape.R * shape.support.support(-(shape.R.transpose() * n)) + shape.p;
+      double s = n.dot(x) - off;
+      const double scale = shape.support.size() + (shape.R * shape.support.center() + shape.p).norm() + std::abs(off);
+      if (std::abs(s) <= tolerance_convex::kConvexSeparationRelative * scale) {
+        s = 0.0;  // touching: contact
+      } else if (std::abs(s) <= 1e-8 * scale) {
+        // Near contact the front door's own collide decides, as for the other partners.
+        fcl::CollisionRequest<double> creq(1);
+        fcl::CollisionResult<double> cres;
+        collidePair(localSolid(gs, "o1", where), tfs, localSolid(gp, "o2", where), tfp, gs, gp, creq, cres);
+        s = cres.numContacts() > 0 ? std::min(s, 0.0) : std::abs(s);
+      }
+      report(s, x, x - s * n, -1);
+      return;
     }
-    report(s, x, x - s * n, -1);
-    return result.min_distance;
-  }
 
-  // One piece: GJK / EPA, then near contact the front door's own collide decides the sign, so
-  // distance and collide agree. Returns the value reported (FCL's -1 for an unsigned overlap).
-  auto solve = [&](const PosedConvex& piece) {
-    SignedDistanceResult d =
-        convexSignedDistance(shape.support, shape.R, shape.p, piece.support, piece.R, piece.p, request.enable_signed_distance);
-    const double scale = shape.support.size() + piece.support.size() + (shape.p - piece.p).norm();
-    // (An overlap certified without its depth, want_depth = false, reports distance 0: not near.)
-    const bool depth_unknown = d.status == Separation::Overlapping && !request.enable_signed_distance;
-    if (!depth_unknown && std::abs(d.distance) <= 1e-8 * scale) {
-      fcl::CollisionRequest<double> creq(1);
-      fcl::CollisionResult<double> cres;
-      std::optional<LocalSolid> b;
-      if (piece.kind == PosedConvex::Primitive) b = localSolid(gp, "o2", where);
-      else if (piece.kind == PosedConvex::Triangle) b = triangleSolid(piece.v[0], piece.v[1], piece.v[2]);
-      else b = LocalSolid{boxRegion(piece.v[0], piece.v[1]), Box3{piece.v[0] - piece.v[1], piece.v[0] + piece.v[1]}};
-      if (b) {  // (a zero-area triangle has no region: GJK's answer stands)
-        collidePair(localSolid(gs, "o1", where), tfs, *b, tfp, gs, gp, creq, cres);
-        if (cres.numContacts() > 0) {
-          if (d.status == Separation::Separated) d.status = Separation::Touching;
-          d.distance = std::min(d.distance, 0.0);
-        } else {
-          d.status = Separation::Separated;
-          d.distance = std::max(d.distance, (d.point_b - d.point_a).norm());
+    // One piece: GJK / EPA, then near contact the front door's own collide decides the sign, so
+    // distance and collide agree. Returns the value reported (FCL's -1 for an unsigned overlap).
+    auto solve = [&](const PosedConvex& piece) {
+      SignedDistanceResult d =
+          convexSignedDistance(shape.support, shape.R, shape.p, piece.support, piece.R, piece.p, request.enable_signed_distance);
+      const double scale = shape.support.size() + piece.support.size() + (shape.p - piece.p).norm();
+      // (An overlap certified without its depth, want_depth = false, reports distance 0: not near.)
+      const bool depth_unknown = d.status == Separation::Overlapping && !request.enable_signed_distance;
+      if (!depth_unknown && std::abs(d.distance) <= 1e-8 * scale) {
+        fcl::CollisionRequest<double> creq(1);
+        fcl::CollisionResult<double> cres;
+        std::optional<LocalSolid> b;
+        if (piece.kind == PosedConvex::Primitive) b = localSolid(gp, "o2", where);
+        else if (piece.kind == PosedConvex::Triangle) b = triangleSolid(piece.v[0], piece.v[1], piece.v[2]);
+        else b = LocalSolid{boxRegion(piece.v[0], piece.v[1]), Box3{piece.v[0] - piece.v[1], piece.v[0] + piece.v[1]}};
+        if (b) {  // (a zero-area triangle has no region: GJK's answer stands)
+          collidePair(localSolid(gs, "o1", where), tfs, *b, tfp, gs, gp, creq, cres);
+          if (cres.numContacts() > 0) {
+            if (d.status == Separation::Separated) d.status = Separation::Touching;
+            d.distance = std::min(d.distance, 0.0);
+          } else {
+            d.status = Separation::Separated;
+            d.distance = std::max(d.distance, (d.point_b - d.point_a).norm());
+          }
         }
       }
-    }
-    const double value = d.status == Separation::Overlapping && !request.enable_signed_distance ? -1.0 : d.distance;
-    report(value, d.point_a, d.point_b, piece.index);
-    return value;
-  };
-  // Once an unsigned query has found an overlap (FCL's -1) nothing more is to be learnt; signed
-  // queries visit every overlapping piece and report the deepest.
-  auto done = [&](double best) { return best < 0.0 && !request.enable_signed_distance; };
-  // The shape's exact bounding box in the pieces' frame (six support points).
-  auto shapeBoxIn = [&](const fcl::Transform3<double>& frame) {
-    Box3 b;
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector3d e = frame.linear().col(i);  // the frame's axis i in the world
-      const Eigen::Vector3d local = shape.R.transpose() * e;
-      b.hi[i] = e.dot(shape.R * shape.support.support(local) + shape.p - frame.translation());
-      b.lo[i] = e.dot(shape.R * shape.support.support(-local) + shape.p - frame.translation());
-    }
-    return b;
-  };
-  const bool is_mesh = withMesh(gp, [&](const auto& m) {
-    nearestMeshTriangles(
-        m, shapeBoxIn(tfp),
-        [&](int t, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
-          return solve(PosedConvex{ConvexSupport::points({p0, p1, p2}), tfp.linear(), tfp.translation(), t,
-                                   PosedConvex::Triangle, {p0, p1, p2}});
-        },
-        done);
-  });
-  if (is_mesh) return result.min_distance;
-  if (gp->getObjectType() == fcl::OT_OCTREE) {
-    const auto* tree = static_cast<const fcl::OcTree<double>*>(gp);
-    const Box3 query = shapeBoxIn(tfp);
-    double best = std::numeric_limits<double>::infinity();
-    const Box3 everything{Eigen::Vector3d::Constant(-std::numeric_limits<double>::max()),
-                          Eigen::Vector3d::Constant(std::numeric_limits<double>::max())};
-    visitOcTreeLeaves(*tree, everything, [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
-      const double gap = boxGap(query, Box3{c - h, c + h});
-      if (gap > 0.0 && gap >= best) return false;
-      best = std::min(best, solve(PosedConvex{ConvexSupport::box(h), tfp.linear(), tfp.linear() * c + tfp.translation(),
-                                              fcl::DistanceResult<double>::NONE, PosedConvex::Leaf,
-                                              {c, h, Eigen::Vector3d::Zero()}}));
-      return done(best);
+      const double value = d.status == Separation::Overlapping && !request.enable_signed_distance ? -1.0 : d.distance;
+      report(value, d.point_a, d.point_b, piece.index);
+      return value;
+    };
+    // Once an unsigned query has found an overlap (FCL's -1) nothing more is to be learnt; signed
+    // queries visit every overlapping piece and report the deepest.
+    auto done = [&](double best) { return best < 0.0 && !request.enable_signed_distance; };
+    // The shape's exact bounding box in the pieces' frame (six support points).
+    auto shapeBoxIn = [&](const fcl::Transform3<double>& frame) {
+      Box3 b;
+      for (int i = 0; i < 3; ++i) {
+        const Eigen::Vector3d e = frame.linear().col(i);  // the frame's axis i in the world
+        const Eigen::Vector3d local = shape.R.transpose() * e;
+        b.hi[i] = e.dot(shape.R * shape.support.support(local) + shape.p - frame.translation());
+        b.lo[i] = e.dot(shape.R * shape.support.support(-local) + shape.p - frame.translation());
+      }
+      return b;
+    };
+    const bool is_mesh = withMesh(gp, [&](const auto& m) {
+      nearestMeshTriangles(
+          m, shapeBoxIn(tfp),
+          [&](int t, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+            return solve(PosedConvex{ConvexSupport::points({p0, p1, p2}), tfp.linear(), tfp.translation(), t,
+                                     PosedConvex::Triangle, {p0, p1, p2}});
+          },
+          done, result.min_distance);  // (earlier pieces' best prunes this one's search)
     });
-    return result.min_distance;
+    if (is_mesh) return;
+    if (gp->getObjectType() == fcl::OT_OCTREE) {
+      const auto* tree = static_cast<const fcl::OcTree<double>*>(gp);
+      const Box3 query = shapeBoxIn(tfp);
+      double best = result.min_distance;
+      const Box3 everything{Eigen::Vector3d::Constant(-std::numeric_limits<double>::max()),
+                            Eigen::Vector3d::Constant(std::numeric_limits<double>::max())};
+      visitOcTreeLeaves(*tree, everything, [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
+        const double gap = boxGap(query, Box3{c - h, c + h});
+        if (gap > 0.0 && gap >= best) return false;
+        best = std::min(best, solve(PosedConvex{ConvexSupport::box(h), tfp.linear(), tfp.linear() * c + tfp.translation(),
+                                                fcl::DistanceResult<double>::NONE, PosedConvex::Leaf,
+                                                {c, h, Eigen::Vector3d::Zero()}}));
+        return done(best);
+      });
+      return;
+    }
+    for (const PosedConvex& piece : piecesOf(gp, tfp, swap ? "o1" : "o2")) {
+      solve(piece);
+      if (done(result.min_distance)) return;
+    }
+  };
+  for (const PosedConvex& shape : shape_pieces) {
+    fromShapePiece(shape);
+    if (result.min_distance < 0.0 && !request.enable_signed_distance) break;
   }
-  solve(shapeOf(gp, tfp, swap ? "o1" : "o2"));
   return result.min_distance;
 }
 
 }  // namespace detail
-
-std::optional<double> distanceLowerBound(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
-                                         const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
-                                         double cap) {
-  if (o1 == nullptr || o2 == nullptr) throw std::invalid_argument("fcl_quadric::distanceLowerBound: null geometry");
-  const bool q1 = detail::isQuadricShape(o1), q2 = detail::isQuadricShape(o2);
-  if (!q1 && !q2) return std::nullopt;
-  if (std::isnan(cap) || cap < 0.0)  // isnan first: an ordered comparison with NaN raises FE_INVALID
-    throw std::invalid_argument("fcl_quadric::distanceLowerBound: cap must be >= 0, got " + std::to_string(cap));
-  // Two convex operands: GJK's certified bound (docs/algorithms.md section 12), when it converged.
-  const auto bounded = [](const fcl::CollisionGeometry<double>* g) {
-    const auto* q = dynamic_cast<const QuadricShape<double>*>(g);
-    return q == nullptr || q->bounded();
-  };
-  if (bounded(o1) && bounded(o2)) {
-    const std::optional<ConvexSupport> c1 = detail::convexSupportOf(o1, "o1"), c2 = detail::convexSupportOf(o2, "o2");
-    if (c1 && c2) {
-      const SignedDistanceResult d =
-          convexSignedDistance(*c1, tf1.linear(), tf1.translation(), *c2, tf2.linear(), tf2.translation(), false);
-      if (d.converged) {
-        if (d.status != Separation::Separated) return 0.0;
-        // |v| exceeds the distance by at most kConvexDistanceRelative |v| + 1e-14 scale; the support
-        // points may lie 1e-12 of the size outside the solids (ConvexSupport's tolerance).
-        const double scale = c1->size() + c2->size() + (tf1.translation() - tf2.translation()).norm();
-        const double lower = d.distance * (1.0 - tolerance_convex::kConvexDistanceRelative) - 1e-11 * scale;
-        return std::clamp(lower, 0.0, cap);
-      }
-    }
-  }
-  // The model first and the convex partner second; of two models, a convex one is the partner.
-  if (!q1) return distanceLowerBound(o2, tf2, o1, tf1, cap);
-  if (q2 && !detail::convexInradius(o2)) {
-    if (!detail::convexInradius(o1)) return std::nullopt;  // two models, neither convex
-    return distanceLowerBound(o2, tf2, o1, tf1, cap);
-  }
-  const QuadricShape<double>& q = *static_cast<const QuadricShape<double>*>(o1);
-  if (o2->getNodeType() == fcl::GEOM_ELLIPSOID || o2->getNodeType() == fcl::GEOM_SPHERE) {
-    const Eigen::Vector3d radii = o2->getNodeType() == fcl::GEOM_ELLIPSOID
-                                      ? static_cast<const fcl::Ellipsoid<double>*>(o2)->radii
-                                      : Eigen::Vector3d::Constant(static_cast<const fcl::Sphere<double>*>(o2)->radius);
-    return ellipsoidRegionDistanceLowerBound(Ellipsoid(radii, tf2.linear(), tf2.translation()), q.region(), q.localBox(),
-                                             tf1.linear(), tf1.translation(), cap);
-  }
-  const std::optional<double> inradius = detail::convexInradius(o2);
-  if (!inradius) return std::nullopt;
-  const detail::LocalSolid partner = detail::localSolid(o2, "o2");
-  const fcl::Transform3<double> X_12 = tf1.inverse() * tf2;
-  return regionConvexDistanceLowerBound(q.region(), q.localBox(), partner.region, *partner.box, *inradius,
-                                        X_12.linear(), X_12.translation(), cap);
-}
 
 }  // namespace fcl_quadric

@@ -39,16 +39,18 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
                                  const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result);
 
 /// Distance of o1 (posed tf1) and o2 (posed tf2), at least one a QuadricShape, by GJK / EPA on
-/// support mappings (convex_distance.h): the quadric shape must be convex (ConvexSupport::
-/// fromRegion, or an EllipticCylinder); the partner a convex quadric shape, an fcl Sphere /
+/// support mappings (convex_distance.h): a quadric shape must be convex (ConvexSupport::
+/// fromRegion, or an EllipticCylinder) or a union of convex solids (its exact convex cover,
+/// convex_cover.h: the smallest distance to a piece, the deepest piece's penetration depth); the
+/// partner such a quadric shape, an fcl Sphere /
 /// Ellipsoid / Box / Cylinder / Cone / Capsule (one piece), a Halfspace (closed form), a BVH mesh
 /// (best first over its BVH) or an OcTree (occupied leaves pruned by their box gap). FCL's
 /// semantics: result.update with the distance, -1 for an overlapping pair unless
 /// request.enable_signed_distance (then minus the penetration depth of the deepest piece), nearest
 /// points in the world frame, b1 / b2 = the triangle index of a mesh partner (NONE for leaves). Within 1e-8 of the
 /// pair's scale of contact, the sign is the one fcl_quadric::collide gives the same pair (touching
-/// = 0). \return result.min_distance. \throws std::invalid_argument for a non-convex quadric
-/// shape, an unbounded one, or any other partner (the message names it).
+/// = 0). \return result.min_distance. \throws std::invalid_argument for another non-convex
+/// quadric shape, an unbounded one, or any other partner (the message names it).
 double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
                              const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
                              const fcl::DistanceRequest<double>& request, fcl::DistanceResult<double>& result);

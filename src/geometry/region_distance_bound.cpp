@@ -1,9 +1,12 @@
 #include "fcl_quadric/geometry/region_distance_bound.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
@@ -25,12 +28,22 @@ void checkCap(double cap, const std::string& who) {
   }
 }
 
-/// The largest delta in [lo, hi] (to 2^-kRegionDistanceBisections of the range) for which
-/// separated(delta) is certified, lo being a certified bound already; hi itself if separated(hi).
+/// The largest delta in [lo, hi] for which separated(delta) is certified, lo being a certified
+/// bound already; hi itself if separated(hi). From lo = 0 the levels hi / 2, hi / 4, ... are tried
+/// first (at most kRegionDistanceDescents), so that the bisection that follows brackets the bound
+/// to 2^-kRegionDistanceBisections of itself however small it is (near contact the advancement
+/// needs a relative bound, not one to a fraction of the search range); 0 when none separates.
 template <class Separated>
 double bisectBound(double lo, double hi, Separated&& separated) {
   if (!(hi > lo)) return lo;
   if (separated(hi)) return hi;
+  if (lo == 0.0) {
+    for (int k = 0; k < tolerance_region::kRegionDistanceDescents && lo == 0.0; ++k) {
+      const double mid = 0.5 * hi;
+      (separated(mid) ? lo : hi) = mid;
+    }
+    if (lo == 0.0) return 0.0;
+  }
   for (int k = 0; k < tolerance_region::kRegionDistanceBisections; ++k) {
     const double mid = 0.5 * (lo + hi);
     (separated(mid) ? lo : hi) = mid;
@@ -103,6 +116,87 @@ double regionConvexDistanceLowerBound(const QuadricRegion& a, const Box3& a_box,
   const double reach = b_box.hi.cwiseAbs().cwiseMax(b_box.lo.cwiseAbs()).norm();
   double hi = std::min(cap, 2.0 * (a_box.halfWidth().norm() + reach));
   hi = std::min(hi, (tolerance::kMaxLength / reach - 1.0) * b_inradius);
+  return bisectBound(0.0, hi, separated);
+}
+
+OffsetSuperset boxOffsetSuperset(const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
+  detail::checkFinite(c, "boxOffsetSuperset: centre");
+  detail::checkFinite(h, "boxOffsetSuperset: half widths");
+  if ((h.array() < 0.0).any())
+    throw std::invalid_argument("boxOffsetSuperset: a half width is negative (" + std::to_string(h.minCoeff()) + ")");
+  return [c, h](double delta) {
+    const Eigen::Vector3d g = h + Eigen::Vector3d::Constant(delta);
+    std::vector<QuadricRegion> planes;
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d e = Eigen::Vector3d::Unit(i);
+      planes.push_back(QuadricRegion::halfspace(e, c[i] + g[i]));
+      planes.push_back(QuadricRegion::halfspace(-e, -(c[i] - g[i])));
+    }
+    return std::make_pair(QuadricRegion::combine(QuadricRegion::Op::Intersection, std::move(planes)),
+                          Box3{c - g, c + g});
+  };
+}
+
+std::optional<OffsetSuperset> triangleOffsetSuperset(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+                                                     const Eigen::Vector3d& p2) {
+  if (!p0.allFinite() || !p1.allFinite() || !p2.allFinite()) return std::nullopt;
+  const Eigen::Vector3d cross = (p1 - p0).cross(p2 - p0);
+  if (!(cross.norm() > 1e-14 * (p1 - p0).norm() * (p2 - p0).norm())) return std::nullopt;
+  const Eigen::Vector3d n = cross.normalized();
+  const std::array<Eigen::Vector3d, 3> p{p0, p1, p2};
+  // Outward in-plane unit normal of edge i (from p[i] to p[i+1]); n points so that p is
+  // counter-clockwise about it, hence (p[i+1] - p[i]) x n points out.
+  std::array<Eigen::Vector3d, 3> m;
+  for (int i = 0; i < 3; ++i) m[i] = (p[(i + 1) % 3] - p[i]).cross(n).normalized();
+  return [n, p, m](double delta) {
+    std::vector<QuadricRegion> parts{QuadricRegion::halfspace(n, n.dot(p[0]) + delta),
+                                     QuadricRegion::halfspace(-n, -n.dot(p[0]) + delta)};
+    for (int i = 0; i < 3; ++i) {
+      parts.push_back(QuadricRegion::halfspace(m[i], m[i].dot(p[i]) + delta));
+      // Chamfers along the edge, k = (m +- n) / sqrt 2: k.t <= k.p_i on the triangle, so
+      // k.x <= k.p_i + delta within delta of it. They cut the prism's square edge to an octagon
+      // about the edge's delta-cylinder (reach delta / cos 22.5 deg instead of delta sqrt 2).
+      for (double s : {-1.0, 1.0}) {
+        const Eigen::Vector3d k = (m[i] + s * n) / std::sqrt(2.0);
+        parts.push_back(QuadricRegion::halfspace(k, k.dot(p[i]) + delta));
+      }
+    }
+    // Vertex i of the grown triangle: where the pushed edges i-1 and i meet, p[i] + delta (m_a +
+    // m_b) / (1 + m_a.m_b); the prism's box holds those points moved by +-delta n, padded.
+    Box3 box{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+             Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d& ma = m[(i + 2) % 3];
+      const Eigen::Vector3d& mb = m[i];
+      const Eigen::Vector3d v = p[i] + delta * (ma + mb) / std::max(1.0 + ma.dot(mb), 1e-300);
+      for (double s : {-1.0, 1.0}) {
+        box.lo = box.lo.cwiseMin(v + s * delta * n);
+        box.hi = box.hi.cwiseMax(v + s * delta * n);
+      }
+    }
+    const double pad = 1e-12 * ((box.hi - box.lo).cwiseAbs().maxCoeff() + box.hi.cwiseAbs().maxCoeff());
+    box.lo.array() -= pad;
+    box.hi.array() += pad;
+    return std::make_pair(QuadricRegion::combine(QuadricRegion::Op::Intersection, std::move(parts)), box);
+  };
+}
+
+double regionOffsetDistanceLowerBound(const QuadricRegion& a, const Box3& a_box, const OffsetSuperset& grown,
+                                      double reach, const Eigen::Matrix3d& R_AB, const Eigen::Vector3d& p_AB,
+                                      double cap) {
+  const std::string who = "regionOffsetDistanceLowerBound";
+  checkCap(cap, who);
+  if (!std::isfinite(reach) || reach < 0.0)
+    throw std::invalid_argument(who + ": reach must be finite and >= 0, got " + std::to_string(reach));
+  checkBox(a_box, who + ": a's box");
+  detail::checkFinite(p_AB, "regionOffsetDistanceLowerBound: translation");
+  detail::checkRotation(R_AB, "regionOffsetDistanceLowerBound: rotation");
+  auto separated = [&](double delta) {
+    const auto [region, box] = grown(delta);
+    return collideRegions(a, a_box, region, box, R_AB, p_AB).relation == RegionRelation::Separated;
+  };
+  if (cap == 0.0 || !separated(0.0)) return 0.0;
+  const double hi = std::min(cap, 2.0 * (a_box.halfWidth().norm() + reach));
   return bisectBound(0.0, hi, separated);
 }
 

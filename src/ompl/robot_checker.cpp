@@ -112,7 +112,7 @@ bool distanceCallback(fcl::CollisionObject<double>* o1, fcl::CollisionObject<dou
     dist = d->base.result.min_distance;
     return d->base.done;
   }
-  // Composite quadric models (quadric_shapes.h) have no exact distance: a certified lower bound
+  // Quadric shapes (quadric_shapes.h) and FCL's box / cylinder / cone / capsule: a certified lower bound
   // (fcl_quadric::distanceLowerBound), capped at the running minimum; 0 when the two may touch or
   // overlap (no penetration depth). Both the advancement and clearance() only need a lower bound.
   const double cap = std::min(d->base.result.min_distance, d->upper);

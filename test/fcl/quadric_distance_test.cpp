@@ -275,8 +275,8 @@ TEST(QuadricShapeDistance, NonConvexAndUnsupportedShapesThrowNamingThem) {
   const Transform I = Transform::Identity(), far = pose(Eigen::Matrix3d::Identity(), {5, 0, 0});
   fcl::DistanceRequest<double> req;
   fcl::DistanceResult<double> res;
-  expectInvalid([&] { fcl_quadric::distance(&ring, I, &s, far, req, res); }, "o1 is a quadric shape that is not convex");
-  expectInvalid([&] { fcl_quadric::distance(&s, far, &ring, I, req, res); }, "o2 is a quadric shape that is not convex");
+  expectInvalid([&] { fcl_quadric::distance(&ring, I, &s, far, req, res); }, "o1 is a quadric shape that is neither convex");
+  expectInvalid([&] { fcl_quadric::distance(&s, far, &ring, I, req, res); }, "o2 is a quadric shape that is neither convex");
   const fcl::Plane<double> plane(Eigen::Vector3d(0, 0, 1), 0.0);
   const EllipticCylinder<double> cyl(1.0, 0.5, 2.0);
   expectInvalid([&] { fcl_quadric::distance(&cyl, I, &plane, far, req, res); }, "o2 has node type");

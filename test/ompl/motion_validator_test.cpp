@@ -2,6 +2,7 @@
 // collide (no broad phase), dense sampling of the space's own interpolate(), bisection of the first
 // contact, closed-form contact times, and OMPL's DiscreteMotionValidator on thin walls.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -739,6 +740,52 @@ TEST(Planning, PlannersSolveAThinWallGapProblemAndTheContinuousPathIsDenselyColl
   ASSERT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);
   EXPECT_NE(dynamic_cast<const ob::DiscreteMotionValidator*>(si->getMotionValidator().get()), nullptr);
 }
+
+// A non-convex link (a ring: ellipsoid minus bore) threaded on a thin mesh pole: sliding along the
+// pole is valid although the pole lies inside the ring's convex cover all the way; sliding
+// sideways stops where the bore wall meets the pole's edges. Before distanceLowerBound covered
+// non-convex shapes against meshes, both motions threw.
+TEST(ContinuousMotionValidator, ARingLinkSlidesAlongAThinMeshPoleAndStopsAgainstIt) {
+  auto pole = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
+  pole->beginModel();
+  std::array<Eigen::Vector3d, 3> rim;
+  for (int k = 0; k < 3; ++k) rim[k] = 0.1 * Eigen::Vector3d(std::cos(2 * M_PI * k / 3), std::sin(2 * M_PI * k / 3), 0);
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d a = rim[k], b = rim[(k + 1) % 3], up(0, 0, 3);
+    pole->addTriangle(a - up, b - up, b + up);
+    pole->addTriangle(a - up, b + up, a + up);
+  }
+  pole->endModel();
+  auto env = std::make_shared<Environment>();
+  env->add(pole, Eigen::Isometry3d::Identity());
+  auto outer = std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(1.0, 1.0, 0.4));
+  auto bore = std::make_shared<Quadric<double>>(Quadric<double>::ellipticCylinder(0.5, 0.5));
+  auto ring = std::make_shared<QuadricCSG<double>>(
+      QuadricRegion::Op::Difference,
+      std::vector<QuadricCSG<double>::Child>{{outer, fcl::Transform3d::Identity()}, {bore, fcl::Transform3d::Identity()}});
+  auto robot = std::make_shared<RobotModel>(RobotModel::Base::Free);
+  robot->addBody(0, ring);
+  const ob::StateSpacePtr space = makeStateSpace(*robot, Eigen::Vector3d::Constant(-5), Eigen::Vector3d::Constant(5), true);
+  auto si = makeSi(space, robot, env);
+  ob::ScopedState<> a(space), b(space);
+  setSE3(a.get(), {0, 0, -1.5}, Eigen::Quaterniond::Identity());
+  setSE3(b.get(), {0.1, 0, 1.5}, Eigen::Quaterniond::Identity());
+  ASSERT_TRUE(si->isValid(a.get()));
+  EXPECT_TRUE(si->checkMotion(a.get(), b.get()));
+  EXPECT_GT(si->getStateValidityChecker()->clearance(a.get()), 0.35);
+  // Sideways: the bore wall (radius 0.5 about the ring's centre (x, 0)) meets the pole's vertices
+  // at 120 and 240 degrees, (-0.05, +-0.0866), when (x + 0.05)^2 + 0.0075 = 0.25.
+  setSE3(a.get(), {0, 0, 0}, Eigen::Quaterniond::Identity());
+  setSE3(b.get(), {1, 0, 0}, Eigen::Quaterniond::Identity());
+  std::pair<ob::State*, double> last(si->allocState(), -1.0);
+  EXPECT_FALSE(si->getMotionValidator()->checkMotion(a.get(), b.get(), last));
+  const double t_star = std::sqrt(0.25 - 0.0075) - 0.05;
+  EXPECT_LE(last.second, t_star);
+  EXPECT_GT(last.second, t_star - 1e-6);
+  EXPECT_TRUE(si->isValid(last.first));
+  si->freeState(last.first);
+}
+
 
 }  // namespace
 }  // namespace test

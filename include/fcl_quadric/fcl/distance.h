@@ -18,7 +18,10 @@
 ///    on support mappings (docs/algorithms.md section 12; relative accuracy 1e-10; against
 ///    another convex quadric shape, FCL's convex primitives, half-spaces, meshes and octrees, whose
 ///    triangle / leaf index goes to b1 / b2); near contact the sign is fcl_quadric::collide's. A
-///    non-convex quadric shape, or an unsupported partner, throws std::invalid_argument naming it.
+///    union of convex solids (an exact convex cover, convex_cover.h) is answered piece by piece
+///    (nearest piece; deepest piece's penetration depth). Another non-convex quadric shape, or an
+///    unsupported partner, throws std::invalid_argument naming it (distanceLowerBound below
+///    bounds every quadric shape).
 /// Kept from FCL: pairs FCL has no function for print FCL's warning and return
 /// std::numeric_limits<S>::max() with `result` untouched.
 ///
@@ -54,16 +57,21 @@ template <typename S>
 bool defaultDistanceFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<S>* o2, void* data, S& dist);
 
 /// Certified lower bound, in [0, cap], of the distance between o1 posed at tf1 and o2 posed at
-/// tf2 for the pairs distance() cannot answer exactly: one composite quadric model
-/// (quadric_shapes.h) and one fcl Sphere / Ellipsoid / Box / Cylinder / Capsule or capped
-/// EllipticCylinder (two models when one of them is an EllipticCylinder). 0 when they may touch or
-/// overlap; cap when nothing closer than cap is possible. Two convex operands (a convex quadric
-/// shape, docs/algorithms.md section 12): GJK's distance less its certified error. Otherwise: the convex partner scaled about
-/// its centre contains its neighbourhood, and the region engine certifies the scaled copy
-/// separate (region_distance_bound.h; docs/algorithms.md section 9, after thesis ch.6's CQM
-/// classification). \return std::nullopt for every other pair (no composite model, or no convex
-/// partner). \throws std::invalid_argument for a null geometry, a cap < 0 or NaN, or a transform
-/// that is not finite and rigid.
+/// tf2, for the pairs whose distance() is not exact or not available: at least one operand a
+/// bounded quadric shape (quadric_shapes.h; convex or not), or an fcl Box / Cylinder / Cone /
+/// Capsule against one of those, a BVH mesh, an OcTree or a Halfspace (whose distance() is FCL's
+/// libccd GJK, not certified). 0 when they may touch or overlap; cap when nothing closer than cap
+/// is possible. Method (docs/algorithms.md section 12): each operand is covered by convex pieces
+/// (convex_cover.h; one piece for a convex one), a mesh or octree is searched best first over its
+/// triangles / occupied leaves, and each pair of pieces gets GJK's distance less its certified
+/// error. Where a cover touches but is larger than its solid (rings, wedges), the region engine
+/// certifies a grown copy of the convex partner or piece separate (region_distance_bound.h): the
+/// partner scaled about an inner ball, a triangle's delta-prism, a box or half-space pushed out by
+/// delta. Two non-convex models whose covers touch get 0. \return std::nullopt for every other
+/// pair (no quadric shape and no such FCL primitive, or one against a sphere / ellipsoid, whose
+/// distance is exact). \throws std::invalid_argument for a null geometry, a cap < 0 or NaN, a
+/// transform that is not finite and rigid, an unbounded quadric shape, or a partner that
+/// fcl_quadric::collide does not support with quadric shapes (the message names it).
 std::optional<double> distanceLowerBound(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
                                          const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
                                          double cap);

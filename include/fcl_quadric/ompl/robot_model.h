@@ -2,8 +2,9 @@
 /// \file robot_model.h
 /// A robot for the OMPL layer (docs/ompl.md): a rigid body that moves in SE(2) or SE(3), or a
 /// serial kinematic chain of revolute / prismatic joints on a fixed base. Each link carries FCL
-/// collision geometries (ellipsoids and spheres are answered exactly by the QuadricSolver; other
-/// link shapes fall back to libccd, see docs/ompl.md "Certification"). No OMPL types here.
+/// collision geometries (ellipsoids and spheres are answered exactly by the QuadricSolver; boxes,
+/// cylinders, cones, capsules and quadric shapes advance on certified lower bounds,
+/// fcl_quadric::distanceLowerBound; see docs/ompl.md "Certification"). No OMPL types here.
 ///
 /// Frames. Link 0 is the base. For a Planar or Free base its world pose is the configuration's
 /// `base` (Planar: a rotation about z and a translation in the xy-plane). For a Fixed base it is

@@ -1,0 +1,247 @@
+#pragma once
+// Private: the pieces the front doors' quadric-shape dispatch works on (quadric_shape_dispatch.cpp
+// for collide and distance, distance_lower_bound.cpp for the certified bounds): FCL primitives and
+// triangles as quadric regions, the convex support of a geometry, and the traversals of a BVH
+// mesh's hierarchy and an OcTree's cells. docs/fcl_integration.md section 9.
+#include <functional>
+#include <limits>
+#include <optional>
+#include <queue>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/octree/octree.h>
+#include <fcl/math/bv/AABB.h>
+#include <fcl/math/bv/OBB.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/math/bv/RSS.h>
+#include <fcl/math/bv/kDOP.h>
+#include <fcl/math/bv/kIOS.h>
+#include <fcl/narrowphase/collision_request.h>
+#include <fcl/narrowphase/collision_result.h>
+
+#include "fcl_quadric/geometry/convex_support.h"
+#include "fcl_quadric/geometry/quadric_region.h"
+
+namespace fcl_quadric {
+namespace detail {
+
+/// A solid in its local frame with its local AABB (none: unbounded). `thin`: no interior (a
+/// triangle), so the search stops at the first undecided box (contact within the band).
+struct LocalSolid {
+  QuadricRegion region;
+  std::optional<Box3> box;
+  bool thin = false;
+  /// Set for FCL spheres and ellipsoids: the small-ellipsoid filter applies (collidePair).
+  std::optional<Eigen::Vector3d> ellipsoid_radii = std::nullopt;
+};
+
+/// A box (local frame) that contains a BVH node's bounding volume: exact for AABB, from the OBB
+/// for OBB / OBBRSS / kIOS, otherwise the cube about the BV's centre with its half-diagonal (FCL's
+/// own conversion to AABB). Culling needs only a superset.
+template <typename BV>
+Box3 nodeBox(const BV& bv) {
+  const Eigen::Vector3d c = bv.center();
+  const Eigen::Vector3d r = Eigen::Vector3d::Constant(0.5 * Eigen::Vector3d(bv.width(), bv.height(), bv.depth()).norm());
+  return Box3{c - r, c + r};
+}
+inline Box3 obbBox(const fcl::OBB<double>& o) {
+  const Eigen::Vector3d h = o.axis.cwiseAbs() * o.extent;
+  return Box3{o.To - h, o.To + h};
+}
+template <>
+inline Box3 nodeBox(const fcl::AABB<double>& bv) {
+  return Box3{bv.min_, bv.max_};
+}
+template <>
+inline Box3 nodeBox(const fcl::OBB<double>& bv) {
+  return obbBox(bv);
+}
+template <>
+inline Box3 nodeBox(const fcl::OBBRSS<double>& bv) {
+  return obbBox(bv.obb);
+}
+template <>
+inline Box3 nodeBox(const fcl::kIOS<double>& bv) {
+  return obbBox(bv.obb);
+}
+
+inline bool boxesOverlap(const Box3& a, const Box3& b) {
+  return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
+}
+
+/// Euclidean gap between two boxes (0 when they overlap).
+inline double boxGap(const Box3& a, const Box3& b) { return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0).norm(); }
+
+/// Calls f(mesh) with g as its BVHModel type (the eight BV types FCL instantiates); false if g is
+/// not a BVH mesh. Dispatched on the node type with a static_cast, as FCL's own tables do: a
+/// dynamic_cast per candidate type would run on every query of every quadric shape.
+template <typename F>
+bool withMesh(const fcl::CollisionGeometry<double>* g, F&& f) {
+  if (g->getObjectType() != fcl::OT_BVH) return false;
+  switch (g->getNodeType()) {
+    case fcl::BV_OBBRSS: f(static_cast<const fcl::BVHModel<fcl::OBBRSS<double>>&>(*g)); return true;
+    case fcl::BV_OBB: f(static_cast<const fcl::BVHModel<fcl::OBB<double>>&>(*g)); return true;
+    case fcl::BV_RSS: f(static_cast<const fcl::BVHModel<fcl::RSS<double>>&>(*g)); return true;
+    case fcl::BV_AABB: f(static_cast<const fcl::BVHModel<fcl::AABB<double>>&>(*g)); return true;
+    case fcl::BV_kIOS: f(static_cast<const fcl::BVHModel<fcl::kIOS<double>>&>(*g)); return true;
+    case fcl::BV_KDOP16: f(static_cast<const fcl::BVHModel<fcl::KDOP<double, 16>>&>(*g)); return true;
+    case fcl::BV_KDOP18: f(static_cast<const fcl::BVHModel<fcl::KDOP<double, 18>>&>(*g)); return true;
+    case fcl::BV_KDOP24: f(static_cast<const fcl::BVHModel<fcl::KDOP<double, 24>>&>(*g)); return true;
+    default: return false;
+  }
+}
+
+inline bool isMeshOrOcTree(const fcl::CollisionGeometry<double>* g) {
+  return g->getObjectType() == fcl::OT_BVH || g->getObjectType() == fcl::OT_OCTREE;
+}
+
+/// Does the node's BV meet the query: its box against `query`, then, for oriented BVs (OBB, OBBRSS,
+/// kIOS) and a given `obb`, FCL's separating-axis test of the node's OBB against it.
+template <typename BV>
+bool nodeMeets(const BV& bv, const Box3& query, const fcl::OBB<double>*) {
+  return boxesOverlap(nodeBox(bv), query);
+}
+template <>
+inline bool nodeMeets(const fcl::OBB<double>& bv, const Box3& query, const fcl::OBB<double>* obb) {
+  return boxesOverlap(nodeBox(bv), query) && (obb == nullptr || bv.overlap(*obb));
+}
+template <>
+inline bool nodeMeets(const fcl::OBBRSS<double>& bv, const Box3& query, const fcl::OBB<double>* obb) {
+  return boxesOverlap(nodeBox(bv), query) && (obb == nullptr || bv.obb.overlap(*obb));
+}
+template <>
+inline bool nodeMeets(const fcl::kIOS<double>& bv, const Box3& query, const fcl::OBB<double>* obb) {
+  return boxesOverlap(nodeBox(bv), query) && (obb == nullptr || bv.obb.overlap(*obb));
+}
+
+/// Depth-first over the BVH: visit(triangle index, p0, p1, p2) for each triangle whose leaf BV
+/// meets `query` (mesh frame; and `obb`, the shape's oriented box in the mesh frame, if given),
+/// until visit returns true. A model without a hierarchy (no BVs) is walked triangle by triangle.
+template <typename BV, typename Visit>
+void visitMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, const fcl::OBB<double>* obb, Visit&& visit) {
+  auto tri = [&](int t) {
+    const fcl::Triangle& f = m.tri_indices[t];
+    return visit(t, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]);
+  };
+  if (m.getNumBVs() == 0) {
+    for (int t = 0; t < m.num_tris; ++t)
+      if (tri(t)) return;
+    return;
+  }
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const int id = stack.back();
+    stack.pop_back();
+    const fcl::BVNode<BV>& node = m.getBV(id);
+    if (!nodeMeets(node.bv, query, obb)) continue;
+    if (node.isLeaf()) {
+      if (tri(node.primitiveId())) return;
+    } else {
+      stack.push_back(node.rightChild());
+      stack.push_back(node.leftChild());
+    }
+  }
+}
+
+/// Best first over the BVH: visit(t, p0, p1, p2) returns the triangle's distance; the search ends
+/// at the first node whose box gap to `query` (mesh frame) is positive and not below the best
+/// distance so far (nodes whose boxes meet it are all visited: they may hold a deeper overlap).
+/// stop(best) ends it early. `best` starts at `cap` (nodes not closer than cap are skipped).
+template <typename BV, typename Visit, typename Stop>
+void nearestMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, Visit&& visit, Stop&& stop,
+                          double cap = std::numeric_limits<double>::infinity()) {
+  double best = cap;
+  auto tri = [&](int t) {
+    const fcl::Triangle& f = m.tri_indices[t];
+    best = std::min(best, visit(t, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]));
+    return stop(best);
+  };
+  if (m.getNumBVs() == 0) {
+    for (int t = 0; t < m.num_tris; ++t)
+      if (tri(t)) return;
+    return;
+  }
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  queue.emplace(boxGap(nodeBox(m.getBV(0).bv), query), 0);
+  while (!queue.empty()) {
+    const auto [gap, id] = queue.top();
+    queue.pop();
+    if (gap > 0.0 && gap >= best) break;  // (boxes that meet may hold a deeper overlap)
+    const fcl::BVNode<BV>& node = m.getBV(id);
+    if (node.isLeaf()) {
+      if (tri(node.primitiveId())) return;
+    } else {
+      for (int child : {node.leftChild(), node.rightChild()})
+        queue.emplace(boxGap(nodeBox(m.getBV(child).bv), query), child);
+    }
+  }
+}
+
+/// The eight children of an octree cell box (FCL's computeChildBV order: bit 0 x, bit 1 y, bit 2 z).
+inline Box3 octreeChildBox(const Box3& b, unsigned i) {
+  const Eigen::Vector3d mid = 0.5 * (b.lo + b.hi);
+  Box3 c = b;
+  for (int k = 0; k < 3; ++k) {
+    if (i & (1u << k)) c.lo[k] = mid[k];
+    else c.hi[k] = mid[k];
+  }
+  return c;
+}
+
+/// The occupied leaves of an OcTree as (centre, half width) pairs, in the order of a traversal
+/// that skips cells whose box misses `query` (tree frame); visit returns true to stop. Leaves and
+/// occupancy as fcl::OcTree::toBoxes (occupied = fcl::OcTree::isNodeOccupied).
+template <typename Visit>
+void visitOcTreeLeaves(const fcl::OcTree<double>& tree, const Box3& query, Visit&& visit) {
+  const fcl::OcTree<double>::OcTreeNode* root = tree.getRoot();
+  if (root == nullptr) return;
+  const fcl::AABB<double> rb = tree.getRootBV();
+  std::vector<std::pair<const fcl::OcTree<double>::OcTreeNode*, Box3>> stack{{root, Box3{rb.min_, rb.max_}}};
+  while (!stack.empty()) {
+    const auto [node, box] = stack.back();
+    stack.pop_back();
+    if (!boxesOverlap(box, query)) continue;
+    bool leaf = true;
+    for (unsigned i = 0; i < 8; ++i) {
+      if (!tree.nodeChildExists(node, i)) continue;
+      leaf = false;
+      stack.emplace_back(tree.getNodeChild(node, i), octreeChildBox(box, i));
+    }
+    if (leaf && tree.isNodeOccupied(node) && visit(box.center(), box.halfWidth())) return;
+  }
+}
+
+/// A triangle as the region {n.x = d} intersected with its three edge half-spaces (in-plane),
+/// with its AABB; none for a zero-area triangle (skipped: documented).
+std::optional<LocalSolid> triangleSolid(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2);
+
+/// The axis-aligned box c +- h as six half-spaces.
+QuadricRegion boxRegion(const Eigen::Vector3d& c, const Eigen::Vector3d& h);
+
+/// FCL's primitives and the quadric shapes as quadric regions (FCL's local conventions,
+/// fcl/geometry/shape/*.h). \throws std::invalid_argument (message starting with `where`, naming
+/// `which` and its node type) for any other geometry.
+LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which,
+                      const char* where = "fcl_quadric::collide");
+
+/// The static collide of two local solids posed by tf1, tf2 (certified region engine, with the
+/// small-ellipsoid filter); adds one contact to result on contact.
+void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
+                 const fcl::Transform3<double>& tf2, const fcl::CollisionGeometry<double>* o1,
+                 const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
+                 fcl::CollisionResult<double>& result);
+
+/// The radius of a ball about the local origin that the shape contains, for the convex shapes the
+/// distance bound can scale (region_distance_bound.h); none otherwise.
+std::optional<double> convexInradius(const fcl::CollisionGeometry<double>* g);
+
+/// An FCL convex primitive or a convex quadric shape as a support mapping (local frame); none
+/// for any other geometry. \throws std::invalid_argument for an unbounded quadric shape.
+std::optional<ConvexSupport> convexSupportOf(const fcl::CollisionGeometry<double>* g, const char* which);
+
+}  // namespace detail
+}  // namespace fcl_quadric
