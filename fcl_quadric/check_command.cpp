@@ -9,6 +9,7 @@
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/fcl_fallback.h"
+#include "fcl_quadric/geometry/convex_cover.h"
 #include "fcl_quadric/geometry/convex_distance.h"
 #include "fcl_quadric/geometry/convex_support.h"
 #include "fcl_quadric/geometry/quadric_region.h"
@@ -99,13 +100,20 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
   }
   report.collide = report.status != Separation::Separated;
   report.point_a = report.point_b = s.point;
-  // Convex pairs (both bounded; docs/algorithms.md section 12) also get the signed distance with
-  // witness points and normal, when GJK / EPA certifies the engine's status (touching: 0).
+  // Convex pairs and unions of convex solids (both bounded, exact convex covers; docs/algorithms.md
+  // section 12) also get the signed distance with witness points and normal, when GJK / EPA
+  // certifies the engine's status (touching: 0): the nearest pair of pieces, or the deepest.
   if (ba && bb) {
-    const std::optional<ConvexSupport> ca = ConvexSupport::fromRegion(ra, *ba), cb = ConvexSupport::fromRegion(rb, *bb);
-    if (ca && cb) {
-      const SignedDistanceResult d =
-          convexSignedDistance(*ca, a.pose.linear(), a.pose.translation(), *cb, b.pose.linear(), b.pose.translation());
+    const ConvexCover ca = convexCover(ra, *ba), cb = convexCover(rb, *bb);
+    if (ca.exact && cb.exact) {
+      SignedDistanceResult d;
+      d.distance = std::numeric_limits<double>::infinity();
+      for (const ConvexSupport& pa : ca.pieces)
+        for (const ConvexSupport& pb : cb.pieces) {
+          SignedDistanceResult e =
+              convexSignedDistance(pa, a.pose.linear(), a.pose.translation(), pb, b.pose.linear(), b.pose.translation());
+          if (e.distance < d.distance) d = e;
+        }
       if (report.status == Separation::Touching) {
         report.signed_distance = 0.0;
       } else if (d.status == report.status) {

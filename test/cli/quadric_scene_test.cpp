@@ -3,6 +3,7 @@
 // ellipsoid-cylinder kernel; bad quadric shapes are rejected with their JSON pointers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -70,6 +71,31 @@ TEST(QuadricScene, CylinderAgreesWithTheExactEllipsoidCylinderKernel) {
         signedDistanceEllipsoidCylinder(toEllipsoid(e), 0.5, 2.0, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
     ASSERT_GT(std::fabs(ref.distance), 1e-6);
     EXPECT_EQ(r.collide, ref.distance < 0) << "x = " << x << " d = " << ref.distance;
+  }
+}
+
+// A union of two balls (an exact convex cover) against a ball: the signed distance is the nearer
+// ball's, |c - c_i| - r_i - r, computed by hand; overlapping, the deeper ball's.
+TEST(QuadricScene, UnionOfBallsGetsTheNearestBallsSignedDistance) {
+  for (double x : {3.0, 2.2, 1.5}) {
+    const json ball = {{"type", "quadric"}, {"matrix", {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, -1}}}};
+    json shifted = ball;  // a child may carry a pose
+    shifted["pose"] = {{"translation", {0.5, 1.2, 0}}, {"quaternion", {1, 0, 0, 0}}};
+    const json doc = {
+        {"objects",
+         {{{"name", "pair"},
+           {"shape",
+            {{"type", "csg"},
+             {"op", "union"},
+             {"children", {ball, shifted}}}}},
+          {{"name", "s"}, {"shape", {{"type", "sphere"}, {"radius", 0.5}}}, {"pose", {{"translation", {x, 0.3, 0}}, {"quaternion", {1, 0, 0, 0}}}}}}}};
+    const Scene scene = parseScene(doc);
+    const PairReport r = evaluatePair(scene.objects[0], scene.objects[1]);
+    const Eigen::Vector3d c(x, 0.3, 0);
+    const double expected = std::min(c.norm(), (c - Eigen::Vector3d(0.5, 1.2, 0)).norm()) - 1.5;
+    ASSERT_FALSE(std::isnan(r.signed_distance)) << "x = " << x;
+    EXPECT_NEAR(r.signed_distance, expected, 1e-8) << "x = " << x;
+    EXPECT_EQ(r.collide, expected < 0) << "x = " << x;
   }
 }
 
