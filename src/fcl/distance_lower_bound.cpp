@@ -139,11 +139,18 @@ double pairBound(const Covered& a, const Covered& b, double cap) {
   }
   if (best > 0.0 || (a.cover.exact && b.cover.exact)) return best;
   // A cover touches the other operand, but it is larger than its solid: the region engine
-  // certifies a scaled copy of a convex partner separate (region_distance_bound.h).
+  // certifies a superset of a delta-neighbourhood separate (region_distance_bound.h): of the
+  // convex partner, scaled about an inner ball; else (two non-convex models, or a partner without
+  // an inner ball) of one operand with its atoms grown.
   const Covered& model = a.cover.exact ? b : a;
   const Covered& partner = a.cover.exact ? a : b;
-  if (!partner.cover.exact) return 0.0;  // two non-convex models: no certified bound beyond 0
   const auto& q = static_cast<const QuadricShape<double>&>(*model.g);
+  auto grownBound = [&] {
+    const detail::LocalSolid solid = detail::localSolid(partner.g, "partner", "fcl_quadric::distanceLowerBound");
+    return regionPairDistanceLowerBound(q.region(), q.localBox(), solid.region, *solid.box,
+                                        model.R.transpose() * partner.R, model.R.transpose() * (partner.p - model.p), cap);
+  };
+  if (!partner.cover.exact) return grownBound();
   if (isEllipsoidal(partner.g)) {
     const Eigen::Vector3d radii = partner.g->getNodeType() == fcl::GEOM_ELLIPSOID
                                       ? static_cast<const fcl::Ellipsoid<double>*>(partner.g)->radii
@@ -152,7 +159,7 @@ double pairBound(const Covered& a, const Covered& b, double cap) {
                                              model.p, cap);
   }
   const std::optional<double> inradius = detail::convexInradius(partner.g);
-  if (!inradius) return 0.0;
+  if (!inradius) return grownBound();
   const detail::LocalSolid solid = detail::localSolid(partner.g, "partner", "fcl_quadric::distanceLowerBound");
   return regionConvexDistanceLowerBound(q.region(), q.localBox(), solid.region, *solid.box, *inradius,
                                         model.R.transpose() * partner.R, model.R.transpose() * (partner.p - model.p), cap);

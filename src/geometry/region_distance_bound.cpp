@@ -4,13 +4,17 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "fcl_quadric/tolerances.h"
+#include "geometry/region_formula.h"
 
 namespace fcl_quadric {
 
@@ -197,6 +201,115 @@ double regionOffsetDistanceLowerBound(const QuadricRegion& a, const Box3& a_box,
   };
   if (cap == 0.0 || !separated(0.0)) return 0.0;
   const double hi = std::min(cap, 2.0 * (a_box.halfWidth().norm() + reach));
+  return bisectBound(0.0, hi, separated);
+}
+
+namespace {
+
+/// The atom {X^T Q X <= 0} grown by delta (grownRegion), or none.
+std::optional<Eigen::Matrix4d> grownAtom(const Eigen::Matrix4d& Q, double delta) {
+  const Eigen::Matrix3d A = Q.topLeftCorner<3, 3>();
+  const Eigen::Vector3d b = Q.topRightCorner<3, 1>();
+  const double c = Q(3, 3);
+  const double amax = A.cwiseAbs().maxCoeff();
+  if (amax == 0.0 || amax <= 1e-14 * b.norm()) {  // a plane 2 b.x + c <= 0 (or a constant)
+    Eigen::Matrix4d G = Q;
+    G.topLeftCorner<3, 3>().setZero();
+    G(3, 3) = c - 2.0 * delta * b.norm();
+    return G;
+  }
+  // The convex atom f = (x - x0)^T A (x - x0) - k <= 0 (A PSD, b in its range), or its complement
+  // -f <= 0 (A NSD).
+  const bool complement = A.trace() < 0.0;
+  const Eigen::Matrix3d P = complement ? Eigen::Matrix3d(-A) : A;
+  const Eigen::Vector3d q = complement ? Eigen::Vector3d(-b) : b;
+  const double r = complement ? -c : c;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(P);
+  const Eigen::Vector3d lam = es.eigenvalues();
+  const double lmax = lam.cwiseAbs().maxCoeff();
+  if (lam.minCoeff() < -1e-12 * lmax) return std::nullopt;  // indefinite: hyperboloid, cone
+  const Eigen::Vector3d qz = es.eigenvectors().transpose() * q;
+  double bAb = 0.0;  // q^T P^+ q
+  for (int i = 0; i < 3; ++i) {
+    if (lam[i] > 1e-12 * lmax) {
+      bAb += qz[i] * qz[i] / lam[i];
+    } else if (std::abs(qz[i]) > 1e-12 * (q.norm() + lmax)) {
+      return std::nullopt;  // a linear term along a null direction: a paraboloid
+    }
+  }
+  const double k = bAb - r;  // f = (x - x0)^T P (x - x0) - k
+  if (!(k > 0.0)) return std::nullopt;  // a point, a line or empty: not a solid to grow
+  const double r_min = std::sqrt(k / lam.maxCoeff());
+  double s = complement ? 1.0 - delta / r_min : 1.0 + delta / r_min;
+  Eigen::Matrix4d G = Eigen::Matrix4d::Zero();
+  if (complement && s <= 0.0) {  // the complement grows to the whole space
+    G(3, 3) = -1.0;
+    return G;
+  }
+  const double c_new = bAb - s * s * k;  // the same centre and axes, semi-axes times s
+  G.topLeftCorner<3, 3>() = P;
+  G.topRightCorner<3, 1>() = q;
+  G.bottomLeftCorner<1, 3>() = q.transpose();
+  G(3, 3) = c_new;
+  if (complement) G = -G;
+  return G;
+}
+
+/// The formula's node n as a region, with its atoms replaced by grown ones; none if one cannot be.
+std::optional<QuadricRegion> grownNode(const detail::Formula& f, int n, double delta) {
+  const detail::Formula::Node& node = f.nodes[n];
+  std::vector<QuadricRegion> parts;
+  for (int a : node.atoms) {
+    const std::optional<Eigen::Matrix4d> g = grownAtom(f.atoms[a], delta);
+    if (!g) return std::nullopt;
+    parts.push_back(QuadricRegion::atom(*g));
+  }
+  for (int m : node.nodes) {
+    std::optional<QuadricRegion> g = grownNode(f, m, delta);
+    if (!g) return std::nullopt;
+    parts.push_back(std::move(*g));
+  }
+  if (parts.empty()) return std::nullopt;  // (the shapes' constructors reject empty formulas)
+  return QuadricRegion::combine(node.is_and ? QuadricRegion::Op::Intersection : QuadricRegion::Op::Union,
+                                std::move(parts));
+}
+
+}  // namespace
+
+std::optional<QuadricRegion> grownRegion(const QuadricRegion& region, double delta) {
+  if (!std::isfinite(delta) || delta < 0.0) return std::nullopt;
+  const detail::Formula f(region);
+  return grownNode(f, f.root, delta);
+}
+
+double regionPairDistanceLowerBound(const QuadricRegion& a, const Box3& a_box, const QuadricRegion& b,
+                                    const Box3& b_box, const Eigen::Matrix3d& R_AB, const Eigen::Vector3d& p_AB,
+                                    double cap) {
+  const std::string who = "regionPairDistanceLowerBound";
+  checkCap(cap, who);
+  checkBox(a_box, who + ": a's box");
+  checkBox(b_box, who + ": b's box");
+  detail::checkFinite(p_AB, "regionPairDistanceLowerBound: translation");
+  detail::checkRotation(R_AB, "regionPairDistanceLowerBound: rotation");
+  // Grow b if its atoms allow it, else a (in b's frame: the inverse pose).
+  const bool grow_b = grownRegion(b, 0.0).has_value();
+  if (!grow_b && !grownRegion(a, 0.0)) return 0.0;
+  const QuadricRegion& fixed = grow_b ? a : b;
+  const QuadricRegion& moving = grow_b ? b : a;
+  const Box3& fixed_box = grow_b ? a_box : b_box;
+  const Box3& moving_box = grow_b ? b_box : a_box;
+  const Eigen::Matrix3d R = grow_b ? R_AB : Eigen::Matrix3d(R_AB.transpose());
+  const Eigen::Vector3d p = grow_b ? p_AB : Eigen::Vector3d(-(R_AB.transpose() * p_AB));
+  auto separated = [&](double delta) {
+    const std::optional<QuadricRegion> g = grownRegion(moving, delta);
+    if (!g) return false;
+    const Eigen::Vector3d d = Eigen::Vector3d::Constant(delta);
+    return collideRegions(fixed, fixed_box, *g, Box3{moving_box.lo - d, moving_box.hi + d}, R, p).relation ==
+           RegionRelation::Separated;
+  };
+  if (cap == 0.0 || !separated(0.0)) return 0.0;
+  const double hi = std::min(cap, 2.0 * (a_box.halfWidth().norm() + b_box.halfWidth().norm()) +
+                                      (a_box.center() - (R_AB * b_box.center() + p_AB)).norm());
   return bisectBound(0.0, hi, separated);
 }
 

@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -24,10 +26,12 @@
 #include <octomap/OcTree.h>
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
+#include "fcl_quadric/fcl/collision.h"
 #include "fcl_quadric/fcl/distance.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
 #include "fcl_quadric/geometry/convex_cover.h"
 #include "fcl_quadric/geometry/quadric_region.h"
+#include "fcl_quadric/geometry/region_distance_bound.h"
 #include "support/expect_invalid.h"
 #include "support/random_ellipsoids.h"
 
@@ -329,6 +333,79 @@ TEST(DistanceLowerBound, ARingThreadedOnAThinMeshPoleIsCertifiedClearOfIt) {
   EXPECT_LE(close, 0.5 - far_edge + 1e-12);
   // The ring moved onto the pole: contact.
   EXPECT_EQ(*distanceLowerBound(ring.get(), pose(Eigen::Matrix3d::Identity(), {0.45, 0, 0}), pole.get(), I, 10.0), 0.0);
+}
+
+// grownRegion contains the delta-neighbourhood: points of a ring, a wedge-like difference and a
+// union moved by less than delta are never certified outside the grown region.
+TEST(GrownRegion, ContainsEveryPointWithinDeltaOfTheRegion) {
+  const auto ring = makeRing();
+  auto slab = std::make_shared<Quadric<double>>(Quadric<double>::halfspace(Eigen::Vector3d(0.3, 1.0, 0.2), 0.1));
+  auto rod = std::make_shared<EllipticCylinder<double>>(0.3, 0.2, 1.5);
+  auto cut = std::make_shared<QuadricCSG<double>>(Op::Difference, std::vector<QuadricCSG<double>::Child>{
+                                                                       {ring, Transform::Identity()}, {slab, Transform::Identity()}});
+  std::mt19937_64 rng(41);
+  const QuadricCSG<double> both(Op::Union, {{cut, Transform::Identity()}, {rod, pose(test::randomRotation(rng), {0.8, 0, 0})}});
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const QuadricShape<double>* shape : {static_cast<const QuadricShape<double>*>(ring.get()),
+                                            static_cast<const QuadricShape<double>*>(cut.get()),
+                                            static_cast<const QuadricShape<double>*>(&both)}) {
+    const Box3 box = shape->localBox();
+    int inside = 0;
+    for (const double delta : {0.01, 0.1, 0.3, 0.7}) {
+      const std::optional<QuadricRegion> g = grownRegion(shape->region(), delta);
+      ASSERT_TRUE(g.has_value());
+      for (int i = 0; i < 3000; ++i) {
+        const Eigen::Vector3d y = box.center() + box.halfWidth().cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng)));
+        if (shape->region().classifyPoint(y) < 0) continue;  // keep points of the solid (and its boundary band)
+        ++inside;
+        Eigen::Vector3d step(u(rng), u(rng), u(rng));
+        if (step.norm() > 1.0) step /= step.norm();
+        EXPECT_GE(g->classifyPoint(y + delta * step), 0) << delta << " " << y.transpose();
+      }
+    }
+    EXPECT_GT(inside, 1000);
+  }
+  // Atoms that cannot be grown: a hyperboloid.
+  Eigen::Matrix4d H = quadric::ellipsoid({1, 1, 1});
+  H(2, 2) = -1.0;  // x^2 + y^2 - z^2 <= 1
+  EXPECT_FALSE(grownRegion(QuadricRegion::atom(H), 0.1));
+}
+
+// Two interlocked rings (each through the other's bore, not touching): their covers (outer
+// ellipsoids) overlap, and the grown-atom bound certifies the clearance; it stays below the
+// distance between sampled points of the two solids; moved into contact it is 0.
+TEST(DistanceLowerBound, InterlockedRingsAreCertifiedClear) {
+  // Thin links of a chain: outer ellipsoid (1, 1, 0.15), bore 0.6; the second one turned a
+  // quarter about x (its bore along y) and centred at (0.8, 0, 0).
+  auto outer = std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(1.0, 1.0, 0.15));
+  auto hole = std::make_shared<Quadric<double>>(Quadric<double>::ellipticCylinder(0.6, 0.6));
+  const auto ring = std::make_shared<QuadricCSG<double>>(
+      Op::Difference, std::vector<QuadricCSG<double>::Child>{{outer, Transform::Identity()}, {hole, Transform::Identity()}});
+  const Transform I = Transform::Identity();
+  const Transform linked = pose(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix(), {0.8, 0, 0});
+  fcl::CollisionRequest<double> creq;
+  fcl::CollisionResult<double> cres;
+  ASSERT_EQ(fcl_quadric::collide(ring.get(), I, ring.get(), linked, creq, cres), 0u);
+  const double d = *distanceLowerBound(ring.get(), I, ring.get(), linked, 10.0);
+  EXPECT_GT(d, 0.0);
+  EXPECT_EQ(*distanceLowerBound(ring.get(), linked, ring.get(), I, 10.0) > 0.0, true);
+  // Sampled points of both solids: the distance between any two is at least the true distance.
+  std::mt19937_64 rng(43);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Eigen::Vector3d> pa, pb;
+  while (pa.size() < 3000 || pb.size() < 3000) {
+    const Eigen::Vector3d x(u(rng), u(rng), 0.15 * u(rng));
+    if (ring->region().classifyPoint(x) <= 0) continue;
+    if (pa.size() < 3000) pa.push_back(x);
+    else pb.push_back(linked * x);
+  }
+  double sampled = std::numeric_limits<double>::infinity();
+  for (const auto& x : pa)
+    for (const auto& y : pb) sampled = std::min(sampled, (x - y).norm());
+  EXPECT_LE(d, sampled);
+  const Transform touching = pose(linked.linear(), {0.2, 0, 0});  // B's outer tip (x = -0.8) in A
+  ASSERT_GT(fcl_quadric::collide(ring.get(), I, ring.get(), touching, creq, cres), 0u);
+  EXPECT_EQ(*distanceLowerBound(ring.get(), I, ring.get(), touching, 10.0), 0.0);
 }
 
 TEST(DistanceLowerBound, FclBoxAndCylinderAgainstMeshAndOcTreeAreCertifiedGjkBounds) {

@@ -67,7 +67,8 @@ bool defaultDistanceFunction(fcl::CollisionObject<S>* o1, fcl::CollisionObject<S
 /// error. Where a cover touches but is larger than its solid (rings, wedges), the region engine
 /// certifies a grown copy of the convex partner or piece separate (region_distance_bound.h): the
 /// partner scaled about an inner ball, a triangle's delta-prism, a box or half-space pushed out by
-/// delta. Two non-convex models whose covers touch get 0. \return std::nullopt for every other
+/// delta, or either operand with its atoms grown (grownRegion: two non-convex models; 0 when
+/// neither operand's atoms can be grown). \return std::nullopt for every other
 /// pair (no quadric shape and no such FCL primitive, or one against a sphere / ellipsoid, whose
 /// distance is exact). \throws std::invalid_argument for a null geometry, a cap < 0 or NaN, a
 /// transform that is not finite and rigid, an unbounded quadric shape, or a partner that

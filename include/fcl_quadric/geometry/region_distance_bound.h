@@ -89,4 +89,28 @@ double regionOffsetDistanceLowerBound(const QuadricRegion& a, const Box3& a_box,
                                       double reach, const Eigen::Matrix3d& R_AB, const Eigen::Vector3d& p_AB,
                                       double cap);
 
+/// A region containing every point within delta >= 0 of `region` (its delta-neighbourhood), built
+/// on the and/or formula over signed atoms: each atom is replaced by a grown one and the formula
+/// kept, which is a superset because growing distributes over unions and only shrinks an
+/// intersection's neighbourhood. A plane is shifted by delta; a curved atom whose quadratic part
+/// is positive semidefinite with its linear part in its range (ellipsoid, elliptic cylinder) is
+/// scaled about its centre (axis) by 1 + delta / r_min, r_min its smallest semi-axis; the
+/// complement of such an atom (a subtracted ellipsoid or cylinder, a ring's bore) is the
+/// complement of the atom scaled by 1 - delta / r_min (the whole space once delta >= r_min): the
+/// inner scaling lies in the atom's erosion by delta. None when an atom is of another kind
+/// (paraboloids, hyperboloids, cones, their complements) or delta is negative or not finite.
+std::optional<QuadricRegion> grownRegion(const QuadricRegion& region, double delta);
+
+/// Certified lower bound of the distance between two regions of any shape (a in its frame with
+/// bounding box a_box; b posed in a's frame by x -> R_AB x + p_AB, bounding box b_box): the largest
+/// delta (to 2^-kRegionDistanceBisections of itself) for which collideRegions certifies a
+/// separate from grownRegion(b, delta) searched in b_box grown by delta (which holds b's
+/// delta-neighbourhood); in [0, cap]. 0 when they may touch, or when b's atoms cannot be grown
+/// (then a's are tried: the bound is symmetric).
+/// \throws std::invalid_argument if cap is negative or NaN, a box is empty or not finite, or
+/// (R_AB, p_AB) is not a finite rigid transform.
+double regionPairDistanceLowerBound(const QuadricRegion& a, const Box3& a_box, const QuadricRegion& b,
+                                    const Box3& b_box, const Eigen::Matrix3d& R_AB, const Eigen::Vector3d& p_AB,
+                                    double cap);
+
 }  // namespace fcl_quadric
