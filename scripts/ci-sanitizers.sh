@@ -71,6 +71,10 @@ heavy+='|QuadricShapeDispatch.SmallEllipsoidFilterAgreesWithTheRegionEngineAndIt
 # The region engine as oracle (maxLinear, collideRegions per pair); the closed-form agreements of
 # the same GJK / EPA and support code stay in the sanitizer run.
 heavy+='|ConvexSupport.RegionSupportMatchesTheCertifiedMaxLinearBound|ConvexDistance.RegionPairsAgreeWithTheCertifiedStaticEngineAlongTheNormal'
+# Region-engine lower bounds and their Minkowski-sum / grown-region oracles: 60-110 s each under
+# ASan (2026-11-23); the box / cylinder GJK bounds and the OMPL ring test stay in.
+heavy+='|DistanceLowerBound.(RingAgainstMeshOctreeBoxAndHalfspaceNeverExceedsTheDistance|ARingThreadedOnAThinMeshPoleIsCertifiedClearOfIt|InterlockedRingsAreCertifiedClear)'
+heavy+='|GrownRegion.ContainsEveryPointWithinDeltaOfTheRegion'
 step "asan+ubsan tests" ctest --test-dir "$prefix-asan" -LE 'long|install' -E "$heavy" --timeout 900 --output-on-failure -j"$jobs"
 
 step "tsan configure" cmake -S . -B "$prefix-tsan" "${common[@]}" -DFCL_QUADRIC_SANITIZE=thread \
