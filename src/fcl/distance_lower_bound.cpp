@@ -110,13 +110,11 @@ double coverBound(const Covered& a, const ConvexSupport& b, const Eigen::Matrix3
 /// The box of a's pieces in the frame (Rf, pf) (six support points per piece).
 Box3 coverBoxIn(const Covered& a, const Eigen::Matrix3d& Rf, const Eigen::Vector3d& pf) {
   Box3 b{Eigen::Vector3d::Constant(kInf), Eigen::Vector3d::Constant(-kInf)};
-  for (const ConvexSupport& piece : a.cover.pieces)
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector3d e = Rf.col(i);
-      const Eigen::Vector3d local = a.R.transpose() * e;
-      b.hi[i] = std::max(b.hi[i], e.dot(a.R * piece.support(local) + a.p - pf));
-      b.lo[i] = std::min(b.lo[i], e.dot(a.R * piece.support(-local) + a.p - pf));
-    }
+  for (const ConvexSupport& piece : a.cover.pieces) {
+    const Box3 p = detail::supportBoxIn(piece, a.R, a.p, Rf, pf);
+    b.lo = b.lo.cwiseMin(p.lo);
+    b.hi = b.hi.cwiseMax(p.hi);
+  }
   return b;
 }
 

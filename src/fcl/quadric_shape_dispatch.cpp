@@ -552,6 +552,7 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
   };
 
   // The distance from one convex piece of the shape to the partner.
+  std::vector<PosedConvex> partner_pieces;  // a convex partner's pieces (never empty once computed)
   auto fromShapePiece = [&](const PosedConvex& shape) {
     if (gp->getNodeType() == fcl::GEOM_HALFSPACE) {
       // min over the shape of n.x - d is reached at its support point towards -n.
@@ -609,14 +610,7 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
     auto done = [&](double best) { return best < 0.0 && !request.enable_signed_distance; };
     // The shape's exact bounding box in the pieces' frame (six support points).
     auto shapeBoxIn = [&](const fcl::Transform3<double>& frame) {
-      Box3 b;
-      for (int i = 0; i < 3; ++i) {
-        const Eigen::Vector3d e = frame.linear().col(i);  // the frame's axis i in the world
-        const Eigen::Vector3d local = shape.R.transpose() * e;
-        b.hi[i] = e.dot(shape.R * shape.support.support(local) + shape.p - frame.translation());
-        b.lo[i] = e.dot(shape.R * shape.support.support(-local) + shape.p - frame.translation());
-      }
-      return b;
+      return supportBoxIn(shape.support, shape.R, shape.p, frame.linear(), frame.translation());
     };
     const bool is_mesh = withMesh(gp, [&](const auto& m) {
       nearestMeshTriangles(
@@ -644,7 +638,8 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
       });
       return;
     }
-    for (const PosedConvex& piece : piecesOf(gp, tfp, swap ? "o1" : "o2")) {
+    if (partner_pieces.empty()) partner_pieces = piecesOf(gp, tfp, swap ? "o1" : "o2");  // once, not per shape piece
+    for (const PosedConvex& piece : partner_pieces) {
       solve(piece);
       if (done(result.min_distance)) return;
     }

@@ -215,6 +215,20 @@ void visitOcTreeLeaves(const fcl::OcTree<double>& tree, const Box3& query, Visit
   }
 }
 
+/// The exact bounding box, in the frame (Rf, pf), of the convex piece s posed by (R, p): its six
+/// support points along the frame's axes. Box gaps against it prune mesh and octree searches.
+inline Box3 supportBoxIn(const ConvexSupport& s, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                         const Eigen::Matrix3d& Rf, const Eigen::Vector3d& pf) {
+  Box3 b;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d e = Rf.col(i);  // the frame's axis i in the world
+    const Eigen::Vector3d local = R.transpose() * e;
+    b.hi[i] = e.dot(R * s.support(local) + p - pf);
+    b.lo[i] = e.dot(R * s.support(-local) + p - pf);
+  }
+  return b;
+}
+
 /// A triangle as the region {n.x = d} intersected with its three edge half-spaces (in-plane),
 /// with its AABB; none for a zero-area triangle (skipped: documented).
 std::optional<LocalSolid> triangleSolid(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2);

@@ -80,7 +80,7 @@ class CoverBuilder {
     std::vector<QuadricRegion> parts;
     bool curved = false;
     for (int a : piece) {
-      const bool is_curved = !isPlaneOrConstant(f_.atoms[a]);
+      const bool is_curved = !detail::isPlanarAtom(f_.atoms[a]);
       if (is_curved && curved) {
         *exact = false;
         continue;
@@ -104,11 +104,6 @@ class CoverBuilder {
   // A constant atom {c <= 0} with c > 0 is empty (convex); fromRegion reports it as none.
   static bool isEmptyPlane(const Eigen::Matrix4d& Q) {
     return Q.topLeftCorner<3, 3>().cwiseAbs().maxCoeff() == 0.0 && Q.topRightCorner<3, 1>().isZero() && Q(3, 3) > 0.0;
-  }
-  // The same test fromRegion uses for a plane (quadratic part negligible against the linear one).
-  static bool isPlaneOrConstant(const Eigen::Matrix4d& Q) {
-    const double amax = Q.topLeftCorner<3, 3>().cwiseAbs().maxCoeff();
-    return amax == 0.0 || amax <= 1e-14 * Q.topRightCorner<3, 1>().norm();
   }
 
   const detail::Formula& f_;

@@ -8,6 +8,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "geometry/region_formula.h"
+
 namespace fcl_quadric {
 
 namespace {
@@ -195,8 +197,7 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
     const Eigen::Matrix3d A = M.topLeftCorner<3, 3>();
     const Eigen::Vector3d b = M.topRightCorner<3, 1>();
     const double c = M(3, 3);
-    const double amax = A.cwiseAbs().maxCoeff();
-    if (amax <= 1e-14 * b.norm() || amax == 0.0) {
+    if (detail::isPlanarAtom(M)) {
       if (b.norm() == 0.0) {
         if (c <= 0.0) continue;  // the whole space
         return std::nullopt;     // empty (the shapes' constructors reject empty regions)

@@ -211,8 +211,7 @@ std::optional<Eigen::Matrix4d> grownAtom(const Eigen::Matrix4d& Q, double delta)
   const Eigen::Matrix3d A = Q.topLeftCorner<3, 3>();
   const Eigen::Vector3d b = Q.topRightCorner<3, 1>();
   const double c = Q(3, 3);
-  const double amax = A.cwiseAbs().maxCoeff();
-  if (amax == 0.0 || amax <= 1e-14 * b.norm()) {  // a plane 2 b.x + c <= 0 (or a constant)
+  if (detail::isPlanarAtom(Q)) {  // a plane 2 b.x + c <= 0 (or a constant)
     Eigen::Matrix4d G = Q;
     G.topLeftCorner<3, 3>().setZero();
     G(3, 3) = c - 2.0 * delta * b.norm();

@@ -19,6 +19,14 @@
 namespace fcl_quadric {
 namespace detail {
 
+/// True if the atom {X^T Q X <= 0} is a plane 2 b.x + c <= 0 or a constant: its quadratic part is
+/// zero or negligible (1e-14) against its linear part. The one test of the support mappings
+/// (convex_support.cpp), the convex cover and the grown regions (region_distance_bound.cpp).
+inline bool isPlanarAtom(const Eigen::Matrix4d& Q) {
+  const double amax = Q.topLeftCorner<3, 3>().cwiseAbs().maxCoeff();
+  return amax == 0.0 || amax <= 1e-14 * Q.topRightCorner<3, 1>().norm();
+}
+
 /// The region as an and/or formula over signed atoms (differences pushed to the atoms: the
 /// closure of the complement of {f <= 0} is {-f <= 0}).
 struct Formula {

@@ -59,6 +59,7 @@
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/geometry/signed_distance.h"
+#include "support/fcl_fixtures.h"
 
 namespace fcl_quadric {
 namespace {
@@ -229,12 +230,7 @@ Body meshBody(std::shared_ptr<const TriangleMesh> mesh, const fcl::Transform3d& 
   return makeBody(Kind::kMesh, model, X, std::move(mesh));
 }
 
-fcl::Transform3d pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
-  fcl::Transform3d X = fcl::Transform3d::Identity();
-  X.linear() = R;
-  X.translation() = p;
-  return X;
-}
+using test::pose;
 
 /// Rigid motion of a group per frame k: rotation by omega k about `axis` through `pivot`, then a
 /// drift by velocity k.

@@ -32,6 +32,7 @@
 #include "fcl_quadric/geometry/convex_cover.h"
 #include "fcl_quadric/geometry/quadric_region.h"
 #include "fcl_quadric/geometry/region_distance_bound.h"
+#include "support/fcl_fixtures.h"
 #include "support/expect_invalid.h"
 #include "support/random_ellipsoids.h"
 
@@ -41,12 +42,7 @@ namespace {
 using Transform = fcl::Transform3<double>;
 using Op = QuadricRegion::Op;
 
-Transform pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
-  Transform tf = Transform::Identity();
-  tf.linear() = R;
-  tf.translation() = p;
-  return tf;
-}
+using test::pose;
 
 /// The solid {x : |x - a|^2 - ((x - a).u)^2 <= r^2, 0 <= (x - a).u <= |b - a|}: the segment a-b
 /// grown by r, without its end balls.
@@ -287,16 +283,9 @@ TEST(DistanceLowerBound, ARingThreadedOnAThinMeshPoleIsCertifiedClearOfIt) {
   // each triangle's delta-prism must certify the clearance: the pole's edges are 0.1 from the
   // axis, the bore wall 0.5, so the distance is 0.4 (minus the offset of the pole from the axis).
   const auto ring = makeRing();
-  auto pole = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
-  pole->beginModel();
-  std::array<Eigen::Vector3d, 3> rim;
-  for (int k = 0; k < 3; ++k) rim[k] = 0.1 * Eigen::Vector3d(std::cos(2 * M_PI * k / 3), std::sin(2 * M_PI * k / 3), 0);
-  for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d a = rim[k], b = rim[(k + 1) % 3], up(0, 0, 2);
-    pole->addTriangle(a - up, b - up, b + up);
-    pole->addTriangle(a - up, b + up, a + up);
-  }
-  pole->endModel();
+  const std::array<Eigen::Vector3d, 3> rim = test::poleRim(0.1);
+  const std::vector<std::array<Eigen::Vector3d, 3>> sides = test::poleTriangles(0.1, 2.0);
+  const auto pole = test::meshOf(sides);
   const Transform I = Transform::Identity();
   const Transform shifted = pose(Eigen::Matrix3d::Identity(), {0.15, 0, 0});
   // The triangles' delta-prisms reach up to 1.0824 delta from an edge (region_distance_bound.h),
@@ -315,13 +304,9 @@ TEST(DistanceLowerBound, ARingThreadedOnAThinMeshPoleIsCertifiedClearOfIt) {
   // The oracle of the random test sees a bound that is too large: the pole's 0.41-neighbourhood
   // (true distance 0.4) overlaps the centred ring.
   bool seen = false;
-  for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d a = rim[k], b = rim[(k + 1) % 3], up(0, 0, 2);
-    for (const std::array<Eigen::Vector3d, 3>& t : {std::array<Eigen::Vector3d, 3>{a - up, b - up, b + up},
-                                                     std::array<Eigen::Vector3d, 3>{a - up, b + up, a + up}})
-      seen = seen || overlaps(*ring, I, triangleMinkowski(t, 0.41),
-                              Box3{Eigen::Vector3d(-0.6, -0.6, -2.5), Eigen::Vector3d(0.6, 0.6, 2.5)});
-  }
+  for (const std::array<Eigen::Vector3d, 3>& t : sides)
+    seen = seen || overlaps(*ring, I, triangleMinkowski(t, 0.41),
+                            Box3{Eigen::Vector3d(-0.6, -0.6, -2.5), Eigen::Vector3d(0.6, 0.6, 2.5)});
   EXPECT_TRUE(seen);
   // Near contact the bound stays relative to the distance (the bisection starts by halving).
   const double gap = 1e-4;

@@ -28,6 +28,7 @@
 #include "fcl_quadric/fcl/distance.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
 #include "fcl_quadric/geometry/ellipsoid_cylinder.h"
+#include "support/fcl_fixtures.h"
 #include "support/expect_invalid.h"
 #include "support/random_ellipsoids.h"
 
@@ -36,12 +37,7 @@ namespace {
 
 using Transform = fcl::Transform3<double>;
 
-Transform pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
-  Transform tf = Transform::Identity();
-  tf.linear() = R;
-  tf.translation() = p;
-  return tf;
-}
+using test::pose;
 
 double dist(const fcl::CollisionGeometry<double>& a, const Transform& ta, const fcl::CollisionGeometry<double>& b,
             const Transform& tb, bool signed_distance, fcl::DistanceResult<double>* out = nullptr) {

@@ -25,6 +25,7 @@
 #include "fcl_quadric/fcl/continuous_collision.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
 #include "fcl_quadric/fcl/rational_motion.h"
+#include "support/fcl_fixtures.h"
 
 namespace fcl_quadric {
 namespace {
@@ -33,12 +34,7 @@ using Transform = fcl::Transform3<double>;
 using Csg = QuadricCSG<double>;
 using Op = QuadricRegion::Op;
 
-Transform pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
-  Transform tf = Transform::Identity();
-  tf.linear() = R;
-  tf.translation() = p;
-  return tf;
-}
+using test::pose;
 Transform at(const Eigen::Vector3d& p) { return pose(Eigen::Matrix3d::Identity(), p); }
 
 Eigen::Matrix3d randomRotation(std::mt19937& rng) {

@@ -34,6 +34,7 @@
 #include "fcl_quadric/fcl/distance.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
 #include "fcl_quadric/geometry/ellipsoid_cylinder.h"
+#include "support/fcl_fixtures.h"
 #include "support/random_ellipsoids.h"
 
 #include <octomap/OcTree.h>
@@ -46,12 +47,7 @@ using Csg = QuadricCSG<double>;
 using Op = QuadricRegion::Op;
 constexpr double kPi = 3.14159265358979323846;
 
-Transform pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
-  Transform tf = Transform::Identity();
-  tf.linear() = R;
-  tf.translation() = p;
-  return tf;
-}
+using test::pose;
 
 bool collides(const fcl::CollisionGeometry<double>& a, const Transform& ta, const fcl::CollisionGeometry<double>& b,
               const Transform& tb) {

@@ -2,7 +2,6 @@
 // collide (no broad phase), dense sampling of the space's own interpolate(), bisection of the first
 // contact, closed-form contact times, and OMPL's DiscreteMotionValidator on thin walls.
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <random>
 
@@ -21,6 +20,7 @@
 #include "fcl_quadric/fcl/quadric_shapes.h"
 
 #include "ompl_support.h"
+#include "support/fcl_fixtures.h"
 
 namespace fcl_quadric {
 namespace planning {
@@ -746,16 +746,7 @@ TEST(Planning, PlannersSolveAThinWallGapProblemAndTheContinuousPathIsDenselyColl
 // sideways stops where the bore wall meets the pole's edges. Before distanceLowerBound covered
 // non-convex shapes against meshes, both motions threw.
 TEST(ContinuousMotionValidator, ARingLinkSlidesAlongAThinMeshPoleAndStopsAgainstIt) {
-  auto pole = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
-  pole->beginModel();
-  std::array<Eigen::Vector3d, 3> rim;
-  for (int k = 0; k < 3; ++k) rim[k] = 0.1 * Eigen::Vector3d(std::cos(2 * M_PI * k / 3), std::sin(2 * M_PI * k / 3), 0);
-  for (int k = 0; k < 3; ++k) {
-    const Eigen::Vector3d a = rim[k], b = rim[(k + 1) % 3], up(0, 0, 3);
-    pole->addTriangle(a - up, b - up, b + up);
-    pole->addTriangle(a - up, b + up, a + up);
-  }
-  pole->endModel();
+  const auto pole = fcl_quadric::test::meshOf(fcl_quadric::test::poleTriangles(0.1, 3.0));
   auto env = std::make_shared<Environment>();
   env->add(pole, Eigen::Isometry3d::Identity());
   auto outer = std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(1.0, 1.0, 0.4));

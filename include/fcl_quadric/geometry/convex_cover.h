@@ -4,8 +4,8 @@
 /// of distance and distance lower bounds for models that are not convex themselves (unions,
 /// rings, wedges; docs/algorithms.md section 12). Pure geometry (std + Eigen).
 ///
-/// Method, on the model's and/or formula over signed atoms (differences pushed to the atoms, as
-/// the certified engines use it): a conjunction keeps its convex atoms (planes and curved atoms
+/// Method, on the model's and/or formula over signed atoms (the CQM's CSG tree of thesis §6.1
+/// with differences pushed to the atoms, as the certified engines use it): a conjunction keeps its convex atoms (planes and curved atoms
 /// whose quadratic part is positive semidefinite: ConvexSupport::fromRegion's class) and drops
 /// the others (a superset); a disjunction is the union of its children's pieces; a conjunction
 /// with disjunctive children is distributed over them (at most kMaxCoverPieces pieces; beyond,

@@ -90,7 +90,7 @@ double regionOffsetDistanceLowerBound(const QuadricRegion& a, const Box3& a_box,
                                       double cap);
 
 /// A region containing every point within delta >= 0 of `region` (its delta-neighbourhood), built
-/// on the and/or formula over signed atoms: each atom is replaced by a grown one and the formula
+/// on the and/or formula over signed atoms (thesis §6.1's CSG tree, differences pushed to the atoms): each atom is replaced by a grown one and the formula
 /// kept, which is a superset because growing distributes over unions and only shrinks an
 /// intersection's neighbourhood. A plane is shifted by delta; a curved atom whose quadratic part
 /// is positive semidefinite with its linear part in its range (ellipsoid, elliptic cylinder) is
