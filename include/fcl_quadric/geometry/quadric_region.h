@@ -52,6 +52,10 @@ constexpr double kRegionMaxAspect = 16.0;
 /// Local AABBs are searched inside |x_i| <= this (in the shape's length unit): a region reaching
 /// it is rejected as unbounded.
 constexpr double kRegionMaxExtent = 1e6;
+/// boundaryElements keeps an element unless the region restricted to its surfaces is certified
+/// empty with boxes down to this fraction of the search box (2^-20 ~ 9.5e-7): elements within
+/// about that distance of the boundary are kept (a superset; contacts are verified downstream).
+constexpr double kBoundaryElementBoxRelative = 9.5367431640625e-07;  // 2^-20
 /// Cell volume: subdivision stops when the undecided cells hold at most this fraction of the
 /// bounding-box volume, or at kRegionMaxVolumeCells cells (the bound is then reported as is).
 constexpr double kRegionVolumeRelative = 1e-6;
@@ -169,8 +173,9 @@ MassProperties regionMassProperties(const QuadricRegion& region, const Box3& box
 /// Boundary elements of a CQM (thesis §6.1-6.2): faces (one per atom that may touch the
 /// boundary), edges (pairs of faces whose surfaces may meet on it: conic = plane x quadric,
 /// line = plane x plane, curve = quadric x quadric) and vertices (three planes, or a quadric and
-/// two planes, meeting on it). Elements certified absent (findPoint Empty) are dropped; the
-/// lists are a superset only by elements within the tolerance band of the boundary.
+/// two planes, meeting on it). Elements certified absent (findPoint Empty at the resolution
+/// kBoundaryElementBoxRelative) are dropped; the lists are a superset only by elements within
+/// that band of the boundary.
 struct BoundaryFace {
   int atom = 0;  ///< index into signedAtoms()
   FaceShape shape = FaceShape::Convex;
