@@ -685,6 +685,7 @@ double advancementPair(AdvancingSolid a, AdvancingSolid b, fcl::ContinuousCollis
 // the certified space-time search of region_ccd.h under the exact rational motions.
 double quadricShapePair(const fcl::CollisionGeometry<double>* o1, const fcl::MotionBase<double>* m1, MotionKind k1,
                         const fcl::CollisionGeometry<double>* o2, const fcl::MotionBase<double>* m2, MotionKind k2,
+                        const fcl::ContinuousCollisionRequest<double>& request,
                         fcl::ContinuousCollisionResult<double>& result) {
   for (const auto& [k, which] : {std::pair(k1, "motion1"), std::pair(k2, "motion2")}) {
     if (k != MotionKind::Rational && k != MotionKind::Translation)
@@ -693,7 +694,8 @@ double quadricShapePair(const fcl::CollisionGeometry<double>* o1, const fcl::Mot
                                   "fcl_quadric::RationalMotion or fcl::TranslationMotion (exact rational motions)");
   }
   const RegionCcdResult r = detail::continuousCollideQuadricShapes(o1, rationalOf(m1, k1, "motion1"), o2,
-                                                                   rationalOf(m2, k2, "motion2"), kWhere, nullptr, nullptr);
+                                                                   rationalOf(m2, k2, "motion2"), kWhere, nullptr, nullptr,
+                                                                   request.ccd_solver_type == fcl::CCDC_POLYNOMIAL_SOLVER);
   g_stats.path = ContinuousCollideStats::Path::Exact;
   g_stats.steps = r.boxes;
   g_stats.near_tangent = r.near_tangent || r.capped;
@@ -733,7 +735,7 @@ S continuousCollide(const fcl::CollisionGeometry<S>* o1, const fcl::MotionBase<S
   g_stats = ContinuousCollideStats();
   const MotionKind k1 = kindOf(motion1), k2 = kindOf(motion2);
   if (detail::isQuadricShape(o1) || detail::isQuadricShape(o2))
-    return quadricShapePair(o1, motion1, k1, o2, motion2, k2, result);
+    return quadricShapePair(o1, motion1, k1, o2, motion2, k2, request, result);
   const std::optional<Eigen::Vector3d> r1 = quadricRadii(o1), r2 = quadricRadii(o2);
 
   if (r1 && r2) {

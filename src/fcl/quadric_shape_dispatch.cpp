@@ -32,6 +32,7 @@
 #include <fcl/narrowphase/contact.h>
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
+#include "fcl_quadric/continuous/dimension_reduction_ccd.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
 #include "fcl_quadric/geometry/convex_cover.h"
 #include "fcl_quadric/geometry/convex_distance.h"
@@ -107,7 +108,9 @@ QuadricRegion boxRegion(const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
 LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which, const char* where) {
   if (const auto* q = dynamic_cast<const QuadricShape<double>*>(g)) {
     if (!q->bounded()) return {q->region(), std::nullopt};
-    return {q->region(), q->localBox()};
+    LocalSolid s{q->region(), q->localBox()};
+    s.elements = q->sharedBoundaryElements();
+    return s;
   }
   switch (g->getNodeType()) {
     case fcl::GEOM_SPHERE: {
@@ -406,7 +409,8 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
 
 RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const PiecewiseMotion& m1,
                                                const fcl::CollisionGeometry<double>* o2, const PiecewiseMotion& m2,
-                                               const char* where, std::string* elements1, std::string* elements2) {
+                                               const char* where, std::string* elements1, std::string* elements2,
+                                               bool dimension_reduction) {
   for (const auto& [g, which] : {std::pair(o1, "o1"), std::pair(o2, "o2")}) {
     if (isMeshOrOcTree(g))
       throw std::invalid_argument(std::string(where) + ": " + which +
@@ -416,9 +420,26 @@ RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<doub
   const LocalSolid a = localSolid(o1, "o1", where), b = localSolid(o2, "o2", where);
   if (!a.box && !b.box)
     throw std::invalid_argument(std::string(where) + ": both operands are unbounded (half-spaces or unclipped quadrics)");
-  const RegionCcdResult r = continuousCollideRegions(MovingRegion{a.region, a.box, m1}, MovingRegion{b.region, b.box, m2});
+  const MovingRegion ma{a.region, a.box, m1, a.elements}, mb{b.region, b.box, m2, b.elements};
   if (elements1) elements1->clear();
   if (elements2) elements2->clear();
+  if (dimension_reduction && a.box && b.box) {
+    // Thesis §6.2.2 first; the certified engine answers what it leaves undecided.
+    const ReductionCcdResult d = continuousCollideRegionsByReduction(ma, mb);
+    if (d.status == ReductionStatus::Decided) {
+      RegionCcdResult r;
+      r.collide = d.collide;
+      r.time = d.time;
+      r.point = d.point;
+      r.boxes = d.candidates;
+      if (r.collide && elements1 && elements2) {
+        *elements1 = d.label_a;
+        *elements2 = d.label_b;
+      }
+      return r;
+    }
+  }
+  const RegionCcdResult r = continuousCollideRegions(ma, mb);
   if (r.collide && elements1 && elements2) {
     // Boundary elements are searched in the local AABB (a generous box for unbounded operands:
     // they are only labelled, never used to decide).

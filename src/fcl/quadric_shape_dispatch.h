@@ -60,11 +60,15 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
 /// (continuousCollideRegions, region_ccd.h). When both are non-null, `elements1` / `elements2`
 /// receive the labels of the boundary elements in contact (boundaryElementLabel over
 /// boundaryElements: extra certified searches; empty when there is no contact).
+/// `dimension_reduction`: try continuousCollideRegionsByReduction first (thesis §6.2.2; both
+/// operands bounded) and fall back to the space-time engine when it is Undecided; a decided
+/// answer has `boxes` = candidates verified and no atom lists (the labels come from the pair).
 /// \throws std::invalid_argument (message starting with `where`) for BVH meshes, OcTrees and any
 /// other unsupported geometry, or two unbounded operands.
 RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const PiecewiseMotion& m1,
                                                const fcl::CollisionGeometry<double>* o2, const PiecewiseMotion& m2,
-                                               const char* where, std::string* elements1, std::string* elements2);
+                                               const char* where, std::string* elements1, std::string* elements2,
+                                               bool dimension_reduction = false);
 
 }  // namespace detail
 }  // namespace fcl_quadric

@@ -3,6 +3,7 @@
 #include "fcl_quadric/fcl/quadric_shapes.h"
 
 #include <cmath>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -34,9 +35,15 @@ bool isUnboundedError(const std::invalid_argument& e) {
 // --- QuadricShape ---------------------------------------------------------------------------------
 
 template <typename S>
+struct QuadricShape<S>::ElementsCache {
+  std::once_flag once;
+  std::shared_ptr<const BoundaryElements> elements;
+};
+
+template <typename S>
 QuadricShape<S>::QuadricShape(QuadricRegion region, const std::optional<Box3>& box, const std::optional<Box3>& hint,
                               const std::optional<MassProperties>& mass, bool allow_unbounded)
-    : region_(std::move(region)) {
+    : region_(std::move(region)), elements_(std::make_shared<ElementsCache>()) {
   if (box) {
     box_ = *box;
   } else {
@@ -72,8 +79,16 @@ const Box3& QuadricShape<S>::localBox() const {
 
 template <typename S>
 BoundaryElements QuadricShape<S>::boundaryElements() const {
+  return *sharedBoundaryElements();
+}
+
+template <typename S>
+std::shared_ptr<const BoundaryElements> QuadricShape<S>::sharedBoundaryElements() const {
   requireBounded("QuadricShape::boundaryElements");
-  return fcl_quadric::boundaryElements(region_, box_);
+  std::call_once(elements_->once, [this] {
+    elements_->elements = std::make_shared<const BoundaryElements>(fcl_quadric::boundaryElements(region_, box_));
+  });
+  return elements_->elements;
 }
 
 template <typename S>

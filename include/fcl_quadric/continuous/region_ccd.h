@@ -33,8 +33,10 @@
 /// elements with subresultant sequences); it answers the same question for every pair of element
 /// types at once, as the static engine does (docs/algorithms.md section 9).
 
+#include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -62,10 +64,19 @@ constexpr int kRegionCcdMaxDegree = 60;
 
 /// A CQM in its local frame moving by `motion` (local -> world).
 struct MovingRegion {
+  MovingRegion() = default;
+  MovingRegion(QuadricRegion region_, std::optional<Box3> box_, PiecewiseMotion motion_,
+               std::shared_ptr<const BoundaryElements> elements_ = nullptr)
+      : region(std::move(region_)), box(std::move(box_)), motion(std::move(motion_)), elements(std::move(elements_)) {}
+
   QuadricRegion region;
   /// Local AABB; none for an unbounded region (a half-space): at least one of a pair needs one.
   std::optional<Box3> box;
   PiecewiseMotion motion;
+  /// The region's boundary elements (boundaryElements(region, *box)) when the caller keeps them
+  /// (they depend on the shape only, and cost tens of ms for a box of six planes); computed on
+  /// demand by the dimension-reduction solver when absent. Must match `region` and `box`.
+  std::shared_ptr<const BoundaryElements> elements;
 };
 
 struct RegionCcdResult {

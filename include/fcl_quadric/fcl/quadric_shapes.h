@@ -44,6 +44,10 @@ class QuadricShape : public fcl::ShapeBase<S> {
   /// Boundary elements (thesis §6.1-6.2, Definition 6.1). \throws std::invalid_argument if
   /// unbounded.
   BoundaryElements boundaryElements() const;
+  /// The same, computed once per shape on first use (thread-safe; copies of the shape share
+  /// it): the continuous solver by dimension reduction needs them on every query.
+  /// \throws std::invalid_argument if unbounded.
+  std::shared_ptr<const BoundaryElements> sharedBoundaryElements() const;
   /// Mass properties with the volume's error estimate. \throws std::invalid_argument if unbounded.
   const MassProperties& massProperties() const;
 
@@ -66,7 +70,10 @@ class QuadricShape : public fcl::ShapeBase<S> {
  private:
   void requireBounded(const char* what) const;
 
+  struct ElementsCache;  // once_flag + elements (quadric_shapes.cpp)
+
   QuadricRegion region_;
+  std::shared_ptr<ElementsCache> elements_;
   bool bounded_ = true;
   Box3 box_;
   MassProperties mass_;

@@ -1,0 +1,113 @@
+#pragma once
+/// \file dimension_reduction_ccd.h
+/// Continuous collision of two composite quadric models by dimension reduction (Choi 2008 thesis
+/// §6.1-6.2, docs/algorithms.md section 10b): the first contact time is the earliest verified
+/// candidate over the CCD subproblems of ccd_subproblems.h.
+///
+/// Method. Body a's local frame is the working frame: a's elements are constant there; b's are
+/// carried by the relative motion, as polynomials in the piece's time u (points and directions
+/// by N_a(u) M_b(u), planes and quadrics by its inverse P = N_b(u) M_a(u): π^T P and P^T Q P;
+/// homogeneous, up to factors without roots on the piece). Each subproblem becomes a condition
+/// on u whose solutions are the moments the two extended elements touch (§6.2.2):
+///  - face-vertex:  g = X^T S X (direct substitution of the vertex);
+///  - quadric-line: g = b^2 - a c for (U + s D)^T S (U + s D) = a s^2 + 2 b s + c (discriminant);
+///  - quadric-plane: g = -det [[S, π], [π^T, 0]] = π^T adj(S) π (the dual quadric; the
+///    characteristic polynomial det(λS - π π^T) = λ^3 (λ det S - π^T adj(S) π) by the matrix
+///    determinant lemma, so its multiple root appears exactly when π^T adj(S) π = 0). Skipped for
+///    a cylinder: it touches a plane only along a line, found on the face's bounding edges;
+///  - plane-conic:  g = det [[S, π1, π2], [π1^T, 0, 0], [π2^T, 0, 0]] (the line π1 ∩ π2 is tangent
+///    to the conic S ∩ π2 iff the quadric restricted to it is degenerate: the bordered form);
+///  - conic-line:   g = X^T S X with X = (π.D) U - (π.U) D the line's point in the conic's plane
+///    (a line parallel to the plane: its crossings with the conic when it lies in the plane);
+///  - line-line:    g = det [U1, D1, U2, D2] (coplanar lines);
+///  - quadric-quadric, quadric-conic (in the conic's plane: 3x3 conics), conic-conic (on the
+///    line of the two planes: the bordered pencil, whose binary forms share a root): a negative
+///    multiple root λ of the characteristic polynomial f(λ; u) = det(λ M1 - M2(u)) (external
+///    tangency, §6.2.2). Instead of the roots of its discriminant in λ expanded in u (degree up
+///    to 120 for two moving bodies: cancellation moved its roots by up to 1e-3 in the tests), the
+///    common zeros of F(x, u) = x^m f((x-1)/x; u) and dF/dx over (x, u) in [0, 1]^2 (λ < 0 <->
+///    x in (0, 1), as the CCD function of thesis §5.3) are enclosed by Bernstein subdivision,
+///    earliest u first, to boxes of 1e-7. A singular pencil (f identically zero: parallel
+///    cylinders) has no isolated tangency: its contacts are lines, found on the bounding edges.
+/// Every candidate (a root of g isolated on the Bernstein form, a local extremum of g within
+/// kReductionNearRootRelative of zero -- a graze that rounding could lift off zero --, or a
+/// pencil box) is refined on the same condition evaluated at u from the elements at u (no
+/// expansion in u) to kReductionRootWidth. Its contact point (the vertex, the tangency point or
+/// the null vector of the pencil at its multiple root, the line's point in the plane, the lines'
+/// closest points) is verified with the interior / boundary predicates of Figure 29 through both
+/// CSG trees, with a band of kReductionVerifyRelative times the pair's size (within it, a point
+/// counts as on the boundary: err toward contact). The earliest verified candidate is the first
+/// contact; the pencil searches run last, pruned to times before the best contact so far.
+///
+/// Scope. Answered here: CQMs whose edges are lines and conics (thesis ch.6's class): boxes,
+/// capped elliptic cylinders, clipped quadrics, wedges, and CSG solids of quadrics and planes
+/// whose curved faces meet only planes. Plane-line and plane-plane contacts are found on the
+/// elements that bound them (an edge lying on a face touches it first at a vertex or where it
+/// crosses the face's edges). Undecided, with the reason (the caller then uses the certified
+/// space-time engine of region_ccd.h):
+///  - a quartic edge (two curved faces meeting: thesis §6.5), a cone apex, a pair of planes as
+///    one atom;
+///  - a degenerate candidate: g identically zero within kReductionZeroRelative, or a contact
+///    point that is undefined (coincident planes: a cap landing flat on a face);
+///  - a pencil search reaching kPencilMaxBoxes (a curve of multiple roots);
+///  - an unbounded body (no local AABB), a non-rigid pose at t = 0 for the start test.
+/// Completeness rests on generic position of the first contact (thesis §6.1): a first contact
+/// at a point where each body's lowest-dimensional element is one of the pairs above is a root
+/// of that pair's condition. The tests cross-check every answer against the certified engine.
+
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "fcl_quadric/continuous/ccd_subproblems.h"
+#include "fcl_quadric/continuous/region_ccd.h"
+#include "fcl_quadric/geometry/quadric_contact_configuration.h"
+
+namespace fcl_quadric {
+
+namespace tolerance_reduction {
+/// A candidate contact point is accepted on a body's boundary when every deciding atom's
+/// first-order distance estimate |f| / |grad f| is within this fraction of the pair's size
+/// (the larger local AABB extent). Dimensionless.
+constexpr double kReductionVerifyRelative = 1e-9;
+/// Root isolation width in the piece's time (then refined to this accuracy).
+constexpr double kReductionRootWidth = 1e-13;
+/// A local extremum u of g with |g(u)| <= this times the evaluation's absolute magnitude
+/// (sum |c_k| u^k) is a grazing candidate (rounding could have lifted a double root off zero).
+constexpr double kReductionNearRootRelative = 1e-10;
+/// g is degenerate (identically zero) when max |c_k| <= this times the magnitude of its
+/// formula on absolute values.
+constexpr double kReductionZeroRelative = 1e-11;
+/// Pencil subproblems: boxes of (x, u) narrower than this in both are candidates.
+constexpr double kPencilSeedWidth = 1e-7;
+/// Pencil subproblems: work cap of one search (boxes); reaching it makes the answer Undecided.
+constexpr int kPencilMaxBoxes = 40000;
+}  // namespace tolerance_reduction
+
+enum class ReductionStatus { Decided, Undecided };
+
+struct ReductionCcdResult {
+  ReductionStatus status = ReductionStatus::Undecided;
+  bool collide = false;
+  double time = 1.0;                                 ///< first contact time (global), 1 when none
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   ///< contact point, world frame
+  CcdSubproblem subproblem;                          ///< the pair that gave the first contact
+  std::string label_a, label_b;                      ///< its elements ("F1", "E0", "V2"; "" at t = 0)
+  std::string reason;                                ///< why Undecided
+  /// A face-face (quadric-quadric) first contact: the contact configuration of the two extended
+  /// surfaces there (Lemma 6.2, and the genuine-contact test of §6.3.2 with Tables 7-10,
+  /// geometry/quadric_contact_configuration.h). Reported, not used as a filter: a tangency on a
+  /// real intersection curve is never the first contact of two solids that were disjoint
+  /// before, so the earliest verified candidate is genuine whenever the search is complete.
+  std::optional<ContactConfiguration> configuration;
+  int subproblems = 0;                               ///< subproblems examined (all pieces)
+  int candidates = 0;                                ///< candidate moments verified
+};
+
+/// First contact of a and b over [0, 1] by dimension reduction (file comment). Never throws for
+/// unsupported or degenerate configurations: they come back Undecided with a reason.
+/// \throws std::invalid_argument as continuousCollideRegions for invalid motions (degree).
+ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, const MovingRegion& b);
+
+}  // namespace fcl_quadric

@@ -1,0 +1,1188 @@
+// Continuous collision of CQMs by dimension reduction (thesis §6.2.2; dimension_reduction_ccd.h).
+#include "fcl_quadric/continuous/dimension_reduction_ccd.h"
+
+#include <algorithm>
+#include <array>
+#include <complex>
+#include <limits>
+#include <cmath>
+#include <functional>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+
+#include "fcl_quadric/algebra/bernstein_polynomial.h"
+#include "fcl_quadric/algebra/bivariate_bernstein.h"
+#include "fcl_quadric/algebra/polynomial.h"
+#include "fcl_quadric/algebra/root_isolation.h"
+
+namespace fcl_quadric {
+
+using namespace tolerance_reduction;
+
+namespace {
+
+// Polynomial vectors and matrices in the piece's time u: power-basis coefficient lists.
+using PVec = std::vector<Eigen::Vector4d>;
+using PMat = std::vector<Eigen::Matrix4d>;
+
+Eigen::Vector4d at(const PVec& v, double u) {
+  Eigen::Vector4d r = Eigen::Vector4d::Zero();
+  for (std::size_t k = v.size(); k-- > 0;) r = r * u + v[k];
+  return r;
+}
+Eigen::Matrix4d at(const PMat& m, double u) {
+  Eigen::Matrix4d r = Eigen::Matrix4d::Zero();
+  for (std::size_t k = m.size(); k-- > 0;) r = r * u + m[k];
+  return r;
+}
+
+// A polynomial and its companion on absolute values (sum over the formula's terms of |products|):
+// the magnitude against which "zero" is judged.
+struct Poly {
+  std::vector<double> c, mag;
+  void add(std::size_t k, double v, double m) {
+    if (c.size() <= k) {
+      c.resize(k + 1, 0.0);
+      mag.resize(k + 1, 0.0);
+    }
+    c[k] += v;
+    mag[k] += m;
+  }
+};
+
+Poly operator*(const Poly& a, const Poly& b) {
+  Poly r;
+  if (a.c.empty() || b.c.empty()) return r;
+  r.c.assign(a.c.size() + b.c.size() - 1, 0.0);
+  r.mag.assign(r.c.size(), 0.0);
+  for (std::size_t i = 0; i < a.c.size(); ++i)
+    for (std::size_t j = 0; j < b.c.size(); ++j) {
+      r.c[i + j] += a.c[i] * b.c[j];
+      r.mag[i + j] += a.mag[i] * b.mag[j];
+    }
+  return r;
+}
+Poly operator+(Poly a, const Poly& b) {
+  for (std::size_t k = 0; k < b.c.size(); ++k) a.add(k, b.c[k], b.mag[k]);
+  return a;
+}
+Poly operator-(const Poly& a) {
+  Poly r = a;
+  for (double& v : r.c) v = -v;
+  return r;
+}
+Poly operator-(const Poly& a, const Poly& b) { return a + (-b); }
+bool isZeroPoly(const Poly& p) {
+  for (double v : p.c)
+    if (v != 0.0) return false;
+  return true;
+}
+
+// u -> X(u)_i as a Poly.
+Poly component(const PVec& v, int i) {
+  Poly p;
+  for (std::size_t k = 0; k < v.size(); ++k) p.add(k, v[k][i], std::fabs(v[k][i]));
+  return p;
+}
+Poly entry(const PMat& m, int i, int j) {
+  Poly p;
+  for (std::size_t k = 0; k < m.size(); ++k) p.add(k, m[k](i, j), std::fabs(m[k](i, j)));
+  return p;
+}
+Poly dot(const PVec& a, const PVec& b) {
+  Poly p;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    for (std::size_t l = 0; l < b.size(); ++l) p.add(k + l, a[k].dot(b[l]), a[k].cwiseAbs().dot(b[l].cwiseAbs()));
+  return p;
+}
+// X^T S Y.
+Poly form(const PVec& X, const PMat& S, const PVec& Y) {
+  Poly p;
+  for (std::size_t i = 0; i < X.size(); ++i)
+    for (std::size_t j = 0; j < S.size(); ++j) {
+      const Eigen::Vector4d SX = S[j].transpose() * X[i], SXa = S[j].cwiseAbs().transpose() * X[i].cwiseAbs();
+      for (std::size_t k = 0; k < Y.size(); ++k) p.add(i + j + k, SX.dot(Y[k]), SXa.dot(Y[k].cwiseAbs()));
+    }
+  return p;
+}
+PVec scaled(const PVec& v, const Poly& s) {  // s(u) v(u)
+  PVec r(v.size() + s.c.size() - 1, Eigen::Vector4d::Zero());
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (std::size_t j = 0; j < s.c.size(); ++j) r[i + j] += s.c[j] * v[i];
+  return r;
+}
+
+// Determinant of a square matrix of Polys by cofactor expansion along the row with the most
+// exact zeros (the bordered forms are sparse).
+Poly det(const std::vector<std::vector<Poly>>& m) {
+  const std::size_t n = m.size();
+  if (n == 1) return m[0][0];
+  std::size_t row = 0, best = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t z = 0;
+    for (std::size_t j = 0; j < n; ++j) z += isZeroPoly(m[i][j]);
+    if (z > best || i == 0) {
+      best = z;
+      row = i;
+    }
+  }
+  Poly r;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (isZeroPoly(m[row][j])) continue;
+    std::vector<std::vector<Poly>> minor;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i == row) continue;
+      std::vector<Poly> line;
+      for (std::size_t k = 0; k < n; ++k)
+        if (k != j) line.push_back(m[i][k]);
+      minor.push_back(std::move(line));
+    }
+    const Poly term = m[row][j] * det(minor);
+    r = ((row + j) % 2 == 0) ? r + term : r - term;
+  }
+  return r;
+}
+
+// det [[S, π1, ..., πk], [π^T, 0]]: the quadric S bordered by k planes.
+Poly bordered(const PMat& S, const std::vector<PVec>& planes) {
+  const std::size_t n = 4 + planes.size();
+  std::vector<std::vector<Poly>> m(n, std::vector<Poly>(n));
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) m[i][j] = entry(S, i, j);
+  for (std::size_t p = 0; p < planes.size(); ++p)
+    for (int i = 0; i < 4; ++i) m[i][4 + p] = m[4 + p][i] = component(planes[p], i);
+  return det(m);
+}
+
+// det [a, b, c, d] of four polynomial columns.
+Poly det4(const PVec& a, const PVec& b, const PVec& c, const PVec& d) {
+  std::vector<std::vector<Poly>> m(4, std::vector<Poly>(4));
+  const PVec* cols[4] = {&a, &b, &c, &d};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) m[i][j] = component(*cols[j], i);
+  return det(m);
+}
+
+// --- Pencils: characteristic polynomials with polynomial coefficients ---------------------------
+
+using LPoly = std::vector<Poly>;  // coefficients in λ (low -> high), each a polynomial in u
+using PolyMatrix = std::vector<std::vector<Poly>>;
+
+LPoly lmul(const LPoly& a, const LPoly& b) {
+  LPoly r(a.size() + b.size() - 1);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < b.size(); ++j) r[i + j] = r[i + j] + a[i] * b[j];
+  return r;
+}
+LPoly ladd(LPoly a, const LPoly& b, bool subtract) {
+  if (a.size() < b.size()) a.resize(b.size());
+  for (std::size_t i = 0; i < b.size(); ++i) a[i] = subtract ? a[i] - b[i] : a[i] + b[i];
+  return a;
+}
+LPoly ldet(const std::vector<std::vector<LPoly>>& m) {
+  const std::size_t n = m.size();
+  if (n == 1) return m[0][0];
+  LPoly r(1);
+  for (std::size_t j = 0; j < n; ++j) {
+    std::vector<std::vector<LPoly>> minor;
+    for (std::size_t i = 1; i < n; ++i) {
+      std::vector<LPoly> line;
+      for (std::size_t k = 0; k < n; ++k)
+        if (k != j) line.push_back(m[i][k]);
+      minor.push_back(std::move(line));
+    }
+    r = ladd(r, lmul(m[0][j], ldet(minor)), j % 2 == 1);
+  }
+  return r;
+}
+
+// det(λ M1 - M2) for square matrices of polynomials in u, optionally bordered by covectors
+// (det [[λ M1 - M2, l], [l^T, 0]]: the pencil restricted to the subspace l.X = 0).
+LPoly characteristic(const PolyMatrix& M1, const PolyMatrix& M2, const std::vector<std::vector<Poly>>& borders = {}) {
+  const std::size_t n = M1.size(), m = n + borders.size();
+  std::vector<std::vector<LPoly>> M(m, std::vector<LPoly>(m, LPoly(1)));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) M[i][j] = LPoly{-M2[i][j], M1[i][j]};
+  for (std::size_t b = 0; b < borders.size(); ++b)
+    for (std::size_t i = 0; i < n; ++i) M[i][n + b] = M[n + b][i] = LPoly{borders[b][i]};
+  return ldet(M);
+}
+
+double maxAbs(const Poly& p) {
+  double m = 0.0;
+  for (double v : p.c) m = std::max(m, std::fabs(v));
+  return m;
+}
+double maxMag(const Poly& p) {
+  double m = 0.0;
+  for (double v : p.mag) m = std::max(m, v);
+  return m;
+}
+bool vanishes(const Poly& p) { return maxAbs(p) <= kReductionZeroRelative * maxMag(p); }
+
+// The discriminant in λ of f after removing identically vanishing coefficients at both ends
+// (structural roots at λ = ∞ for a singular M1 and at λ = 0 for a singular M2: a cylinder's
+// point at infinity, not a tangency). Degrees 2, 3, 4 (the standard formulas); none for degree
+// <= 1 (no multiple root). `stripped` receives the remaining coefficients.
+// The standard discriminant formulas of degrees 2, 3, 4 over T (Poly or double); `k` makes a
+// constant of T.
+template <typename T, typename K>
+std::optional<T> discriminantFormula(const std::vector<T>& g, K k) {
+  const int n = static_cast<int>(g.size()) - 1;
+  if (n == 2) return g[1] * g[1] - k(4) * g[2] * g[0];
+  if (n == 3) {
+    const T &a = g[3], &b = g[2], &c = g[1], &d = g[0];
+    return b * b * c * c - k(4) * a * c * c * c - k(4) * b * b * b * d - k(27) * a * a * d * d + k(18) * a * b * c * d;
+  }
+  if (n == 4) {
+    const T &a = g[4], &b = g[3], &c = g[2], &d = g[1], &e = g[0];
+    const T aa = a * a, bb = b * b, cc = c * c, dd = d * d, ee = e * e;
+    return k(256) * aa * a * ee * e - k(192) * aa * b * d * ee - k(128) * aa * cc * ee + k(144) * aa * c * dd * e -
+           k(27) * aa * dd * dd + k(144) * a * bb * c * ee - k(6) * a * bb * dd * e - k(80) * a * b * cc * d * e +
+           k(18) * a * b * c * dd * d + k(16) * a * cc * cc * e - k(4) * a * cc * c * dd - k(27) * bb * bb * ee +
+           k(18) * bb * b * c * d * e - k(4) * bb * b * dd * d - k(4) * bb * cc * c * e + bb * cc * dd;
+  }
+  return std::nullopt;
+}
+
+// Structural zeros at both ends of f (identically vanishing coefficients): [lo, hi).
+std::pair<std::size_t, std::size_t> structuralRange(const LPoly& f) {
+  std::size_t lo = 0, hi = f.size();
+  while (hi > lo && vanishes(f[hi - 1])) --hi;
+  while (lo < hi && vanishes(f[lo])) ++lo;
+  return {lo, hi};
+}
+
+
+// Coefficients (low -> high, `size` of them) of det(λ M1 - M2), bordered by the columns of
+// `borders`, from its values at size equally spaced λ (exact interpolation at small integers).
+std::vector<double> numericCharacteristic(const Eigen::MatrixXd& M1, const Eigen::MatrixXd& M2, const Eigen::MatrixXd& borders,
+                                          std::size_t size) {
+  const int n = static_cast<int>(M1.rows()), k = static_cast<int>(borders.cols()), m = n + k;
+  const int q = static_cast<int>(size);
+  Eigen::MatrixXd V(q, q);
+  Eigen::VectorXd vals(q);
+  for (int j = 0; j < q; ++j) {
+    const double lambda = j - 0.5 * (q - 1);
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(m, m);
+    M.topLeftCorner(n, n) = lambda * M1 - M2;
+    if (k > 0) {
+      M.topRightCorner(n, k) = borders;
+      M.bottomLeftCorner(k, n) = borders.transpose();
+    }
+    vals[j] = M.fullPivLu().determinant();
+    double p = 1.0;
+    for (int i = 0; i < q; ++i, p *= lambda) V(j, i) = p;
+  }
+  const Eigen::VectorXd c = V.fullPivLu().solve(vals);
+  return std::vector<double>(c.data(), c.data() + q);
+}
+
+
+// The multiple root of f(λ) = sum c_k λ^k at u: the real critical point of f where |f| is
+// smallest relative to its magnitude. None when f has no real critical point.
+std::optional<double> multipleRoot(const std::vector<double>& c) {
+  const int n = static_cast<int>(c.size()) - 1;
+  if (n < 2 || c[n] == 0.0) return std::nullopt;
+  // Roots of f' (degree n - 1 <= 3) from its companion matrix.
+  const int m = n - 1;
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
+  const double lead = n * c[n];
+  for (int i = 0; i < m; ++i) C(0, i) = -(m - i) * c[m - i] / lead;  // f' coefficients (k+1) c_{k+1}
+  for (int i = 1; i < m; ++i) C(i, i - 1) = 1.0;
+  Eigen::VectorXcd z;
+  if (m == 1) {
+    z = Eigen::VectorXcd::Constant(1, std::complex<double>(C(0, 0), 0.0));
+  } else {
+    z = Eigen::EigenSolver<Eigen::MatrixXd>(C, false).eigenvalues();
+  }
+  std::optional<double> best;
+  double best_score = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < z.size(); ++i) {
+    if (std::fabs(z[i].imag()) > 1e-6 * (1.0 + std::fabs(z[i].real()))) continue;
+    const double x = z[i].real();
+    double v = 0.0, mag = 0.0, xp = 1.0;
+    for (int k = 0; k <= n; ++k, xp *= x) {
+      v += c[k] * xp;
+      mag += std::fabs(c[k] * xp);
+    }
+    const double score = std::fabs(v) / std::max(mag, 1e-300);
+    if (score < best_score) {
+      best_score = score;
+      best = x;
+    }
+  }
+  return best;
+}
+
+// Null vectors of the symmetric matrix M (rank n - 1: one; rank n - 2: the real points of the
+// null line on the quadric Q, two at most). In the matrix's own coordinates.
+std::vector<Eigen::VectorXd> nullPoints(const Eigen::MatrixXd& M, const Eigen::MatrixXd& Q) {
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  const int n = static_cast<int>(M.rows());
+  const Eigen::VectorXd x0 = svd.matrixV().col(n - 1);
+  if (n < 2 || sv[n - 2] > 1e-6 * sv[0]) return {x0};
+  const Eigen::VectorXd x1 = svd.matrixV().col(n - 2);
+  const double qa = x1.dot(Q * x1), qb = x0.dot(Q * x1), qc = x0.dot(Q * x0);
+  // Points x0 + s x1 (and x1 itself when qc ~ 0 fails): qa s^2 + 2 qb s + qc = 0.
+  std::vector<Eigen::VectorXd> out;
+  const double disc = qb * qb - qa * qc;
+  if (std::fabs(qa) <= 1e-14 * Q.norm()) {
+    if (qb != 0.0) out.push_back(x0 - 0.5 * qc / qb * x1);
+    out.push_back(x1);
+    return out;
+  }
+  if (disc < -1e-12 * (qb * qb + std::fabs(qa * qc))) return out;
+  const double r = disc > 0.0 ? std::sqrt(disc) : 0.0;
+  out.push_back(x0 + ((-qb - r) / qa) * x1);
+  out.push_back(x0 + ((-qb + r) / qa) * x1);
+  return out;
+}
+
+// --- Elements of one body in its local frame ------------------------------------------------
+
+bool isPlane(const Eigen::Matrix4d& Q) {
+  const double amax = Q.topLeftCorner<3, 3>().cwiseAbs().maxCoeff();
+  return amax == 0.0 || amax <= 1e-14 * Q.topRightCorner<3, 1>().norm();
+}
+// The covector π with X^T Q X = (π.X) w for a plane atom (interior π.X <= 0 for w = 1).
+Eigen::Vector4d planeOf(const Eigen::Matrix4d& Q) {
+  return Eigen::Vector4d(2 * Q(0, 3), 2 * Q(1, 3), 2 * Q(2, 3), Q(3, 3));
+}
+
+void collectRaw(const QuadricRegion& r, std::vector<Eigen::Matrix4d>* out) {
+  if (r.op() == QuadricRegion::Op::Atom) {
+    out->push_back(r.matrix());
+    return;
+  }
+  for (const QuadricRegion& c : r.children()) collectRaw(c, out);
+}
+
+struct EdgeGeometry {
+  bool line = false;
+  Eigen::Vector4d U = Eigen::Vector4d::Zero(), D = Eigen::Vector4d::Zero();  // line: point, direction
+  Eigen::Vector4d plane = Eigen::Vector4d::Zero();                           // conic: its plane
+  int quadric = -1;                                                          // conic: signed atom
+  // Conic: homogeneous basis of its plane (two directions and a point: X = E y, y in P^2) and
+  // the conic in those coordinates, E^T Q E.
+  Eigen::Matrix<double, 4, 3> basis = Eigen::Matrix<double, 4, 3>::Zero();
+  Eigen::Matrix3d conic = Eigen::Matrix3d::Zero();
+};
+
+struct Body {
+  std::vector<Eigen::Matrix4d> raw, sgn;
+  BoundaryElements el;
+  std::vector<EdgeGeometry> edges;
+  std::vector<std::vector<Eigen::Vector4d>> vertices;  // homogeneous points (w = 1) per vertex
+  std::vector<bool> singular;  // per signed atom: a curved atom with det Q = 0 (a cylinder)
+  std::string unsupported;
+};
+
+// A point of the line n1.x + w1 = 0, n2.x + w2 = 0 (least norm) and its direction.
+bool lineOfPlanes(const Eigen::Vector4d& p1, const Eigen::Vector4d& p2, Eigen::Vector3d* x, Eigen::Vector3d* d) {
+  const Eigen::Vector3d n1 = p1.head<3>(), n2 = p2.head<3>();
+  *d = n1.cross(n2);
+  if (d->norm() <= 1e-12 * n1.norm() * n2.norm()) return false;
+  Eigen::Matrix<double, 2, 3> N;
+  N.row(0) = n1.transpose();
+  N.row(1) = n2.transpose();
+  const Eigen::Vector2d rhs(-p1[3], -p2[3]);
+  *x = N.transpose() * (N * N.transpose()).ldlt().solve(rhs);
+  return true;
+}
+
+Body makeBody(const MovingRegion& m) {
+  Body b;
+  collectRaw(m.region, &b.raw);
+  b.sgn = m.region.signedAtoms();
+  b.el = m.elements ? *m.elements : boundaryElements(m.region, *m.box);
+  b.singular.assign(b.sgn.size(), false);
+  for (const BoundaryFace& f : b.el.faces) {
+    const Eigen::Matrix4d& Q = b.sgn[f.atom];
+    if (f.planar() && !isPlane(Q)) b.unsupported = "a pair of planes as one atom";
+    if (!f.planar() && std::fabs(Q.determinant()) <= 1e-12 * std::pow(Q.cwiseAbs().maxCoeff(), 4)) {
+      // A singular quadric: a cylinder (null vector at infinity) is fine; a cone's apex is a
+      // point contact of its own (not a vertex of the boundary elements): not handled here.
+      b.singular[f.atom] = true;
+      Eigen::FullPivLU<Eigen::Matrix4d> lu(Q);
+      const Eigen::MatrixXd K = lu.kernel();
+      for (int c = 0; c < K.cols(); ++c)
+        if (std::fabs(K(3, c)) > 1e-9 * K.col(c).norm()) b.unsupported = "a cone apex";
+    }
+  }
+  for (const BoundaryEdge& e : b.el.edges) {
+    EdgeGeometry g;
+    const BoundaryFace &f0 = b.el.faces[e.face0], &f1 = b.el.faces[e.face1];
+    if (e.kind == EdgeKind::Line) {
+      Eigen::Vector3d x, d;
+      if (!f0.planar() || !f1.planar() || !lineOfPlanes(planeOf(b.sgn[f0.atom]), planeOf(b.sgn[f1.atom]), &x, &d)) {
+        b.unsupported = "a line edge that is not the meet of two planes";
+      } else {
+        g.line = true;
+        g.U << x, 1.0;
+        g.D << d.normalized(), 0.0;
+      }
+    } else if (e.kind == EdgeKind::Conic) {
+      const bool p0 = f0.planar();
+      g.plane = planeOf(b.sgn[(p0 ? f0 : f1).atom]);
+      g.quadric = (p0 ? f1 : f0).atom;
+      const Eigen::Vector3d n = g.plane.head<3>();
+      const Eigen::Vector3d o = -g.plane[3] / n.squaredNorm() * n;
+      const Eigen::Vector3d e0 = n.unitOrthogonal(), e1 = n.normalized().cross(e0);
+      g.basis.col(0) << e0, 0.0;
+      g.basis.col(1) << e1, 0.0;
+      g.basis.col(2) << o, 1.0;
+      g.conic = g.basis.transpose() * b.sgn[g.quadric] * g.basis;
+    }
+    b.edges.push_back(g);
+  }
+  for (const BoundaryVertex& v : b.el.vertices) {
+    std::vector<int> planes, quadrics;
+    for (int fi : {v.face0, v.face1, v.face2}) (b.el.faces[fi].planar() ? planes : quadrics).push_back(b.el.faces[fi].atom);
+    std::vector<Eigen::Vector4d> pts;
+    if (planes.size() == 3) {
+      Eigen::Matrix3d N;
+      Eigen::Vector3d rhs;
+      for (int i = 0; i < 3; ++i) {
+        const Eigen::Vector4d p = planeOf(b.sgn[planes[i]]);
+        N.row(i) = p.head<3>().transpose();
+        rhs[i] = -p[3];
+      }
+      Eigen::FullPivLU<Eigen::Matrix3d> lu(N);
+      if (lu.isInvertible()) pts.push_back(Eigen::Vector4d(0, 0, 0, 1) + (Eigen::Vector4d() << lu.solve(rhs), 0.0).finished());
+    } else if (planes.size() == 2) {
+      Eigen::Vector3d x, d;
+      if (lineOfPlanes(planeOf(b.sgn[planes[0]]), planeOf(b.sgn[planes[1]]), &x, &d)) {
+        d.normalize();
+        const Eigen::Matrix4d& Q = b.sgn[quadrics[0]];
+        const Eigen::Vector4d U(x[0], x[1], x[2], 1.0), D(d[0], d[1], d[2], 0.0);
+        const double qa = D.dot(Q * D), qb = D.dot(Q * U), qc = U.dot(Q * U);
+        const double disc = qb * qb - qa * qc;
+        if (qa != 0.0 && disc >= 0.0) {
+          const double r = std::sqrt(disc);
+          for (double s : {(-qb - r) / qa, (-qb + r) / qa}) pts.push_back(U + s * D);
+        } else if (qa == 0.0 && qb != 0.0) {
+          pts.push_back(U - 0.5 * qc / qb * D);
+        }
+      }
+    }
+    b.vertices.push_back(pts);
+  }
+  for (const BoundaryEdge& e : b.el.edges)
+    if (e.kind == EdgeKind::Curve) b.unsupported = "a quartic edge (thesis §6.5)";
+  return b;
+}
+
+// Figure 29 predicates with a band: +1 interior, 0 boundary (within the band), -1 exterior.
+int classifyBand(const QuadricRegion& r, const std::vector<Eigen::Matrix4d>& posed, std::size_t* k,
+                 const Eigen::Vector3d& x, double band) {
+  switch (r.op()) {
+    case QuadricRegion::Op::Atom: {
+      const Eigen::Matrix4d& Q = posed[(*k)++];
+      const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
+      const Eigen::Vector4d QX = Q * X;
+      const double f = X.dot(QX);
+      const double grad = 2.0 * QX.head<3>().norm();
+      if (std::fabs(f) <= band * grad + band * band * Q.topLeftCorner<3, 3>().norm()) return 0;
+      return f < 0.0 ? 1 : -1;
+    }
+    case QuadricRegion::Op::Union: {
+      int best = -1;
+      for (const QuadricRegion& c : r.children()) best = std::max(best, classifyBand(c, posed, k, x, band));
+      return best;
+    }
+    case QuadricRegion::Op::Intersection: {
+      int worst = 1;
+      for (const QuadricRegion& c : r.children()) worst = std::min(worst, classifyBand(c, posed, k, x, band));
+      return worst;
+    }
+    case QuadricRegion::Op::Difference: {
+      int v = classifyBand(r.children()[0], posed, k, x, band);
+      for (std::size_t i = 1; i < r.children().size(); ++i) v = std::min(v, -classifyBand(r.children()[i], posed, k, x, band));
+      return v;
+    }
+  }
+  return 0;
+}
+
+std::vector<Eigen::Matrix4d> mul(const std::vector<Eigen::Matrix4d>& N, const std::vector<Eigen::Matrix4d>& M) {
+  std::vector<Eigen::Matrix4d> P(N.size() + M.size() - 1, Eigen::Matrix4d::Zero());
+  for (std::size_t k = 0; k < N.size(); ++k)
+    for (std::size_t l = 0; l < M.size(); ++l) P[k + l] += N[k] * M[l];
+  return P;
+}
+
+// The elements of one body as polynomials in a's frame on a piece.
+struct Posed {
+  std::vector<PMat> atoms;  // signed atoms
+  std::vector<PMat> raw;
+  std::vector<PVec> planes;                   // per face (planar faces only; else empty)
+  std::vector<PVec> edgeU, edgeD, edgePlane;  // per edge
+  std::vector<std::array<PVec, 3>> edgeBasis;  // per conic edge: the plane basis columns
+  std::vector<std::vector<PVec>> vertices;
+};
+
+// Points map by `Pinv` (X_a ~ Pinv X_b), covectors and quadrics by `P` (X_b ~ P X_a).
+Posed pose(const Body& b, const std::vector<Eigen::Matrix4d>& P, const std::vector<Eigen::Matrix4d>& Pinv) {
+  Posed o;
+  auto point = [&](const Eigen::Vector4d& X) {
+    PVec v;
+    for (const Eigen::Matrix4d& M : Pinv) v.push_back(M * X);
+    return v;
+  };
+  auto covector = [&](const Eigen::Vector4d& p) {
+    PVec v;
+    for (const Eigen::Matrix4d& M : P) v.push_back(M.transpose() * p);
+    return v;
+  };
+  auto quadric = [&](const Eigen::Matrix4d& Q) {
+    PMat S(2 * P.size() - 1, Eigen::Matrix4d::Zero());
+    for (std::size_t k = 0; k < P.size(); ++k)
+      for (std::size_t l = 0; l < P.size(); ++l) S[k + l] += P[k].transpose() * Q * P[l];
+    for (Eigen::Matrix4d& M : S) M = (0.5 * (M + M.transpose())).eval();
+    return S;
+  };
+  for (const Eigen::Matrix4d& Q : b.sgn) o.atoms.push_back(quadric(Q));
+  for (const Eigen::Matrix4d& Q : b.raw) o.raw.push_back(quadric(Q));
+  for (const BoundaryFace& f : b.el.faces) o.planes.push_back(f.planar() ? covector(planeOf(b.sgn[f.atom])) : PVec{});
+  for (const EdgeGeometry& e : b.edges) {
+    o.edgeU.push_back(e.line ? point(e.U) : PVec{});
+    o.edgeD.push_back(e.line ? point(e.D) : PVec{});
+    o.edgePlane.push_back(e.line ? PVec{} : covector(e.plane));
+    o.edgeBasis.push_back({point(e.basis.col(0)), point(e.basis.col(1)), point(e.basis.col(2))});
+  }
+  for (const auto& pts : b.vertices) {
+    std::vector<PVec> v;
+    for (const Eigen::Vector4d& X : pts) v.push_back(point(X));
+    o.vertices.push_back(v);
+  }
+  return o;
+}
+
+// A candidate's contact point at piece time u, in a's frame: a point, none (not a real contact
+// of the extended elements: rejected), or undefined (degenerate: the answer becomes Undecided).
+struct PointAt {
+  enum Kind { Point, None, Degenerate } kind = None;
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+};
+PointAt degenerate() {
+  PointAt p;
+  p.kind = PointAt::Degenerate;
+  return p;
+}
+PointAt affine(const Eigen::Vector4d& X, double scale) {
+  PointAt p;
+  if (std::fabs(X[3]) <= 1e-12 * X.head<3>().norm() / scale || X.norm() == 0.0) {
+    p.kind = X.norm() == 0.0 ? PointAt::Degenerate : PointAt::None;
+    return p;
+  }
+  p.kind = PointAt::Point;
+  p.x = X.head<3>() / X[3];
+  return p;
+}
+
+// The root of p in an isolating interval: refined to kReductionRootWidth when it is a certified
+// simple root (a sign bracket), else the interval's midpoint (an unresolved interval is narrower
+// than kReductionRootWidth).
+double refined(const BernsteinPolynomial& p, const RootInterval& r) {
+  if (r.kind != RootKind::Single || r.lo == r.hi) return 0.5 * (r.lo + r.hi);
+  const double flo = p.evaluate(r.lo), fhi = p.evaluate(r.hi);
+  if (flo == 0.0) return r.lo;
+  if (fhi == 0.0) return r.hi;
+  if ((flo < 0.0) == (fhi < 0.0)) return 0.5 * (r.lo + r.hi);  // rounding at the ends
+  return refineRoot(p, r.lo, r.hi, kReductionRootWidth);
+}
+
+struct Task {
+  CcdSubproblem sp;
+  Poly g;
+  std::function<std::vector<PointAt>(double)> points;
+  /// g evaluated at u from the elements evaluated at u (pencil tasks): the expansion of g in u
+  /// loses digits to cancellation at high degree, so its roots are refined on this.
+  std::function<double(double)> value;
+  /// Quadric-quadric tasks: Lemma 6.2 / §6.3.2 at a contact moment (reported, not a filter).
+  std::function<std::optional<ContactConfiguration>(double)> configuration;
+  /// Pencil tasks: f(λ; u) without its structural zeros; the candidates come from
+  /// tangencySeeds, searched after the other tasks' candidates (pruned by their best time).
+  std::vector<Poly> pencil;
+};
+
+// A root of `value` near u0 (a root of the expanded polynomial): the nearest sign change within
+// widening windows (1e-9 ... 1e-2), bisected to kReductionRootWidth; u0 if none (a graze).
+double refineNumerically(const std::function<double(double)>& value, double u0) {
+  const double f0 = value(u0);
+  if (f0 == 0.0) return u0;
+  for (double w = 1e-9; w <= 1e-2; w *= 10.0) {
+    const double lo = std::max(0.0, u0 - w), hi = std::min(1.0, u0 + w);
+    double a = 0.0, b = 0.0;
+    if ((value(lo) < 0.0) != (f0 < 0.0)) {
+      a = lo;
+      b = u0;
+    } else if ((value(hi) < 0.0) != (f0 < 0.0)) {
+      a = u0;
+      b = hi;
+    } else {
+      continue;
+    }
+    const bool neg_a = value(a) < 0.0;
+    for (int i = 0; i < 60 && b - a > kReductionRootWidth; ++i) {
+      const double m = 0.5 * (a + b);
+      ((value(m) < 0.0) == neg_a ? a : b) = m;
+    }
+    return 0.5 * (a + b);
+  }
+  return u0;
+}
+
+// A pencil subproblem: g is the discriminant of the characteristic polynomial f(λ; u), and the
+// contact points at a candidate u come from the multiple root λ0 of f(·; u). False when the
+// discriminant vanishes identically (two spheres, parallel cylinders: a permanent multiple root;
+// the thesis's next subresultant is not implemented).
+// The moments u at which f(λ; u) = sum_k g_k(u) λ^k has a negative multiple root (external
+// tangency, thesis §6.2.2), as seeds within kPencilSeedWidth: the common zeros of F and dF/dx,
+// F(x, u) = x^m f((x - 1)/x; u) (λ = (x - 1)/x maps λ < 0 to x in (0, 1), as the CCD function
+// of thesis §5.3), by subdivision of [0, 1]^2 with the Bernstein bounds of F and F_x. The
+// discriminant of f in λ, expanded in u (degree up to 120), loses ~1e-3 of u to cancellation
+// (measured); F and F_x do not cancel. None when kPencilMaxBoxes is reached (a curve of
+// multiple roots: spheres, coaxial cylinders).
+// Boxes are searched depth first, earlier t first; `accept(u)` is called on each new seed (in
+// the search's order, not sorted) and returns the time limit below which the search goes on (a
+// verified contact at u returns u: later boxes are pruned). Returns false at the box cap.
+bool tangencySeeds(const LPoly& g, double limit, const std::function<double(double)>& accept) {
+  const int m = static_cast<int>(g.size()) - 1;
+  std::size_t d = 1;
+  for (const Poly& p : g) d = std::max(d, p.c.size());
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(m + 1, d);
+  for (int k = 0; k <= m; ++k)
+    for (int i = 0; i <= k; ++i) {
+      double binom = 1.0;
+      for (int q = 1; q <= i; ++q) binom = binom * (k - q + 1) / q;
+      const double w = binom * (((k - i) % 2) ? -1.0 : 1.0);
+      for (std::size_t j = 0; j < g[k].c.size(); ++j) P(i + m - k, j) += w * g[k].c[j];
+    }
+  const double scale = P.cwiseAbs().maxCoeff();
+  if (scale == 0.0) return false;
+  P /= scale;
+  const BivariateBernstein F = BivariateBernstein::fromPower(P), Fx = F.derivativeU();
+  const double pad = 1e-12 * F.coefficients().cwiseAbs().maxCoeff(), padx = 1e-12 * Fx.coefficients().cwiseAbs().maxCoeff();
+  std::vector<std::array<double, 4>> stack{{0.0, 1.0, 0.0, 1.0}};
+  double last_seed = -1.0;
+  int boxes = 0;
+  while (!stack.empty()) {
+    const std::array<double, 4> b = stack.back();
+    stack.pop_back();
+    if (b[2] > limit) continue;
+    if (++boxes > kPencilMaxBoxes) return false;
+    const BivariateBernstein Fb = F.restrict(b[0], b[1], b[2], b[3]);
+    if (Fb.minCoefficient() > pad || Fb.maxCoefficient() < -pad) continue;
+    const BivariateBernstein Fxb = Fx.restrict(b[0], b[1], b[2], b[3]);
+    if (Fxb.minCoefficient() > padx || Fxb.maxCoefficient() < -padx) continue;
+    const double wx = b[1] - b[0], wt = b[3] - b[2];
+    if (wx <= kPencilSeedWidth && wt <= kPencilSeedWidth) {
+      const double u = 0.5 * (b[2] + b[3]);
+      if (std::fabs(u - last_seed) > 10 * kPencilSeedWidth) limit = std::min(limit, accept(u));
+      last_seed = u;
+      continue;
+    }
+    if (wx >= wt) {
+      const double mid = 0.5 * (b[0] + b[1]);
+      stack.push_back({mid, b[1], b[2], b[3]});
+      stack.push_back({b[0], mid, b[2], b[3]});
+    } else {
+      const double mid = 0.5 * (b[2] + b[3]);
+      stack.push_back({b[0], b[1], mid, b[3]});
+      stack.push_back({b[0], b[1], b[2], mid});
+    }
+  }
+  return true;
+}
+
+// `numeric(u)` gives the pencil's numeric characteristic coefficients at u (all f.size() of
+// them, from the matrices evaluated at u): the discriminant's value at u without the expansion in
+// u (task.value, for refining the candidates) and the multiple root for the contact point.
+void pencilTask(Task& task, const LPoly& f, std::function<std::vector<double>(double)> numeric,
+                std::function<std::vector<PointAt>(double, double)> at_root) {
+  const std::pair<std::size_t, std::size_t> range = structuralRange(f);
+  task.points = [](double) { return std::vector<PointAt>{}; };
+  if (range.second < range.first + 3) return;  // degree <= 1 in λ: no multiple root
+  task.pencil = LPoly(f.begin() + range.first, f.begin() + range.second);
+  auto stripped = [numeric, range](double u) {
+    const std::vector<double> c = numeric(u);
+    return std::vector<double>(c.begin() + range.first, c.begin() + range.second);
+  };
+  task.value = [stripped](double u) { return *discriminantFormula(stripped(u), [](double v) { return v; }); };
+  task.points = [stripped, at_root](double u) {
+    const std::optional<double> lambda = multipleRoot(stripped(u));
+    if (!lambda) return std::vector<PointAt>{};
+    return at_root(u, *lambda);
+  };
+}
+
+// "<type> subproblem <element of a>/<element of b> <why>": the reason of an Undecided answer.
+std::string describe(const CcdSubproblem& sp, const std::string& why) {
+  return std::string(toString(sp.type)) + " subproblem " + elementLabel(sp.kind_a, sp.index_a) + "/" +
+         elementLabel(sp.kind_b, sp.index_b) + " " + why;
+}
+
+}  // namespace
+
+ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, const MovingRegion& b) {
+  ReductionCcdResult res;
+  if (!a.box || !b.box) {
+    res.reason = "an unbounded body";
+    return res;
+  }
+  const Body A = makeBody(a), B = makeBody(b);
+  if (!A.unsupported.empty() || !B.unsupported.empty()) {
+    res.reason = !A.unsupported.empty() ? "a: " + A.unsupported : "b: " + B.unsupported;
+    return res;
+  }
+  const std::vector<CcdSubproblem> sps = identifySubproblems(A.el, B.el);
+  for (const CcdSubproblem& sp : sps)
+    if (sp.type == SubproblemType::Curve) {
+      res.reason = describe(sp, "involves a quartic edge (thesis §6.5: not handled here)");
+      return res;
+    }
+  const double size = std::max((a.box->hi - a.box->lo).maxCoeff(), (b.box->hi - b.box->lo).maxCoeff());
+  const double band = kReductionVerifyRelative * size;
+
+  // Start: the pair at t = 0 (static engine).
+  {
+    const Eigen::Matrix4d Xa = a.motion.evaluate(0.0), Xb = b.motion.evaluate(0.0);
+    const Eigen::Matrix4d Xab = Xa.inverse() * Xb;
+    const Eigen::Matrix3d R = Xab.topLeftCorner<3, 3>();
+    if ((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-9 || std::fabs(Xab(3, 3) - 1.0) > 1e-12) {
+      res.reason = "a non-rigid pose at t = 0";
+      return res;
+    }
+    const RegionCollision c0 = collideRegions(a.region, *a.box, b.region, *b.box, R, Xab.block<3, 1>(0, 3));
+    if (c0.relation != RegionRelation::Separated) {
+      res.status = ReductionStatus::Decided;
+      res.collide = true;
+      res.time = 0.0;
+      res.point = Xa.topLeftCorner<3, 3>() * c0.point + Xa.block<3, 1>(0, 3);
+      return res;
+    }
+  }
+
+  std::vector<double> breaks = a.motion.breaks();
+  breaks.insert(breaks.end(), b.motion.breaks().begin(), b.motion.breaks().end());
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+
+  for (std::size_t piece = 0; piece + 1 < breaks.size(); ++piece) {
+    const double s0 = breaks[piece], s1 = breaks[piece + 1];
+    const MotionMatrix ma = a.motion.restricted(s0, s1), mb = b.motion.restricted(s0, s1);
+    const std::vector<Eigen::Matrix4d> P = mul(mb.inverseCoefficients(), ma.matrixCoefficients());
+    const std::vector<Eigen::Matrix4d> Pinv = mul(ma.inverseCoefficients(), mb.matrixCoefficients());
+    if (2 * static_cast<int>(P.size() - 1) > tolerance_region::kRegionCcdMaxDegree)
+      throw std::invalid_argument("continuousCollideRegionsByReduction: relative motion of degree " +
+                                  std::to_string(P.size() - 1) + " exceeds kRegionCcdMaxDegree / 2");
+    const Posed pa = pose(A, {Eigen::Matrix4d::Identity()}, {Eigen::Matrix4d::Identity()});
+    const Posed pb = pose(B, P, Pinv);
+
+    // The subproblems' polynomials and contact points.
+    std::vector<Task> tasks;
+    auto faceOf = [&](const Posed& p, const Body& body, int f) -> const PMat& { return p.atoms[body.el.faces[f].atom]; };
+    for (const CcdSubproblem& sp : sps) {
+      const bool a_first = sp.kind_a != ElementKind::Vertex && (sp.kind_a == ElementKind::Face || sp.kind_b == ElementKind::Edge);
+      // Orient: (x, ix) is the element with the higher dimension (face before edge before vertex).
+      const Posed& px = a_first ? pa : pb;
+      const Posed& py = a_first ? pb : pa;
+      const Body& bx = a_first ? A : B;
+      const Body& by = a_first ? B : A;
+      const int ix = a_first ? sp.index_a : sp.index_b, iy = a_first ? sp.index_b : sp.index_a;
+      Task task;
+      task.sp = sp;
+      switch (sp.type) {
+        case SubproblemType::FaceVertex: {
+          const PMat& S = faceOf(px, bx, ix);
+          for (const PVec& X : py.vertices[iy]) {
+            Task t = task;
+            t.g = form(X, S, X);
+            t.value = [X, S](double u) {
+              const Eigen::Vector4d x = at(X, u);
+              return x.dot(at(S, u) * x);
+            };
+            t.points = [X](double u) { return std::vector<PointAt>{affine(at(X, u), 1.0)}; };
+            tasks.push_back(std::move(t));
+          }
+          break;
+        }
+        case SubproblemType::QuadricLine: {
+          const PMat& S = faceOf(px, bx, ix);
+          const PVec &U = py.edgeU[iy], &D = py.edgeD[iy];
+          const Poly qa = form(D, S, D), qb = form(D, S, U), qc = form(U, S, U);
+          task.g = qb * qb - qa * qc;
+          task.value = [S, U, D](double u) {
+            const Eigen::Matrix4d Su = at(S, u);
+            const Eigen::Vector4d Uu = at(U, u), Du = at(D, u);
+            const double a2 = Du.dot(Su * Du), b2 = Du.dot(Su * Uu), c2 = Uu.dot(Su * Uu);
+            return b2 * b2 - a2 * c2;
+          };
+          task.points = [S, U, D](double u) {
+            const Eigen::Matrix4d Su = at(S, u);
+            const Eigen::Vector4d Uu = at(U, u), Du = at(D, u);
+            const double sa = Du.dot(Su * Du), sb = Du.dot(Su * Uu);
+            if (std::fabs(sa) <= 1e-14 * Su.norm() * Du.squaredNorm()) return std::vector<PointAt>{PointAt()};
+            return std::vector<PointAt>{affine(Uu - sb / sa * Du, 1.0)};
+          };
+          tasks.push_back(std::move(task));
+          break;
+        }
+        case SubproblemType::QuadricPlane: {
+          // Orient so that S is the curved face and π the plane.
+          const bool x_planar = bx.el.faces[ix].planar();
+          const Posed& pq = x_planar ? py : px;
+          const Posed& pp = x_planar ? px : py;
+          const Body& bq = x_planar ? by : bx;
+          const int iq = x_planar ? iy : ix, ip = x_planar ? ix : iy;
+          // A cylinder (singular S; cones are not handled here) touches a plane only along a
+          // line parallel to its axis, which ends on the elements that bound the face (rims,
+          // the plane's edges) and is found there: π^T adj(S) π = k (π.z)^2 only marks the
+          // moments the plane is parallel to the axis z (identically, for a translation).
+          if (bq.singular[bq.el.faces[iq].atom]) break;
+          const PMat& S = faceOf(pq, bq, iq);
+          const PVec& pi = pp.planes[ip];
+          task.g = -bordered(S, {pi});
+          task.value = [S, pi](double u) {
+            Eigen::Matrix<double, 5, 5> M = Eigen::Matrix<double, 5, 5>::Zero();
+            M.topLeftCorner<4, 4>() = at(S, u);
+            M.block<4, 1>(0, 4) = at(pi, u);
+            M.block<1, 4>(4, 0) = at(pi, u).transpose();
+            return -M.fullPivLu().determinant();
+          };
+          task.points = [S, pi](double u) {
+            const Eigen::Matrix4d Su = at(S, u);
+            const Eigen::Vector4d p = at(pi, u);
+            // The pole adj(S) π: for a regular S the solution of S X = π.
+            Eigen::FullPivLU<Eigen::Matrix4d> lu(Su);
+            if (!lu.isInvertible()) return std::vector<PointAt>{PointAt()};  // cylinder: at infinity
+            return std::vector<PointAt>{affine(lu.solve(p), 1.0)};
+          };
+          tasks.push_back(std::move(task));
+          break;
+        }
+        case SubproblemType::PlaneConic: {
+          const PVec& p1 = px.planes[ix];
+          const PVec& p2 = py.edgePlane[iy];
+          const PMat& S = py.atoms[by.edges[iy].quadric];
+          task.g = bordered(S, {p1, p2});
+          task.value = [S, p1, p2](double u) {
+            Eigen::Matrix<double, 6, 6> M = Eigen::Matrix<double, 6, 6>::Zero();
+            M.topLeftCorner<4, 4>() = at(S, u);
+            M.block<4, 1>(0, 4) = at(p1, u);
+            M.block<4, 1>(0, 5) = at(p2, u);
+            M.block<1, 4>(4, 0) = at(p1, u).transpose();
+            M.block<1, 4>(5, 0) = at(p2, u).transpose();
+            return M.fullPivLu().determinant();
+          };
+          task.points = [S, p1, p2](double u) {
+            const Eigen::Vector4d q1 = at(p1, u), q2 = at(p2, u);
+            Eigen::Vector3d x, d;
+            if (!lineOfPlanes(q1, q2, &x, &d)) return std::vector<PointAt>{degenerate()};
+            d.normalize();
+            const Eigen::Matrix4d Su = at(S, u);
+            const Eigen::Vector4d U(x[0], x[1], x[2], 1.0), D(d[0], d[1], d[2], 0.0);
+            const double sa = D.dot(Su * D), sb = D.dot(Su * U);
+            if (std::fabs(sa) <= 1e-14 * Su.norm()) return std::vector<PointAt>{PointAt()};
+            return std::vector<PointAt>{affine(U - sb / sa * D, 1.0)};
+          };
+          tasks.push_back(std::move(task));
+          break;
+        }
+        case SubproblemType::ConicLine: {
+          // x: the conic edge, y: the line edge (either body).
+          const bool x_line = bx.edges[ix].line;
+          const Posed& pc = x_line ? py : px;
+          const Posed& pl = x_line ? px : py;
+          const Body& bc = x_line ? by : bx;
+          const int ic = x_line ? iy : ix, il = x_line ? ix : iy;
+          const PVec& pi = pc.edgePlane[ic];
+          const PMat& S = pc.atoms[bc.edges[ic].quadric];
+          const PVec &U = pl.edgeU[il], &D = pl.edgeD[il];
+          // X = (π.D) U - (π.U) D: the line's point in the conic's plane.
+          PVec X = scaled(U, dot(pi, D));
+          const PVec Y = scaled(D, dot(pi, U));
+          X.resize(std::max(X.size(), Y.size()), Eigen::Vector4d::Zero());
+          for (std::size_t k = 0; k < Y.size(); ++k) X[k] -= Y[k];
+          task.g = form(X, S, X);
+          task.value = [X, S](double u) {
+            const Eigen::Vector4d x = at(X, u);
+            return x.dot(at(S, u) * x);
+          };
+          task.points = [X, S, pi, U, D, band](double u) {
+            const Eigen::Vector4d p = at(pi, u), Uu = at(U, u), Du = at(D, u);
+            const double n = p.head<3>().norm();
+            const Eigen::Vector3d x = Uu.head<3>() / Uu[3], d = Du.head<3>().normalized();
+            if (std::fabs(p.head<3>().dot(d)) > 1e-9 * n) return std::vector<PointAt>{affine(at(X, u), 1.0)};
+            // The line is parallel to the conic's plane: it meets the conic only when it lies in
+            // the plane (within the band), where it crosses the conic at the roots of the
+            // quadric along it (or touches it).
+            if (std::fabs(p.head<3>().dot(x) + p[3]) > band * n) return std::vector<PointAt>{PointAt()};
+            const Eigen::Matrix4d Su = at(S, u);
+            const Eigen::Vector4d X0(x[0], x[1], x[2], 1.0), D0(d[0], d[1], d[2], 0.0);
+            const double qa = D0.dot(Su * D0), qb = D0.dot(Su * X0), qc = X0.dot(Su * X0);
+            std::vector<PointAt> out;
+            auto push = [&](double s) {
+              PointAt q;
+              q.kind = PointAt::Point;
+              q.x = x + s * d;
+              out.push_back(q);
+            };
+            if (std::fabs(qa) <= 1e-14 * Su.norm()) {
+              if (qb != 0.0) push(-0.5 * qc / qb);
+            } else {
+              const double disc = qb * qb - qa * qc;
+              const double r = disc > 0.0 ? std::sqrt(disc) : 0.0;
+              push((-qb - r) / qa);
+              push((-qb + r) / qa);
+            }
+            return out;
+          };
+          tasks.push_back(std::move(task));
+          break;
+        }
+        case SubproblemType::LineLine: {
+          const PVec &U1 = px.edgeU[ix], &D1 = px.edgeD[ix], &U2 = py.edgeU[iy], &D2 = py.edgeD[iy];
+          task.g = det4(U1, D1, U2, D2);
+          task.value = [U1, D1, U2, D2](double u) {
+            Eigen::Matrix4d M;
+            M << at(U1, u), at(D1, u), at(U2, u), at(D2, u);
+            return M.determinant();
+          };
+          task.points = [U1, D1, U2, D2](double u) {
+            const Eigen::Vector4d u1 = at(U1, u), d1 = at(D1, u), u2 = at(U2, u), d2 = at(D2, u);
+            const Eigen::Vector3d x1 = u1.head<3>() / u1[3], x2 = u2.head<3>() / u2[3];
+            const Eigen::Vector3d e1 = d1.head<3>(), e2 = d2.head<3>();
+            const Eigen::Vector3d n = e1.cross(e2);
+            if (n.norm() <= 1e-12 * e1.norm() * e2.norm()) return std::vector<PointAt>{degenerate()};
+            // Closest points: x1 + s e1, x2 + r e2.
+            const Eigen::Vector3d w = x2 - x1;
+            const double s = w.cross(e2).dot(n) / n.squaredNorm(), r = w.cross(e1).dot(n) / n.squaredNorm();
+            PointAt p;
+            p.kind = PointAt::Point;
+            p.x = 0.5 * ((x1 + s * e1) + (x2 + r * e2));
+            return std::vector<PointAt>{p};
+          };
+          tasks.push_back(std::move(task));
+          break;
+        }
+        case SubproblemType::QuadricQuadric: {
+          // §6.2.2 face-face: a double root of det(λ A - S(u)) (a's face A is constant).
+          const Eigen::Matrix4d Aq = A.sgn[A.el.faces[sp.index_a].atom];
+          const PMat& S = pb.atoms[B.el.faces[sp.index_b].atom];
+          PolyMatrix M1(4, std::vector<Poly>(4)), M2(4, std::vector<Poly>(4));
+          for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) {
+              M1[i][j] = entry(PMat{Aq}, i, j);
+              M2[i][j] = entry(S, i, j);
+            }
+          task.configuration = [Aq, S](double u) -> std::optional<ContactConfiguration> {
+            const Eigen::Matrix4d Bu = at(S, u);
+            for (double lambda : multipleRoots(Aq, Bu))
+              if (lambda < 0.0) return contactConfiguration(Aq, Bu, lambda);
+            return std::nullopt;
+          };
+          pencilTask(task, characteristic(M1, M2),
+                          [Aq, S](double u) { return numericCharacteristic(Aq, at(S, u), Eigen::MatrixXd(4, 0), 5); },
+                          [Aq, S](double u, double lambda) {
+                std::vector<PointAt> out;
+                for (const Eigen::VectorXd& X : nullPoints(lambda * Aq - at(S, u), Aq)) out.push_back(affine(X, 1.0));
+                return out;
+              });
+          tasks.push_back(std::move(task));
+          break;
+        }
+        case SubproblemType::QuadricConic: {
+          // §6.2.2 quadric-conic: the quadric's section by the conic's plane against the conic,
+          // in the plane's coordinates y (X = E y).
+          const bool conic_in_a = sp.kind_a == ElementKind::Edge;
+          const Body& bc = conic_in_a ? A : B;
+          const Posed& pc = conic_in_a ? pa : pb;
+          const Posed& pf = conic_in_a ? pb : pa;
+          const Body& bf = conic_in_a ? B : A;
+          const int ie = conic_in_a ? sp.index_a : sp.index_b, jf = conic_in_a ? sp.index_b : sp.index_a;
+          const std::array<PVec, 3> E = pc.edgeBasis[ie];
+          const Eigen::Matrix3d Cc = bc.edges[ie].conic;
+          const PMat& S = pf.atoms[bf.el.faces[jf].atom];
+          PolyMatrix M1(3, std::vector<Poly>(3)), M2(3, std::vector<Poly>(3));
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) {
+              M1[i][j].add(0, Cc(i, j), std::fabs(Cc(i, j)));
+              M2[i][j] = form(E[i], S, E[j]);
+            }
+          auto restricted = [S, E](double u) {
+            Eigen::Matrix<double, 4, 3> Eu;
+            for (int k = 0; k < 3; ++k) Eu.col(k) = at(E[k], u);
+            return Eigen::Matrix3d(Eu.transpose() * at(S, u) * Eu);
+          };
+          pencilTask(task, characteristic(M1, M2),
+                          [Cc, restricted](double u) { return numericCharacteristic(Cc, restricted(u), Eigen::MatrixXd(3, 0), 4); },
+                          [Cc, S, E](double u, double lambda) {
+                Eigen::Matrix<double, 4, 3> Eu;
+                for (int k = 0; k < 3; ++k) Eu.col(k) = at(E[k], u);
+                const Eigen::Matrix3d Cf = Eu.transpose() * at(S, u) * Eu;
+                std::vector<PointAt> out;
+                for (const Eigen::VectorXd& y : nullPoints(lambda * Cc - Cf, Cc)) out.push_back(affine(Eu * y, 1.0));
+                return out;
+              });
+          tasks.push_back(std::move(task));
+          break;
+        }
+        case SubproblemType::ConicConic: {
+          // §6.2.2 conic-conic, reduced to 1D: on the line ℓ = π_a ∩ π_b (in a's conic plane
+          // coordinates y) the two conics cut intervals; they touch when the two binary forms
+          // share a root: the bordered pencil det [[λ C_a - C_b', ℓ], [ℓ^T, 0]] (quadratic in
+          // λ) has a double root. C_b' is b's conic quadric cut by a's plane, which agrees with
+          // b's conic on ℓ.
+          const EdgeGeometry& ea = A.edges[sp.index_a];
+          const Eigen::Matrix3d Ca = ea.conic;
+          const Eigen::Matrix<double, 4, 3> Ea = ea.basis;
+          const PMat& Sb = pb.atoms[B.edges[sp.index_b].quadric];
+          const PVec& pib = pb.edgePlane[sp.index_b];
+          PolyMatrix M1(3, std::vector<Poly>(3)), M2(3, std::vector<Poly>(3));
+          std::vector<Poly> ell(3);
+          for (int i = 0; i < 3; ++i) {
+            ell[i] = dot(PVec{Ea.col(i)}, pib);
+            for (int j = 0; j < 3; ++j) {
+              M1[i][j].add(0, Ca(i, j), std::fabs(Ca(i, j)));
+              M2[i][j] = form(PVec{Ea.col(i)}, Sb, PVec{Ea.col(j)});
+            }
+          }
+          pencilTask(task, characteristic(M1, M2, {ell}),
+                          [Ca, Ea, Sb, pib](double u) {
+                            const Eigen::Matrix3d Cb = Ea.transpose() * at(Sb, u) * Ea;
+                            const Eigen::MatrixXd l = Ea.transpose() * at(pib, u);
+                            return numericCharacteristic(Ca, Cb, l, 3);
+                          },
+                          [Ca, Ea, pib](double u, double) {
+                // The points of a's conic on ℓ (the candidate point is one of them).
+                const Eigen::Vector3d l = Ea.transpose() * at(pib, u);
+                const double nl = l.head<2>().norm();
+                std::vector<PointAt> out;
+                if (nl <= 1e-12 * l.norm()) return out;  // the planes are parallel
+                const Eigen::Vector3d y0(-l[2] * l[0] / (nl * nl), -l[2] * l[1] / (nl * nl), 1.0), d(-l[1] / nl, l[0] / nl, 0.0);
+                const double qa = d.dot(Ca * d), qb = d.dot(Ca * y0), qc = y0.dot(Ca * y0);
+                const double disc = qb * qb - qa * qc;
+                if (std::fabs(qa) <= 1e-14 * Ca.norm() || disc < -1e-9 * (qb * qb + std::fabs(qa * qc))) return out;
+                const double r = disc > 0.0 ? std::sqrt(disc) : 0.0;
+                for (double sgn : {-1.0, 1.0}) out.push_back(affine(Ea * (y0 + ((-qb + sgn * r) / qa) * d), 1.0));
+                return out;
+              });
+          tasks.push_back(std::move(task));
+          break;
+        }
+        case SubproblemType::PlaneLine:  // found on the bounding elements (file comment)
+        default: break;
+      }
+    }
+    res.subproblems += static_cast<int>(sps.size());
+
+    // Candidates: roots and near-zero extrema of each g, sorted by time.
+    struct Candidate {
+      double u;
+      std::size_t task;
+    };
+    std::vector<Candidate> cands;
+    for (std::size_t k = 0; k < tasks.size(); ++k) {
+      Poly& g = tasks[k].g;
+      if (g.c.empty()) continue;  // pencil tasks (seeds above), or no candidate
+      double cmax = 0.0, mmax = 0.0;
+      for (std::size_t i = 0; i < g.c.size(); ++i) {
+        cmax = std::max(cmax, std::fabs(g.c[i]));
+        mmax = std::max(mmax, g.mag[i]);
+      }
+      if (cmax <= kReductionZeroRelative * mmax) {
+        res.reason = describe(tasks[k].sp, "is degenerate (identically zero)");
+        return res;
+      }
+      std::vector<double> c = g.c;
+      const double inv = 1.0 / cmax;
+      for (double& v : c) v *= inv;
+      const BernsteinPolynomial bp = BernsteinPolynomial::fromPower(Polynomial(c));
+      auto seed = [&](double u) { return tasks[k].value ? refineNumerically(tasks[k].value, u) : u; };
+      for (const RootInterval& r : isolateRoots(bp, kReductionRootWidth)) cands.push_back({seed(refined(bp, r)), k});
+      // Grazing candidates: extrema with |g| near zero.
+      const BernsteinPolynomial dp = bp.derivative();
+      std::vector<double> mag = g.mag;
+      for (double& v : mag) v *= inv;
+      const Polynomial pm(mag);
+      for (const RootInterval& r : isolateRoots(dp, kReductionRootWidth)) {
+        const double u = refined(dp, r);
+        if (std::fabs(bp.evaluate(u)) <= kReductionNearRootRelative * std::max(pm(u), 1e-300)) cands.push_back({seed(u), k});
+      }
+    }
+    std::sort(cands.begin(), cands.end(), [](const Candidate& x, const Candidate& y) { return x.u < y.u; });
+
+    // Verification (Figure 29 predicates with the band); the earliest verified candidate wins.
+    double best = 2.0;  // piece time of the best verified contact
+    std::string degenerate_reason;
+    auto verify = [&](const Task& task, double u) {
+      ++res.candidates;
+      std::vector<Eigen::Matrix4d> posedA, posedB;
+      for (const PMat& S : pa.raw) posedA.push_back(at(S, u));
+      for (const PMat& S : pb.raw) posedB.push_back(at(S, u));
+      for (const PointAt& p : task.points(u)) {
+        if (p.kind == PointAt::Degenerate) {
+          degenerate_reason = describe(task.sp, "has a degenerate contact point");
+          return false;
+        }
+        if (p.kind != PointAt::Point) continue;
+        std::size_t ka = 0, kb = 0;
+        if (classifyBand(a.region, posedA, &ka, p.x, band) < 0) continue;
+        if (classifyBand(b.region, posedB, &kb, p.x, band) < 0) continue;
+        if (u < best) {
+          best = u;
+          res.time = s0 + (s1 - s0) * u;
+          const Eigen::Matrix4d Xa = a.motion.evaluate(res.time);
+          res.point = Xa.topLeftCorner<3, 3>() * p.x + Xa.block<3, 1>(0, 3);
+          res.subproblem = task.sp;
+          res.label_a = elementLabel(task.sp.kind_a, task.sp.index_a);
+          res.label_b = elementLabel(task.sp.kind_b, task.sp.index_b);
+          res.configuration = task.configuration ? task.configuration(u) : std::nullopt;
+        }
+        return true;
+      }
+      return false;
+    };
+    for (const Candidate& cd : cands) {
+      if (verify(tasks[cd.task], cd.u)) break;
+      if (!degenerate_reason.empty()) break;
+    }
+    // Pencil tasks: their seeds, only before the best contact so far.
+    for (std::size_t k = 0; k < tasks.size() && degenerate_reason.empty(); ++k) {
+      const Task& task = tasks[k];
+      if (task.pencil.empty()) continue;
+      const bool complete = tangencySeeds(task.pencil, std::min(best, 1.0), [&](double seed) {
+        const double u = refineNumerically(task.value, seed);
+        if (u < best && verify(task, u)) return best;
+        return 2.0;
+      });
+      if (!complete) {
+        res.reason = describe(task.sp, "has a curve of multiple roots (subdivision cap reached)");
+        return res;
+      }
+    }
+    if (!degenerate_reason.empty()) {
+      res.reason = degenerate_reason;
+      return res;
+    }
+    if (best <= 1.0) {
+      res.status = ReductionStatus::Decided;
+      res.collide = true;
+      return res;
+    }
+  }
+  res.status = ReductionStatus::Decided;
+  res.collide = false;
+  res.time = 1.0;
+  return res;
+}
+
+}  // namespace fcl_quadric
