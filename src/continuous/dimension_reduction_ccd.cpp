@@ -200,6 +200,19 @@ LPoly ldet(const std::vector<std::vector<LPoly>>& m) {
   return r;
 }
 
+// Largest |coefficient| of p, largest magnitude, and "p is zero up to its own rounding".
+double maxAbs(const Poly& p) {
+  double m = 0.0;
+  for (double v : p.c) m = std::max(m, std::fabs(v));
+  return m;
+}
+double maxMag(const Poly& p) {
+  double m = 0.0;
+  for (double v : p.mag) m = std::max(m, v);
+  return m;
+}
+bool vanishes(const Poly& p) { return maxAbs(p) <= kReductionZeroRelative * maxMag(p); }
+
 // det(λ M1 - M2) for square matrices of polynomials in u, optionally bordered by covectors
 // (det [[λ M1 - M2, l], [l^T, 0]]: the pencil restricted to the subspace l.X = 0).
 LPoly characteristic(const PolyMatrix& M1, const PolyMatrix& M2, const std::vector<std::vector<Poly>>& borders = {}) {
@@ -212,17 +225,6 @@ LPoly characteristic(const PolyMatrix& M1, const PolyMatrix& M2, const std::vect
   return ldet(M);
 }
 
-double maxAbs(const Poly& p) {
-  double m = 0.0;
-  for (double v : p.c) m = std::max(m, std::fabs(v));
-  return m;
-}
-double maxMag(const Poly& p) {
-  double m = 0.0;
-  for (double v : p.mag) m = std::max(m, v);
-  return m;
-}
-bool vanishes(const Poly& p) { return maxAbs(p) <= kReductionZeroRelative * maxMag(p); }
 
 // The discriminant in λ of f after removing identically vanishing coefficients at both ends
 // (structural roots at λ = ∞ for a singular M1 and at λ = 0 for a singular M2: a cylinder's
@@ -249,11 +251,18 @@ std::optional<T> discriminantFormula(const std::vector<T>& g, K k) {
   return std::nullopt;
 }
 
-// Structural zeros at both ends of f (identically vanishing coefficients): [lo, hi).
+// Structural zeros at both ends of f (identically vanishing coefficients): [lo, hi). A
+// coefficient vanishes when it is zero within kReductionZeroRelative of its own magnitude, or
+// of the largest of f's coefficients (the pencils here pair matrices of comparable size, so a
+// coefficient 1e-11 below the others would put a root at |λ| ~ 1e-11 or 1e11: not a contact
+// of the bodies' scale).
 std::pair<std::size_t, std::size_t> structuralRange(const LPoly& f) {
+  double scale = 0.0;
+  for (const Poly& c : f) scale = std::max(scale, maxAbs(c));
+  auto zero = [&](const Poly& c) { return vanishes(c) || maxAbs(c) <= kReductionZeroRelative * scale; };
   std::size_t lo = 0, hi = f.size();
-  while (hi > lo && vanishes(f[hi - 1])) --hi;
-  while (lo < hi && vanishes(f[lo])) ++lo;
+  while (hi > lo && zero(f[hi - 1])) --hi;
+  while (lo < hi && zero(f[lo])) ++lo;
   return {lo, hi};
 }
 
@@ -705,10 +714,29 @@ bool tangencySeeds(const LPoly& g, double limit, const std::function<double(doub
 // `numeric(u)` gives the pencil's numeric characteristic coefficients at u (all f.size() of
 // them, from the matrices evaluated at u): the discriminant's value at u without the expansion in
 // u (task.value, for refining the candidates) and the multiple root for the contact point.
+//
+// Structural roots (a singular face: f's end coefficients vanish identically) hide a tangency at
+// λ = 0 or λ = ∞ from the stripped polynomial: when the lowest remaining coefficient c_lo(u)
+// vanishes, one more root reaches λ = 0 (for a cylinder cut parallel to its axis by a conic's
+// plane, the section's two lines merge: the plane becomes tangent along a line, crossing the
+// conic at the ends of the contact segment). Those moments are tasks of their own (`extra`):
+// the roots of c_lo (λ0 = 0) and of c_{hi-1} (λ0 = ∞; at_root then gets +infinity).
 void pencilTask(Task& task, const LPoly& f, std::function<std::vector<double>(double)> numeric,
-                std::function<std::vector<PointAt>(double, double)> at_root) {
+                std::function<std::vector<PointAt>(double, double)> at_root, std::vector<Task>* extra) {
   const std::pair<std::size_t, std::size_t> range = structuralRange(f);
   task.points = [](double) { return std::vector<PointAt>{}; };
+  auto boundaryEvent = [&](std::size_t index, double lambda) {
+    Task e;
+    e.sp = task.sp;
+    e.g = f[index];
+    e.value = [numeric, index](double u) { return numeric(u)[index]; };
+    e.points = [at_root, lambda](double u) { return at_root(u, lambda); };
+    extra->push_back(std::move(e));
+  };
+  if (range.second > range.first) {
+    if (range.first > 0) boundaryEvent(range.first, 0.0);
+    if (range.second < f.size()) boundaryEvent(range.second - 1, std::numeric_limits<double>::infinity());
+  }
   if (range.second < range.first + 3) return;  // degree <= 1 in λ: no multiple root
   task.pencil = LPoly(f.begin() + range.first, f.begin() + range.second);
   auto stripped = [numeric, range](double u) {
@@ -992,10 +1020,14 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
           pencilTask(task, characteristic(M1, M2),
                           [Aq, S](double u) { return numericCharacteristic(Aq, at(S, u), Eigen::MatrixXd(4, 0), 5); },
                           [Aq, S](double u, double lambda) {
+                const Eigen::Matrix4d Su = at(S, u);
+                const bool inf = std::isinf(lambda);
                 std::vector<PointAt> out;
-                for (const Eigen::VectorXd& X : nullPoints(lambda * Aq - at(S, u), Aq)) out.push_back(affine(X, 1.0));
+                for (const Eigen::VectorXd& X : nullPoints(inf ? Aq : Eigen::Matrix4d(lambda * Aq - Su), inf ? Su : Aq))
+                  out.push_back(affine(X, 1.0));
                 return out;
-              });
+              },
+              &tasks);
           tasks.push_back(std::move(task));
           break;
         }
@@ -1028,10 +1060,13 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
                 Eigen::Matrix<double, 4, 3> Eu;
                 for (int k = 0; k < 3; ++k) Eu.col(k) = at(E[k], u);
                 const Eigen::Matrix3d Cf = Eu.transpose() * at(S, u) * Eu;
+                const bool inf = std::isinf(lambda);
                 std::vector<PointAt> out;
-                for (const Eigen::VectorXd& y : nullPoints(lambda * Cc - Cf, Cc)) out.push_back(affine(Eu * y, 1.0));
+                for (const Eigen::VectorXd& y : nullPoints(inf ? Cc : Eigen::Matrix3d(lambda * Cc - Cf), inf ? Cf : Cc))
+                  out.push_back(affine(Eu * y, 1.0));
                 return out;
-              });
+              },
+              &tasks);
           tasks.push_back(std::move(task));
           break;
         }
@@ -1074,7 +1109,8 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
                 const double r = disc > 0.0 ? std::sqrt(disc) : 0.0;
                 for (double sgn : {-1.0, 1.0}) out.push_back(affine(Ea * (y0 + ((-qb + sgn * r) / qa) * d), 1.0));
                 return out;
-              });
+              },
+              &tasks);
           tasks.push_back(std::move(task));
           break;
         }
