@@ -46,6 +46,7 @@
 #include <fcl/narrowphase/continuous_collision.h>
 #include <fcl/narrowphase/distance.h>
 
+#include "fcl_quadric/continuous/dimension_reduction_ccd.h"
 #include "fcl_quadric/continuous/region_ccd.h"
 #include "fcl_quadric/fcl/collision.h"
 #include "fcl_quadric/fcl/distance.h"
@@ -117,17 +118,49 @@ std::vector<CylinderMotion>& cylinderMotions() {
   return motions;
 }
 
-fcl_quadric::RegionCcdResult regionCcd(const CylinderMotion& m) {
+// The pair of MovingRegions of a cylinder motion; with `elements`, each carries its boundary
+// elements (computed once, as fcl_quadric's shapes cache them).
+std::pair<fcl_quadric::MovingRegion, fcl_quadric::MovingRegion> cylinderRegions(const CylinderMotion& m, bool elements) {
   using fcl_quadric::MotionMatrix;
   using fcl_quadric::PiecewiseMotion;
   const CylinderPair& c = m.pair;
-  const fcl_quadric::MovingRegion a{fcl_quadric::bench::cappedCylinderRegion(c.r1, c.r1, c.L1),
-                                    Box3{Eigen::Vector3d(-c.r1, -c.r1, -0.5 * c.L1), Eigen::Vector3d(c.r1, c.r1, 0.5 * c.L1)},
-                                    PiecewiseMotion(MotionMatrix())};
-  const fcl_quadric::MovingRegion b{fcl_quadric::bench::cappedCylinderRegion(c.r2, c.r2, c.L2),
-                                    Box3{Eigen::Vector3d(-c.r2, -c.r2, -0.5 * c.L2), Eigen::Vector3d(c.r2, c.r2, 0.5 * c.L2)},
-                                    PiecewiseMotion(MotionMatrix::fromPoses(c.R, c.p + m.d, c.R, c.p - m.d))};
+  fcl_quadric::MovingRegion a{fcl_quadric::bench::cappedCylinderRegion(c.r1, c.r1, c.L1),
+                              Box3{Eigen::Vector3d(-c.r1, -c.r1, -0.5 * c.L1), Eigen::Vector3d(c.r1, c.r1, 0.5 * c.L1)},
+                              PiecewiseMotion(MotionMatrix())};
+  fcl_quadric::MovingRegion b{fcl_quadric::bench::cappedCylinderRegion(c.r2, c.r2, c.L2),
+                              Box3{Eigen::Vector3d(-c.r2, -c.r2, -0.5 * c.L2), Eigen::Vector3d(c.r2, c.r2, 0.5 * c.L2)},
+                              PiecewiseMotion(MotionMatrix::fromPoses(c.R, c.p + m.d, c.R, c.p - m.d))};
+  if (elements) {
+    a.elements = std::make_shared<const fcl_quadric::BoundaryElements>(fcl_quadric::boundaryElements(a.region, *a.box));
+    b.elements = std::make_shared<const fcl_quadric::BoundaryElements>(fcl_quadric::boundaryElements(b.region, *b.box));
+  }
+  return {a, b};
+}
+
+fcl_quadric::RegionCcdResult regionCcd(const CylinderMotion& m) {
+  const auto [a, b] = cylinderRegions(m, false);
   return fcl_quadric::continuousCollideRegions(a, b);
+}
+
+// Dimension reduction (thesis §6.2) with the engine as fallback, as fcl_quadric::continuousCollide
+// does under CCDC_POLYNOMIAL_SOLVER: {collide, time, decided by the reduction}.
+struct ReductionAnswer {
+  bool collide;
+  double time;
+  bool decided;
+};
+ReductionAnswer reductionCcd(const std::pair<fcl_quadric::MovingRegion, fcl_quadric::MovingRegion>& ab) {
+  const fcl_quadric::ReductionCcdResult r = fcl_quadric::continuousCollideRegionsByReduction(ab.first, ab.second);
+  if (r.status == fcl_quadric::ReductionStatus::Decided) return {r.collide, r.time, true};
+  const fcl_quadric::RegionCcdResult e = fcl_quadric::continuousCollideRegions(ab.first, ab.second);
+  return {e.collide, e.time, false};
+}
+
+std::vector<std::pair<fcl_quadric::MovingRegion, fcl_quadric::MovingRegion>>& cylinderRegionPairs() {
+  static std::vector<std::pair<fcl_quadric::MovingRegion, fcl_quadric::MovingRegion>> pairs;
+  if (pairs.empty())
+    for (const CylinderMotion& m : cylinderMotions()) pairs.push_back(cylinderRegions(m, true));
+  return pairs;
 }
 
 /// FCL's continuousCollide on the same translation: {collide, time of contact}.
@@ -157,6 +190,18 @@ void BM_CylindersCcdRegion(benchmark::State& state) {
     benchmark::DoNotOptimize(regionCcd(motions[i]));
     i = (i + 1) % motions.size();
   }
+}
+void BM_CylindersCcdReduction(benchmark::State& state) {
+  const auto& pairs = cylinderRegionPairs();  // boundary elements computed once, outside the timing
+  std::size_t i = 0, decided = 0, runs = 0;
+  for (auto _ : state) {
+    const ReductionAnswer r = reductionCcd(pairs[i]);
+    benchmark::DoNotOptimize(r);
+    decided += r.decided;
+    ++runs;
+    i = (i + 1) % pairs.size();
+  }
+  state.counters["decided"] = static_cast<double>(decided) / runs;
 }
 void BM_CylindersCcdFcl(benchmark::State& state, fcl::CCDSolverType solver) {
   const auto& motions = cylinderMotions();
@@ -204,6 +249,7 @@ void BM_CsgRingWedgeCcd(benchmark::State& state) {
 }
 
 BENCHMARK(BM_CylindersCcdRegion)->Name("QuadricShapes/CylindersCcd/RegionCcd")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CylindersCcdReduction)->Name("QuadricShapes/CylindersCcd/DimensionReduction")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_CylindersCcdFcl, naive, fcl::CCDC_NAIVE)
     ->Name("QuadricShapes/CylindersCcd/FclNaive")
     ->Unit(benchmark::kMillisecond);
@@ -604,7 +650,8 @@ int main(int argc, char** argv) {
   // Continuous: FCL's answers against the certified first contacts. A miss: the pair collides
   // (certified) and FCL reports no collision; late: FCL's time exceeds the certified one by more
   // than 1e-3; false: FCL reports a collision where the region CCD certified none.
-  int ccd_hits = 0, near = 0;
+  int ccd_hits = 0, near = 0, red_decided = 0, red_disagree = 0;
+  double red_worst = 0.0;
   int misses[2] = {0, 0}, late[2] = {0, 0}, falses[2] = {0, 0};
   double worst[2] = {0.0, 0.0};  // largest |FCL time - certified time| over pairs both call colliding
   const fcl::CCDSolverType solvers[2] = {fcl::CCDC_NAIVE, fcl::CCDC_CONSERVATIVE_ADVANCEMENT};
@@ -612,6 +659,10 @@ int main(int argc, char** argv) {
     const fcl_quadric::RegionCcdResult r = regionCcd(m);
     ccd_hits += r.collide;
     near += r.near_tangent;
+    const ReductionAnswer d = reductionCcd(cylinderRegions(m, true));
+    red_decided += d.decided;
+    if (d.decided && d.collide != r.collide) ++red_disagree;
+    if (d.decided && d.collide && r.collide) red_worst = std::max(red_worst, std::fabs(d.time - r.time));
     for (int s = 0; s < 2; ++s) {
       const auto [collide, toc] = fclCcd(m, solvers[s]);
       if (r.collide && !collide) ++misses[s];
@@ -625,5 +676,8 @@ int main(int argc, char** argv) {
               "missed, %d late, %d false, largest time error %.3g\n",
               cylinderMotions().size(), ccd_hits, near, misses[0], late[0], falses[0], worst[0], misses[1], late[1],
               falses[1], worst[1]);
+  std::printf("Dimension reduction on the same %zu translations: %d decided (the rest fall back to the engine), "
+              "%d disagree with the engine on collide, largest |time - engine time| %.3g\n",
+              cylinderMotions().size(), red_decided, red_disagree, red_worst);
   return 0;
 }
