@@ -230,25 +230,24 @@ LPoly characteristic(const PolyMatrix& M1, const PolyMatrix& M2, const std::vect
 // (structural roots at λ = ∞ for a singular M1 and at λ = 0 for a singular M2: a cylinder's
 // point at infinity, not a tangency). Degrees 2, 3, 4 (the standard formulas); none for degree
 // <= 1 (no multiple root). `stripped` receives the remaining coefficients.
-// The standard discriminant formulas of degrees 2, 3, 4 over T (Poly or double); `k` makes a
-// constant of T.
-template <typename T, typename K>
-std::optional<T> discriminantFormula(const std::vector<T>& g, K k) {
+
+// The discriminant of f = sum c_k λ^k, degree 2, 3 or 4 (the standard formulas); 0 otherwise.
+double discriminant(const std::vector<double>& g) {
   const int n = static_cast<int>(g.size()) - 1;
-  if (n == 2) return g[1] * g[1] - k(4) * g[2] * g[0];
+  if (n == 2) return g[1] * g[1] - 4 * g[2] * g[0];
   if (n == 3) {
-    const T &a = g[3], &b = g[2], &c = g[1], &d = g[0];
-    return b * b * c * c - k(4) * a * c * c * c - k(4) * b * b * b * d - k(27) * a * a * d * d + k(18) * a * b * c * d;
+    const double a = g[3], b = g[2], c = g[1], d = g[0];
+    return b * b * c * c - 4 * a * c * c * c - 4 * b * b * b * d - 27 * a * a * d * d + 18 * a * b * c * d;
   }
   if (n == 4) {
-    const T &a = g[4], &b = g[3], &c = g[2], &d = g[1], &e = g[0];
-    const T aa = a * a, bb = b * b, cc = c * c, dd = d * d, ee = e * e;
-    return k(256) * aa * a * ee * e - k(192) * aa * b * d * ee - k(128) * aa * cc * ee + k(144) * aa * c * dd * e -
-           k(27) * aa * dd * dd + k(144) * a * bb * c * ee - k(6) * a * bb * dd * e - k(80) * a * b * cc * d * e +
-           k(18) * a * b * c * dd * d + k(16) * a * cc * cc * e - k(4) * a * cc * c * dd - k(27) * bb * bb * ee +
-           k(18) * bb * b * c * d * e - k(4) * bb * b * dd * d - k(4) * bb * cc * c * e + bb * cc * dd;
+    const double a = g[4], b = g[3], c = g[2], d = g[1], e = g[0];
+    const double aa = a * a, bb = b * b, cc = c * c, dd = d * d, ee = e * e;
+    return 256 * aa * a * ee * e - 192 * aa * b * d * ee - 128 * aa * cc * ee + 144 * aa * c * dd * e - 27 * aa * dd * dd +
+           144 * a * bb * c * ee - 6 * a * bb * dd * e - 80 * a * b * cc * d * e + 18 * a * b * c * dd * d +
+           16 * a * cc * cc * e - 4 * a * cc * c * dd - 27 * bb * bb * ee + 18 * bb * b * c * d * e - 4 * bb * b * dd * d -
+           4 * bb * cc * c * e + bb * cc * dd;
   }
-  return std::nullopt;
+  return 0.0;
 }
 
 // Structural zeros at both ends of f (identically vanishing coefficients): [lo, hi). A
@@ -292,8 +291,10 @@ std::vector<double> numericCharacteristic(const Eigen::MatrixXd& M1, const Eigen
 }
 
 
-// The multiple root of f(λ) = sum c_k λ^k at u: the real critical point of f where |f| is
-// smallest relative to its magnitude. None when f has no real critical point.
+// The negative multiple root of f(λ) = sum c_k λ^k at u (external tangency): the negative real
+// critical point of f where |f| is smallest relative to its magnitude. None when f has no
+// negative real critical point. (Positive ones are skipped: two spheres always share a positive
+// double root, the circle at infinity.)
 std::optional<double> multipleRoot(const std::vector<double>& c) {
   const int n = static_cast<int>(c.size()) - 1;
   if (n < 2 || c[n] == 0.0) return std::nullopt;
@@ -314,6 +315,7 @@ std::optional<double> multipleRoot(const std::vector<double>& c) {
   for (int i = 0; i < z.size(); ++i) {
     if (std::fabs(z[i].imag()) > 1e-6 * (1.0 + std::fabs(z[i].real()))) continue;
     const double x = z[i].real();
+    if (x >= 0.0) continue;
     double v = 0.0, mag = 0.0, xp = 1.0;
     for (int k = 0; k <= n; ++k, xp *= x) {
       v += c[k] * xp;
@@ -662,7 +664,7 @@ double refineNumerically(const std::function<double(double)>& value, double u0) 
 // Boxes are searched depth first, earlier t first; `accept(u)` is called on each new seed (in
 // the search's order, not sorted) and returns the time limit below which the search goes on (a
 // verified contact at u returns u: later boxes are pruned). Returns false at the box cap.
-bool tangencySeeds(const LPoly& g, double limit, const std::function<double(double)>& accept) {
+bool tangencySeeds(const LPoly& g, double limit, const std::function<double(double, std::optional<double>)>& accept) {
   const int m = static_cast<int>(g.size()) - 1;
   std::size_t d = 1;
   for (const Poly& p : g) d = std::max(d, p.c.size());
@@ -678,6 +680,7 @@ bool tangencySeeds(const LPoly& g, double limit, const std::function<double(doub
   if (scale == 0.0) return false;
   P /= scale;
   const BivariateBernstein F = BivariateBernstein::fromPower(P), Fx = F.derivativeU();
+  const BivariateBernstein Fu = F.derivativeT(), Fxx = Fx.derivativeU(), Fxu = Fx.derivativeT();
   const double pad = 1e-12 * F.coefficients().cwiseAbs().maxCoeff(), padx = 1e-12 * Fx.coefficients().cwiseAbs().maxCoeff();
   std::vector<std::array<double, 4>> stack{{0.0, 1.0, 0.0, 1.0}};
   double last_seed = -1.0;
@@ -693,9 +696,29 @@ bool tangencySeeds(const LPoly& g, double limit, const std::function<double(doub
     if (Fxb.minCoefficient() > padx || Fxb.maxCoefficient() < -padx) continue;
     const double wx = b[1] - b[0], wt = b[3] - b[2];
     if (wx <= kPencilSeedWidth && wt <= kPencilSeedWidth) {
-      const double u = 0.5 * (b[2] + b[3]);
-      if (std::fabs(u - last_seed) > 10 * kPencilSeedWidth) limit = std::min(limit, accept(u));
-      last_seed = u;
+      // Newton on (F, F_x) = 0 from the box centre (a simple solution: the Jacobian
+      // [[F_x, F_u], [F_xx, F_xu]] = [[0, F_u], [F_xx, F_xu]] is regular at a generic
+      // tangency); the centre itself if it does not converge near the box.
+      const double centre = 0.5 * (b[2] + b[3]);
+      double x = 0.5 * (b[0] + b[1]), u = centre;
+      bool converged = false;
+      for (int it = 0; it < 20; ++it) {
+        const double f = F.evaluate(x, u), fx = Fx.evaluate(x, u), fu = Fu.evaluate(x, u), fxx = Fxx.evaluate(x, u),
+                     fxu = Fxu.evaluate(x, u);
+        const double det = fx * fxu - fu * fxx;
+        if (det == 0.0 || !std::isfinite(det)) break;
+        const double dx = (f * fxu - fu * fx) / det, du = (fx * fx - f * fxx) / det;
+        x -= dx;
+        u -= du;
+        if (std::fabs(du) <= 1e-15 && std::fabs(dx) <= 1e-15) {
+          converged = true;
+          break;
+        }
+      }
+      std::optional<double> newton;
+      if (converged && std::fabs(u - centre) <= 10 * kPencilSeedWidth && u >= 0.0 && u <= 1.0) newton = u;
+      if (std::fabs(centre - last_seed) > 10 * kPencilSeedWidth) limit = std::min(limit, accept(centre, newton));
+      last_seed = centre;
       continue;
     }
     if (wx >= wt) {
@@ -743,7 +766,7 @@ void pencilTask(Task& task, const LPoly& f, std::function<std::vector<double>(do
     const std::vector<double> c = numeric(u);
     return std::vector<double>(c.begin() + range.first, c.begin() + range.second);
   };
-  task.value = [stripped](double u) { return *discriminantFormula(stripped(u), [](double v) { return v; }); };
+  task.value = [stripped](double u) { return discriminant(stripped(u)); };
   task.points = [stripped, at_root](double u) {
     const std::optional<double> lambda = multipleRoot(stripped(u));
     if (!lambda) return std::vector<PointAt>{};
@@ -1195,8 +1218,11 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
     for (std::size_t k = 0; k < tasks.size() && degenerate_reason.empty(); ++k) {
       const Task& task = tasks[k];
       if (task.pencil.empty()) continue;
-      const bool complete = tangencySeeds(task.pencil, std::min(best, 1.0), [&](double seed) {
-        const double u = refineNumerically(task.value, seed);
+      // Each seed is tried at its Newton solution of (F, F_x) = 0, then refined on the pencil's
+      // discriminant evaluated at u (which fails only for a permanent multiple root: spheres).
+      const bool complete = tangencySeeds(task.pencil, std::min(best, 1.0), [&](double centre, std::optional<double> newton) {
+        if (newton && *newton < best && verify(task, *newton)) return best;
+        const double u = refineNumerically(task.value, centre);
         if (u < best && verify(task, u)) return best;
         return 2.0;
       });

@@ -222,6 +222,13 @@ TEST(DimensionReductionCcd, EverySubproblemTypeFindsItsClosedFormContact) {
        {QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(0.3))), centred(Eigen::Vector3d::Constant(0.3)),
         moving(Eigen::Matrix3d::Identity(), {0.8, 0, 3}, Eigen::Matrix3d::Identity(), {0.8, 0, -1})},
        (3 - 0.5 - std::sqrt(0.09 - 0.04)) / 4, SubproblemType::QuadricConic},
+      // Two balls (radii 0.3 and 0.4): their pencil always has a positive double root (the
+      // circle at infinity); the contact is the negative one, at centre distance 0.7.
+      {"ball on a ball",
+       {QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(0.3))), centred(Eigen::Vector3d::Constant(0.3)), still()},
+       {QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(0.4))), centred(Eigen::Vector3d::Constant(0.4)),
+        moving(Eigen::Matrix3d::Identity(), {3, 0.2, 0}, rot(1.0, Eigen::Vector3d(1, 2, 3)), {-1, 0.2, 0})},
+       (3 - std::sqrt(0.49 - 0.04)) / 4, SubproblemType::QuadricQuadric},
   };
   for (const Analytic& c : cases) {
     for (bool swap : {false, true}) {
