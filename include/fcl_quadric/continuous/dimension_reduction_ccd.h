@@ -30,10 +30,12 @@
 ///    earliest u first, to boxes of 1e-7. A singular pencil (f identically zero: parallel
 ///    cylinders) has no isolated tangency: its contacts are lines, found on the bounding edges.
 /// Every candidate (a root of g isolated on the Bernstein form, a local extremum of g within
-/// kReductionNearRootRelative of zero -- a graze that rounding could lift off zero --, or a
-/// pencil box) is refined on the same condition evaluated at u from the elements at u (no
-/// expansion in u) to kReductionRootWidth. Its contact point (the vertex, the tangency point or
-/// the null vector of the pencil at its multiple root, the line's point in the plane, the lines'
+/// kReductionNearRootRelative of zero -- a graze that rounding could lift off zero --) is refined
+/// on the same condition evaluated at u from the elements at u (no expansion in u) to
+/// kReductionRootWidth; a pencil box is tried at its Newton solution of (F, F_x) = 0, then
+/// refined on the numeric discriminant (which alone fails for spheres: their permanent positive
+/// double root keeps it at zero). Its contact point (the vertex, the tangency point or the null
+/// vector of the pencil at its negative multiple root, the line's point in the plane, the lines'
 /// closest points) is verified with the interior / boundary predicates of Figure 29 through both
 /// CSG trees, with a band of kReductionVerifyRelative times the pair's size (within it, a point
 /// counts as on the boundary: err toward contact). The earliest verified candidate is the first
