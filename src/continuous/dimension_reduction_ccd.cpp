@@ -19,6 +19,8 @@
 #include "fcl_quadric/algebra/polynomial.h"
 #include "fcl_quadric/algebra/root_isolation.h"
 
+#include "../geometry/region_formula.h"
+
 namespace fcl_quadric {
 
 using namespace tolerance_reduction;
@@ -357,10 +359,6 @@ std::vector<Eigen::VectorXd> nullPoints(const Eigen::MatrixXd& M, const Eigen::M
 
 // --- Elements of one body in its local frame ------------------------------------------------
 
-bool isPlane(const Eigen::Matrix4d& Q) {
-  const double amax = Q.topLeftCorner<3, 3>().cwiseAbs().maxCoeff();
-  return amax == 0.0 || amax <= 1e-14 * Q.topRightCorner<3, 1>().norm();
-}
 // The covector π with X^T Q X = (π.X) w for a plane atom (interior π.X <= 0 for w = 1).
 Eigen::Vector4d planeOf(const Eigen::Matrix4d& Q) {
   return Eigen::Vector4d(2 * Q(0, 3), 2 * Q(1, 3), 2 * Q(2, 3), Q(3, 3));
@@ -415,7 +413,7 @@ Body makeBody(const MovingRegion& m) {
   b.singular.assign(b.sgn.size(), false);
   for (const BoundaryFace& f : b.el.faces) {
     const Eigen::Matrix4d& Q = b.sgn[f.atom];
-    if (f.planar() && !isPlane(Q)) b.unsupported = "a pair of planes as one atom";
+    if (f.planar() && !detail::isPlanarAtom(Q)) b.unsupported = "a pair of planes as one atom";
     if (!f.planar() && std::fabs(Q.determinant()) <= 1e-12 * std::pow(Q.cwiseAbs().maxCoeff(), 4)) {
       // A singular quadric: a cylinder (null vector at infinity) is fine; a cone's apex is a
       // point contact of its own (not a vertex of the boundary elements): not handled here.
@@ -521,12 +519,6 @@ int classifyBand(const QuadricRegion& r, const std::vector<Eigen::Matrix4d>& pos
   return 0;
 }
 
-std::vector<Eigen::Matrix4d> mul(const std::vector<Eigen::Matrix4d>& N, const std::vector<Eigen::Matrix4d>& M) {
-  std::vector<Eigen::Matrix4d> P(N.size() + M.size() - 1, Eigen::Matrix4d::Zero());
-  for (std::size_t k = 0; k < N.size(); ++k)
-    for (std::size_t l = 0; l < M.size(); ++l) P[k + l] += N[k] * M[l];
-  return P;
-}
 
 // The elements of one body as polynomials in a's frame on a piece.
 struct Posed {
@@ -551,13 +543,7 @@ Posed pose(const Body& b, const std::vector<Eigen::Matrix4d>& P, const std::vect
     for (const Eigen::Matrix4d& M : P) v.push_back(M.transpose() * p);
     return v;
   };
-  auto quadric = [&](const Eigen::Matrix4d& Q) {
-    PMat S(2 * P.size() - 1, Eigen::Matrix4d::Zero());
-    for (std::size_t k = 0; k < P.size(); ++k)
-      for (std::size_t l = 0; l < P.size(); ++l) S[k + l] += P[k].transpose() * Q * P[l];
-    for (Eigen::Matrix4d& M : S) M = (0.5 * (M + M.transpose())).eval();
-    return S;
-  };
+  auto quadric = [&](const Eigen::Matrix4d& Q) { return coefficientMatrices(congruence(Q, P)); };
   for (const Eigen::Matrix4d& Q : b.sgn) o.atoms.push_back(quadric(Q));
   for (const Eigen::Matrix4d& Q : b.raw) o.raw.push_back(quadric(Q));
   for (const BoundaryFace& f : b.el.faces) o.planes.push_back(f.planar() ? covector(planeOf(b.sgn[f.atom])) : PVec{});
@@ -829,8 +815,8 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
   for (std::size_t piece = 0; piece + 1 < breaks.size(); ++piece) {
     const double s0 = breaks[piece], s1 = breaks[piece + 1];
     const MotionMatrix ma = a.motion.restricted(s0, s1), mb = b.motion.restricted(s0, s1);
-    const std::vector<Eigen::Matrix4d> P = mul(mb.inverseCoefficients(), ma.matrixCoefficients());
-    const std::vector<Eigen::Matrix4d> Pinv = mul(ma.inverseCoefficients(), mb.matrixCoefficients());
+    const std::vector<Eigen::Matrix4d> P = multiplyCoefficients(mb.inverseCoefficients(), ma.matrixCoefficients());
+    const std::vector<Eigen::Matrix4d> Pinv = multiplyCoefficients(ma.inverseCoefficients(), mb.matrixCoefficients());
     if (2 * static_cast<int>(P.size() - 1) > tolerance_region::kRegionCcdMaxDegree)
       throw std::invalid_argument("continuousCollideRegionsByReduction: relative motion of degree " +
                                   std::to_string(P.size() - 1) + " exceeds kRegionCcdMaxDegree / 2");

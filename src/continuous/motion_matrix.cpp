@@ -322,6 +322,11 @@ MotionMatrix MotionMatrix::restricted(double t0, double t1) const {
   return r;
 }
 
+std::vector<Eigen::Matrix4d> multiplyCoefficients(const std::vector<Eigen::Matrix4d>& N,
+                                                  const std::vector<Eigen::Matrix4d>& M) {
+  return convolve(N, M);
+}
+
 std::vector<Eigen::Matrix4d> coefficientMatrices(const PolynomialMatrix4& M) {
   std::vector<Eigen::Matrix4d> Mk(M.maxDegree() + 1, Eigen::Matrix4d::Zero());
   for (int i = 0; i < 4; ++i) {

@@ -424,13 +424,6 @@ double paddingRelative(std::size_t dP, std::size_t dN, int n) {
   return 4.0 * k * std::ldexp(1.0, -53);
 }
 
-// Products of coefficient lists: (sum N_k t^k)(sum M_l t^l).
-std::vector<Eigen::Matrix4d> multiply(const std::vector<Eigen::Matrix4d>& N, const std::vector<Eigen::Matrix4d>& M) {
-  std::vector<Eigen::Matrix4d> P(N.size() + M.size() - 1, Eigen::Matrix4d::Zero());
-  for (std::size_t k = 0; k < N.size(); ++k)
-    for (std::size_t l = 0; l < M.size(); ++l) P[k + l] += N[k] * M[l];
-  return P;
-}
 std::vector<Eigen::Matrix4d> magnitudes(const std::vector<Eigen::Matrix4d>& M) {
   std::vector<Eigen::Matrix4d> out;
   for (const Eigen::Matrix4d& m : M) out.push_back(m.cwiseAbs());
@@ -614,8 +607,8 @@ RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegi
     const MotionMatrix mF = F.motion.restricted(s0, s1), mO = O.motion.restricted(s0, s1);
     // F's local coordinates -> O's local coordinates, X_O ~ N_O(t) M_F(t) X_F up to a scalar factor
     // without roots on the piece; O's atom Q becomes P^T Q P in F's frame.
-    const std::vector<Eigen::Matrix4d> P = multiply(mO.inverseCoefficients(), mF.matrixCoefficients());
-    const std::vector<Eigen::Matrix4d> Pabs = multiply(magnitudes(mO.inverseCoefficients()), magnitudes(mF.matrixCoefficients()));
+    const std::vector<Eigen::Matrix4d> P = multiplyCoefficients(mO.inverseCoefficients(), mF.matrixCoefficients());
+    const std::vector<Eigen::Matrix4d> Pabs = multiplyCoefficients(magnitudes(mO.inverseCoefficients()), magnitudes(mF.matrixCoefficients()));
     std::vector<MovingAtom> atoms(f.atoms.size());
     int degree = 0;
     for (std::size_t k = 0; k < f.atoms.size(); ++k) {

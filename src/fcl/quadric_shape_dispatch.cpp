@@ -108,9 +108,7 @@ QuadricRegion boxRegion(const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
 LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which, const char* where) {
   if (const auto* q = dynamic_cast<const QuadricShape<double>*>(g)) {
     if (!q->bounded()) return {q->region(), std::nullopt};
-    LocalSolid s{q->region(), q->localBox()};
-    s.elements = q->sharedBoundaryElements();
-    return s;
+    return {q->region(), q->localBox()};
   }
   switch (g->getNodeType()) {
     case fcl::GEOM_SPHERE: {
@@ -420,11 +418,14 @@ RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<doub
   const LocalSolid a = localSolid(o1, "o1", where), b = localSolid(o2, "o2", where);
   if (!a.box && !b.box)
     throw std::invalid_argument(std::string(where) + ": both operands are unbounded (half-spaces or unclipped quadrics)");
-  const MovingRegion ma{a.region, a.box, m1, a.elements}, mb{b.region, b.box, m2, b.elements};
+  MovingRegion ma{a.region, a.box, m1}, mb{b.region, b.box, m2};
   if (elements1) elements1->clear();
   if (elements2) elements2->clear();
   if (dimension_reduction && a.box && b.box) {
-    // Thesis §6.2.2 first; the certified engine answers what it leaves undecided.
+    // Thesis §6.2.2 first; the certified engine answers what it leaves undecided. A QuadricShape
+    // lends its cached boundary elements (an FCL primitive's are computed per query).
+    for (auto [g, m] : {std::pair(o1, &ma), std::pair(o2, &mb)})
+      if (const auto* q = dynamic_cast<const QuadricShape<double>*>(g)) m->elements = q->sharedBoundaryElements();
     const ReductionCcdResult d = continuousCollideRegionsByReduction(ma, mb);
     if (d.status == ReductionStatus::Decided) {
       RegionCcdResult r;

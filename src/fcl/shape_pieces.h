@@ -36,8 +36,6 @@ struct LocalSolid {
   bool thin = false;
   /// Set for FCL spheres and ellipsoids: the small-ellipsoid filter applies (collidePair).
   std::optional<Eigen::Vector3d> ellipsoid_radii = std::nullopt;
-  /// A bounded QuadricShape's cached boundary elements (null for FCL primitives).
-  std::shared_ptr<const BoundaryElements> elements = nullptr;
 };
 
 /// A box (local frame) that contains a BVH node's bounding volume: exact for AABB, from the OBB

@@ -52,7 +52,7 @@ struct CcdSubproblem {
   SubproblemType type = SubproblemType::QuadricQuadric;
 };
 
-/// "F<i>", "E<i>", "V<i>" (the labels of boundaryElementLabel in region_ccd.h).
+/// "F<i>", "E<i>", "V<i>" (the labels of boundaryElementLabel in region_ccd.h). No failure mode.
 std::string elementLabel(ElementKind kind, int index);
 
 /// All subproblems of §6.2.1 for two CQMs with boundary elements `a` and `b`, with the exclusion

@@ -141,6 +141,12 @@ PolynomialMatrix4 congruence(const Eigen::Matrix4d& Q, const PolynomialMatrix4& 
 PolynomialMatrix4 congruence(const Eigen::Matrix4d& Q, const std::vector<Eigen::Matrix4d>& N,
                              const Eigen::Matrix4d& S = Eigen::Matrix4d::Identity());
 
+/// The product of two polynomial matrices given by their power-basis coefficient matrices:
+/// (sum_k N_k t^k)(sum_l M_l t^l), N.size() + M.size() - 1 coefficients. Both lists must be
+/// non-empty (no other failure mode).
+std::vector<Eigen::Matrix4d> multiplyCoefficients(const std::vector<Eigen::Matrix4d>& N,
+                                                  const std::vector<Eigen::Matrix4d>& M);
+
 /// The coefficient matrices of a polynomial matrix: M(t) = sum_k result[k] t^k (maxDegree() + 1
 /// of them). No failure mode (PolynomialMatrix4 entries are finite by construction).
 std::vector<Eigen::Matrix4d> coefficientMatrices(const PolynomialMatrix4& M);

@@ -65,6 +65,7 @@ constexpr int kRegionCcdMaxDegree = 60;
 /// A CQM in its local frame moving by `motion` (local -> world).
 struct MovingRegion {
   MovingRegion() = default;
+  /// Members as named (no validation here: continuousCollideRegions checks what it needs).
   MovingRegion(QuadricRegion region_, std::optional<Box3> box_, PiecewiseMotion motion_,
                std::shared_ptr<const BoundaryElements> elements_ = nullptr)
       : region(std::move(region_)), box(std::move(box_)), motion(std::move(motion_)), elements(std::move(elements_)) {}
