@@ -34,6 +34,7 @@
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/continuous/dimension_reduction_ccd.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
+#include "fcl_quadric/fcl/quadric_solver.h"
 #include "fcl_quadric/geometry/convex_cover.h"
 #include "fcl_quadric/geometry/convex_distance.h"
 #include "fcl_quadric/geometry/convex_support.h"
@@ -671,6 +672,68 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
     if (result.min_distance < 0.0 && !request.enable_signed_distance) break;
   }
   return result.min_distance;
+}
+
+// --- QuadricSolver's kQuadricShape kernels (quadric_solver.h): what FCL's traversal node templates
+// instantiated with a quadric shape call. They answer exactly as the front doors do. --------------
+
+bool quadricShapeIntersect(const fcl::CollisionGeometry<double>& s1, const fcl::Transform3<double>& tf1,
+                           const fcl::CollisionGeometry<double>& s2, const fcl::Transform3<double>& tf2,
+                           ExactContact* contact) {
+  fcl::CollisionRequest<double> request(1, contact != nullptr);
+  fcl::CollisionResult<double> result;
+  if (collideQuadricShapes(&s1, tf1, &s2, tf2, request, result) == 0) return false;
+  if (contact) {
+    const fcl::Contact<double>& c = result.getContact(0);
+    contact->pos = c.pos;
+    contact->normal = c.normal;
+    contact->depth = c.penetration_depth;
+  }
+  return true;
+}
+
+namespace {
+
+/// The triangle as a one-triangle mesh in its own frame, so that it goes through the front doors'
+/// mesh path (GJK screening, zero-area triangles skipped, the triangle as a zero-thickness region).
+fcl::BVHModel<fcl::AABB<double>> oneTriangleMesh(const Eigen::Vector3d& P1, const Eigen::Vector3d& P2,
+                                                  const Eigen::Vector3d& P3) {
+  for (const Eigen::Vector3d* v : {&P1, &P2, &P3})
+    if (!v->allFinite()) throw std::invalid_argument("fcl_quadric::QuadricSolver: a triangle vertex is not finite");
+  fcl::BVHModel<fcl::AABB<double>> mesh;
+  mesh.beginModel(1, 3);
+  mesh.addTriangle(P1, P2, P3);
+  mesh.endModel();
+  return mesh;
+}
+
+}  // namespace
+
+bool quadricShapeTriangleIntersect(const fcl::CollisionGeometry<double>& s, const fcl::Transform3<double>& tf,
+                                   const Eigen::Vector3d& P1, const Eigen::Vector3d& P2, const Eigen::Vector3d& P3,
+                                   const fcl::Transform3<double>& tf_triangle, ExactContact* contact) {
+  const fcl::BVHModel<fcl::AABB<double>> mesh = oneTriangleMesh(P1, P2, P3);
+  return quadricShapeIntersect(s, tf, mesh, tf_triangle, contact);
+}
+
+bool quadricShapeDistance(const fcl::CollisionGeometry<double>& s1, const fcl::Transform3<double>& tf1,
+                          const fcl::CollisionGeometry<double>& s2, const fcl::Transform3<double>& tf2,
+                          bool signed_distance, ExactDistance* out) {
+  fcl::DistanceRequest<double> request(true);  // nearest points
+  request.enable_signed_distance = signed_distance;
+  fcl::DistanceResult<double> result;
+  out->distance = distanceQuadricShapes(&s1, tf1, &s2, tf2, request, result);
+  out->p1 = result.nearest_points[0];
+  out->p2 = result.nearest_points[1];
+  return out->distance >= 0.0;
+}
+
+bool quadricShapeTriangleDistance(const fcl::CollisionGeometry<double>& s, const fcl::Transform3<double>& tf,
+                                  const Eigen::Vector3d& P1, const Eigen::Vector3d& P2, const Eigen::Vector3d& P3,
+                                  const fcl::Transform3<double>& tf_triangle, bool signed_distance,
+                                  ExactDistance* out) {
+  const fcl::BVHModel<fcl::AABB<double>> mesh = oneTriangleMesh(P1, P2, P3);
+  return quadricShapeDistance(s, tf, mesh, tf_triangle, signed_distance, out);
 }
 
 }  // namespace detail

@@ -107,6 +107,19 @@ void QuadricShape<S>::computeLocalAABB() {
 }
 
 template <typename S>
+std::vector<fcl::Vector3<S>> QuadricShape<S>::getBoundVertices(const fcl::Transform3<S>& tf) const {
+  requireBounded("QuadricShape::getBoundVertices");
+  std::vector<fcl::Vector3<S>> corners;
+  corners.reserve(8);
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d c((i & 1) ? box_.hi.x() : box_.lo.x(), (i & 2) ? box_.hi.y() : box_.lo.y(),
+                            (i & 4) ? box_.hi.z() : box_.lo.z());
+    corners.push_back(tf * c.template cast<S>());
+  }
+  return corners;
+}
+
+template <typename S>
 S QuadricShape<S>::computeVolume() const {
   return static_cast<S>(massProperties().volume);
 }

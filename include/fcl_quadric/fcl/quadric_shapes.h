@@ -59,6 +59,10 @@ class QuadricShape : public fcl::ShapeBase<S> {
   fcl::Vector3<S> computeCOM() const override;
   /// Inertia about the local origin at unit density (FCL's convention).
   fcl::Matrix3<S> computeMomentofInertia() const override;
+  /// The eight corners of localBox() posed by tf: what FCL's generic computeBV fits a bounding
+  /// volume of any type to (fcl::detail::ComputeBVImpl), so FCL's traversal node templates can be
+  /// instantiated with these shapes. \throws std::invalid_argument if unbounded.
+  std::vector<fcl::Vector3<S>> getBoundVertices(const fcl::Transform3<S>& tf) const;
 
  protected:
   /// `box`: a known exact local AABB (else computed, searched inside `hint` if given); `mass`:

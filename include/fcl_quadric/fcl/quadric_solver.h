@@ -20,12 +20,14 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include <fcl/common/types.h>
+#include <fcl/geometry/collision_geometry.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cone.h>
@@ -44,7 +46,15 @@
 
 namespace fcl_quadric {
 
+template <typename S>
+class QuadricShape;  // fcl_quadric/fcl/quadric_shapes.h
+
 namespace detail {
+
+/// True for fcl_quadric's quadric shapes (EllipticCylinder, Quadric, QuadricCSG, or QuadricShape
+/// itself), which exist for S = double only.
+template <typename Shape>
+inline constexpr bool kIsQuadricShape = std::is_base_of_v<QuadricShape<double>, Shape>;
 
 // ---------------------------------------------------------------------------------------------
 // Dispatch table: which algorithm QuadricSolver uses for a pair of FCL shape types. This is the
@@ -96,6 +106,12 @@ enum class QuadricPairKind {
   /// distance throws std::invalid_argument (FCL 0.7 has no closed form and its GJK segfaults; two
   /// unbounded solids have no penetration depth).
   kPlanePlane,
+  /// An fcl_quadric quadric shape (EllipticCylinder, Quadric, QuadricCSG) against anything the
+  /// front doors accept (another quadric shape, an FCL primitive, a triangle): the front doors'
+  /// certified region engine (collideQuadricShapes, distanceQuadricShapes). This is what FCL's
+  /// traversal node templates instantiated with a quadric shape reach (MeshShape*, ShapeMesh*,
+  /// OcTreeShape*, ShapeOcTree*, Shape* nodes; docs/fcl_integration.md section 9).
+  kQuadricShape,
 };
 
 /// An entry of the pair tables: the algorithm and whether the shapes come in the reverse order.
@@ -108,7 +124,9 @@ struct PairEntry {
 /// Pair table for shapeIntersect / shapeDistance / shapeSignedDistance. `swapped` tells a
 /// one-sided kernel (ellipsoid first) to exchange the arguments and flip normals and points.
 template <typename Shape1, typename Shape2>
-struct QuadricPair : PairEntry<QuadricPairKind::kLibccd, false> {};
+struct QuadricPair : PairEntry<kIsQuadricShape<Shape1> || kIsQuadricShape<Shape2> ? QuadricPairKind::kQuadricShape
+                                                                                : QuadricPairKind::kLibccd,
+                               false> {};
 
 /// (A, B) answered by `Kind` with A first; (B, A) by the same kernel with the arguments swapped.
 #define FCL_QUADRIC_PAIR_BOTH_ORDERS(A, B, Kind)                                                   \
@@ -153,7 +171,8 @@ FCL_QUADRIC_PAIR_SYMMETRIC(Halfspace, Halfspace, kPlanePlane)
 /// Table for the shape-triangle queries (the triangle is always the second operand).
 template <typename Shape>
 struct QuadricTriangle {
-  static constexpr QuadricPairKind kind = QuadricPairKind::kLibccd;
+  static constexpr QuadricPairKind kind =
+      kIsQuadricShape<Shape> ? QuadricPairKind::kQuadricShape : QuadricPairKind::kLibccd;
 };
 template <typename S>
 struct QuadricTriangle<fcl::Ellipsoid<S>> {
@@ -459,6 +478,37 @@ bool exactPairDistance(const Shape1& s1, const fcl::Transform3<S>& tf1, const Sh
   }
 }
 
+// --- Quadric shapes (kQuadricShape; src/fcl/quadric_shape_dispatch.cpp) ------------------------
+
+/// s1 (pose tf1) against s2 (pose tf2), at least one a QuadricShape: fcl_quadric::collide's
+/// certified answer (touching counts). On contact, if `contact` is non-null: pos = the witness
+/// point, normal = unit outward normal of s1's nearest surface there (from s1 towards s2),
+/// depth = 0 (not computed for quadric shapes). \throws std::invalid_argument as
+/// fcl_quadric::collide does for an unsupported partner or two unbounded operands.
+bool quadricShapeIntersect(const fcl::CollisionGeometry<double>& s1, const fcl::Transform3<double>& tf1,
+                           const fcl::CollisionGeometry<double>& s2, const fcl::Transform3<double>& tf2,
+                           ExactContact* contact);
+/// The quadric shape s (pose tf) against the triangle P1 P2 P3 given in the frame tf_triangle
+/// (the identity for world-frame vertices), as fcl_quadric::collide answers a one-triangle mesh:
+/// a zero-area triangle never collides (skipped, as in the front doors' mesh traversal). Normal
+/// from the shape towards the triangle.
+bool quadricShapeTriangleIntersect(const fcl::CollisionGeometry<double>& s, const fcl::Transform3<double>& tf,
+                                   const Eigen::Vector3d& P1, const Eigen::Vector3d& P2, const Eigen::Vector3d& P3,
+                                   const fcl::Transform3<double>& tf_triangle, ExactContact* contact);
+/// fcl_quadric::distance of s1 and s2 (at least one a convex QuadricShape, or a union of convex
+/// ones): `signed_distance` false is FCL's shapeDistance convention (-1 and a common point when
+/// they overlap), true its shapeSignedDistance (minus the penetration depth). p1 on s1, p2 on s2,
+/// world frame. Returns true iff the distance is >= 0. \throws std::invalid_argument as
+/// fcl_quadric::distance does (another non-convex quadric shape, an unsupported partner).
+bool quadricShapeDistance(const fcl::CollisionGeometry<double>& s1, const fcl::Transform3<double>& tf1,
+                          const fcl::CollisionGeometry<double>& s2, const fcl::Transform3<double>& tf2,
+                          bool signed_distance, ExactDistance* out);
+/// The same against the triangle P1 P2 P3 in the frame tf_triangle (p2 on the triangle).
+bool quadricShapeTriangleDistance(const fcl::CollisionGeometry<double>& s, const fcl::Transform3<double>& tf,
+                                  const Eigen::Vector3d& P1, const Eigen::Vector3d& P2, const Eigen::Vector3d& P3,
+                                  const fcl::Transform3<double>& tf_triangle, bool signed_distance,
+                                  ExactDistance* out);
+
 template <typename S>
 void appendContact(const ExactContact& c, std::vector<fcl::ContactPoint<S>>* contacts) {
   contacts->emplace_back(c.normal.template cast<S>(), c.pos.template cast<S>(), static_cast<S>(c.depth));
@@ -476,7 +526,13 @@ void appendContact(const ExactContact& c, std::vector<fcl::ContactPoint<S>>* con
 ///  - fcl::Ellipsoid-fcl::Capsule / fcl::Cylinder / fcl::Cone: signedDistanceEllipsoidCapsule /
 ///    signedDistanceEllipsoidCylinder / signedDistanceEllipsoidCone;
 ///  - fcl::Ellipsoid-triangle (shapeTriangleIntersect / shapeTriangleDistance, BVH meshes):
-///    classifyEllipsoidTriangle, signedDistanceEllipsoidTriangle.
+///    classifyEllipsoidTriangle, signedDistanceEllipsoidTriangle;
+///  - an fcl_quadric quadric shape (EllipticCylinder, Quadric, QuadricCSG; S = double) against
+///    anything, triangles included: the front doors' certified region engine
+///    (detail::quadricShapeIntersect / quadricShapeDistance). So FCL's traversal node templates
+///    instantiated with a quadric shape and this solver (MeshShapeCollisionTraversalNode*,
+///    OcTreeShapeCollisionTraversalNode, MeshShapeDistanceTraversalNode*, ...) answer exactly;
+///    contact depth is 0 for these shapes (not computed).
 /// Results follow FCL's conventions (docs/fcl_integration.md section 3):
 ///  - shapeIntersect: true iff the solids are not separate (touching counts as collision, certified
 ///    down to ~1e-27 relative gap for ellipsoid pairs and 2^-40 for the others,
@@ -538,6 +594,12 @@ class QuadricSolver {
         contacts->emplace_back(normal, (0.5 * (p1 + p2)).eval(), -dist);
       }
       return true;
+    } else if constexpr (Pair::kind == detail::QuadricPairKind::kQuadricShape) {
+      static_assert(std::is_same_v<S, double>, "fcl_quadric's quadric shapes exist for S = double only");
+      detail::ExactContact c;
+      const bool hit = detail::quadricShapeIntersect(s1, tf1, s2, tf2, contacts ? &c : nullptr);
+      if (hit && contacts) detail::appendContact(c, contacts);
+      return hit;
     } else {
       static_assert(isShapePairKind(Pair::kind), "QuadricSolver::shapeIntersect: unhandled pair kind");
       detail::ExactContact c;
@@ -559,6 +621,9 @@ class QuadricSolver {
     constexpr detail::QuadricPairKind kind = detail::QuadricTriangle<Shape>::kind;
     if constexpr (kind == detail::QuadricPairKind::kLibccd) {
       return libccd_.shapeTriangleIntersect(s, tf, P1, P2, P3, contact_points, penetration_depth, normal);
+    } else if constexpr (kind == detail::QuadricPairKind::kQuadricShape) {
+      return quadricTriangleIntersect(s, tf, P1, P2, P3, fcl::Transform3<S>::Identity(), contact_points,
+                                      penetration_depth, normal);
     } else {
       static_assert(kind == detail::QuadricPairKind::kEllipsoidTriangle,
                     "QuadricSolver::shapeTriangleIntersect: unhandled kind");
@@ -579,6 +644,8 @@ class QuadricSolver {
     constexpr detail::QuadricPairKind kind = detail::QuadricTriangle<Shape>::kind;
     if constexpr (kind == detail::QuadricPairKind::kLibccd) {
       return libccd_.shapeTriangleIntersect(s, tf1, P1, P2, P3, tf2, contact_points, penetration_depth, normal);
+    } else if constexpr (kind == detail::QuadricPairKind::kQuadricShape) {
+      return quadricTriangleIntersect(s, tf1, P1, P2, P3, tf2, contact_points, penetration_depth, normal);
     } else {
       static_assert(kind == detail::QuadricPairKind::kEllipsoidTriangle,
                     "QuadricSolver::shapeTriangleIntersect: unhandled kind");
@@ -608,9 +675,16 @@ class QuadricSolver {
           "fcl_quadric::QuadricSolver: no distance between two planes / half-spaces (FCL 0.7 has no closed form "
           "and its GJK segfaults on them)");
     } else {
-      static_assert(isShapePairKind(Pair::kind), "QuadricSolver::shapeDistance: unhandled pair kind");
+      static_assert(isShapePairKind(Pair::kind) || Pair::kind == detail::QuadricPairKind::kQuadricShape,
+                    "QuadricSolver::shapeDistance: unhandled pair kind");
       detail::ExactDistance d;
-      const bool separated = detail::exactPairDistance<Pair::swapped, false>(s1, tf1, s2, tf2, &d);
+      bool separated;
+      if constexpr (Pair::kind == detail::QuadricPairKind::kQuadricShape) {
+        static_assert(std::is_same_v<S, double>, "fcl_quadric's quadric shapes exist for S = double only");
+        separated = detail::quadricShapeDistance(s1, tf1, s2, tf2, false, &d);
+      } else {
+        separated = detail::exactPairDistance<Pair::swapped, false>(s1, tf1, s2, tf2, &d);
+      }
       detail::writeDistance(d, dist, p1, p2);
       return separated;
     }
@@ -636,9 +710,16 @@ class QuadricSolver {
           "fcl_quadric::QuadricSolver: no distance between two planes / half-spaces (FCL 0.7 has no closed form "
           "and its GJK segfaults on them)");
     } else {
-      static_assert(isShapePairKind(Pair::kind), "QuadricSolver::shapeSignedDistance: unhandled pair kind");
+      static_assert(isShapePairKind(Pair::kind) || Pair::kind == detail::QuadricPairKind::kQuadricShape,
+                    "QuadricSolver::shapeSignedDistance: unhandled pair kind");
       detail::ExactDistance d;
-      const bool separated = detail::exactPairDistance<Pair::swapped, true>(s1, tf1, s2, tf2, &d);
+      bool separated;
+      if constexpr (Pair::kind == detail::QuadricPairKind::kQuadricShape) {
+        static_assert(std::is_same_v<S, double>, "fcl_quadric's quadric shapes exist for S = double only");
+        separated = detail::quadricShapeDistance(s1, tf1, s2, tf2, true, &d);
+      } else {
+        separated = detail::exactPairDistance<Pair::swapped, true>(s1, tf1, s2, tf2, &d);
+      }
       detail::writeDistance(d, dist, p1, p2);
       return separated;
     }
@@ -655,6 +736,8 @@ class QuadricSolver {
     constexpr detail::QuadricPairKind kind = detail::QuadricTriangle<Shape>::kind;
     if constexpr (kind == detail::QuadricPairKind::kLibccd) {
       return libccd_.shapeTriangleDistance(s, tf, P1, P2, P3, dist, p1, p2);
+    } else if constexpr (kind == detail::QuadricPairKind::kQuadricShape) {
+      return quadricTriangleDistance(s, tf, P1, P2, P3, fcl::Transform3<S>::Identity(), dist, p1, p2);
     } else {
       static_assert(kind == detail::QuadricPairKind::kEllipsoidTriangle,
                     "QuadricSolver::shapeTriangleDistance: unhandled kind");
@@ -677,6 +760,8 @@ class QuadricSolver {
     constexpr detail::QuadricPairKind kind = detail::QuadricTriangle<Shape>::kind;
     if constexpr (kind == detail::QuadricPairKind::kLibccd) {
       return libccd_.shapeTriangleDistance(s, tf1, P1, P2, P3, tf2, dist, p1, p2);
+    } else if constexpr (kind == detail::QuadricPairKind::kQuadricShape) {
+      return quadricTriangleDistance(s, tf1, P1, P2, P3, tf2, dist, p1, p2);
     } else {
       static_assert(kind == detail::QuadricPairKind::kEllipsoidTriangle,
                     "QuadricSolver::shapeTriangleDistance: unhandled kind");
@@ -733,6 +818,34 @@ class QuadricSolver {
       const bool up = P.halfspace || P.n.dot(tf1.translation().template cast<double>()) - P.d >= 0.0;
       return up ? Eigen::Vector3d(-P.n) : Eigen::Vector3d(P.n);  // from the shape toward the plane
     }
+  }
+
+  // kQuadricShape against a triangle in the frame tf2 (tf1 = the identity: world-frame vertices);
+  // the distance is FCL's unsigned shapeTriangleDistance convention.
+  template <typename Shape>
+  static bool quadricTriangleIntersect(const Shape& s, const fcl::Transform3<S>& tf1, const fcl::Vector3<S>& P1,
+                                       const fcl::Vector3<S>& P2, const fcl::Vector3<S>& P3,
+                                       const fcl::Transform3<S>& tf2, fcl::Vector3<S>* contact_points,
+                                       S* penetration_depth, fcl::Vector3<S>* normal) {
+    static_assert(std::is_same_v<S, double>, "fcl_quadric's quadric shapes exist for S = double only");
+    const bool want = contact_points || penetration_depth || normal;
+    detail::ExactContact c;
+    if (!detail::quadricShapeTriangleIntersect(s, tf1, P1, P2, P3, tf2, want ? &c : nullptr)) return false;
+    if (contact_points) *contact_points = c.pos;
+    if (penetration_depth) *penetration_depth = c.depth;
+    if (normal) *normal = c.normal;
+    return true;
+  }
+  template <typename Shape>
+  static bool quadricTriangleDistance(const Shape& s, const fcl::Transform3<S>& tf1, const fcl::Vector3<S>& P1,
+                                      const fcl::Vector3<S>& P2, const fcl::Vector3<S>& P3,
+                                      const fcl::Transform3<S>& tf2, S* dist, fcl::Vector3<S>* p1,
+                                      fcl::Vector3<S>* p2) {
+    static_assert(std::is_same_v<S, double>, "fcl_quadric's quadric shapes exist for S = double only");
+    detail::ExactDistance d;
+    const bool separated = detail::quadricShapeTriangleDistance(s, tf1, P1, P2, P3, tf2, false, &d);
+    detail::writeDistance(d, dist, p1, p2);
+    return separated;
   }
 
   static bool triangleIntersect(const Ellipsoid& e, const detail::WorldTriangle& t, fcl::Vector3<S>* contact_points,
