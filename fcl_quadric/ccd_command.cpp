@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "fcl_quadric/check_command.h"
+#include "fcl_quadric/continuous/dimension_reduction_ccd.h"
 #include "fcl_quadric/continuous/region_ccd.h"
 
 namespace fcl_quadric {
@@ -75,14 +76,34 @@ PiecewiseMotion motionOf(const SceneObject& object) {
 
 // A pair with a quadric shape or a box: the certified space-time search of region_ccd.h (first
 // contact only; the contacting boundary elements labelled per object).
-nlohmann::ordered_json regionPair(const SceneObject& a, const SceneObject& b) {
+nlohmann::ordered_json regionPair(const SceneObject& a, const SceneObject& b, RegionCcdSolver solver) {
   const auto [ra, ba] = asRegion(a.shape);
   const auto [rb, bb] = asRegion(b.shape);
   if (!ba && !bb) throw SceneError("/pairs", "objects " + a.name + " and " + b.name + " are both unbounded (half-spaces)");
-  const RegionCcdResult r = continuousCollideRegions(MovingRegion{ra, ba, motionOf(a)}, MovingRegion{rb, bb, motionOf(b)});
+  const MovingRegion ma{ra, ba, motionOf(a)}, mb{rb, bb, motionOf(b)};
   nlohmann::ordered_json entry;
   entry["a"] = a.name;
   entry["b"] = b.name;
+  std::string undecided_reason;
+  if (solver == RegionCcdSolver::DimensionReduction) {
+    if (ba && bb) {
+      const ReductionCcdResult d = continuousCollideRegionsByReduction(ma, mb);
+      if (d.status == ReductionStatus::Decided) {
+        entry["collide"] = d.collide;
+        entry["first_contact_time"] = d.collide ? nlohmann::ordered_json(d.time) : nlohmann::ordered_json(nullptr);
+        entry["contact_point"] = d.collide ? toJson(d.point) : nlohmann::ordered_json(nullptr);
+        entry["overlap_intervals"] = nullptr;
+        entry["near_tangent"] = false;  // every candidate is verified through both CSG trees
+        entry["elements"] = d.collide ? nlohmann::ordered_json::array({d.label_a, d.label_b}) : nlohmann::ordered_json::array();
+        entry["method"] = "dimension_reduction";
+        return entry;
+      }
+      undecided_reason = d.reason;
+    } else {
+      undecided_reason = "an unbounded object (half-space)";
+    }
+  }
+  const RegionCcdResult r = continuousCollideRegions(ma, mb);
   entry["collide"] = r.collide;
   entry["first_contact_time"] = r.collide ? nlohmann::ordered_json(r.time) : nlohmann::ordered_json(nullptr);
   entry["contact_point"] = r.collide ? toJson(r.point) : nlohmann::ordered_json(nullptr);
@@ -99,12 +120,16 @@ nlohmann::ordered_json regionPair(const SceneObject& a, const SceneObject& b) {
     elements.push_back(label(rb, bb, r.active_b));
   }
   entry["elements"] = std::move(elements);
+  if (solver == RegionCcdSolver::DimensionReduction) {
+    entry["method"] = "space_time";
+    entry["undecided_reason"] = undecided_reason;
+  }
   return entry;
 }
 
 }  // namespace
 
-nlohmann::ordered_json ccdScene(const Scene& scene) {
+nlohmann::ordered_json ccdScene(const Scene& scene, RegionCcdSolver solver) {
   if (scene.dimension == 2) return ccdScene2(scene);
   CcdOptions options;
   options.all_intervals = scene.ccd.all_intervals;
@@ -114,7 +139,7 @@ nlohmann::ordered_json ccdScene(const Scene& scene) {
     const SceneObject& a = scene.objects.at(i);
     const SceneObject& b = scene.objects.at(j);
     if (!isEllipsoidal(a.shape) || !isEllipsoidal(b.shape)) {
-      pairs.push_back(regionPair(a, b));
+      pairs.push_back(regionPair(a, b, solver));
       continue;
     }
     const EllipsoidCcdResult r = continuousCollideEllipsoids(movingEllipsoid(a, i), movingEllipsoid(b, j), options);
@@ -135,9 +160,9 @@ nlohmann::ordered_json ccdScene(const Scene& scene) {
   return document;
 }
 
-void runCcd(const std::string& scene_path, std::ostream& out) {
+void runCcd(const std::string& scene_path, std::ostream& out, RegionCcdSolver solver) {
   const Scene scene = readSceneFile(scene_path);
-  out << ccdScene(scene).dump(2) << '\n';
+  out << ccdScene(scene, solver).dump(2) << '\n';
 }
 
 }  // namespace cli

@@ -36,12 +36,21 @@ MovingEllipse2 movingEllipse2(const SceneObject& object);
 /// ("F<i>" face, "E<i>" edge, "V<i>" vertex, indices into the shape's boundaryElements; [] when
 /// there is no contact). near_tangent: the contact lies within the tolerance band (or the work
 /// cap was reached: reported early, conservatively).
+///
+/// `solver` (`ccd --solver`) chooses the method for those region pairs:
+///  - RegionCcdSolver::SpaceTime (default): the certified space-time search;
+///  - RegionCcdSolver::DimensionReduction: thesis §6.2's dimension reduction first
+///    (continuous/dimension_reduction_ccd.h) for two bounded objects, falling back to the
+///    space-time search for a pair it leaves undecided (a ring's quartic edge, a cone apex,
+///    coincident planes, ...). Each region entry then adds "method": "dimension_reduction" or
+///    "space_time", and "undecided_reason" (the reduction's reason) when it fell back.
 /// \throws SceneError for two unbounded objects (half-spaces) in a pair.
-nlohmann::ordered_json ccdScene(const Scene& scene);
+enum class RegionCcdSolver { SpaceTime, DimensionReduction };
+nlohmann::ordered_json ccdScene(const Scene& scene, RegionCcdSolver solver = RegionCcdSolver::SpaceTime);
 
 /// Runs `ccd`: reads the scene, solves every pair and writes the JSON (2-space indent, newline).
 /// \throws SceneError for an unreadable or invalid scene; nothing is written then.
-void runCcd(const std::string& scene_path, std::ostream& out);
+void runCcd(const std::string& scene_path, std::ostream& out, RegionCcdSolver solver = RegionCcdSolver::SpaceTime);
 
 }  // namespace cli
 }  // namespace fcl_quadric

@@ -68,6 +68,13 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
              "\"motion\"): first contact time, contact point and every overlap interval of each ellipsoid pair; "
              "first contact and the contacting boundary elements for pairs with quadric shapes or boxes; as JSON.");
   ccd->add_option("SCENE", ccd_scene_path, "Scene file (JSON with motions; see examples/README.md)")->required();
+  std::string ccd_solver = "space-time";
+  ccd->add_option("--solver", ccd_solver,
+                  "Method for pairs with quadric shapes or boxes: space-time (the certified space-time search) or "
+                  "reduction (thesis 6.2 dimension reduction first, the space-time search where it is undecided; "
+                  "entries add \"method\")")
+      ->check(CLI::IsMember({"space-time", "reduction"}))
+      ->capture_default_str();
 
   std::string render_scene_path, render_output;
   double render_time = 0.0;
@@ -160,7 +167,8 @@ int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
     if (check->parsed()) {
       runCheck(scene_path, result);
     } else if (ccd->parsed()) {
-      runCcd(ccd_scene_path, result);
+      runCcd(ccd_scene_path, result,
+             ccd_solver == "reduction" ? RegionCcdSolver::DimensionReduction : RegionCcdSolver::SpaceTime);
     } else if (demo->parsed()) {
       demo_options.seed = *parseSeed(seed_text);
       const DemoSummary summary = simulateDemo(demo_options);
