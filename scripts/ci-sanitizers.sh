@@ -77,7 +77,15 @@ heavy+='|DistanceLowerBound.(RingAgainstMeshOctreeBoxAndHalfspaceNeverExceedsThe
 heavy+='|GrownRegion.ContainsEveryPointWithinDeltaOfTheRegion'
 # Dimension reduction against the certified space-time engine (the engine's ~300 ms per query);
 # the closed-form and degenerate cases of the reduction stay in.
-heavy+='|DimensionReductionCcd.AgreesWithTheSpaceTimeEngineOnRandomRigidMotions|QuadricShapeCcd.PolynomialSolverRequestAgreesWithTheCertifiedEngine'
+heavy+='|DimensionReductionCcd.AgreesWithTheSpaceTimeEngineOnRandomRigidMotions|QuadricShapeCcd.PolynomialSolver(RequestAgreesWithTheCertifiedEngine|OnFclPrimitivesAgreesWithTheEngineForEachSize)'
+# The slowest remaining tests under ASan, 61-321 s each (CI of 2026-11-23, 2,370 s of test time
+# in all): each repeats one code path many times and keeps a lighter sibling in this run (the
+# other motion-validator, render, plot, cylinder-kernel, octree and quadric-type tests). Issue 2
+# asks for a CI run well under 30 minutes; this trims about 520 s of wall time.
+heavy+='|ContinuousMotionValidator.ARingLinkSlidesAlongAThinMeshPoleAndStopsAgainstIt|Render.EveryExampleSceneRendersToValidSvgAndPng'
+heavy+='|Plot.EveryExampleSceneWithMotionsGivesValidPlots|EllipticCylinderShape.CircularCaseCollidesLikeTheExactEllipsoidCylinderKernelOnRandomPoses'
+heavy+='|Environment.OcTreeMergedAndLeafBoxesAgreeWithTheFclOcTreeAndStopATunnellingMotion|QuadricShapeTypes.NamedQuadricsHaveAnalyticExtentsAndContacts'
+heavy+='|QuadricShapeDistance.SignAgreesWithCollideOnClippedQuadricsIncludingNearContact'
 step "asan+ubsan tests" ctest --test-dir "$prefix-asan" -LE 'long|install' -E "$heavy" --timeout 900 --output-on-failure -j"$jobs"
 
 step "tsan configure" cmake -S . -B "$prefix-tsan" "${common[@]}" -DFCL_QUADRIC_SANITIZE=thread \
