@@ -1144,6 +1144,13 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
         mmax = std::max(mmax, g.mag[i]);
       }
       if (cmax <= kReductionZeroRelative * mmax) {
+        // A line permanently tangent to (or lying on) a quadric face: a box edge parallel to a
+        // cylinder's axis, an edge sliding along a sphere. Its contact is a segment or a moving
+        // point that exists over a whole interval of time, so it begins at t = 0 (the start
+        // test), or where it enters the edge or the face: at a vertex of the edge (face-vertex)
+        // or on an edge that bounds the face (conic-line, line-line). It is found there, as a
+        // plane-line contact is; no candidate of its own.
+        if (tasks[k].sp.type == SubproblemType::QuadricLine) continue;
         res.reason = describe(tasks[k].sp, "is degenerate (identically zero)");
         return res;
       }

@@ -693,10 +693,13 @@ double quadricShapePair(const fcl::CollisionGeometry<double>* o1, const fcl::Mot
                                   "; quadric shapes (EllipticCylinder, Quadric, QuadricCSG) need "
                                   "fcl_quadric::RationalMotion or fcl::TranslationMotion (exact rational motions)");
   }
+  bool by_reduction = false;
   const RegionCcdResult r = detail::continuousCollideQuadricShapes(o1, rationalOf(m1, k1, "motion1"), o2,
                                                                    rationalOf(m2, k2, "motion2"), kWhere, nullptr, nullptr,
-                                                                   request.ccd_solver_type == fcl::CCDC_POLYNOMIAL_SOLVER);
+                                                                   request.ccd_solver_type == fcl::CCDC_POLYNOMIAL_SOLVER,
+                                                                   &by_reduction);
   g_stats.path = ContinuousCollideStats::Path::Exact;
+  g_stats.dimension_reduction = by_reduction;
   g_stats.steps = r.boxes;
   g_stats.near_tangent = r.near_tangent || r.capped;
   g_stats.step_cap = r.capped;

@@ -171,11 +171,11 @@ TEST(CcdCommand, ReductionSolverAgreesWithTheSpaceTimeSearchAndSaysWhichAnswered
     return nlohmann::json::parse(out.str());
   };
   const std::string box_path = ::testing::TempDir() + "ccd_box_reduction.json";
-  // (Not at (0.1, 0.2) as above: there the ball's path stays exactly tangent to the vertical edge
-  // through (0.5, 0.5), a degenerate quadric-line subproblem the reduction leaves undecided.)
+  // (At (0.1, 0.2) the ball's path stays exactly tangent to the vertical edge through (0.5, 0.5):
+  // an identically degenerate quadric-line subproblem, whose contact begins on bounding elements.)
   std::ofstream(box_path) << R"({"objects":[
     {"name":"A","shape":{"type":"sphere","radius":0.5},
-     "motion":{"type":"linear","from":{"translation":[0.1,0.15,4]},"to":{"translation":[0.1,0.15,-4]}}},
+     "motion":{"type":"linear","from":{"translation":[0.1,0.2,4]},"to":{"translation":[0.1,0.2,-4]}}},
     {"name":"B","shape":{"type":"box","size":[1,1,1]}}]})";
   const auto box = run3(box_path, true)["pairs"][0];
   EXPECT_EQ(box["method"], "dimension_reduction") << box.dump();

@@ -142,6 +142,28 @@ TEST(DimensionReductionCcd, DegenerateAndUnsupportedConfigurationsAreDecidedOnTh
   EXPECT_EQ(r.subproblem.type, SubproblemType::QuadricConic);
   EXPECT_NEAR(std::fabs(r.point.x()), 0.5, 1e-6);  // an end of the contact segment, on the rim
 
+  // A box edge parallel to a cylinder's axis: its quadric-line condition vanishes identically (the
+  // line's contact with the side lasts over time). The box's face meets the side along a vertical
+  // segment first, at x_box + 0.4 = -0.6 (t = 0.3), with its ends on the box's horizontal edges.
+  const MovingRegion upright{cappedCylinder(0.6, 0.6, 1.2), centred({0.6, 0.6, 0.6}), still()};
+  const MovingRegion slab{cuboid({0.4, 0.3, 0.25}), centred({0.4, 0.3, 0.25}),
+                          moving(Eigen::Matrix3d::Identity(), {-2.5, 0.1, 0}, Eigen::Matrix3d::Identity(), {2.5, 0.1, 0})};
+  r = continuousCollideRegionsByReduction(upright, slab);
+  ASSERT_EQ(r.status, ReductionStatus::Decided) << r.reason;
+  ASSERT_TRUE(r.collide);
+  EXPECT_NEAR(r.time, 0.3, 1e-9);
+  EXPECT_NEAR(r.point.x(), -0.6, 1e-6);
+  EXPECT_NEAR(r.point.y(), 0.0, 1e-6);
+  // A ball whose path keeps it exactly tangent to a vertical edge of a cube (centre 0.5 from the
+  // edge line) lands on the top face at z = 1 (t = 3/8); the tangency is never the first contact.
+  const MovingRegion ball{clippedEllipsoid(Eigen::Vector3d::Constant(0.5), 1.0), centred({0.5, 0.5, 0.5}),
+                          moving(Eigen::Matrix3d::Identity(), {0.1, 0.2, 4}, Eigen::Matrix3d::Identity(), {0.1, 0.2, -4})};
+  r = continuousCollideRegionsByReduction({cuboid({0.5, 0.5, 0.5}), centred({0.5, 0.5, 0.5}), still()}, ball);
+  ASSERT_EQ(r.status, ReductionStatus::Decided) << r.reason;
+  ASSERT_TRUE(r.collide);
+  EXPECT_NEAR(r.time, 3.0 / 8, 1e-9);
+  EXPECT_NEAR(r.point.z(), 0.5, 1e-6);
+
   const MovingRegion c2{cappedCylinder(0.5, 0.5, 1.0), centred({0.5, 0.5, 0.5}), still()};
   const MovingRegion landing{cappedCylinder(0.5, 0.5, 1.0), centred({0.5, 0.5, 0.5}),
                              moving(Eigen::Matrix3d::Identity(), {0.2, 0, 3}, Eigen::Matrix3d::Identity(), {0.2, 0, -1})};

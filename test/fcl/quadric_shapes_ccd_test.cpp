@@ -14,6 +14,7 @@
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/math/bv/OBBRSS.h>
@@ -259,6 +260,42 @@ TEST(QuadricShapeCcd, PolynomialSolverRequestAgreesWithTheCertifiedEngine) {
     EXPECT_LT(lastContinuousCollideStats().steps, engine_boxes) << "trial " << trial;
   }
   EXPECT_GE(collisions, 5);
+}
+
+// FCL primitives under CCDC_POLYNOMIAL_SOLVER get their boundary elements from a cache keyed by
+// type and size: boxes of two sizes and an fcl::Cylinder, interleaved so that a wrong key would
+// hand one box the other's elements, against the certified engine on the same motions.
+TEST(QuadricShapeCcd, PolynomialSolverOnFclPrimitivesAgreesWithTheEngineForEachSize) {
+  std::mt19937 rng(91);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  const fcl::Box<double> small(0.8, 0.6, 0.5), large(1.4, 0.6, 0.9);
+  const fcl::Cylinder<double> rod(0.3, 1.5);
+  const EllipticCylinder<double> cyl(0.6, 0.4, 1.2);
+  const fcl::CollisionGeometry<double>* partners[] = {&small, &large, &rod};
+  int collisions = 0, first_times_differ = 0, decided = 0;
+  for (int trial = 0; trial < 4; ++trial) {
+    const Eigen::Vector3d p(U(rng), U(rng), U(rng)), d = Eigen::Vector3d(U(rng), U(rng), U(rng)).normalized();
+    const RationalMotion<double> m1(pose(randomRotation(rng), 2.5 * d), pose(randomRotation(rng), -2.5 * d + 0.3 * p));
+    const RationalMotion<double> m2(pose(randomRotation(rng), 0.2 * p), pose(randomRotation(rng), -0.2 * p));
+    double first_time = -1.0;
+    for (const fcl::CollisionGeometry<double>* g : partners) {
+      fcl::ContinuousCollisionRequest<double> req;
+      fcl::ContinuousCollisionResult<double> engine, reduction;
+      fcl_quadric::continuousCollide(g, &m1, &cyl, &m2, req, engine);
+      req.ccd_solver_type = fcl::CCDC_POLYNOMIAL_SOLVER;
+      fcl_quadric::continuousCollide(g, &m1, &cyl, &m2, req, reduction);
+      decided += lastContinuousCollideStats().dimension_reduction;
+      ASSERT_EQ(engine.is_collide, reduction.is_collide) << "trial " << trial << " node type " << g->getNodeType();
+      if (!engine.is_collide) continue;
+      ++collisions;
+      EXPECT_NEAR(engine.time_of_contact, reduction.time_of_contact, 1e-7) << "trial " << trial;
+      if (first_time >= 0.0 && std::abs(first_time - reduction.time_of_contact) > 1e-6) ++first_times_differ;
+      if (first_time < 0.0) first_time = reduction.time_of_contact;
+    }
+  }
+  EXPECT_GE(collisions, 6);
+  EXPECT_GE(first_times_differ, 2);  // the sizes matter on these motions
+  EXPECT_GE(decided, 8);             // of 12: the reduction (not its fallback) answered most
 }
 
 }  // namespace

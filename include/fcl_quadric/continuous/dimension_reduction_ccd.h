@@ -10,7 +10,10 @@
 /// homogeneous, up to factors without roots on the piece). Each subproblem becomes a condition
 /// on u whose solutions are the moments the two extended elements touch (§6.2.2):
 ///  - face-vertex:  g = X^T S X (direct substitution of the vertex);
-///  - quadric-line: g = b^2 - a c for (U + s D)^T S (U + s D) = a s^2 + 2 b s + c (discriminant);
+///  - quadric-line: g = b^2 - a c for (U + s D)^T S (U + s D) = a s^2 + 2 b s + c (discriminant).
+///    When g vanishes identically (a line parallel to a cylinder's axis, an edge sliding tangent
+///    to a sphere) the contact lasts over an interval and begins at t = 0 or on the elements
+///    that bound it (a vertex of the line, an edge of the face): no candidate of its own;
 ///  - quadric-plane: g = -det [[S, π], [π^T, 0]] = π^T adj(S) π (the dual quadric; the
 ///    characteristic polynomial det(λS - π π^T) = λ^3 (λ det S - π^T adj(S) π) by the matrix
 ///    determinant lemma, so its multiple root appears exactly when π^T adj(S) π = 0). Skipped for
@@ -49,7 +52,8 @@
 /// space-time engine of region_ccd.h):
 ///  - a quartic edge (two curved faces meeting: thesis §6.5), a cone apex, a pair of planes as
 ///    one atom;
-///  - a degenerate candidate: g identically zero within kReductionZeroRelative, or a contact
+///  - a degenerate candidate: g identically zero within kReductionZeroRelative (other than
+///    quadric-line, above), or a contact
 ///    point that is undefined (coincident planes: a cap landing flat on a face);
 ///  - a pencil search reaching kPencilMaxBoxes (a curve of multiple roots);
 ///  - an unbounded body (no local AABB), a non-rigid pose at t = 0 for the start test.

@@ -106,6 +106,9 @@ struct ContinuousCollideStats {
   int steps = 0;            ///< advancement steps, or the exact solver's work count
   bool step_cap = false;    ///< the advancement stopped on kAdvancementMaxSteps
   bool near_tangent = false;  ///< exact path: a decision was taken in the touching band
+  /// Exact path of quadric shapes with CCDC_POLYNOMIAL_SOLVER: the dimension reduction answered
+  /// (steps = candidates verified); false when it was undecided and the space-time search answered.
+  bool dimension_reduction = false;
   /// Exact path of quadric shapes (region_ccd.h) with a contact: the contact point (world) at
   /// the contact time.
   Eigen::Vector3d contact_point = Eigen::Vector3d::Zero();
