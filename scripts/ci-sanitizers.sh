@@ -77,7 +77,8 @@ heavy+='|DistanceLowerBound.(RingAgainstMeshOctreeBoxAndHalfspaceNeverExceedsThe
 heavy+='|GrownRegion.ContainsEveryPointWithinDeltaOfTheRegion'
 # Dimension reduction against the certified space-time engine (the engine's ~300 ms per query);
 # the closed-form and degenerate cases of the reduction stay in.
-heavy+='|DimensionReductionCcd.AgreesWithTheSpaceTimeEngineOnRandomRigidMotions|QuadricShapeCcd.PolynomialSolver(RequestAgreesWithTheCertifiedEngine|OnFclPrimitivesAgreesWithTheEngineForEachSize)'
+heavy+='|DimensionReductionCcd.(AgreesWithTheSpaceTimeEngineOnRandomRigidMotions|ConesAgreeWithTheSpaceTimeEngineOnRandomRigidMotions)'
+heavy+='|QuadricShapeCcd.PolynomialSolver(RequestAgreesWithTheCertifiedEngine|OnFclPrimitivesAgreesWithTheEngineForEachSize)'
 # The slowest remaining tests under ASan, 61-321 s each (CI of 2026-11-23, 2,370 s of test time
 # in all): each repeats one code path many times and keeps a lighter sibling in this run (the
 # other motion-validator, render, plot, cylinder-kernel, octree and quadric-type tests). Issue 2

@@ -21,7 +21,10 @@ const char* toString(SubproblemType t) {
 }
 
 std::string elementLabel(ElementKind kind, int index) {
-  const char c = kind == ElementKind::Face ? 'F' : kind == ElementKind::Edge ? 'E' : 'V';
+  const char c = kind == ElementKind::Face   ? 'F'
+                 : kind == ElementKind::Edge ? 'E'
+                 : kind == ElementKind::Apex ? 'A'
+                                             : 'V';
   return std::string(1, c) + std::to_string(index);
 }
 

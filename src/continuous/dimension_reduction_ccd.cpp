@@ -388,7 +388,10 @@ struct Body {
   BoundaryElements el;
   std::vector<EdgeGeometry> edges;
   std::vector<std::vector<Eigen::Vector4d>> vertices;  // homogeneous points (w = 1) per vertex
-  std::vector<bool> singular;  // per signed atom: a curved atom with det Q = 0 (a cylinder)
+  std::vector<bool> singular;  // per signed atom: a curved atom with det Q = 0 (a cylinder, a cone)
+  /// Cone apexes: (face index, homogeneous point with w = 1), the finite null vector of the face's
+  /// quadric. A point contact of its own, searched against every face of the other body.
+  std::vector<std::pair<int, Eigen::Vector4d>> apexes;
   std::string unsupported;
 };
 
@@ -411,17 +414,21 @@ Body makeBody(const MovingRegion& m) {
   b.sgn = m.region.signedAtoms();
   b.el = m.elements ? *m.elements : boundaryElements(m.region, *m.box);
   b.singular.assign(b.sgn.size(), false);
-  for (const BoundaryFace& f : b.el.faces) {
+  for (std::size_t fi = 0; fi < b.el.faces.size(); ++fi) {
+    const BoundaryFace& f = b.el.faces[fi];
     const Eigen::Matrix4d& Q = b.sgn[f.atom];
     if (f.planar() && !detail::isPlanarAtom(Q)) b.unsupported = "a pair of planes as one atom";
     if (!f.planar() && std::fabs(Q.determinant()) <= 1e-12 * std::pow(Q.cwiseAbs().maxCoeff(), 4)) {
-      // A singular quadric: a cylinder (null vector at infinity) is fine; a cone's apex is a
-      // point contact of its own (not a vertex of the boundary elements): not handled here.
+      // A singular quadric: a cylinder (null vector at infinity), or a cone whose apex (a finite
+      // null vector) is a point contact of its own, not a vertex of the boundary elements.
       b.singular[f.atom] = true;
       Eigen::FullPivLU<Eigen::Matrix4d> lu(Q);
       const Eigen::MatrixXd K = lu.kernel();
-      for (int c = 0; c < K.cols(); ++c)
-        if (std::fabs(K(3, c)) > 1e-9 * K.col(c).norm()) b.unsupported = "a cone apex";
+      if (K.cols() > 1) {
+        b.unsupported = "a quadric of rank 2 or less as a face";
+      } else if (K.cols() == 1 && std::fabs(K(3, 0)) > 1e-9 * K.col(0).norm()) {
+        b.apexes.emplace_back(static_cast<int>(fi), Eigen::Vector4d(K.col(0) / K(3, 0)));
+      }
     }
   }
   for (const BoundaryEdge& e : b.el.edges) {
@@ -497,7 +504,9 @@ int classifyBand(const QuadricRegion& r, const std::vector<Eigen::Matrix4d>& pos
       const Eigen::Vector4d QX = Q * X;
       const double f = X.dot(QX);
       const double grad = 2.0 * QX.head<3>().norm();
-      if (std::fabs(f) <= band * grad + band * band * Q.topLeftCorner<3, 3>().norm()) return 0;
+      const Eigen::Vector4d aX = X.cwiseAbs();
+      const double rounding = kReductionEvalRelative * aX.dot(Q.cwiseAbs() * aX);  // a cone's apex: grad = 0
+      if (std::fabs(f) <= band * grad + band * band * Q.topLeftCorner<3, 3>().norm() + rounding) return 0;
       return f < 0.0 ? 1 : -1;
     }
     case QuadricRegion::Op::Union: {
@@ -528,6 +537,7 @@ struct Posed {
   std::vector<PVec> edgeU, edgeD, edgePlane;  // per edge
   std::vector<std::array<PVec, 3>> edgeBasis;  // per conic edge: the plane basis columns
   std::vector<std::vector<PVec>> vertices;
+  std::vector<PVec> apexes;  // per Body::apexes
 };
 
 // Points map by `Pinv` (X_a ~ Pinv X_b), covectors and quadrics by `P` (X_b ~ P X_a).
@@ -558,6 +568,7 @@ Posed pose(const Body& b, const std::vector<Eigen::Matrix4d>& P, const std::vect
     for (const Eigen::Vector4d& X : pts) v.push_back(point(X));
     o.vertices.push_back(v);
   }
+  for (const auto& [face, X] : b.apexes) o.apexes.push_back(point(X));
   return o;
 }
 
@@ -879,10 +890,11 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
           const Posed& pp = x_planar ? px : py;
           const Body& bq = x_planar ? by : bx;
           const int iq = x_planar ? iy : ix, ip = x_planar ? ix : iy;
-          // A cylinder (singular S; cones are not handled here) touches a plane only along a
-          // line parallel to its axis, which ends on the elements that bound the face (rims,
-          // the plane's edges) and is found there: π^T adj(S) π = k (π.z)^2 only marks the
-          // moments the plane is parallel to the axis z (identically, for a translation).
+          // A cylinder or a cone (singular S) touches a plane only along a generator, which ends
+          // on the elements that bound the face (rims, the plane's edges, a cone's apex: its own
+          // face-vertex tasks) and is found there. π^T adj(S) π only marks the moments the plane
+          // is parallel to a cylinder's axis (k (π.z)^2, identically zero for a translation) or
+          // passes through a cone's apex (k (π.v)^2, a double root the apex task finds).
           if (bq.singular[bq.el.faces[iq].atom]) break;
           const PMat& S = faceOf(pq, bq, iq);
           const PVec& pi = pp.planes[ip];
@@ -919,10 +931,17 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
             M.block<1, 4>(5, 0) = at(p2, u).transpose();
             return M.fullPivLu().determinant();
           };
-          task.points = [S, p1, p2](double u) {
+          task.points = [S, p1, p2, band](double u) {
             const Eigen::Vector4d q1 = at(p1, u), q2 = at(p2, u);
             Eigen::Vector3d x, d;
-            if (!lineOfPlanes(q1, q2, &x, &d)) return std::vector<PointAt>{degenerate()};
+            if (!lineOfPlanes(q1, q2, &x, &d)) {
+              // Parallel planes (a cap parallel to the face): their line is at infinity, so no
+              // contact unless they coincide (the conic lying in the face's plane: degenerate).
+              const double n1 = q1.head<3>().norm(), n2 = q2.head<3>().norm();
+              const double sign = q1.head<3>().dot(q2.head<3>()) > 0.0 ? 1.0 : -1.0;
+              const double gap = std::fabs(q1[3] / n1 - sign * q2[3] / n2);
+              return std::vector<PointAt>{gap > band ? PointAt() : degenerate()};
+            }
             d.normalize();
             const Eigen::Matrix4d Su = at(S, u);
             const Eigen::Vector4d U(x[0], x[1], x[2], 1.0), D(d[0], d[1], d[2], 0.0);
@@ -1127,7 +1146,36 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
         default: break;
       }
     }
-    res.subproblems += static_cast<int>(sps.size());
+    // Cone apexes against every face of the other body (a face-vertex condition at the apex;
+    // no exclusion: a convex tip can first touch a concave face). Its contacts with edges and
+    // vertices are not generic (thesis §6.1).
+    int apex_tasks = 0;
+    for (const bool apex_in_a : {true, false}) {
+      const Body& bv = apex_in_a ? A : B;
+      const Body& bf = apex_in_a ? B : A;
+      const Posed& pv = apex_in_a ? pa : pb;
+      const Posed& pf = apex_in_a ? pb : pa;
+      for (std::size_t k = 0; k < bv.apexes.size(); ++k)
+        for (std::size_t j = 0; j < bf.el.faces.size(); ++j) {
+          Task t;
+          t.sp.type = SubproblemType::FaceVertex;
+          t.sp.kind_a = apex_in_a ? ElementKind::Apex : ElementKind::Face;
+          t.sp.index_a = apex_in_a ? bv.apexes[k].first : static_cast<int>(j);
+          t.sp.kind_b = apex_in_a ? ElementKind::Face : ElementKind::Apex;
+          t.sp.index_b = apex_in_a ? static_cast<int>(j) : bv.apexes[k].first;
+          const PMat& S = faceOf(pf, bf, static_cast<int>(j));
+          const PVec& X = pv.apexes[k];
+          t.g = form(X, S, X);
+          t.value = [X, S](double u) {
+            const Eigen::Vector4d x = at(X, u);
+            return x.dot(at(S, u) * x);
+          };
+          t.points = [X](double u) { return std::vector<PointAt>{affine(at(X, u), 1.0)}; };
+          tasks.push_back(std::move(t));
+          ++apex_tasks;
+        }
+    }
+    res.subproblems += static_cast<int>(sps.size()) + apex_tasks;
 
     // Candidates: roots and near-zero extrema of each g, sorted by time.
     struct Candidate {

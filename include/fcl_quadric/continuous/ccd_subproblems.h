@@ -20,8 +20,10 @@
 
 namespace fcl_quadric {
 
-/// The dimension of a boundary element.
-enum class ElementKind { Face, Edge, Vertex };
+/// The dimension of a boundary element. Apex: the apex of a cone face (the singular point of its
+/// quadric), not one of the boundary elements of thesis §6.1 but a point contact of its own; its
+/// index is the face's (dimension_reduction_ccd.h adds its face-vertex subproblems).
+enum class ElementKind { Face, Edge, Vertex, Apex };
 
 /// The contact computation of §6.2.2 that a pair of extended boundary elements needs, named
 /// <element of one body><element of the other> with "Quadric" a curved face, "Plane" a planar
@@ -52,7 +54,8 @@ struct CcdSubproblem {
   SubproblemType type = SubproblemType::QuadricQuadric;
 };
 
-/// "F<i>", "E<i>", "V<i>" (the labels of boundaryElementLabel in region_ccd.h). No failure mode.
+/// "F<i>", "E<i>", "V<i>" (the labels of boundaryElementLabel in region_ccd.h); "A<i>" for the
+/// apex of cone face i. No failure mode.
 std::string elementLabel(ElementKind kind, int index);
 
 /// All subproblems of §6.2.1 for two CQMs with boundary elements `a` and `b`, with the exclusion

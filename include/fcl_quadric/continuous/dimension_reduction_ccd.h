@@ -23,6 +23,10 @@
 ///  - conic-line:   g = X^T S X with X = (π.D) U - (π.U) D the line's point in the conic's plane
 ///    (a line parallel to the plane: its crossings with the conic when it lies in the plane);
 ///  - line-line:    g = det [U1, D1, U2, D2] (coplanar lines);
+///  - a cone's apex (the finite null vector of a singular face quadric; not an element of §6.1):
+///    a face-vertex condition against every face of the other body (a convex tip may first touch
+///    a concave face, so no exclusion). A cone touches a plane along a generator, which ends at
+///    the apex or on a rim, so cone-plane contacts are found there as for cylinders;
 ///  - quadric-quadric, quadric-conic (in the conic's plane: 3x3 conics), conic-conic (on the
 ///    line of the two planes: the bordered pencil, whose binary forms share a root): a negative
 ///    multiple root λ of the characteristic polynomial f(λ; u) = det(λ M1 - M2(u)) (external
@@ -50,8 +54,8 @@
 /// elements that bound them (an edge lying on a face touches it first at a vertex or where it
 /// crosses the face's edges). Undecided, with the reason (the caller then uses the certified
 /// space-time engine of region_ccd.h):
-///  - a quartic edge (two curved faces meeting: thesis §6.5), a cone apex, a pair of planes as
-///    one atom;
+///  - a quartic edge (two curved faces meeting: thesis §6.5), a curved face of rank 2 or less,
+///    a pair of planes as one atom;
 ///  - a degenerate candidate: g identically zero within kReductionZeroRelative (other than
 ///    quadric-line, above), or a contact
 ///    point that is undefined (coincident planes: a cap landing flat on a face);
@@ -85,6 +89,13 @@ constexpr double kReductionNearRootRelative = 1e-10;
 /// g is degenerate (identically zero) when max |c_k| <= this times the magnitude of its
 /// formula on absolute values.
 constexpr double kReductionZeroRelative = 1e-11;
+/// A candidate point is also on an atom's surface when |f| is within this fraction of the form's
+/// absolute magnitude sum |X_i| |Q_ij| |X_j| (X = (x, 1)): the rounding of evaluating f from the
+/// posed polynomial matrices. This decides points at a singular point of a surface (a cone's
+/// apex), where the gradient vanishes and kReductionVerifyRelative's first-order band is empty;
+/// elsewhere it is far below that band. Near an apex it accepts points within about 1e-7 of the
+/// size (f is second order there). Dimensionless.
+constexpr double kReductionEvalRelative = 1e-14;
 /// Pencil subproblems: boxes of (x, u) narrower than this in both are candidates.
 constexpr double kPencilSeedWidth = 1e-7;
 /// Pencil subproblems: work cap of one search (boxes); reaching it makes the answer Undecided.
