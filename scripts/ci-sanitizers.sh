@@ -92,6 +92,9 @@ heavy+='|ContinuousMotionValidator.ARingLinkSlidesAlongAThinMeshPoleAndStopsAgai
 heavy+='|Plot.EveryExampleSceneWithMotionsGivesValidPlots|EllipticCylinderShape.CircularCaseCollidesLikeTheExactEllipsoidCylinderKernelOnRandomPoses'
 heavy+='|Environment.OcTreeMergedAndLeafBoxesAgreeWithTheFclOcTreeAndStopATunnellingMotion|QuadricShapeTypes.NamedQuadricsHaveAnalyticExtentsAndContacts'
 heavy+='|QuadricShapeDistance.SignAgreesWithCollideOnClippedQuadricsIncludingNearContact'
+# The space-time engine refining zero-thickness triangles around each contact (1-2.5 s per landing
+# query in Release, session 13); the octree landing and the bad-motion test stay in.
+heavy+='|QuadricShapeMeshCcd.CylinderLandingOnAMeshFloorTouchesAtTheClosedFormTime|QuadricShapeMeshCcd.RandomMotionsOverATerrainMatchTheSampledFrontDoors'
 # CMake compiles -E's expression itself and, when it cannot (more than 9 groups), only prints an
 # error and runs every test: check it first.
 listing=$(ctest --test-dir "$prefix-asan" -N -E "$heavy" 2>&1 || true)

@@ -38,6 +38,7 @@
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/continuous/dimension_reduction_ccd.h"
+#include "fcl_quadric/fcl/continuous_broadphase.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
 #include "fcl_quadric/fcl/quadric_solver.h"
 #include "fcl_quadric/geometry/convex_cover.h"
@@ -471,23 +472,172 @@ std::shared_ptr<const BoundaryElements> primitiveElements(const fcl::CollisionGe
 
 }  // namespace
 
+namespace {
+
+/// The boundary-element label of the atoms `active` of a solid (searched in its local AABB, a
+/// generous box for an unbounded one: labels are only reported, never used to decide).
+std::string elementLabel(const LocalSolid& s, const std::vector<int>& active) {
+  if (active.empty()) return std::string();
+  const Box3 box = s.box ? *s.box : Box3{Eigen::Vector3d::Constant(-1e3), Eigen::Vector3d::Constant(1e3)};
+  return boundaryElementLabel(boundaryElements(s.region, box, static_cast<int>(std::min<std::size_t>(active.size(), 3))),
+                              active);
+}
+
+/// A box's swept world AABB under `motion` (its bounding ball swept: sweptAABB), as a Box3.
+Box3 sweptBox3(const Box3& local, const PiecewiseMotion& motion) {
+  const fcl::AABB<double> b = sweptAABB(local.center(), local.halfWidth().norm(), motion);
+  return Box3{b.min_, b.max_};
+}
+
+/// The motion m on [t0, t1] of its global time, reparametrised to [0, 1] (piece by piece).
+PiecewiseMotion window(const PiecewiseMotion& m, double t0, double t1) {
+  const std::vector<double>& b = m.breaks();
+  std::vector<double> breaks{0.0};
+  std::vector<MotionMatrix> pieces;
+  for (std::size_t k = 0; k + 1 < b.size(); ++k) {
+    const double lo = std::max(b[k], t0), hi = std::min(b[k + 1], t1);
+    const double end = (hi - t0) / (t1 - t0);
+    if (!(hi > lo) || !(end > breaks.back())) continue;  // (a sliver below rounding: its neighbours cover it)
+    pieces.push_back(m.restricted(lo, hi));
+    breaks.push_back(end);
+  }
+  breaks.back() = 1.0;
+  return PiecewiseMotion(std::move(breaks), std::move(pieces));
+}
+
+/// Time slices of the swept-box filter for meshes and octrees (continuousCollideShapePieces).
+constexpr int kPieceTimeSlices = 32;
+
+/// A quadric shape against a BVH mesh or an OcTree under rational motions: the space-time engine
+/// on every piece (triangle as the zero-thickness region of triangleSolid, occupied leaf as its
+/// box) in the time window where the two can meet; the earliest contact wins ("no collision" is
+/// certified piece by piece). The window: [0, 1] is cut into kPieceTimeSlices slices, and the
+/// shape's swept box over each slice (sweptAABB on the restricted motion, a certified superset)
+/// is tested against the piece's box (swept the same way if the mesh moves); the engine searches
+/// from the first slice that meets to the end of the last one, or to the earliest contact found
+/// so far. When the mesh or octree does not move, its BVH or cells are searched with the union of
+/// the slices' boxes carried into its frame. A triangle has no interior, so its contacts are the
+/// engine's tolerance-band answers (stats near_tangent): never later than the true first contact
+/// (docs/fcl_integration.md section 9).
+RegionCcdResult continuousCollideShapePieces(const fcl::CollisionGeometry<double>* o1, const PiecewiseMotion& m1,
+                                             const fcl::CollisionGeometry<double>* o2, const PiecewiseMotion& m2,
+                                             const char* where, std::string* elements1, std::string* elements2) {
+  const bool pieces_first = isMeshOrOcTree(o1);
+  if (pieces_first && isMeshOrOcTree(o2))
+    throw std::invalid_argument(std::string(where) + ": o1 and o2 are both meshes or octrees");
+  const fcl::CollisionGeometry<double>* gp = pieces_first ? o1 : o2;
+  const PiecewiseMotion& mp = pieces_first ? m1 : m2;
+  const PiecewiseMotion& ms = pieces_first ? m2 : m1;
+  const LocalSolid shape = localSolid(pieces_first ? o2 : o1, pieces_first ? "o2" : "o1", where);
+  const double inf = std::numeric_limits<double>::infinity();
+  const Box3 everything{Eigen::Vector3d::Constant(-inf), Eigen::Vector3d::Constant(inf)};
+  const bool still = std::all_of(mp.pieces().begin(), mp.pieces().end(), [](const MotionMatrix& p) { return p.degree() == 0; });
+  const int slices = shape.box ? kPieceTimeSlices : 1;
+  auto sliceStart = [&](int k) { return static_cast<double>(k) / slices; };
+  std::vector<PiecewiseMotion> piece_slices;  // the pieces' motion per slice (moving pieces)
+  std::vector<Box3> shape_boxes;              // the shape's swept box per slice: world, or the pieces' frame if still
+  Box3 query = everything;                    // their union (still pieces)
+  Eigen::Matrix3d Rt = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d pt = Eigen::Vector3d::Zero();
+  if (still) {
+    const Eigen::Matrix4d X = mp.evaluate(0.0);
+    Rt = X.topLeftCorner<3, 3>().transpose();
+    pt = -Rt * X.topRightCorner<3, 1>();
+  }
+  for (int k = 0; k < slices; ++k) {
+    if (!shape.box) {
+      shape_boxes.push_back(everything);
+      continue;
+    }
+    const Box3 w = sweptBox3(*shape.box, window(ms, sliceStart(k), sliceStart(k + 1)));
+    shape_boxes.push_back(still ? transformBox(w, Rt, pt) : w);
+    if (!still) piece_slices.push_back(window(mp, sliceStart(k), sliceStart(k + 1)));
+  }
+  if (still && shape.box) {
+    query = shape_boxes.front();
+    for (const Box3& b : shape_boxes) {
+      query.lo = query.lo.cwiseMin(b.lo);
+      query.hi = query.hi.cwiseMax(b.hi);
+    }
+  }
+  // Candidates with their slice range, then the engine in the order of their first slice: the
+  // earliest contact tends to come first and shortens every later window.
+  struct Candidate {
+    LocalSolid solid;
+    std::string label;
+    int first, last;
+  };
+  std::vector<Candidate> candidates;
+  auto piece = [&](LocalSolid p, std::string label) {
+    int first = -1, last = -1;
+    for (int k = 0; k < slices; ++k) {
+      const Box3 pb = still || !shape.box ? *p.box : sweptBox3(*p.box, piece_slices[k]);
+      if (!boxesOverlap(pb, shape_boxes[k])) continue;
+      if (first < 0) first = k;
+      last = k;
+    }
+    if (first >= 0) candidates.push_back(Candidate{std::move(p), std::move(label), first, last});
+    return false;
+  };
+  if (!withMesh(gp, [&](const auto& m) {
+        visitMeshTriangles(m, query, nullptr,
+                           [&](int t, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+                             std::optional<LocalSolid> tri = triangleSolid(p0, p1, p2);
+                             return tri && piece(std::move(*tri), "T" + std::to_string(t));  // (zero-area: skipped)
+                           });
+      })) {
+    visitOcTreeLeaves(*static_cast<const fcl::OcTree<double>*>(gp), query,
+                      [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
+                        return piece(LocalSolid{boxRegion(c, h), Box3{c - h, c + h}, false}, "leaf");
+                      });
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.first < b.first; });
+  RegionCcdResult best;
+  std::string best_label;
+  for (const Candidate& c : candidates) {
+    const double t0 = sliceStart(c.first), t1 = std::min(sliceStart(c.last + 1), best.collide ? best.time : 1.0);
+    if (!(t1 > t0)) continue;
+    const bool whole = t0 == 0.0 && t1 == 1.0;
+    const MovingRegion moving_shape{shape.region, shape.box, whole ? ms : window(ms, t0, t1)};
+    const MovingRegion moving_piece{c.solid.region, c.solid.box, whole ? mp : window(mp, t0, t1)};
+    RegionCcdResult r = pieces_first ? continuousCollideRegions(moving_piece, moving_shape)
+                                     : continuousCollideRegions(moving_shape, moving_piece);
+    const int boxes = best.boxes + r.boxes;
+    if (r.collide) r.time = t0 + r.time * (t1 - t0);
+    if (r.collide && (!best.collide || r.time < best.time)) {
+      best = std::move(r);
+      best_label = c.label;
+    } else {
+      best.capped |= r.capped;
+    }
+    best.boxes = boxes;
+    if (best.collide && best.time <= 0.0) break;  // nothing comes earlier than t = 0
+  }
+  if (best.collide && elements1 && elements2) {
+    const std::vector<int>& shape_active = pieces_first ? best.active_b : best.active_a;
+    const std::string shape_label = elementLabel(shape, shape_active);
+    *elements1 = pieces_first ? best_label : shape_label;
+    *elements2 = pieces_first ? shape_label : best_label;
+  }
+  return best;
+}
+
+}  // namespace
+
 RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const PiecewiseMotion& m1,
                                                const fcl::CollisionGeometry<double>* o2, const PiecewiseMotion& m2,
                                                const char* where, std::string* elements1, std::string* elements2,
                                                bool dimension_reduction, bool* decided_by_reduction) {
   if (decided_by_reduction) *decided_by_reduction = false;
-  for (const auto& [g, which] : {std::pair(o1, "o1"), std::pair(o2, "o2")}) {
-    if (isMeshOrOcTree(g))
-      throw std::invalid_argument(std::string(where) + ": " + which +
-                                  " is a BVH mesh or an OcTree: continuous collision of quadric shapes against meshes "
-                                  "and octrees is not implemented");
-  }
+  if (elements1) elements1->clear();
+  if (elements2) elements2->clear();
+  if (isMeshOrOcTree(o1) || isMeshOrOcTree(o2))
+    return continuousCollideShapePieces(o1, m1, o2, m2, where, elements1, elements2);
   const LocalSolid a = localSolid(o1, "o1", where), b = localSolid(o2, "o2", where);
   if (!a.box && !b.box)
     throw std::invalid_argument(std::string(where) + ": both operands are unbounded (half-spaces or unclipped quadrics)");
   MovingRegion ma{a.region, a.box, m1}, mb{b.region, b.box, m2};
-  if (elements1) elements1->clear();
-  if (elements2) elements2->clear();
   if (dimension_reduction && a.box && b.box) {
     // Thesis §6.2.2 first; the certified engine answers what it leaves undecided. A QuadricShape
     // lends its own cached boundary elements, an FCL primitive those cached for its type and size.
@@ -512,15 +662,8 @@ RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<doub
   }
   const RegionCcdResult r = continuousCollideRegions(ma, mb);
   if (r.collide && elements1 && elements2) {
-    // Boundary elements are searched in the local AABB (a generous box for unbounded operands:
-    // they are only labelled, never used to decide).
-    auto label = [](const LocalSolid& s, const std::vector<int>& active) {
-      if (active.empty()) return std::string();
-      const Box3 box = s.box ? *s.box : Box3{Eigen::Vector3d::Constant(-1e3), Eigen::Vector3d::Constant(1e3)};
-      return boundaryElementLabel(boundaryElements(s.region, box, static_cast<int>(std::min<std::size_t>(active.size(), 3))), active);
-    };
-    *elements1 = label(a, r.active_a);
-    *elements2 = label(b, r.active_b);
+    *elements1 = elementLabel(a, r.active_a);
+    *elements2 = elementLabel(b, r.active_b);
   }
   return r;
 }

@@ -64,8 +64,10 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
 /// operands bounded) and fall back to the space-time engine when it is Undecided; a decided
 /// answer has `boxes` = candidates verified and no atom lists (the labels come from the pair).
 /// `decided_by_reduction` (if non-null) tells whether the reduction answered.
-/// \throws std::invalid_argument (message starting with `where`) for BVH meshes, OcTrees and any
-/// other unsupported geometry, or two unbounded operands.
+/// A BVH mesh or OcTree operand is taken piece by piece (continuousCollideShapePieces: the
+/// engine only, with the pieces' labels "T<triangle>" / "leaf").
+/// \throws std::invalid_argument (message starting with `where`) for an unsupported geometry,
+/// two meshes / octrees, or two unbounded operands.
 RegionCcdResult continuousCollideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const PiecewiseMotion& m1,
                                                const fcl::CollisionGeometry<double>* o2, const PiecewiseMotion& m2,
                                                const char* where, std::string* elements1, std::string* elements2,

@@ -27,17 +27,18 @@
 ///  - some motion fcl::SplineMotion, or another MotionBase: no certified bound is available:
 ///    delegated to fcl::continuousCollide (NOT certified: FCL's naive sampling or its conservative
 ///    advancement, per request.ccd_solver_type).
-/// Quadric shapes (quadric_shapes.h: EllipticCylinder, Quadric, QuadricCSG) against each other or
-/// an fcl Sphere / Ellipsoid / Box / Cylinder / Cone / Capsule / Halfspace:
+/// Quadric shapes (quadric_shapes.h: EllipticCylinder, Quadric, QuadricCSG) against each other,
+/// an fcl Sphere / Ellipsoid / Box / Cylinder / Cone / Capsule / Halfspace, a BVH mesh or an
+/// fcl::OcTree (piece by piece: each triangle, each occupied leaf; docs/fcl_integration.md §9):
 ///  - both motions RationalMotion (rigid or affine) or fcl::TranslationMotion: EXACT up to the
 ///    stated band, the certified space-time search of continuous/region_ccd.h. "No collision" is
 ///    certified; a contact time is never later than the true first contact and within
 ///    kRegionCcdTimeTolerance (2^-27 ~ 7.5e-9) of it unless the pair only comes within the band (then the
 ///    contact is reported early: stats near_tangent) or the box cap is reached (step_cap). Stats
 ///    contact_point holds the contact point. request's solver settings are ignored.
-///  - any other motion type, a BVH mesh or an OcTree partner: std::invalid_argument (no certified
-///    method; FCL's own solvers do not know these shapes). The transforms overload accepts only
-///    CCDM_TRANS for them.
+///    Against a mesh the contact with a triangle (no interior) is always a band answer.
+///  - any other motion type: std::invalid_argument (no certified method; FCL's own solvers do not
+///    know these shapes). The transforms overload accepts only CCDM_TRANS for them.
 /// Every other pair of geometries is delegated unchanged to fcl::continuousCollide with the same
 /// request (a RationalMotion works there with CCDC_NAIVE and CCDC_CONSERVATIVE_ADVANCEMENT).
 ///
