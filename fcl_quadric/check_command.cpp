@@ -13,6 +13,7 @@
 #include "fcl_quadric/geometry/convex_distance.h"
 #include "fcl_quadric/geometry/convex_support.h"
 #include "fcl_quadric/geometry/quadric_region.h"
+#include "fcl_quadric/geometry/region_distance.h"
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "fcl_quadric/geometry/signed_distance.h"
 
@@ -121,6 +122,30 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
         report.point_a = d.point_a;
         report.point_b = d.point_b;
         report.normal = d.normal;
+        return report;
+      }
+    }
+  }
+  // Other bounded separated pairs (rings, wedges, clipped hyperboloids: not unions of convex
+  // solids) get the distance of region_distance.h's branch and bound, with its witnesses; a
+  // touching one 0. An overlapping one keeps no signed distance (depth not computed).
+  if (ba && bb && report.status != Separation::Overlapping) {
+    if (report.status == Separation::Touching) {
+      report.signed_distance = 0.0;
+    } else {
+      // A convex operand goes in as its support mapping (never split), the other as a region.
+      const std::optional<ConvexSupport> sa = ConvexSupport::fromRegion(ra, *ba), sb = ConvexSupport::fromRegion(rb, *bb);
+      auto operand = [](const QuadricRegion& r, const Box3& box, const std::optional<ConvexSupport>& s,
+                        const Eigen::Isometry3d& X) {
+        return s ? DistanceOperand::ofConvex(*s, X.linear(), X.translation())
+                 : DistanceOperand::ofRegion(r, box, X.linear(), X.translation());
+      };
+      const RegionDistanceResult r = regionDistance(operand(ra, *ba, sa, a.pose), operand(rb, *bb, sb, b.pose));
+      if (r.status == RegionDistanceResult::Status::Separated && r.distance > 0.0) {
+        report.signed_distance = r.distance;
+        report.point_a = r.point_a;
+        report.point_b = r.point_b;
+        report.normal = (r.point_b - r.point_a) / r.distance;
         return report;
       }
     }

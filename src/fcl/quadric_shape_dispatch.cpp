@@ -48,6 +48,7 @@
 #include "fcl_quadric/geometry/ellipsoid_plane.h"
 #include "fcl_quadric/geometry/ellipsoid_quadric.h"
 #include "fcl_quadric/geometry/quadric_region.h"
+#include "fcl_quadric/geometry/region_distance.h"
 #include "fcl_quadric/geometry/region_distance_bound.h"
 #include "geometry/region_formula.h"
 
@@ -363,7 +364,7 @@ void addRegionContact(const QuadricRegion& wa, const Eigen::Vector3d& point, con
 
 }  // namespace
 
-void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
+PointSearch collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
                  const fcl::Transform3<double>& tf2, const fcl::CollisionGeometry<double>* o1,
                  const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
                  fcl::CollisionResult<double>& result) {
@@ -385,7 +386,7 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
   }
   if (!box)
     throw std::invalid_argument("fcl_quadric::collide: both operands are unbounded (half-spaces or unclipped quadrics)");
-  if (box->empty()) return;
+  if (box->empty()) return PointSearch::Empty;
   // Fast certified answers for a small ellipsoid: disjoint; contained (its centre is a common
   // interior point); crossing, when a cheap certified witness point is found. Not against a
   // triangle: it has no interior, and the engine's undecided box is its answer.
@@ -395,7 +396,7 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
     verdict = smallEllipsoidVerdict(b, R2, p2, wa);
     a_is_small = false;
   }
-  if (verdict == SmallEllipsoidVerdict::Disjoint) return;
+  if (verdict == SmallEllipsoidVerdict::Disjoint) return PointSearch::Empty;
   PointSearchResult s;
   if (verdict == SmallEllipsoidVerdict::Contained) {
     s.status = PointSearch::Found;
@@ -408,8 +409,9 @@ void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const 
     s = findPoint(QuadricRegion::combine(Op::Intersection, {wa, wb}), *box,
                   a.thin || b.thin ? 0 : tolerance_region::kRegionExtraBoxesAfterUndecided);
   }
-  if (s.status == PointSearch::Empty) return;
+  if (s.status == PointSearch::Empty) return PointSearch::Empty;
   addRegionContact(wa, s.point, o1, o2, request, result);
+  return s.status;
 }
 
 namespace {
@@ -732,6 +734,15 @@ struct PosedConvex {
   int index = -1;
   Kind kind = Primitive;
   std::array<Eigen::Vector3d, 3> v{};
+  /// Set for a quadric shape that is neither convex nor a union of convex solids: searched as a
+  /// region by regionDistance (region_distance.h); `support` is then unused.
+  const QuadricShape<double>* model = nullptr;
+
+  double size() const { return model ? model->localBox().halfWidth().norm() : support.size(); }
+  DistanceOperand operand() const {
+    return model ? DistanceOperand::ofRegion(model->region(), model->localBox(), R, p)
+                 : DistanceOperand::ofConvex(support, R, p);
+  }
 };
 
 }  // namespace
@@ -744,7 +755,8 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
   // a mesh / octree, or a half-space.
   // A convex operand as one piece; a quadric shape whose convex cover is exact (a union of convex
   // solids, convex_cover.h) as its pieces: the distance to it is the smallest to a piece, its
-  // penetration depth reported is the deepest piece's (as for a mesh).
+  // penetration depth reported is the deepest piece's (as for a mesh). Any other quadric shape
+  // is one piece searched as a region (regionDistance).
   auto piecesOf = [&](const fcl::CollisionGeometry<double>* g, const fcl::Transform3<double>& tf, const char* which) {
     std::vector<PosedConvex> out;
     if (std::optional<ConvexSupport> s = convexSupportOf(g, which)) {
@@ -757,20 +769,16 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
       if (cover.exact) {
         for (ConvexSupport& piece : cover.pieces)
           out.push_back(PosedConvex{std::move(piece), tf.linear(), tf.translation(), -1, PosedConvex::Primitive, {}});
-        return out;
+      } else {
+        out.push_back(PosedConvex{ConvexSupport{}, tf.linear(), tf.translation(), -1, PosedConvex::Primitive, {}, &q});
       }
+      return out;
     }
-    throw std::invalid_argument(std::string(where) + ": " + which +
-                                (isQuadricShape(g)
-                                     ? " is a quadric shape that is neither convex nor a union of convex solids (a "
-                                       "difference of curved solids, an intersection of two curved atoms, or a "
-                                       "non-convex quadric): distance is implemented for convex quadric shapes and "
-                                       "unions of them (fcl_quadric::distanceLowerBound gives a certified bound)"
-                                     : (" has node type " + std::to_string(g->getNodeType()) +
-                                        ", which is not supported against fcl_quadric quadric shapes (supported: "
-                                        "convex quadric shapes and unions of them, Sphere, Ellipsoid, Box, Cylinder, "
-                                        "Cone, Capsule, Halfspace, BVH meshes, OcTree)"))
-                                    .c_str());
+    throw std::invalid_argument(std::string(where) + ": " + which + " has node type " +
+                                std::to_string(g->getNodeType()) +
+                                ", which is not supported against fcl_quadric quadric shapes (supported: quadric "
+                                "shapes, Sphere, Ellipsoid, Box, Cylinder, Cone, Capsule, Halfspace, BVH meshes, "
+                                "OcTree)");
   };
   const bool swap = !isQuadricShape(o1);  // the quadric shape first
   const fcl::CollisionGeometry<double>* gs = swap ? o2 : o1;
@@ -789,7 +797,7 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
   // The distance from one convex piece of the shape to the partner.
   std::vector<PosedConvex> partner_pieces;  // a convex partner's pieces (never empty once computed)
   auto fromShapePiece = [&](const PosedConvex& shape) {
-    if (gp->getNodeType() == fcl::GEOM_HALFSPACE) {
+    if (gp->getNodeType() == fcl::GEOM_HALFSPACE && !shape.model) {
       // min over the shape of n.x - d is reached at its support point towards -n.
       const auto* hs = static_cast<const fcl::Halfspace<double>*>(gp);
       const Eigen::Vector3d n = tfp.linear() * hs->n.normalized();
@@ -813,9 +821,25 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
     // One piece: GJK / EPA, then near contact the front door's own collide decides the sign, so
     // distance and collide agree. Returns the value reported (FCL's -1 for an unsigned overlap).
     auto solve = [&](const PosedConvex& piece) {
-      SignedDistanceResult d =
-          convexSignedDistance(shape.support, shape.R, shape.p, piece.support, piece.R, piece.p, request.enable_signed_distance);
-      const double scale = shape.support.size() + piece.support.size() + (shape.p - piece.p).norm();
+      const bool region_pair = shape.model || piece.model;
+      SignedDistanceResult d;
+      if (region_pair) {
+        // A non-convex quadric shape: branch and bound (region_distance.h). Its "Contact" (the
+        // bounds within the tolerance of 0) goes to the static collide below, as near contact.
+        const RegionDistanceResult r =
+            regionDistance(shape.operand(), piece.operand(), std::max(0.0, static_cast<double>(request.abs_err)));
+        d.point_a = r.point_a;
+        d.point_b = r.point_b;
+        d.converged = r.converged;
+        d.iterations = r.nodes;
+        const bool contact = r.status == RegionDistanceResult::Status::Contact;
+        d.status = contact ? Separation::Touching : Separation::Separated;
+        d.distance = contact ? 0.0 : r.distance;
+      } else {
+        d = convexSignedDistance(shape.support, shape.R, shape.p, piece.support, piece.R, piece.p,
+                                 request.enable_signed_distance);
+      }
+      const double scale = shape.size() + piece.size() + (shape.p - piece.p).norm();
       // (An overlap certified without its depth, want_depth = false, reports distance 0: not near.)
       const bool depth_unknown = d.status == Separation::Overlapping && !request.enable_signed_distance;
       if (!depth_unknown && std::abs(d.distance) <= 1e-8 * scale) {
@@ -826,9 +850,12 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
         else if (piece.kind == PosedConvex::Triangle) b = triangleSolid(piece.v[0], piece.v[1], piece.v[2]);
         else b = LocalSolid{boxRegion(piece.v[0], piece.v[1]), Box3{piece.v[0] - piece.v[1], piece.v[0] + piece.v[1]}};
         if (b) {  // (a zero-area triangle has no region: GJK's answer stands)
-          collidePair(localSolid(gs, "o1", where), tfs, *b, tfp, gs, gp, creq, cres);
+          const PointSearch found = collidePair(localSolid(gs, "o1", where), tfs, *b, tfp, gs, gp, creq, cres);
           if (cres.numContacts() > 0) {
             if (d.status == Separation::Separated) d.status = Separation::Touching;
+            // A non-convex shape's penetration depth is not computed: a certified overlap is
+            // FCL's -1 unsigned, 0 signed (docs/fcl_integration.md).
+            if (region_pair && found == PointSearch::Found) d.status = Separation::Overlapping;
             d.distance = std::min(d.distance, 0.0);
           } else {
             d.status = Separation::Separated;
@@ -845,6 +872,9 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
     auto done = [&](double best) { return best < 0.0 && !request.enable_signed_distance; };
     // The shape's exact bounding box in the pieces' frame (six support points).
     auto shapeBoxIn = [&](const fcl::Transform3<double>& frame) {
+      if (shape.model)
+        return transformBox(shape.model->localBox(), frame.linear().transpose() * shape.R,
+                            frame.linear().transpose() * (shape.p - frame.translation()));
       return supportBoxIn(shape.support, shape.R, shape.p, frame.linear(), frame.translation());
     };
     const bool is_mesh = withMesh(gp, [&](const auto& m) {
@@ -871,6 +901,23 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
                                                 {c, h, Eigen::Vector3d::Zero()}}));
         return done(best);
       });
+      return;
+    }
+    if (gp->getNodeType() == fcl::GEOM_HALFSPACE) {
+      // A non-convex shape against a half-space: the half-space clipped to the shape's world box
+      // grown by the largest n.x - d over that box holds the nearest point to every point of the
+      // shape, so the distance to it is the distance to the half-space.
+      const auto* hs = static_cast<const fcl::Halfspace<double>*>(gp);
+      const Eigen::Vector3d n = tfp.linear() * hs->n.normalized();
+      const double off = hs->d / hs->n.norm() + n.dot(tfp.translation());
+      Box3 w = transformBox(shape.model->localBox(), shape.R, shape.p);
+      const double reach = std::max(0.0, n.cwiseAbs().dot(w.halfWidth()) + n.dot(w.center()) - off);
+      const double margin = 1e-6 * (w.halfWidth().norm() + reach) + reach;
+      w.lo.array() -= margin;
+      w.hi.array() += margin;
+      std::optional<ConvexSupport> clipped = ConvexSupport::fromRegion(QuadricRegion::halfspace(n, off), w);
+      solve(PosedConvex{std::move(*clipped), Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), -1,
+                        PosedConvex::Primitive, {}});
       return;
     }
     if (partner_pieces.empty()) partner_pieces = piecesOf(gp, tfp, swap ? "o1" : "o2");  // once, not per shape piece

@@ -243,8 +243,9 @@ LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which
                       const char* where = "fcl_quadric::collide");
 
 /// The static collide of two local solids posed by tf1, tf2 (certified region engine, with the
-/// small-ellipsoid filter); adds one contact to result on contact.
-void collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
+/// small-ellipsoid filter); adds one contact to result on contact. \return Empty (no contact),
+/// Found (a certified common interior point: overlapping) or Undecided (touching within the band).
+PointSearch collidePair(const LocalSolid& a, const fcl::Transform3<double>& tf1, const LocalSolid& b,
                  const fcl::Transform3<double>& tf2, const fcl::CollisionGeometry<double>* o1,
                  const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
                  fcl::CollisionResult<double>& result);

@@ -29,6 +29,9 @@ using detail::FormulaBox;
 using detail::goldenPositive;
 using detail::chooseSplitAxis;
 using detail::Tri;
+using detail::atomBox;
+using detail::enclose;
+using detail::Enclosure;
 
 const char* toString(FaceShape s) {
   switch (s) {
@@ -207,51 +210,6 @@ std::vector<Eigen::Matrix4d> QuadricRegion::signedAtoms() const {
 namespace {
 
 
-
-struct Enclosure {
-  double lo, hi;
-};
-
-// Centred form of f(X) = X^T Q X on the box c + [-r, r]: f(c+h) = f(c) + g.h + h^T A h with
-// g = 2(A c + b); |g.h| <= |g|.r and h^T A h in [sum min(0,A_ii) r_i^2 - sum_{i!=j} |A_ij| r_i r_j,
-// sum max(0,A_ii) r_i^2 + sum_{i!=j} |A_ij| r_i r_j]. Padded by kRegionSignRelative times the
-// absolute-value expression (rounding of every term).
-// `Qabs` (>= |Q| entrywise) sizes the pad: for a pencil mu F + (1-mu) G it is
-// mu |F| + (1-mu) |G|, which also covers the cancellation in forming the combination.
-Enclosure enclose(const Eigen::Matrix4d& Q, const Eigen::Matrix4d& Qabs, const Eigen::Vector3d& c,
-                  const Eigen::Vector3d& r) {
-  const Eigen::Matrix3d A = Q.topLeftCorner<3, 3>();
-  const Eigen::Vector3d b = Q.topRightCorner<3, 1>();
-  const Eigen::Vector3d Ac = A * c;
-  const double fc = c.dot(Ac) + 2.0 * b.dot(c) + Q(3, 3);
-  const Eigen::Vector3d g = 2.0 * (Ac + b);
-  const double lin = g.cwiseAbs().dot(r);
-  double qlo = 0.0, qhi = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    qlo += std::min(0.0, A(i, i)) * r[i] * r[i];
-    qhi += std::max(0.0, A(i, i)) * r[i] * r[i];
-    for (int j = 0; j < 3; ++j) {
-      if (i == j) continue;
-      const double t = std::fabs(A(i, j)) * r[i] * r[j];
-      qlo -= t;
-      qhi += t;
-    }
-  }
-  const Eigen::Vector4d Xa((c.cwiseAbs() + r)[0], (c.cwiseAbs() + r)[1], (c.cwiseAbs() + r)[2], 1.0);
-  const double pad = kRegionSignRelative * Xa.dot(Qabs * Xa);
-  return {fc - lin + qlo - pad, fc + lin + qhi + pad};
-}
-
-Enclosure enclose(const Eigen::Matrix4d& Q, const Eigen::Vector3d& c, const Eigen::Vector3d& r) {
-  return enclose(Q, Q.cwiseAbs(), c, r);
-}
-
-Tri atomBox(const Eigen::Matrix4d& Q, const Eigen::Vector3d& c, const Eigen::Vector3d& r) {
-  const Enclosure e = enclose(Q, c, r);
-  if (e.lo > 0.0) return Tri::Out;
-  if (e.hi < 0.0) return Tri::In;
-  return Tri::Unknown;
-}
 
 /// Evaluates the formula on a box and keeps the atom / node states for the exclusion test.
 class BoxEval {

@@ -35,11 +35,13 @@ TEST(QuadricScene, ExampleSceneHasTheHandCheckedStatuses) {
     const auto& p = out["pairs"][i];
     EXPECT_EQ(p["status"], expected[i].first) << p.dump();
     EXPECT_EQ(p["method"], expected[i].second) << p.dump();
-    // Convex pairs (no half-space, no ring or wedge: those subtract cylinders) carry a signed
-    // distance whose sign is the status's.
-    auto convexShape = [](const std::string& n) { return n != "ring" && n != "floor" && n != "wedge"; };
+    // Bounded pairs carry a signed distance whose sign is the status's, except an overlapping
+    // pair with a non-convex shape (a ring or wedge: they subtract cylinders), whose depth is not
+    // computed. The floor is a half-space (unbounded): no distance.
+    auto convexShape = [](const std::string& n) { return n != "ring" && n != "wedge"; };
+    const bool bounded = p["a"] != "floor" && p["b"] != "floor";
     const bool convex = convexShape(p["a"]) && convexShape(p["b"]);
-    EXPECT_EQ(p["signed_distance"].is_null(), !convex) << p.dump();
+    EXPECT_EQ(p["signed_distance"].is_null(), !bounded || (!convex && p["status"] == "overlapping")) << p.dump();
     if (!p["signed_distance"].is_null()) {
       ++with_distance;
       const double d = p["signed_distance"];
@@ -96,6 +98,28 @@ TEST(QuadricScene, UnionOfBallsGetsTheNearestBallsSignedDistance) {
     ASSERT_FALSE(std::isnan(r.signed_distance)) << "x = " << x;
     EXPECT_NEAR(r.signed_distance, expected, 1e-8) << "x = " << x;
     EXPECT_EQ(r.collide, expected < 0) << "x = " << x;
+  }
+}
+
+// A ring (ellipsoid minus a cylinder) against a ball: outside it the nearest point is on the outer
+// face, inside the bore on the bore wall; both by hand.
+TEST(QuadricScene, RingGetsItsDistanceOutsideAndInsideTheBore) {
+  const json ellipsoid = {{"type", "ellipsoid"}, {"radii", {2.0, 2.0, 1.0}}};
+  const json bore = {{"type", "cylinder"}, {"radius", 1.0}, {"length", 3.0}};
+  for (const auto& [q, expected] : {std::pair(Eigen::Vector3d(3.5, 0, 0), 1.5 - 0.25),
+                                    std::pair(Eigen::Vector3d(0.2, 0.1, 0), 1.0 - std::hypot(0.2, 0.1) - 0.25)}) {
+    const json doc = {{"objects",
+                       {{{"name", "ring"}, {"shape", {{"type", "csg"}, {"op", "difference"}, {"children", {ellipsoid, bore}}}}},
+                        {{"name", "s"},
+                         {"shape", {{"type", "sphere"}, {"radius", 0.25}}},
+                         {"pose", {{"translation", {q.x(), q.y(), q.z()}}, {"quaternion", {1, 0, 0, 0}}}}}}}};
+    const Scene scene = parseScene(doc);
+    const PairReport r = evaluatePair(scene.objects[0], scene.objects[1]);
+    EXPECT_EQ(r.status, Separation::Separated);
+    EXPECT_NEAR(r.signed_distance, expected, 1e-9) << q.transpose();
+    EXPECT_NEAR((r.point_b - r.point_a).norm(), r.signed_distance, 1e-12);
+    EXPECT_NEAR((r.point_b - q).norm(), 0.25, 1e-9);
+    EXPECT_NEAR(r.normal.norm(), 1.0, 1e-12);
   }
 }
 

@@ -19,9 +19,12 @@
 ///    another convex quadric shape, FCL's convex primitives, half-spaces, meshes and octrees, whose
 ///    triangle / leaf index goes to b1 / b2); near contact the sign is fcl_quadric::collide's. A
 ///    union of convex solids (an exact convex cover, convex_cover.h) is answered piece by piece
-///    (nearest piece; deepest piece's penetration depth). Another non-convex quadric shape, or an
-///    unsupported partner, throws std::invalid_argument naming it (distanceLowerBound below
-///    bounds every quadric shape).
+///    (nearest piece; deepest piece's penetration depth). Any other (non-convex) quadric shape by
+///    the branch and bound of geometry/region_distance.h (docs/algorithms.md section 12b) against
+///    the same partners and each other: witnesses on both solids, the distance at most
+///    max(request.abs_err, 1e-6 of the pair's scale) above the true one; an overlap reports -1
+///    (with enable_signed_distance: 0, its depth is not computed). An unsupported partner throws
+///    std::invalid_argument naming it (distanceLowerBound below bounds every quadric shape).
 /// Kept from FCL: pairs FCL has no function for print FCL's warning and return
 /// std::numeric_limits<S>::max() with `result` untouched.
 ///

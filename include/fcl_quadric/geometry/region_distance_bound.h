@@ -3,8 +3,8 @@
 /// Certified lower bounds of the distance between a composite quadric model (quadric_region.h) and
 /// an ellipsoid or any convex solid given as a region, for the queries that need only a bound:
 /// conservative advancement and clearance in the OMPL layer, where a model's convex cover
-/// (convex_cover.h) touches its partner but the model need not: fcl_quadric::distance answers
-/// only convex models and unions of them. These bounds never exceed the true distance.
+/// (convex_cover.h) touches its partner but the model need not; cheaper than the distance of a
+/// non-convex model (region_distance.h). These bounds never exceed the true distance.
 ///
 /// Method. For delta >= 0 the ellipsoid scaled about its centre by s = 1 + delta / r_min contains
 /// every point within delta of it: its support function s |S R^T n| = |S R^T n| + (delta / r_min)
