@@ -30,6 +30,10 @@
 // height-field mesh (BVHModel<OBBRSS>): fcl_quadric::collide / distance on an EllipticCylinder
 // (our traversal of the mesh's BVH, exact per triangle) against fcl::collide / fcl::distance on
 // fcl::Cylinder (FCL's traversal nodes, libccd per triangle); afterwards their disagreements.
+//
+// Non-convex distance (geometry/region_distance.h): a CSG ring against a ball at 64 separated
+// poses, fcl_quadric::distance against fcl::distance on the ring tessellated (6,144 triangles);
+// afterwards the certified bracket of ours and the mesh's error against it.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -41,6 +45,7 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
 #include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
 #include <fcl/math/motion/translation_motion.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/detail/traversal/collision/mesh_shape_collision_traversal_node.h>
@@ -54,6 +59,8 @@
 #include "fcl_quadric/fcl/distance.h"
 #include "fcl_quadric/fcl/quadric_shapes.h"
 #include "fcl_quadric/fcl/quadric_solver.h"
+#include "fcl_quadric/geometry/convex_support.h"
+#include "fcl_quadric/geometry/region_distance.h"
 
 #include "bench_support.h"
 #include "quadric_shapes_scene.h"
@@ -482,6 +489,101 @@ void BM_RingPoleLowerBound(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_RingPoleLowerBound)->Name("QuadricShapes/RingPoleLowerBound/fcl_quadric")->Unit(benchmark::kMillisecond);
+// The distance itself on the same poses (region_distance.h per triangle of the pole).
+void BM_RingPoleDistance(benchmark::State& state) {
+  const RingPoleScene& s = ringPole();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    fcl::DistanceRequestd req;
+    fcl::DistanceResultd res;
+    benchmark::DoNotOptimize(
+        fcl_quadric::distance(s.ring.get(), s.poses[i], s.pole.get(), fcl::Transform3d::Identity(), req, res));
+    i = (i + 1) % s.poses.size();
+  }
+}
+BENCHMARK(BM_RingPoleDistance)->Name("QuadricShapes/RingPoleDistance/fcl_quadric")->Unit(benchmark::kMillisecond);
+
+// Ring (the ring-pole scene's) against a ball of radius 0.15 at 64 separated random poses around
+// it, in its bore and above it: fcl_quadric::distance on the CSG ring (branch and bound,
+// geometry/region_distance.h) against fcl::distance on the ring's surface tessellated into
+// 96 x (24 + 8) quads (a BVHModel<OBBRSS>, libccd per triangle: what FCL offers for this shape).
+struct RingBallScene {
+  std::shared_ptr<fcl::BVHModel<fcl::OBBRSS<double>>> mesh;
+  std::shared_ptr<fcl::Sphered> ball = std::make_shared<fcl::Sphered>(0.15);
+  std::vector<fcl::Transform3d> poses;
+};
+RingBallScene makeRingBall() {
+  RingBallScene s;
+  const int nt = 96, no = 24, nb = 8;
+  const double phi_rim = M_PI / 6, z_rim = 0.4 * std::cos(phi_rim);  // sin(phi_rim) = 0.5 / 1
+  // Rows of points from the top rim over the outer face to the bottom rim, then up the bore.
+  std::vector<std::vector<Eigen::Vector3d>> rows;
+  for (int j = 0; j <= no; ++j) {
+    const double phi = phi_rim + (M_PI - 2 * phi_rim) * j / no;
+    std::vector<Eigen::Vector3d> row;
+    for (int i = 0; i < nt; ++i) {
+      const double th = 2 * M_PI * i / nt;
+      row.emplace_back(std::sin(phi) * std::cos(th), std::sin(phi) * std::sin(th), 0.4 * std::cos(phi));
+    }
+    rows.push_back(row);
+  }
+  for (int j = 1; j < nb; ++j) {
+    std::vector<Eigen::Vector3d> row;
+    for (int i = 0; i < nt; ++i) {
+      const double th = 2 * M_PI * i / nt;
+      row.emplace_back(0.5 * std::cos(th), 0.5 * std::sin(th), -z_rim + 2 * z_rim * j / nb);
+    }
+    rows.push_back(row);
+  }
+  rows.push_back(rows.front());  // back to the top rim
+  s.mesh = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
+  s.mesh->beginModel();
+  for (std::size_t j = 0; j + 1 < rows.size(); ++j)
+    for (int i = 0; i < nt; ++i) {
+      const int k = (i + 1) % nt;
+      s.mesh->addTriangle(rows[j][i], rows[j + 1][i], rows[j + 1][k]);
+      s.mesh->addTriangle(rows[j][i], rows[j + 1][k], rows[j][k]);
+    }
+  s.mesh->endModel();
+  const auto& ring = *ringPole().ring;
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  while (s.poses.size() < 64) {
+    fcl::Transform3d tf = fcl::Transform3d::Identity();
+    tf.translation() = Eigen::Vector3d(1.5 * u(rng), 1.5 * u(rng), 0.9 * u(rng));
+    fcl::CollisionRequestd req;
+    fcl::CollisionResultd res;
+    if (fcl_quadric::collide(&ring, fcl::Transform3d::Identity(), s.ball.get(), tf, req, res) > 0) continue;
+    s.poses.push_back(tf);
+  }
+  return s;
+}
+RingBallScene& ringBall() {
+  static RingBallScene s = makeRingBall();
+  return s;
+}
+template <bool Ours>
+double ringBallDistance(const fcl::Transform3d& tf, fcl::DistanceResultd* out = nullptr) {
+  fcl::DistanceRequestd req(true);
+  fcl::DistanceResultd res;
+  const double d = Ours ? fcl_quadric::distance(ringPole().ring.get(), fcl::Transform3d::Identity(), ringBall().ball.get(),
+                                                tf, req, res)
+                        : fcl::distance(ringBall().mesh.get(), fcl::Transform3d::Identity(), ringBall().ball.get(), tf,
+                                        req, res);
+  if (out) *out = res;
+  return d;
+}
+template <bool Ours>
+void BM_RingBallDistance(benchmark::State& state) {
+  const RingBallScene& s = ringBall();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(ringBallDistance<Ours>(s.poses[i]));
+    i = (i + 1) % s.poses.size();
+  }
+}
+BENCHMARK(BM_RingBallDistance<true>)->Name("QuadricShapes/RingBallDistance/fcl_quadric")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_RingBallDistance<false>)->Name("QuadricShapes/RingBallDistance/FclMeshLibccd")->Unit(benchmark::kMicrosecond);
 
 struct SmallEllipsoidPair {
   std::shared_ptr<fcl_quadric::Quadric<double>> shape;  // at the identity
@@ -647,14 +749,47 @@ int main(int argc, char** argv) {
         zero_on_contact += b == 0.0;
       }
     }
-    int positive = 0;
-    for (const fcl::Transform3d& tf : ringPole().poses)
-      positive += *fcl_quadric::distanceLowerBound(ringPole().ring.get(), tf, ringPole().pole.get(),
-                                                   fcl::Transform3d::Identity(), 1e3) > 0.0;
+    int positive = 0, bound_above = 0;
+    for (const fcl::Transform3d& tf : ringPole().poses) {
+      const double b = *fcl_quadric::distanceLowerBound(ringPole().ring.get(), tf, ringPole().pole.get(),
+                                                        fcl::Transform3d::Identity(), 1e3);
+      fcl::DistanceRequestd req;
+      fcl::DistanceResultd res;
+      const double d = fcl_quadric::distance(ringPole().ring.get(), tf, ringPole().pole.get(),
+                                             fcl::Transform3d::Identity(), req, res);
+      positive += b > 0.0;
+      bound_above += b > d;
+    }
     std::printf("Lower bounds: terrain, %d of %d separated poses at or below the exact distance (largest relative "
-                "shortfall %.3g), %d of %zu colliding poses at 0; ring on pole, %d of %zu poses certified clear\n",
+                "shortfall %.3g), %d of %zu colliding poses at 0; ring on pole, %d of %zu poses certified clear, "
+                "bound above fcl_quadric::distance on %d\n",
                 below, separated, worst, zero_on_contact, terrain().poses.size() - separated, positive,
-                ringPole().poses.size());
+                ringPole().poses.size(), bound_above);
+  }
+  {
+    // Ring and ball: the certified bracket [lower bound, distance] of the branch and bound, and the
+    // tessellated mesh's distance against it.
+    std::vector<double> gaps, mesh_err;
+    int outside_bracket = 0;
+    const fcl_quadric::ConvexSupport ball = fcl_quadric::ConvexSupport::ellipsoid(Eigen::Vector3d::Constant(0.15));
+    const auto& ring = *ringPole().ring;
+    for (const fcl::Transform3d& tf : ringBall().poses) {
+      const double ours = ringBallDistance<true>(tf), theirs = ringBallDistance<false>(tf);
+      const fcl_quadric::RegionDistanceResult r = fcl_quadric::regionDistance(
+          fcl_quadric::DistanceOperand::ofRegion(ring.region(), ring.localBox(), Eigen::Matrix3d::Identity(),
+                                                 Eigen::Vector3d::Zero()),
+          fcl_quadric::DistanceOperand::ofConvex(ball, Eigen::Matrix3d::Identity(), tf.translation()));
+      gaps.push_back(r.distance - r.lower_bound);
+      outside_bracket += ours < r.lower_bound || ours > r.distance + 1e-12;
+      mesh_err.push_back(std::fabs(theirs - ours) / ours);
+    }
+    std::sort(gaps.begin(), gaps.end());
+    std::sort(mesh_err.begin(), mesh_err.end());
+    std::printf("Ring and ball, %zu separated poses: certified gap (distance - lower bound) median %.3g, max %.3g; "
+                "front door outside its bracket on %d; FCL on the %d-triangle mesh: relative error median %.3g, "
+                "max %.3g\n",
+                ringBall().poses.size(), gaps[gaps.size() / 2], gaps.back(), outside_bracket,
+                ringBall().mesh->num_tris, mesh_err[mesh_err.size() / 2], mesh_err.back());
   }
   // Agreement (outside the timed loops).
   int touching = 0, disagree = 0, fcl_misses = 0, fcl_false = 0, hits = 0;

@@ -376,7 +376,10 @@ RegionDistanceResult regionDistance(const DistanceOperand& a, const DistanceOper
       for (const Side::Piece& v : pb) {
         double lb = 0.0;
         const SignedDistanceResult d = convexSignedDistance(u.support, a.R, a.p, v.support, b.R, b.p, false, &lb);
-        const double lower = d.status == Separation::Separated ? std::max(0.0, lb) : 0.0;
+        // GJK's bound is exact up to the support points' tolerance and rounding: less 1e-11 of
+        // the pair's scale, as distanceLowerBound (distance.h) takes it.
+        const double lower =
+            d.status == Separation::Separated ? std::max(0.0, lb - tolerance_convex::kConvexSeparationRelative * scale) : 0.0;
         if (lower < best) {
           best = lower;
           best_a = &u;

@@ -18,7 +18,8 @@
 ///    union of the pieces contains the model's part in X; the slack is O(|X|^2) where a
 ///    non-convex atom (a ring's bore) is relaxed.
 ///  - Lower bound of a node: the smallest GJK lower bound (convex_distance.h) over its pairs of
-///    pieces: certified, up to the support points' tolerance (1e-12 of a piece's size).
+///    pieces, less 1e-11 of the pair's scale (the support points' tolerance and rounding, as
+///    distanceLowerBound takes it): certified.
 ///  - Upper bound: each pair's GJK witnesses are moved onto their model (Gauss-Newton onto the
 ///    undecided atoms they violate) and kept only if the model's exact-sign membership does not
 ///    certify them outside (QuadricRegion::classifyPoint); a witness on a convex operand is
@@ -53,8 +54,10 @@ namespace tolerance_region_distance {
 /// (scale ~2.5) a ball on its axis and a rod in its bore took 1,800-9,200 nodes (31-229 ms,
 /// Release) for an absolute gap of 1e-5, 6,300 to the node cap for 1e-6.
 constexpr double kRegionDistanceRelative = 1e-6;
-/// Smallest gap a caller may ask for, relative to the scale (rounding of the GJK bounds).
-constexpr double kRegionDistanceFloorRelative = 1e-12;
+/// Smallest gap a caller may ask for, relative to the scale: ten times the margin taken off GJK's
+/// lower bounds (tolerance_convex::kConvexSeparationRelative, 1e-11: support tolerance and
+/// rounding).
+constexpr double kRegionDistanceFloorRelative = 1e-10;
 /// Nodes expanded (each splits one box in two) before the search stops with converged = false.
 constexpr int kRegionDistanceMaxNodes = 20000;
 /// Boxes narrower than this fraction of their operand's bounding box are not split (2^-34 ~ 6e-11:
