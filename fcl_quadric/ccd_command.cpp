@@ -9,12 +9,6 @@
 namespace fcl_quadric {
 namespace cli {
 
-namespace {
-
-nlohmann::ordered_json toJson(const Eigen::Vector3d& v) { return nlohmann::ordered_json::array({v[0], v[1], v[2]}); }
-
-}  // namespace
-
 MovingEllipsoid movingEllipsoid(const SceneObject& object, std::size_t index) {
   if (!isEllipsoidal(object.shape)) {
     throw SceneError("/objects/" + std::to_string(index) + "/shape",

@@ -20,12 +20,6 @@
 namespace fcl_quadric {
 namespace cli {
 
-namespace {
-
-nlohmann::ordered_json toJson(const Eigen::Vector3d& v) { return nlohmann::ordered_json::array({v[0], v[1], v[2]}); }
-
-}  // namespace
-
 PairReport exactPairReport(const Ellipsoid& a, const Ellipsoid& b) {
   const SeparationCertificate certificate = classifyEllipsoids(a, b);
   const SignedDistanceResult distance = signedDistance(a, b);

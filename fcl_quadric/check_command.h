@@ -15,6 +15,9 @@
 namespace fcl_quadric {
 namespace cli {
 
+/// A 3-vector as a JSON array [x, y, z] (the commands' points and normals).
+inline nlohmann::ordered_json toJson(const Eigen::Vector3d& v) { return nlohmann::ordered_json::array({v[0], v[1], v[2]}); }
+
 /// Exact report for two ellipsoids: status from classifyEllipsoids(), distance, witness points
 /// and normal from signedDistance(). `method` is PairMethod::Exact.
 PairReport exactPairReport(const Ellipsoid& a, const Ellipsoid& b);

@@ -15,24 +15,18 @@
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/geometry/signed_distance.h"
 #include "fcl_quadric/scene.h"
+#include "support/picture_files.h"
 
 namespace fcl_quadric {
 namespace cli {
 namespace {
 
-struct RunResult {
-  int status;
-  std::string out;
-  std::string err;
-};
+using test::RunResult;
 
 RunResult runCcdText(const std::string& text, const std::string& name) {
   const std::string path = ::testing::TempDir() + name + ".json";
   std::ofstream(path) << text;
-  const char* argv[] = {"fcl_quadric", "ccd", path.c_str()};
-  std::ostringstream out, err;
-  const int status = run(3, argv, out, err);
-  return {status, out.str(), err.str()};
+  return test::runCli({"ccd", path});
 }
 
 TEST(CcdCommand, SpheresOnStraightLinesGiveTheClosedFormTimes) {

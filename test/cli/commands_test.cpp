@@ -11,25 +11,14 @@
 #include "fcl_quadric/demo_command.h"
 #include "fcl_quadric/geometry/signed_distance.h"
 #include "fcl_quadric/version.h"
+#include "support/picture_files.h"
 
 namespace fcl_quadric {
 namespace cli {
 namespace {
 
-struct RunResult {
-  int status;
-  std::string out;
-  std::string err;
-};
-
-RunResult runCli(std::vector<std::string> args) {
-  args.insert(args.begin(), "fcl_quadric");
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  const int status = run(static_cast<int>(argv.size()), argv.data(), out, err);
-  return {status, out.str(), err.str()};
-}
+using test::RunResult;
+using test::runCli;
 
 SceneObject ellipsoidObject(const std::string& name, const Eigen::Vector3d& radii, const Eigen::Vector3d& p,
                             const Eigen::Quaterniond& q) {
