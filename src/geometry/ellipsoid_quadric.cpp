@@ -70,6 +70,28 @@ Iv operator*(Iv a, Iv b) {
 Iv operator*(double k, Iv a) { return k >= 0.0 ? widen(k * a.lo, k * a.hi) : widen(k * a.hi, k * a.lo); }
 int certifiedSign(Iv a) { return a.lo > 0.0 ? 1 : (a.hi < 0.0 ? -1 : 0); }
 
+/// Sign changes of f's coefficients (low to high) with certified signs: the number of positive
+/// roots when every root is real (Descartes). f(0) may be uncertified only for a singular quadric
+/// (its root at 0 is then not positive); any other uncertified coefficient gives -1.
+int positiveRootsBySignChanges(const std::array<double, 5>& f, const std::array<double, 5>& err,
+                               const QuadricSurfaceShape& surface) {
+  const bool singular = surface.type == QuadricSurfaceType::EllipticCylinder ||
+                        surface.type == QuadricSurfaceType::HyperbolicCylinder ||
+                        surface.type == QuadricSurfaceType::ParabolicCylinder ||
+                        surface.type == QuadricSurfaceType::ParallelPlanes;
+  int changes = 0, last = 0;
+  for (int k = 0; k <= 4; ++k) {
+    const int sign = f[k] > err[k] ? 1 : (f[k] < -err[k] ? -1 : 0);
+    if (sign == 0) {
+      if (k == 0 && singular) continue;
+      return -1;
+    }
+    if (last != 0 && sign != last) ++changes;
+    last = sign;
+  }
+  return changes;
+}
+
 /// Sum of the k x k principal minors of C (Leibniz expansion), with the sum of |terms| computed
 /// from |C| and from |C| + E (E: absolute entry error bounds), for a rigorous error bound.
 struct MinorSum {
@@ -142,6 +164,10 @@ QuadricSurfaceShape classifyQuadricSurface(const Eigen::Matrix4d& Q_in) {
   if (beta_band == 2) return out;
   const bool parabolic = nZ > 0 && beta_band != 0;
   if (k_sign == 2 && !parabolic) return out;  // (a paraboloid's k only moves its vertex)
+  // Inertia (Sylvester) from the completed squares: each non-zero mu_i, then the constant k, or
+  // for a paraboloid the block [[0, beta], [beta, k]] (determinant -beta^2: one of each sign).
+  out.positive_eigenvalues = parabolic ? 1 : (k_sign > 0 ? 1 : 0);
+  for (int j = 0; j < nN; ++j) out.positive_eigenvalues += mu[N[j]] > 0.0;
 
   if (nN == 3) {
     if (k_sign == 0) {
@@ -281,13 +307,25 @@ EllipsoidQuadricResult classifyEllipsoidQuadric(const Ellipsoid& e, const Eigen:
   }
   if (!(sd > 0 && sp < 0 && sD < 0) || !r.small) return r;
   // Four simple real roots and a small ellipsoid: no contact at all (Theorem 2, Table 3), so the
-  // ellipsoid is on one side; its centre (0,0,0,1) in the unit frame gives the side.
-  const double centre = B(3, 3);
-  if (centre > E(3, 3)) {
-    r.relation = EllipsoidQuadricRelation::Outside;
-  } else if (centre < -E(3, 3)) {
-    r.relation = EllipsoidQuadricRelation::Inside;
+  // ellipsoid is on one side. Theorem 12 (Table 4, rebuilt in docs/algorithms.md section 11):
+  // with every root real, Descartes' rule is exact, so the sign changes of f's coefficients count
+  // its positive roots, and that count is n+(Q) + 1 on the side X^T Q X < 0 and n+(Q) - 1 on the
+  // other (n+(Q): positive eigenvalues of Q). A coefficient whose sign is not certified is
+  // skipped only where it is f(0) of a singular Q (a cylinder's or plane pair's root at 0).
+  r.positive_roots = positiveRootsBySignChanges(r.f, r.f_error, r.surface);
+  const int n_plus = r.surface.positive_eigenvalues;
+  EllipsoidQuadricRelation by_coefficients = EllipsoidQuadricRelation::Undecided;
+  if (r.positive_roots >= 0 && n_plus >= 0) {
+    if (r.positive_roots == n_plus + 1) by_coefficients = EllipsoidQuadricRelation::Inside;
+    else if (r.positive_roots == n_plus - 1) by_coefficients = EllipsoidQuadricRelation::Outside;
   }
+  // The centre (0,0,0,1) in the unit frame is on the same side: its certified sign must agree
+  // (a disagreement, which only rounding beyond the bounds could cause, is left Undecided).
+  const double centre = B(3, 3);
+  const EllipsoidQuadricRelation by_centre = centre > E(3, 3)    ? EllipsoidQuadricRelation::Outside
+                                             : centre < -E(3, 3) ? EllipsoidQuadricRelation::Inside
+                                                                 : EllipsoidQuadricRelation::Undecided;
+  if (by_coefficients == by_centre) r.relation = by_coefficients;
   return r;
 }
 

@@ -58,6 +58,9 @@ struct QuadricSurfaceShape {
   /// hyperbolic cylinder, the gap of parallel planes; +infinity for the other types (their size
   /// condition follows from the curvature condition).
   double min_gap = std::numeric_limits<double>::infinity();
+  /// Positive eigenvalues of Q (its inertia, by Sylvester's law from the completed squares: a
+  /// rigid invariant, unlike the eigenvalues themselves); -1 when the type is Other or Plane.
+  int positive_eigenvalues = -1;
 };
 
 /// Type and smallness data of the surface X^T Q X = 0 (Q symmetric 4x4, finite). Eigenvalues of
@@ -101,6 +104,9 @@ struct EllipsoidQuadricResult {
   std::array<double, 5> f_error{};
   /// Quartic discriminant of f as an enclosure [lo, hi].
   double discriminant_lo = 0.0, discriminant_hi = 0.0;
+  /// Four simple real roots and a small ellipsoid: the positive roots of f counted by the sign
+  /// changes of its coefficients (Theorem 12); -1 when not computed or a sign is not certified.
+  int positive_roots = -1;
 };
 
 /// Corollary 9 with the complete discrimination system of the quartic (Delta, P, D): certified
@@ -110,7 +116,11 @@ struct EllipsoidQuadricResult {
 ///   Delta > 0 and (P > 0 or D > 0)  -> two non-real pairs: Transversal (Remark 8)
 ///   Delta > 0, P < 0, D < 0         -> four simple real roots: no transversal contact and, since
 ///                                      they are simple, no tangency (Theorem 2, needs isSmall);
-///                                      Inside/Outside by the certified sign of Q at e's centre
+///                                      Inside/Outside by Theorem 12 (Table 4 rebuilt): the sign
+///                                      changes of f's coefficients count its positive roots,
+///                                      n+(Q) + 1 inside (X^T Q X < 0), n+(Q) - 1 outside, n+(Q)
+///                                      = surface.positive_eigenvalues; the certified sign of Q
+///                                      at e's centre must agree (else Undecided)
 /// and Undecided otherwise. Never throws for a finite symmetric Q and a valid Ellipsoid.
 /// \throws std::invalid_argument as classifyQuadricSurface().
 EllipsoidQuadricResult classifyEllipsoidQuadric(const Ellipsoid& e, const Eigen::Matrix4d& Q);
