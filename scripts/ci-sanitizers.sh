@@ -56,7 +56,7 @@ if [ -n "$symbolizer" ]; then
 fi
 
 # UBSan without its pointer checks, which ASan covers: alignment, null, pointer-overflow and
-# object-size cost most of UBSan's compile time (the FCL layer's batch: 95 s with all of UBSan,
+# object-size cost half of UBSan's compile time (the FCL layer's batch: 95 s with all of UBSan,
 # 70 s without them, 46 s with ASan alone; docs/reliability.md section 1). The arithmetic checks
 # (signed overflow, shifts, float casts, division, bool / enum loads, bounds) and vptr stay.
 ubsan_exclude=alignment,null,pointer-overflow,object-size,function,nonnull-attribute,returns-nonnull-attribute
