@@ -445,7 +445,7 @@ void printTargets(const SummaryReporter& r, const StaticReport& rep) {
   }
   // (a) exact static test
   // Judged both on the full pair set (streamed from memory: 2 x 120 bytes of ellipsoid per pair)
-  // and on its first 1,024 pairs (in L2: the test's own cost).
+  // and on its first 1,024 pairs (repeated: data in L2 and a branch history the predictor learns; docs/benchmarks.md).
   const double classify = r.nsPerItem("Static/Collide/fcl_quadric");
   const double classify_hot = r.nsPerItem("Static/CollideHot/fcl_quadric");
   printTarget(targetStatus({{classify, classify <= kTargetClassifyNs}, {classify_hot, classify_hot <= kTargetClassifyNs}}),
