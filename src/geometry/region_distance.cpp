@@ -378,9 +378,11 @@ RegionDistanceResult regionDistance(const DistanceOperand& a, const DistanceOper
         const SignedDistanceResult d = convexSignedDistance(u.support, a.R, a.p, v.support, b.R, b.p, false, &lb);
         // GJK's bound is exact up to the support points' tolerance and rounding: less 1e-11 of
         // the pair's scale, as distanceLowerBound (distance.h) takes it.
-        double lower =
-            d.status == Separation::Separated ? std::max(0.0, lb - tolerance_convex::kConvexSeparationRelative * scale) : 0.0;
-        if (std::isnan(lower)) lower = 0.0;  // (a NaN bound, impossible for finite input, counts as contact)
+        // A NaN bound (impossible for finite input) counts as contact; it is tested before any
+        // ordered comparison, which would raise FE_INVALID.
+        const double lower = d.status == Separation::Separated && !std::isnan(lb)
+                                 ? std::max(0.0, lb - tolerance_convex::kConvexSeparationRelative * scale)
+                                 : 0.0;
         if (best_a == nullptr || lower < best) {
           best = lower;
           best_a = &u;
