@@ -4,13 +4,14 @@
 // `--pairs N` or FCL_QUADRIC_BENCH_PAIRS=N says otherwise). Each benchmark iteration is one pair;
 // the pair set is walked cyclically. Groups and their members (the first is the baseline, the
 // others get `x_ours` = their time / its time):
-//   Static/Collide             classifyEllipsoids | fcl::collide libccd | fcl::collide indep |
+//   Static/Collide             separationStatus (the boolean test) | classifyEllipsoids (with its
+//                              certificate) | fcl::collide libccd | fcl::collide indep |
 //                              Bullet GJK/EPA distance <= 0 (bullet_peers.h)
-//   Static/CollideHot          the first 1,024 pairs (data in L2): classify | fcl::collide libccd
-//   Static/CollideSeparated    classify etc. on the separated pairs only, plus PairCoherence::query
+//   Static/CollideHot          the first 1,024 pairs (data in L2): status | classify | fcl::collide libccd
+//   Static/CollideSeparated    status etc. on the separated pairs only, plus PairCoherence::query
 //                              with a valid cached plane, the bare planeSeparates() test and
 //                              separatingPlane() (the cost of a new plane)
-//   Static/CollideSeparatedHot the first 1,024 separated pairs (data in L2): classify, cached plane
+//   Static/CollideSeparatedHot the first 1,024 separated pairs (data in L2): status, cached plane
 //   Static/Distance            signedDistance | fcl::distance libccd | Bullet GJK/EPA (all pairs)
 //   Static/DistanceOverlapping signedDistance | fcl::distance libccd, touching/overlapping pairs
 //   Static/DistanceSeparated   signedDistance | fcl::distance libccd | fcl::distance indep, on the
@@ -132,6 +133,20 @@ StaticReport g_report;
 // ------------------------------------------------------------------------------------------------
 // Timed loops
 
+/// The boolean exact static test (separationStatus: what ellipsoidsCollide() and FCL's boolean
+/// collide through QuadricSolver run), the peer of a boolean fcl::collide.
+void benchStatus(benchmark::State& state, const StaticScene* s) {
+  const std::size_t n = s->size();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Separation c = separationStatus(s->pairs.a[i], s->pairs.b[i]);
+    benchmark::DoNotOptimize(c);
+    if (++i == n) i = 0;
+  }
+  setPerItemTime(state, 1.0);
+}
+
+/// The same decision with its whole certificate (witness point and normal): classifyEllipsoids.
 void benchClassify(benchmark::State& state, const StaticScene* s) {
   const std::size_t n = s->size();
   std::size_t i = 0;
@@ -567,17 +582,19 @@ int main(int argc, char** argv) {
   countDistanceAgreement(distance_separated, ours_distance_separated, fcl::GST_INDEP,
                          &rep.distance_indep_separated);
 
-  benchmark::RegisterBenchmark("Static/Collide/fcl_quadric", benchClassify, &scene);
+  benchmark::RegisterBenchmark("Static/Collide/fcl_quadric", benchStatus, &scene);
+  benchmark::RegisterBenchmark("Static/Collide/certificate", benchClassify, &scene);
   benchmark::RegisterBenchmark("Static/Collide/fcl_libccd", benchFclCollide, &scene, fcl::GST_LIBCCD,
                                &rep.collide_libccd);
   benchmark::RegisterBenchmark("Static/Collide/fcl_indep", benchFclCollide, &scene, fcl::GST_INDEP,
                                &rep.collide_indep);
   benchmark::RegisterBenchmark("Static/Collide/bullet", benchBulletCollide, &scene, &rep.collide_bullet);
-  benchmark::RegisterBenchmark("Static/CollideHot/fcl_quadric", benchClassify, &hot_all);
+  benchmark::RegisterBenchmark("Static/CollideHot/fcl_quadric", benchStatus, &hot_all);
+  benchmark::RegisterBenchmark("Static/CollideHot/certificate", benchClassify, &hot_all);
   benchmark::RegisterBenchmark("Static/CollideHot/fcl_libccd", benchFclCollide, &hot_all, fcl::GST_LIBCCD,
                                nullptr);
   if (separated.size() > 0) {
-    benchmark::RegisterBenchmark("Static/CollideSeparated/fcl_quadric", benchClassify, &separated);
+    benchmark::RegisterBenchmark("Static/CollideSeparated/fcl_quadric", benchStatus, &separated);
     benchmark::RegisterBenchmark("Static/CollideSeparated/cached_plane_query", benchCachedPlane,
                                  &separated);
     benchmark::RegisterBenchmark("Static/CollideSeparated/plane_separates", benchPlaneSeparates,
@@ -586,7 +603,7 @@ int main(int argc, char** argv) {
                                  &separated);
     benchmark::RegisterBenchmark("Static/CollideSeparated/fcl_libccd", benchFclCollide, &separated,
                                  fcl::GST_LIBCCD, nullptr);
-    benchmark::RegisterBenchmark("Static/CollideSeparatedHot/fcl_quadric", benchClassify, &hot);
+    benchmark::RegisterBenchmark("Static/CollideSeparatedHot/fcl_quadric", benchStatus, &hot);
     benchmark::RegisterBenchmark("Static/CollideSeparatedHot/cached_plane_query", benchCachedPlane,
                                  &hot);
   }

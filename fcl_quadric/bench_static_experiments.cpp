@@ -78,8 +78,8 @@ BenchRow collideRow(const std::string& case_name, const std::string& peer_name, 
   return row;
 }
 
-bool oursCollide(const PeerPairs& p, std::size_t i) {
-  return classifyEllipsoids(p.a[i], p.b[i]).status != Separation::Separated;
+bool oursCollide(const PeerPairs& p, std::size_t i) {  // the boolean query, as fcl::collide's
+  return ellipsoidsCollide(p.a[i], p.b[i]);
 }
 bool libccdCollide(const PeerPairs& p, std::size_t i) {
   return fclCollide(&p.fcl_a[i], p.X_WA[i], &p.fcl_b[i], p.X_WB[i], fcl::GST_LIBCCD);

@@ -51,8 +51,8 @@ void throwNonFiniteTransform(const char* which, const Eigen::Matrix<double, 3, 4
 }
 
 bool intersectEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactContact* contact) {
-  const SeparationCertificate cert = classifyEllipsoids(a, b);
-  if (cert.status == Separation::Separated) return false;
+  // Without a contact to fill (FCL's boolean collide) the status alone decides: no certificate.
+  if (separationStatus(a, b) == Separation::Separated) return false;
   if (!contact) return true;
   // signedDistance re-runs the same (deterministic) classification, so its status is cert.status
   // and its distance is <= 0 here: 0 in the touching band, minus the penetration depth otherwise.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "fcl_quadric/tolerances.h"
 #include "geometry/pencil.h"
@@ -18,6 +19,17 @@ const char* toString(Separation s) {
 }
 
 namespace {
+
+/// What a pre-test writes when it decides: the status only (StatusOnly, the boolean queries:
+/// separationStatus(), ellipsoidsCollide()) or the whole certificate with its witness and normal
+/// (classifyEllipsoids()). The decisions are the same computation either way; the status-only
+/// instantiation just leaves out the witness and normal arithmetic and the certificate's stores.
+struct StatusOnly {
+  Separation status = Separation::Touching;
+};
+
+template <class Out>
+constexpr bool kWantsWitness = std::is_same_v<Out, SeparationCertificate>;
 
 /// One precision stage of the certified decision (docs/algorithms.md §1). With x = x(mu) the
 /// pencil witness and Q, r as in detail::WitnessValues:
@@ -57,24 +69,29 @@ bool certify(const detail::Pencil<T>& p, const T& mu, double tau, SeparationCert
 /// Sphere pre-test: each ellipsoid lies between its inscribed ball (radius r_min) and its
 /// circumscribed ball (radius r_max) about its centre. Certified with a relative margin of
 /// 2^-40 on squared lengths (a handful of roundings). Symmetric in (a, b) by construction.
-bool sphereTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificate* out) {
+template <class Out>
+bool sphereTest(const Ellipsoid& a, const Ellipsoid& b, Out* out) {
   const Eigen::Vector3d d = b.center() - a.center();
   const double D2 = d.squaredNorm();
   const double outer = a.maxRadius() + b.maxRadius();
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   if (D2 > outer * outer * (1.0 + tau)) {
     out->status = Separation::Separated;
-    out->normal = d * (1.0 / std::sqrt(D2));  // one division: any unit-length rounding is harmless here
-    out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (a.maxRadius() - b.maxRadius())) * out->normal;
-    out->precision_stage = -1;
+    if constexpr (kWantsWitness<Out>) {
+      out->normal = d * (1.0 / std::sqrt(D2));  // one division: any unit-length rounding is harmless here
+      out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (a.maxRadius() - b.maxRadius())) * out->normal;
+      out->precision_stage = -1;
+    }
     return true;
   }
   const double ra = a.radii().minCoeff(), rb = b.radii().minCoeff(), inner = ra + rb;
   if (D2 < inner * inner * (1.0 - tau)) {
     out->status = Separation::Overlapping;
-    out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (ra - rb) / inner) * d;  // inside both inscribed balls
-    out->normal = D2 > 0.0 ? Eigen::Vector3d(d / std::sqrt(D2)) : Eigen::Vector3d::UnitX();
-    out->precision_stage = -1;
+    if constexpr (kWantsWitness<Out>) {
+      out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (ra - rb) / inner) * d;  // inside both inscribed balls
+      out->normal = D2 > 0.0 ? Eigen::Vector3d(d / std::sqrt(D2)) : Eigen::Vector3d::UnitX();
+      out->precision_stage = -1;
+    }
     return true;
   }
   return false;
@@ -84,18 +101,21 @@ bool sphereTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificate* o
 /// h(m) = m.p + |S R^T m| the support function. Every rounded quantity (m.d, |S R^T m|) is a sum
 /// or norm whose rounding is below 8 eps times its absolute evaluation sum|m_i d_i| + h_a + h_b,
 /// so the relative margin tau = 2^-40 covers it.
+template <class Out>
 bool separatedAlong(const Eigen::Vector3d& m, const Eigen::Vector3d& d, const Ellipsoid& a,
-                    const Ellipsoid& b, double tau, SeparationCertificate* out) {
+                    const Ellipsoid& b, double tau, Out* out) {
   const double ha = (a.rotation().transpose() * m).cwiseProduct(a.radii()).norm();
   const double hb = (b.rotation().transpose() * m).cwiseProduct(b.radii()).norm();
   const double md = m.dot(d);
   const double scale = m.cwiseAbs().dot(d.cwiseAbs()) + ha + hb;
   if (!(md - ha - hb > tau * scale)) return false;
-  const double m2 = m.squaredNorm();
   out->status = Separation::Separated;
-  out->normal = m * (1.0 / std::sqrt(m2));
-  out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (ha - hb) / m2) * m;  // on the mid-plane of the gap
-  out->precision_stage = -1;
+  if constexpr (kWantsWitness<Out>) {
+    const double m2 = m.squaredNorm();
+    out->normal = m * (1.0 / std::sqrt(m2));
+    out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (ha - hb) / m2) * m;  // on the mid-plane of the gap
+    out->precision_stage = -1;
+  }
   return true;
 }
 
@@ -133,63 +153,81 @@ bool strictlyInside(const Ellipsoid& e, const Eigen::Vector3d& inv_r, const Eige
 ///  4. Overlapping if the midpoint of the support points of a along n and of b along -n is
 ///     strictly inside both (strictlyInside()).
 /// Every test is certified (a relative margin of 2^-40 over the absolute evaluation) and
-/// symmetric in (a, b) bit for bit: swapping negates d, n and m exactly, which leaves every norm,
+/// symmetric in (a, b) bit for bit: swapping negates d, v, n and m exactly, which leaves every norm,
 /// decision and witness (written about the midpoint of the centres) unchanged.
-bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, SeparationCertificate* out) {
+template <class Out>
+bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, Out* out) {
   const Eigen::Vector3d d = b.center() - a.center();
-  const double D = d.norm();
-  if (!(D > 0.0)) return false;
-  const Eigen::Vector3d n = d * (1.0 / D);  // |n| = 1 to 2 ulps: covered by the margins below
-  const Eigen::Vector3d ua = a.rotation().transpose() * n, ub = b.rotation().transpose() * n;
+  const double D2 = d.squaredNorm();
+  if (!(D2 > 0.0)) return false;
+  // Tests 1 and 2 are homogeneous in the direction, so they run on v = d / s instead of the unit
+  // n = d / |d|: s = 1 (no square root or division on the common path) while |d| is in
+  // [1e-50, 1e50], where the products below stay in the normal range of doubles for sizes in
+  // [kMinRadius, kMaxLength]; s = |d| (v = n, up to 2 ulps) outside it. With |v| = |d| / s:
+  // h(n) = h(v) / |v| and rho = |v| / |S^-1 R^T v|, so test 1 reads h_a(v) + h_b(-v) < |d| |v| and
+  // test 2 reads |v| (l_a + l_b) > |d| l_a l_b, l = |S^-1 R^T v|, i.e. l_a + l_b > s l_a l_b.
+  const bool unscaled = D2 > 1e-100 && D2 < 1e100;
+  const double s = unscaled ? 1.0 : std::sqrt(D2);
+  const Eigen::Vector3d v = unscaled ? d : Eigen::Vector3d(d * (1.0 / s));
+  const double d_times_v = unscaled ? D2 : s;  // |d| |v|
+  const Eigen::Vector3d ua = a.rotation().transpose() * v, ub = b.rotation().transpose() * v;
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   const Eigen::Vector3d sa = ua.cwiseProduct(a.radii()), sb = ub.cwiseProduct(b.radii());
   const double ha = sa.norm(), hb = sb.norm();
-  if (ha + hb < D * (1.0 - tau)) {
+  if (ha + hb < d_times_v * (1.0 - tau)) {
     out->status = Separation::Separated;
-    out->normal = n;
-    out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (ha - hb)) * n;
-    out->precision_stage = -1;
+    if constexpr (kWantsWitness<Out>) {
+      const double D = std::sqrt(D2), v_norm = unscaled ? D : 1.0;
+      out->normal = d * (1.0 / D);
+      out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (ha - hb) / v_norm) * out->normal;
+      out->precision_stage = -1;
+    }
     return true;
   }
   const Eigen::Vector3d inv_ra = reciprocalRadii(a), inv_rb = reciprocalRadii(b);  // computed on use: once
   const Eigen::Vector3d ia = ua.cwiseProduct(inv_ra), ib = ub.cwiseProduct(inv_rb);
-  // rho_a + rho_b > D (1 + tau) with rho = 1 / |i|, multiplied out (no division): |ia|, |ib| and D
-  // are at most ~1e100 sqrt(3) for sizes in [kMinRadius, kMaxLength], so the products stay finite.
+  // Multiplied out (no division): l_a, l_b lie within |v| [1e-100, 1e100] sqrt(3) for radii in
+  // [kMinRadius, kMaxLength], i.e. within [1e-150, 1e150] sqrt(3) on the unscaled path (|v| = |d|)
+  // and [1e-100, 1e100] sqrt(3) on the scaled one (|v| = 1): the product l_a l_b stays normal.
   const double la_inv = ia.norm(), lb_inv = ib.norm();
-  if (la_inv + lb_inv > D * (1.0 + tau) * (la_inv * lb_inv)) {  // (la lb): symmetric in (a, b)
-    const double rho_a = 1.0 / la_inv, rho_b = 1.0 / lb_inv;
+  if (la_inv + lb_inv > s * (1.0 + tau) * (la_inv * lb_inv)) {  // (la lb): symmetric in (a, b)
     out->status = Separation::Overlapping;
-    out->normal = n;
-    out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (rho_a - rho_b)) * n;  // inside both
-    out->precision_stage = -1;
+    if constexpr (kWantsWitness<Out>) {
+      const double D = std::sqrt(D2), v_norm = unscaled ? D : 1.0;
+      const double rho_a = v_norm / la_inv, rho_b = v_norm / lb_inv;
+      out->normal = d * (1.0 / D);
+      out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (rho_a - rho_b)) * out->normal;  // inside both
+      out->precision_stage = -1;
+    }
     return true;
   }
-  // 3. Outward normal of a at p_a + rho_a n is R_a S_a^-1 (S_a^-1 R_a^T n) = R_a (ia ./ r_a); the
-  // outward normal of b at p_b - rho_b n is -R_b (ib ./ r_b), so -b's is +R_b (ib ./ r_b).
-  const Eigen::Vector3d na = a.rotation() * ia.cwiseProduct(inv_ra);
-  const Eigen::Vector3d nb = b.rotation() * ib.cwiseProduct(inv_rb);
+  // 3. Outward normal of a at p_a + rho_a n is R_a S_a^-1 (S_a^-1 R_a^T n) = R_a (ia ./ r_a) / |v|;
+  // the outward normal of b at p_b - rho_b n is -R_b (ib ./ r_b) / |v|, so -b's is +R_b (ib ./ r_b)
+  // / |v|. The factor k = 1 / |v| keeps their squared norms in range as on the unit direction.
+  const double k = unscaled ? 1.0 / std::sqrt(D2) : 1.0;
+  const Eigen::Vector3d na = a.rotation() * (ia.cwiseProduct(inv_ra) * k);
+  const Eigen::Vector3d nb = b.rotation() * (ib.cwiseProduct(inv_rb) * k);
   const double la = na.norm(), lb = nb.norm();
   if (la > 0.0 && lb > 0.0 && separatedAlong(na * (1.0 / la) + nb * (1.0 / lb), d, a, b, tau, out)) return true;
-  // 4. Support points: p_a + R_a S_a (sa / ha) and p_b - R_b S_b (sb / hb).
+  // 4. Support points: p_a + R_a S_a (sa / ha) and p_b - R_b S_b (sb / hb) (scale-free in v).
   const Eigen::Vector3d x = 0.5 * ((a.center() + a.rotation() * (sa.cwiseProduct(a.radii()) * (1.0 / ha))) +
                                    (b.center() - b.rotation() * (sb.cwiseProduct(b.radii()) * (1.0 / hb))));
   if (strictlyInside(a, inv_ra, x, tau) && strictlyInside(b, inv_rb, x, tau)) {
     out->status = Separation::Overlapping;
-    out->normal = n;
-    out->witness = x;
-    out->precision_stage = -1;
+    if constexpr (kWantsWitness<Out>) {
+      out->normal = d * (1.0 / std::sqrt(D2));
+      out->witness = x;
+      out->precision_stage = -1;
+    }
     return true;
   }
   return false;
 }
 
-}  // namespace
-
-SeparationCertificate classifyEllipsoids(const Ellipsoid& a, const Ellipsoid& b) {
+/// The classification after the pre-tests left it open: the pencil in double, then in
+/// double-double (docs/algorithms.md §1).
+SeparationCertificate classifyByPencil(const Ellipsoid& a, const Ellipsoid& b) {
   SeparationCertificate cert;
-  // The pre-tests are symmetric in (a, b) by construction, so only the pencil needs the
-  // canonical order.
-  if (sphereTest(a, b, &cert) || centreLineTest(a, b, &cert)) return cert;
   const bool swap = detail::swapForCanonicalOrder(a, b);
   const Ellipsoid& A = swap ? b : a;
   const Ellipsoid& B = swap ? a : b;
@@ -264,6 +302,22 @@ SeparationCertificate classifyEllipsoids(const Ellipsoid& a, const Ellipsoid& b)
     cert.normal = d.allFinite() && d.squaredNorm() > 0.0 ? d.normalized() : Eigen::Vector3d::UnitX();
   }
   return cert;
+}
+
+}  // namespace
+
+SeparationCertificate classifyEllipsoids(const Ellipsoid& a, const Ellipsoid& b) {
+  SeparationCertificate cert;
+  // The pre-tests are symmetric in (a, b) by construction, so only the pencil needs the
+  // canonical order.
+  if (sphereTest(a, b, &cert) || centreLineTest(a, b, &cert)) return cert;
+  return classifyByPencil(a, b);
+}
+
+Separation separationStatus(const Ellipsoid& a, const Ellipsoid& b) {
+  StatusOnly s;
+  if (sphereTest(a, b, &s) || centreLineTest(a, b, &s)) return s.status;
+  return classifyByPencil(a, b).status;
 }
 
 }  // namespace fcl_quadric

@@ -34,11 +34,12 @@ std::pair<Ellipsoid, Ellipsoid> randomPair(std::mt19937_64& rng) {
 
 void checkRandomPairs(int n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
-  int wrong = 0, separated = 0, extended = 0;
+  int wrong = 0, wrong_status = 0, separated = 0, extended = 0;
   for (int i = 0; i < n; ++i) {
     auto [a, b] = randomPair(rng);
     const SeparationCertificate c = classifyEllipsoids(a, b);
     const Separation truth = exactClassify(a, b);
+    wrong_status += separationStatus(a, b) != truth;  // the boolean path, without the certificate
     if (c.status != truth) {
       ++wrong;
       if (wrong < 5)
@@ -49,6 +50,7 @@ void checkRandomPairs(int n, std::uint64_t seed) {
     extended += c.precision_stage > 0;
   }
   EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(wrong_status, 0);
   // Both outcomes must be well represented or the test proves little.
   EXPECT_GT(separated, n / 5);
   EXPECT_LT(separated, 4 * n / 5);
@@ -74,6 +76,8 @@ TEST(EllipsoidSeparation, AgreesWithExactOracleOnAnchorDistribution) {
     const Ellipsoid b = test::anchorEllipsoid(rng);
     const Separation truth = exactClassify(a, b);
     wrong += classifyEllipsoids(a, b).status != truth;
+    wrong += separationStatus(a, b) != truth;
+    wrong += ellipsoidsCollide(a, b) != (truth != Separation::Separated);
     collide += truth != Separation::Separated;
   }
   EXPECT_EQ(wrong, 0);
@@ -115,6 +119,7 @@ NearTangentStats checkNearTangent(int configs, std::uint64_t seed, double max_as
         st.oracle_unexpected += truth != expected;
         const SeparationCertificate c = classifyEllipsoids(a, b);
         ++st.cases;
+        st.wrong += separationStatus(a, b) != truth;  // the boolean path
         if (c.status != truth) {
           ++st.wrong;
           if (st.wrong < 5)
