@@ -92,14 +92,20 @@ namespace {
 /// results are bit for bit those of a scalar evaluation.
 typedef double Lanes2 __attribute__((vector_size(16)));
 inline Lanes2 lanes(double x, double y) { return Lanes2{x, y}; }
+/// |x| per lane: the sign bit cleared (one andpd).
+inline Lanes2 absLanes(Lanes2 x) {
+  typedef long long Bits2 __attribute__((vector_size(16)));
+  const Bits2 mask = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
+  return Lanes2(Bits2(x) & mask);
+}
 }  // namespace
 
 // The certified gap of an ellipsoid e on its side of the plane { n.x = off } (a below: sgn = +1;
-// b above: sgn = -1) is g = sgn (off - n.p) - tau (|off| + n_max |p|_1), and e lies strictly on
-// that side iff g > 0 and g^2 > m2 (1 + 4 tau) with m2 = |S R^T n|^2, the squared support
-// half-width (compared in squares: no square root). n_max = max_i |n_i|, so |off| + n_max |p|_1
-// bounds the absolute evaluation of off - n.p, and tau = 2^-40 covers its rounding with a wide
-// margin. Written out by hand, both sides at once: this is the whole cost of a cached-plane query.
+// b above: sgn = -1) is g = sgn (off - n.p) - tau (|off| + sum_i |n_i p_i|), and e lies strictly
+// on that side iff g > 0 and g^2 > m2 (1 + 4 tau) with m2 = |S R^T n|^2, the squared support
+// half-width (compared in squares: no square root). |off| + sum_i |n_i p_i| is the absolute
+// evaluation of off - n.p, and tau = 2^-40 covers its rounding with a wide margin. Written out by
+// hand, both sides at once and without a branch: this is the whole cost of a cached-plane query.
 bool detail::isFinitePlane(const Plane& plane) {
   const Eigen::Vector3d& n = plane.normal;
   return std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]) && std::isfinite(plane.offset);
@@ -115,7 +121,6 @@ bool detail::planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const 
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   const Eigen::Vector3d& n = plane.normal;
   const double off = plane.offset;
-  const double n_max = std::max({std::fabs(n[0]), std::fabs(n[1]), std::fabs(n[2])});
   const Eigen::Matrix3d& Ra = a.rotation();
   const Eigen::Matrix3d& Rb = b.rotation();
   const Eigen::Vector3d& ra = a.radii();
@@ -130,12 +135,12 @@ bool detail::planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const 
   const Lanes2 m3 = (lanes(Ra(0, 2), Rb(0, 2)) * n0 + lanes(Ra(1, 2), Rb(1, 2)) * n1 + lanes(Ra(2, 2), Rb(2, 2)) * n2) *
                     lanes(ra[2], rb[2]);
   const Lanes2 m2 = m0 * m0 + m1 * m1 + m3 * m3;
-  const Lanes2 nc = n0 * lanes(ca[0], cb[0]) + n1 * lanes(ca[1], cb[1]) + n2 * lanes(ca[2], cb[2]);
-  const Lanes2 c_l1 = lanes(std::fabs(ca[0]), std::fabs(cb[0])) + lanes(std::fabs(ca[1]), std::fabs(cb[1])) +
-                      lanes(std::fabs(ca[2]), std::fabs(cb[2]));
-  const Lanes2 g = lanes(1.0, -1.0) * (off - nc) - tau * (std::fabs(off) + n_max * c_l1);
+  const Lanes2 c0 = lanes(ca[0], cb[0]), c1 = lanes(ca[1], cb[1]), c2 = lanes(ca[2], cb[2]);
+  const Lanes2 p0 = n0 * c0, p1 = n1 * c1, p2 = n2 * c2;
+  const Lanes2 nc = p0 + p1 + p2;
+  const Lanes2 g = lanes(1.0, -1.0) * (off - nc) - tau * (absLanes(p0) + absLanes(p1) + absLanes(p2) + std::fabs(off));
   const auto ok = (g > 0.0) & (g * g > m2 * (1.0 + 4.0 * tau));  // per lane: all ones or zero
-  return ok[0] != 0 && ok[1] != 0;
+  return (ok[0] & ok[1]) != 0;
 }
 
 std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipsoid& b) {
