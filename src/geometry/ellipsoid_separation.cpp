@@ -93,7 +93,7 @@ bool separatedAlong(const Eigen::Vector3d& m, const Eigen::Vector3d& d, const El
 }
 
 /// x strictly inside e: q_e(x) = |S^-1 R^T (x - p)|^2 - 1 < -tau (1 + (|x|_1 + |p|_1) / r_min),
-/// with inv_r = 1 / radii (CentreLine::inv_r). The rounding of x - p is below eps (|x|_1 + |p|_1) per
+/// with inv_r = reciprocalRadii(e). The rounding of x - p is below eps (|x|_1 + |p|_1) per
 /// coordinate, that of the rotation and of the reciprocals a few eps of |S^-1 R^T (x - p)| <= 1
 /// (otherwise the test fails anyway), so the margin covers the rounding of q_e(x) for any x with a
 /// relative factor of > 1000.
