@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <stdexcept>
@@ -227,6 +228,49 @@ TEST(EllipsoidSeparation, IsInvariantUnderACommonRigidMotionAndScaling) {
     changed += s2 != s;
   }
   EXPECT_LE(changed, 1);  // only a pair within ~1e-13 of tangency could flip
+}
+
+// The centre-line tests run on d itself while |d| is in [1e-50, 1e50] and on the unit direction
+// outside it (docs/algorithms.md §1, "How they run"); centres closer than 1e-150 overlap at once.
+// Scaling a pair by 2^-200 or 2^200 is exact and moves |d| outside that range, so the other path
+// must give the same status as the unscaled pair, and both must agree with the exact oracle.
+TEST(EllipsoidSeparation, ExtremeScalesTakeTheUnitDirectionPathAndAgreeWithTheOracle) {
+  std::mt19937_64 rng(41);
+  int scaled_paths = 0;
+  for (int i = 0; i < 4000; ++i) {
+    auto [a, b] = randomPair(rng);
+    const Separation s = separationStatus(a, b);
+    if (i < 200) {
+      ASSERT_EQ(s, exactClassify(a, b)) << "pair " << i;
+    }
+    for (double k : {std::ldexp(1.0, -200), std::ldexp(1.0, 200)}) {
+      const Ellipsoid a2 = transformed(a, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), k);
+      const Ellipsoid b2 = transformed(b, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), k);
+      const double D2 = (b2.center() - a2.center()).squaredNorm();
+      scaled_paths += !(D2 > 1e-100 && D2 < 1e100);
+      ASSERT_EQ(separationStatus(a2, b2), s) << "pair " << i << " scaled by " << k;
+      const SeparationCertificate ab = classifyEllipsoids(a2, b2), ba = classifyEllipsoids(b2, a2);
+      ASSERT_EQ(ab.status, s) << "pair " << i << " scaled by " << k;
+      ASSERT_EQ(ab.witness, ba.witness);  // symmetric bit for bit on this path too
+      if (i < 50) {
+        ASSERT_EQ(s, exactClassify(a2, b2)) << "pair " << i << " scaled by " << k;
+      }
+    }
+  }
+  EXPECT_GT(scaled_paths, 7000);  // nearly every scaled pair left the [1e-50, 1e50] range
+  // Nearly coincident centres (|d| ~ 1e-160, below twice the smallest radius): overlapping, also
+  // for the smallest ellipsoids the library accepts.
+  const Eigen::Vector3d r(1e-100, 3e-100, 2e-100);
+  const Eigen::Matrix3d R = test::randomRotation(rng);
+  const Ellipsoid a(r, R, Eigen::Vector3d(3e-160, -1e-160, 2e-160));
+  const Ellipsoid b(r.reverse(), R.transpose(), Eigen::Vector3d(1e-160, 1e-160, 0.0));
+  ASSERT_GT((b.center() - a.center()).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(exactClassify(a, b), Separation::Overlapping);
+  EXPECT_EQ(separationStatus(a, b), Separation::Overlapping);
+  const SeparationCertificate c = classifyEllipsoids(a, b);
+  EXPECT_EQ(c.status, Separation::Overlapping);
+  EXPECT_LT(a.implicit(c.witness), 0.0);
+  EXPECT_LT(b.implicit(c.witness), 0.0);
 }
 
 TEST(CharacteristicPolynomial, ThesisRoutineMatchesExactCoefficients) {
