@@ -258,7 +258,7 @@ bool scaledCentreLineTest(const Ellipsoid& a, const Ellipsoid& b, const Eigen::V
 }
 
 /// The pre-tests along the centre line n = (p_b - p_a)/|p_b - p_a| (docs/algorithms.md §1,
-/// "Pre-tests"):
+/// "Pre-tests"), after the bounding-ball test 0:
 ///  1. Separated if the supports along n are disjoint: h_a(n) + h_b(-n) < n.(p_b - p_a), with
 ///     h = n.p + |S R^T n|. It implies every bounding-ball separation.
 ///  2. Overlapping if the segment between the centres is covered: rho_a + rho_b > |p_b - p_a|,
@@ -277,6 +277,19 @@ template <class Out>
 __attribute__((always_inline)) inline bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, Out* out) {
   const Eigen::Vector3d d = b.center() - a.center();
   const double D2 = d.squaredNorm();
+  // 0. Bounding balls disjoint (implied by test 1, but a few instructions instead of a hundred, and
+  // a predictable branch for far pairs in coherent sequences; on random pairs it cost nothing
+  // measurable, docs/algorithms.md §1). Certified with the relative margin 2^-40 on the squares.
+  const double outer = a.maxRadius() + b.maxRadius();
+  if (D2 > outer * outer * (1.0 + tolerance::kCertificateRelativeBoundDouble)) {
+    out->status = Separation::Separated;
+    if constexpr (kWantsWitness<Out>) {
+      out->normal = d * (1.0 / std::sqrt(D2));
+      out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (a.maxRadius() - b.maxRadius())) * out->normal;
+      out->precision_stage = -1;
+    }
+    return true;
+  }
   if (!(D2 > 1e-100 && D2 < 1e100)) return scaledCentreLineTest(a, b, d, D2, out);
   LineValues w;
   const Separation st = lineTests(a, b, d, D2, 1.0, kWantsWitness<Out> ? &w : nullptr);
