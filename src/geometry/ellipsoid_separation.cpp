@@ -4,11 +4,8 @@
 #include <cmath>
 #include <type_traits>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "fcl_quadric/tolerances.h"
+#include "geometry/lanes2.h"
 #include "geometry/pencil.h"
 
 namespace fcl_quadric {
@@ -103,17 +100,8 @@ bool strictlyInside(const Ellipsoid& e, const Eigen::Vector3d& inv_r, const Eige
   return q < -tau * (1.0 + spread);
 }
 
-/// Two values side by side, lane 0 for ellipsoid a and lane 1 for b (GCC / Clang vector
-/// extension: one SSE2 instruction per operation on both ellipsoids).
-typedef double Lanes2 __attribute__((vector_size(16)));
-inline Lanes2 lanes(double x, double y) { return Lanes2{x, y}; }
-inline Lanes2 sqrtLanes(Lanes2 x) {
-#if defined(__SSE2__)
-  return Lanes2(_mm_sqrt_pd(__m128d(x)));  // one instruction for both (GCC does not pair the two)
-#else
-  return Lanes2{std::sqrt(x[0]), std::sqrt(x[1])};
-#endif
-}
+using detail::Lanes2;
+using detail::lanes;
 
 /// Tests 1 and 2 below are homogeneous in the direction of the centre line, so they run on
 /// v = d = p_b - p_a itself (no square root or division) while |d| is in [1e-50, 1e50], where
@@ -137,16 +125,10 @@ struct LineValues {
 __attribute__((always_inline)) inline Separation lineTests(const Ellipsoid& a, const Ellipsoid& b,
                                                              const Eigen::Vector3d& v, double d_times_v, double s,
                                                              LineValues* values) {
-  const Eigen::Matrix3d& Ra = a.rotation();
-  const Eigen::Matrix3d& Rb = b.rotation();
-  const Eigen::Vector3d& ra = a.radii();
-  const Eigen::Vector3d& rb = b.radii();
-  const Lanes2 v0 = lanes(v[0], v[0]), v1 = lanes(v[1], v[1]), v2 = lanes(v[2], v[2]);
-  // u = R^T v
-  const Lanes2 u0 = lanes(Ra(0, 0), Rb(0, 0)) * v0 + lanes(Ra(1, 0), Rb(1, 0)) * v1 + lanes(Ra(2, 0), Rb(2, 0)) * v2;
-  const Lanes2 u1 = lanes(Ra(0, 1), Rb(0, 1)) * v0 + lanes(Ra(1, 1), Rb(1, 1)) * v1 + lanes(Ra(2, 1), Rb(2, 1)) * v2;
-  const Lanes2 u2 = lanes(Ra(0, 2), Rb(0, 2)) * v0 + lanes(Ra(1, 2), Rb(1, 2)) * v1 + lanes(Ra(2, 2), Rb(2, 2)) * v2;
-  const Lanes2 r0 = lanes(ra[0], rb[0]), r1 = lanes(ra[1], rb[1]), r2 = lanes(ra[2], rb[2]);
+  Lanes2 u[3], r[3];
+  detail::bodyFrameLanes(a, b, v, u);  // R^T v
+  detail::radiusLanes(a, b, r);
+  const Lanes2 u0 = u[0], u1 = u[1], u2 = u[2], r0 = r[0], r1 = r[1], r2 = r[2];
   // 1 / r with one division per ellipsoid: k = 1 / (r0 r1 r2), then 1 / r0 = r1 r2 k, ...; each
   // within 3 ulps of the correctly rounded reciprocal, far inside the 2^-40 margins; the product
   // r0 r1 r2 stays within [1e-300, 1e300].
@@ -154,8 +136,8 @@ __attribute__((always_inline)) inline Separation lineTests(const Ellipsoid& a, c
   const Lanes2 k = 1.0 / (r0 * r12);
   const Lanes2 s0 = u0 * r0, s1 = u1 * r1, s2 = u2 * r2;
   const Lanes2 i0 = u0 * (r12 * k), i1 = u1 * (r0 * r2 * k), i2 = u2 * (r0 * r1 * k);
-  const Lanes2 h = sqrtLanes(s0 * s0 + s1 * s1 + s2 * s2);
-  const Lanes2 l = sqrtLanes(i0 * i0 + i1 * i1 + i2 * i2);
+  const Lanes2 h = detail::sqrtLanes(s0 * s0 + s1 * s1 + s2 * s2);
+  const Lanes2 l = detail::sqrtLanes(i0 * i0 + i1 * i1 + i2 * i2);
   if (values != nullptr) {
     values->h[0] = h[0];
     values->h[1] = h[1];
@@ -181,12 +163,11 @@ Eigen::Vector3d reciprocalRadii(const Ellipsoid& e) {
 }
 
 /// Tests 3 and 4 of centreLineTest(), for the pairs tests 1 and 2 leave open (~8% of random pairs):
-/// they recompute what they need on v = d / s.
+/// they recompute what they need on v = d / s (D2 = |d|^2).
 template <class Out>
-bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& d, bool unscaled, double s,
-                   Out* out) {
+bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& d, double D2, bool unscaled,
+                   double s, Out* out) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
-  const double D2 = d.squaredNorm();
   const Eigen::Vector3d v = unscaled ? d : Eigen::Vector3d(d * (1.0 / s));
   const Eigen::Vector3d ua = a.rotation().transpose() * v, ub = b.rotation().transpose() * v;
   const Eigen::Vector3d inv_ra = reciprocalRadii(a), inv_rb = reciprocalRadii(b);
@@ -254,7 +235,7 @@ bool scaledCentreLineTest(const Ellipsoid& a, const Ellipsoid& b, const Eigen::V
     lineDecision(st, a, b, d, 1.0, w, out);
     return true;
   }
-  return followUpTests(a, b, d, false, s, out);
+  return followUpTests(a, b, d, D2, false, s, out);
 }
 
 /// The pre-tests along the centre line n = (p_b - p_a)/|p_b - p_a| (docs/algorithms.md §1,
@@ -301,7 +282,7 @@ __attribute__((always_inline)) inline bool centreLineTest(const Ellipsoid& a, co
     }
     return true;
   }
-  return followUpTests(a, b, d, true, 1.0, out);
+  return followUpTests(a, b, d, D2, true, 1.0, out);
 }
 
 /// The classification after the pre-tests left it open: the pencil in double, then in

@@ -5,6 +5,7 @@
 
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/tolerances.h"
+#include "geometry/lanes2.h"
 #include "geometry/pencil.h"
 
 namespace fcl_quadric {
@@ -85,27 +86,9 @@ Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellips
   return p;
 }
 
-namespace {
-/// Two doubles in one SSE2 register (a GCC/Clang vector extension): lane 0 carries ellipsoid a,
-/// lane 1 ellipsoid b, so the two side tests of a cached-plane query cost one pass of arithmetic
-/// instead of two. Each lane performs exactly the scalar operations, in the same order, so the
-/// results are bit for bit those of a scalar evaluation.
-typedef double Lanes2 __attribute__((vector_size(16)));
-inline Lanes2 lanes(double x, double y) { return Lanes2{x, y}; }
-/// |x| per lane: the sign bit cleared (one andpd).
-inline Lanes2 absLanes(Lanes2 x) {
-  typedef long long Bits2 __attribute__((vector_size(16)));
-  const Bits2 mask = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
-  return Lanes2(Bits2(x) & mask);
-}
-}  // namespace
+using detail::Lanes2;
+using detail::lanes;
 
-// The certified gap of an ellipsoid e on its side of the plane { n.x = off } (a below: sgn = +1;
-// b above: sgn = -1) is g = sgn (off - n.p) - tau (|off| + sum_i |n_i p_i|), and e lies strictly
-// on that side iff g > 0 and g^2 > m2 (1 + 4 tau) with m2 = |S R^T n|^2, the squared support
-// half-width (compared in squares: no square root). |off| + sum_i |n_i p_i| is the absolute
-// evaluation of off - n.p, and tau = 2^-40 covers its rounding with a wide margin. Written out by
-// hand, both sides at once and without a branch: this is the whole cost of a cached-plane query.
 bool detail::isFinitePlane(const Plane& plane) {
   const Eigen::Vector3d& n = plane.normal;
   return std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]) && std::isfinite(plane.offset);
@@ -117,29 +100,30 @@ bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) 
   return detail::isFinitePlane(plane) && detail::planeSeparatesFinite(plane, a, b);
 }
 
+// The certified gap of an ellipsoid e on its side of the plane { n.x = off } (a below: sgn = +1;
+// b above: sgn = -1) is g = sgn (off - n.p) - tau (|off| + sum_i |n_i p_i|), and e lies strictly
+// on that side iff g > 0 and g^2 > msq (1 + 4 tau) with msq = |S R^T n|^2, the squared support
+// half-width (compared in squares: no square root). |off| + sum_i |n_i p_i| is the absolute
+// evaluation of off - n.p, and tau = 2^-40 covers its rounding with a wide margin. Written out by
+// hand, both sides at once and without a branch: this is the whole cost of a cached-plane query.
 bool detail::planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   const Eigen::Vector3d& n = plane.normal;
   const double off = plane.offset;
-  const Eigen::Matrix3d& Ra = a.rotation();
-  const Eigen::Matrix3d& Rb = b.rotation();
-  const Eigen::Vector3d& ra = a.radii();
-  const Eigen::Vector3d& rb = b.radii();
   const Eigen::Vector3d& ca = a.center();
   const Eigen::Vector3d& cb = b.center();
+  Lanes2 u[3], r[3];
+  detail::bodyFrameLanes(a, b, n, u);  // R^T n
+  detail::radiusLanes(a, b, r);
+  const Lanes2 m0 = u[0] * r[0], m1 = u[1] * r[1], m2 = u[2] * r[2];  // S R^T n
   const Lanes2 n0 = lanes(n[0], n[0]), n1 = lanes(n[1], n[1]), n2 = lanes(n[2], n[2]);
-  const Lanes2 m0 = (lanes(Ra(0, 0), Rb(0, 0)) * n0 + lanes(Ra(1, 0), Rb(1, 0)) * n1 + lanes(Ra(2, 0), Rb(2, 0)) * n2) *
-                    lanes(ra[0], rb[0]);
-  const Lanes2 m1 = (lanes(Ra(0, 1), Rb(0, 1)) * n0 + lanes(Ra(1, 1), Rb(1, 1)) * n1 + lanes(Ra(2, 1), Rb(2, 1)) * n2) *
-                    lanes(ra[1], rb[1]);
-  const Lanes2 m3 = (lanes(Ra(0, 2), Rb(0, 2)) * n0 + lanes(Ra(1, 2), Rb(1, 2)) * n1 + lanes(Ra(2, 2), Rb(2, 2)) * n2) *
-                    lanes(ra[2], rb[2]);
-  const Lanes2 m2 = m0 * m0 + m1 * m1 + m3 * m3;
+  const Lanes2 msq = m0 * m0 + m1 * m1 + m2 * m2;
   const Lanes2 c0 = lanes(ca[0], cb[0]), c1 = lanes(ca[1], cb[1]), c2 = lanes(ca[2], cb[2]);
   const Lanes2 p0 = n0 * c0, p1 = n1 * c1, p2 = n2 * c2;
   const Lanes2 nc = p0 + p1 + p2;
-  const Lanes2 g = lanes(1.0, -1.0) * (off - nc) - tau * (absLanes(p0) + absLanes(p1) + absLanes(p2) + std::fabs(off));
-  const auto ok = (g > 0.0) & (g * g > m2 * (1.0 + 4.0 * tau));  // per lane: all ones or zero
+  const Lanes2 abs_sum = detail::absLanes(p0) + detail::absLanes(p1) + detail::absLanes(p2);
+  const Lanes2 g = lanes(1.0, -1.0) * (off - nc) - tau * (abs_sum + std::fabs(off));
+  const auto ok = (g > 0.0) & (g * g > msq * (1.0 + 4.0 * tau));  // per lane: all ones or zero
   return (ok[0] & ok[1]) != 0;
 }
 

@@ -47,9 +47,10 @@ struct SeparationCertificate {
 /// docs/algorithms.md §1). Never throws for valid Ellipsoid objects.
 SeparationCertificate classifyEllipsoids(const Ellipsoid& a, const Ellipsoid& b);
 
-/// classifyEllipsoids(a, b).status, always the same value, without the certificate: when a
-/// pre-test decides (about 97% of random pairs, docs/benchmarks.md) the witness and normal are
-/// not computed. The boolean queries use it.
+/// classifyEllipsoids(a, b).status, always the same value (Choi 2008 Theorem 4.1 and Remark 4.3,
+/// certified as there), without the certificate: when a pre-test decides (about 97% of random
+/// pairs, docs/algorithms.md §1) the witness and normal are not computed. The boolean queries use
+/// it. Never throws: an Ellipsoid is valid by construction (its constructor rejects bad input).
 Separation separationStatus(const Ellipsoid& a, const Ellipsoid& b);
 
 /// Shorthand: true unless the ellipsoids are separate (touching counts as collision).

@@ -1,0 +1,58 @@
+#pragma once
+/// \file lanes2.h
+/// Two doubles in one SSE2 register (a GCC / Clang vector extension): lane 0 carries ellipsoid a,
+/// lane 1 ellipsoid b, so a test on a pair costs one pass of arithmetic instead of two. Each lane
+/// performs exactly the scalar operations, in the same order, so the results are bit for bit those
+/// of a scalar evaluation. Used by the pre-tests of the static classification and by the
+/// cached-plane test (internal; Eigen only).
+
+#include <cmath>
+
+#include <Eigen/Core>
+
+#include "fcl_quadric/geometry/ellipsoid.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace fcl_quadric {
+namespace detail {
+
+typedef double Lanes2 __attribute__((vector_size(16)));
+
+inline Lanes2 lanes(double x, double y) { return Lanes2{x, y}; }
+
+/// sqrt per lane.
+inline Lanes2 sqrtLanes(Lanes2 x) {
+#if defined(__SSE2__)
+  return Lanes2(_mm_sqrt_pd(__m128d(x)));  // one instruction for both (GCC does not pair the two)
+#else
+  return Lanes2{std::sqrt(x[0]), std::sqrt(x[1])};
+#endif
+}
+
+/// |x| per lane: the sign bit cleared (one andpd).
+inline Lanes2 absLanes(Lanes2 x) {
+  typedef long long Bits2 __attribute__((vector_size(16)));
+  const Bits2 mask = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
+  return Lanes2(Bits2(x) & mask);
+}
+
+/// u[j] = (R_a^T v)_j in lane 0 and (R_b^T v)_j in lane 1, each the sum R(0,j) v_0 + R(1,j) v_1 +
+/// R(2,j) v_2 in that order: v in the body frames of a and b.
+inline void bodyFrameLanes(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& v, Lanes2 u[3]) {
+  const Eigen::Matrix3d& Ra = a.rotation();
+  const Eigen::Matrix3d& Rb = b.rotation();
+  const Lanes2 v0 = lanes(v[0], v[0]), v1 = lanes(v[1], v[1]), v2 = lanes(v[2], v[2]);
+  for (int j = 0; j < 3; ++j)
+    u[j] = lanes(Ra(0, j), Rb(0, j)) * v0 + lanes(Ra(1, j), Rb(1, j)) * v1 + lanes(Ra(2, j), Rb(2, j)) * v2;
+}
+
+/// The radii of a and b, radius j in r[j].
+inline void radiusLanes(const Ellipsoid& a, const Ellipsoid& b, Lanes2 r[3]) {
+  for (int j = 0; j < 3; ++j) r[j] = lanes(a.radii()[j], b.radii()[j]);
+}
+
+}  // namespace detail
+}  // namespace fcl_quadric
