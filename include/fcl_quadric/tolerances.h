@@ -33,6 +33,15 @@ constexpr double kCertificateRelativeBoundDoubleDouble = 2.0194839173657902e-28;
 /// describes the intended ellipsoid to relative accuracy ~e.
 constexpr double kRotationOrthogonality = 1e-9;
 
+/// An Ellipsoid stores a rotation with max|R^T R - I| <= this (2^-48 ~ 3.6e-15): an accepted
+/// rotation that is less orthogonal is replaced by its nearest rotation (Ellipsoid's constructor),
+/// so that every test of the static classification decides on one and the same solid. The
+/// support function |S R^-1 n| of the stored solid then differs from the computed |S R^T n| by at
+/// most (gamma_3 + 3.2 * 2^-48) (r_0 + r_1 + r_2) |n|_1 < 1.3e-14 (r_0 + r_1 + r_2) |n|_1, rounding
+/// included, far inside the margin kCertificateRelativeBoundDouble * (r_0 + r_1 + r_2) |n|_1 that
+/// the certificates use (docs/tolerances.md, "Supports"). Dimensionless.
+constexpr double kStoredRotationDefect = 3.552713678800501e-15;  // 2^-48
+
 /// Accepted range of radii and of centre coordinates (absolute, in the user's length unit): keeps
 /// squares and the products formed by the pencil finite. Outside it the constructor throws.
 /// Pairs whose sizes differ by more than ~1e25 can overflow the pencil's determinants: pairs the

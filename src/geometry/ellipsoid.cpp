@@ -64,7 +64,7 @@ void checkFinite(const Eigen::Vector3d& v, const char* what) {
   if (!(std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]))) throwNonFinite(v, what);
 }
 
-void checkRotation(const Eigen::Matrix3d& R, const char* what) {
+double checkRotation(const Eigen::Matrix3d& R, const char* what) {
   // Hand-written: this runs for every posed shape of every query. Columns c0 = r[0..2],
   // c1 = r[3..5], c2 = r[6..8]: the six entries of R^T R - I and det R = c0 . (c1 x c2).
   // std::isfinite raises no FP exception. The identity passes exactly (defect 0, det 1).
@@ -86,9 +86,21 @@ void checkRotation(const Eigen::Matrix3d& R, const char* what) {
                                    std::max(std::fabs(d02), std::fabs(d12)));
     const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) + r[1] * (r[5] * r[6] - r[3] * r[8]) +
                        r[2] * (r[3] * r[7] - r[4] * r[6]);
-    if (defect <= tolerance::kRotationOrthogonality && det > 0.0) return;  // all finite: no FE_INVALID
+    if (defect <= tolerance::kRotationOrthogonality && det > 0.0) return defect;  // all finite: no FE_INVALID
   }
   throwNotRotation(R, what, finite, bounded);
+}
+
+Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& R) {
+  // Newton-Schulz for the polar factor: with R^T R = I + E, one step leaves a defect of
+  // O(|E|^2) plus rounding, so a defect <= 1e-9 needs one step, two at most.
+  Eigen::Matrix3d Q = R;
+  for (int step = 0; step < 4; ++step) {
+    Q = Q * (0.5 * (3.0 * Eigen::Matrix3d::Identity() - Q.transpose() * Q));
+    const double defect = (Q.transpose() * Q - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+    if (defect <= tolerance::kStoredRotationDefect) return Q;
+  }
+  return Eigen::Quaterniond(R).normalized().toRotationMatrix();  // documented fallback
 }
 
 }  // namespace detail
@@ -101,7 +113,11 @@ Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, 
     if (!(std::isfinite(radii[i]) && radii[i] >= tolerance::kMinRadius && radii[i] <= tolerance::kMaxLength))
       throwBadRadius(radii, i);
   }
-  detail::checkRotation(R_WE, "ellipsoid rotation");
+  // The rare rotation that is accepted but less orthogonal than 2^-48 (a drifted composition)
+  // is replaced by its nearest rotation, so that the supports |S R^T n| of the pre-tests and the
+  // implicit form |S^-1 R^T (x - p)| of the pencil describe one solid (tolerances.h).
+  if (detail::checkRotation(R_WE, "ellipsoid rotation") > tolerance::kStoredRotationDefect)
+    R_ = detail::nearestRotation(R_WE);
   detail::checkFinite(p_WE, "ellipsoid centre");
   if (!(std::fabs(p_WE[0]) <= tolerance::kMaxLength && std::fabs(p_WE[1]) <= tolerance::kMaxLength &&
         std::fabs(p_WE[2]) <= tolerance::kMaxLength))

@@ -43,9 +43,12 @@ EllipsoidPlaneResult classifyEllipsoidPlane(const Ellipsoid& e, const Eigen::Vec
   r.farthest_positive = e.supportPoint(n);
   r.farthest_negative = e.supportPoint(-n);
   // Corollary 14: transversal iff e^2 < |m|^2, i.e. |n.p - d| < |S R^T n|; the sign of n.p - d
-  // gives the side. Rounding of each term is relative to |n||p| + |d| + |m|.
+  // gives the side. Rounding of each term is relative to |n||p| + |d| + |m| + |n|_1 sum(r): R^T n
+  // is rounded absolutely (~eps |n|), which a long radius multiplies (tolerances.h,
+  // kStoredRotationDefect).
   const double tau = tolerance::kCertificateRelativeBoundDouble;
-  const double scale = n.cwiseAbs().dot(e.center().cwiseAbs()) + std::fabs(d) + r.half_width;
+  const double scale = n.cwiseAbs().dot(e.center().cwiseAbs()) + std::fabs(d) + r.half_width +
+                       n.cwiseAbs().sum() * e.radii().sum();
   const double gap = std::fabs(r.centre_offset) - r.half_width;
   if (gap > tau * scale) {
     r.relation = r.centre_offset > 0.0 ? PlaneRelation::PositiveSide : PlaneRelation::NegativeSide;

@@ -69,15 +69,17 @@ bool certify(const detail::Pencil<T>& p, const T& mu, double tau, SeparationCert
 
 /// Separation along a direction m (any length): h_a(m) + h_b(-m) < m.(p_b - p_a) with
 /// h(m) = m.p + |S R^T m| the support function. Every rounded quantity (m.d, |S R^T m|) is a sum
-/// or norm whose rounding is below 8 eps times its absolute evaluation sum|m_i d_i| + h_a + h_b,
-/// so the relative margin tau = 2^-40 covers it.
+/// or norm whose rounding is below 8 eps times its absolute evaluation: sum|m_i d_i| for m.d, and
+/// |m|_1 sum(r) for |S R^T m| (R^T m is rounded absolutely, ~eps |m|, and a long radius
+/// multiplies that; tolerances.h, kStoredRotationDefect), so the relative margin tau = 2^-40 over
+/// their sum covers it.
 template <class Out>
 bool separatedAlong(const Eigen::Vector3d& m, const Eigen::Vector3d& d, const Ellipsoid& a,
                     const Ellipsoid& b, double tau, Out* out) {
   const double ha = (a.rotation().transpose() * m).cwiseProduct(a.radii()).norm();
   const double hb = (b.rotation().transpose() * m).cwiseProduct(b.radii()).norm();
   const double md = m.dot(d);
-  const double scale = m.cwiseAbs().dot(d.cwiseAbs()) + ha + hb;
+  const double scale = m.cwiseAbs().dot(d.cwiseAbs()) + ha + hb + m.cwiseAbs().sum() * (a.radii().sum() + b.radii().sum());
   if (!(md - ha - hb > tau * scale)) return false;
   out->status = Separation::Separated;
   if constexpr (kWantsWitness<Out>) {
@@ -134,8 +136,9 @@ __attribute__((always_inline)) inline Separation lineTests(const Ellipsoid& a, c
   // r0 r1 r2 stays within [1e-300, 1e300].
   const Lanes2 r12 = r1 * r2;
   const Lanes2 k = 1.0 / (r0 * r12);
+  const Lanes2 q0 = r12 * k, q1 = r0 * r2 * k, q2 = r0 * r1 * k;  // 1 / r
   const Lanes2 s0 = u0 * r0, s1 = u1 * r1, s2 = u2 * r2;
-  const Lanes2 i0 = u0 * (r12 * k), i1 = u1 * (r0 * r2 * k), i2 = u2 * (r0 * r1 * k);
+  const Lanes2 i0 = u0 * q0, i1 = u1 * q1, i2 = u2 * q2;
   const Lanes2 h = detail::sqrtLanes(s0 * s0 + s1 * s1 + s2 * s2);
   const Lanes2 l = detail::sqrtLanes(i0 * i0 + i1 * i1 + i2 * i2);
   if (values != nullptr) {
@@ -144,9 +147,17 @@ __attribute__((always_inline)) inline Separation lineTests(const Ellipsoid& a, c
     values->l[0] = l[0];
     values->l[1] = l[1];
   }
+  // Upper bounds of the exact h and l. The rounding of u = R^T v is absolute, up to
+  // gamma_3 |v|_1 per coordinate (plus the stored rotation's defect, tolerances.h), and a thin
+  // ellipsoid multiplies it by its long radius: relative to h it grows with the aspect ratio
+  // (1e-11 at 1:10^6). Hence the absolute terms tau |v|_1 sum(r) and tau |v|_1 sum(1/r) on top of
+  // the relative margin tau of the norms, sums and comparisons.
   const double tau = tolerance::kCertificateRelativeBoundDouble;
-  const bool separated = h[0] + h[1] < d_times_v * (1.0 - tau);
-  const bool overlapping = l[0] + l[1] > s * (1.0 + tau) * (l[0] * l[1]);
+  const double slack = tau * (std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]));
+  const Lanes2 h_up = h + slack * (r0 + r1 + r2);
+  const Lanes2 l_up = l + slack * (q0 + q1 + q2);
+  const bool separated = h_up[0] + h_up[1] < d_times_v * (1.0 - tau);
+  const bool overlapping = l_up[0] + l_up[1] > s * (1.0 + tau) * (l_up[0] * l_up[1]);
   // Separated (0), Touching (1: neither test decides) or Overlapping (2), without a branch (both
   // tests are certified, so they never both hold); the caller's one branch is on "decided".
   static_assert(int(Separation::Separated) == 0 && int(Separation::Touching) == 1 &&

@@ -104,8 +104,11 @@ bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) 
 // b above: sgn = -1) is g = sgn (off - n.p) - tau (|off| + sum_i |n_i p_i|), and e lies strictly
 // on that side iff g > 0 and g^2 > msq (1 + 4 tau) with msq = |S R^T n|^2, the squared support
 // half-width (compared in squares: no square root). |off| + sum_i |n_i p_i| is the absolute
-// evaluation of off - n.p, and tau = 2^-40 covers its rounding with a wide margin. Written out by
-// hand, both sides at once and without a branch: this is the whole cost of a cached-plane query.
+// evaluation of off - n.p, and tau = 2^-40 covers its rounding with a wide margin. The rounding
+// of R^T n is absolute (~eps |n|_1 per coordinate, tolerances.h kStoredRotationDefect), and a
+// long radius multiplies it, so g also subtracts tau |n|_1 sum(r), which bounds its effect on
+// the half-width. Written out by hand, both sides at once and without a branch: this is the
+// whole cost of a cached-plane query.
 bool detail::planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   const Eigen::Vector3d& n = plane.normal;
@@ -122,7 +125,8 @@ bool detail::planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const 
   const Lanes2 p0 = n0 * c0, p1 = n1 * c1, p2 = n2 * c2;
   const Lanes2 nc = p0 + p1 + p2;
   const Lanes2 abs_sum = detail::absLanes(p0) + detail::absLanes(p1) + detail::absLanes(p2);
-  const Lanes2 g = lanes(1.0, -1.0) * (off - nc) - tau * (abs_sum + std::fabs(off));
+  const double n1norm = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
+  const Lanes2 g = lanes(1.0, -1.0) * (off - nc) - tau * (abs_sum + std::fabs(off) + n1norm * (r[0] + r[1] + r[2]));
   const auto ok = (g > 0.0) & (g * g > msq * (1.0 + 4.0 * tau));  // per lane: all ones or zero
   return (ok[0] & ok[1]) != 0;
 }

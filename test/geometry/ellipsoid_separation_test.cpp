@@ -9,7 +9,10 @@
 #include <stdexcept>
 
 #include "fcl_quadric/geometry/characteristic_polynomial.h"
+#include "fcl_quadric/geometry/ellipsoid_plane.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
+#include "fcl_quadric/geometry/separating_plane.h"
+#include "fcl_quadric/tolerances.h"
 #include "support/exact_oracle.h"
 #include "support/random_ellipsoids.h"
 
@@ -271,6 +274,81 @@ TEST(EllipsoidSeparation, ExtremeScalesTakeTheUnitDirectionPathAndAgreeWithTheOr
   EXPECT_EQ(c.status, Separation::Overlapping);
   EXPECT_LT(a.implicit(c.witness), 0.0);
   EXPECT_LT(b.implicit(c.witness), 0.0);
+}
+
+// Thin ellipsoids at every aspect ratio, in the one configuration where the supports along the
+// centre line decide near tangency: b is the mirror image of a in a plane with normal m, so the
+// pair touches along m at the centre distance 2 h_a(m). m is chosen with (R^T m)_long ~ 1/L, where
+// the absolute rounding of R^T m, multiplied by the long radius L, is largest relative to h
+// (~1e-11 at 1:10^6; the pre-tests once trusted a relative 2^-40 there and called overlapping
+// pairs separate). Every certified decision (the statuses, the cached-plane test on the mid-plane,
+// the ellipsoid-plane sides) must agree with the exact oracle.
+TEST(EllipsoidSeparation, ThinMirrorPairsNearTangencyAgreeWithTheOracleAtEveryAspectRatio) {
+  std::mt19937_64 rng(43);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double L : {1e2, 1e4, 1e6, 1e8}) {
+    int exact_separated = 0, exact_not = 0, plane_certified = 0;
+    for (int i = 0; i < 120; ++i) {
+      const Eigen::Vector3d r(L, 1.0, 1.0);
+      const Eigen::Matrix3d Ra = test::randomRotation(rng);
+      const double x = u(rng) * 3.0 / L, y = u(rng), z = u(rng);
+      const Eigen::Vector3d m = (Ra * Eigen::Vector3d(x, y, z)).normalized();
+      const Eigen::Matrix3d H = Eigen::Matrix3d::Identity() - 2.0 * m * m.transpose();
+      const Eigen::Matrix3d Rb = H * Ra * Eigen::Vector3d(-1.0, 1.0, 1.0).asDiagonal();
+      const Ellipsoid a(r, Ra, Eigen::Vector3d::Zero());
+      const double h = a.support(m);
+      for (double delta : {-1e-9, -1e-10, -3e-11, -1e-11, 1e-11, 3e-11, 1e-10, 1e-9, 1e-6, 1e-3}) {
+        const Ellipsoid b(r, Rb, m * (2.0 * h * (1.0 + delta)));
+        const Separation exact = exactClassify(a, b);
+        (exact == Separation::Separated ? exact_separated : exact_not)++;
+        const Separation status = separationStatus(a, b);
+        const Separation classified = classifyEllipsoids(a, b).status;
+        if (status != Separation::Touching) {
+          ASSERT_EQ(status, exact) << "L " << L << " pair " << i << " delta " << delta;
+        }
+        if (classified != Separation::Touching) {
+          ASSERT_EQ(classified, exact) << "L " << L << " pair " << i << " delta " << delta;
+        }
+        const Plane mid{m, h * (1.0 + delta)};
+        if (planeSeparates(mid, a, b)) {
+          ++plane_certified;
+          ASSERT_EQ(exact, Separation::Separated) << "L " << L << " pair " << i << " delta " << delta;
+        }
+        const PlaneRelation side_a = classifyEllipsoidPlane(a, m, mid.offset).relation;
+        const PlaneRelation side_b = classifyEllipsoidPlane(b, m, mid.offset).relation;
+        if (side_a == PlaneRelation::NegativeSide && side_b == PlaneRelation::PositiveSide) {
+          ASSERT_EQ(exact, Separation::Separated) << "L " << L << " pair " << i << " delta " << delta;
+        }
+      }
+    }
+    // Not vacuous: both outcomes occur within relative 1e-9 of tangency, and planes get certified
+    // (those within ~1e-12 L of tangency cannot be: the margin tau |n|_1 sum(r) grows with L).
+    EXPECT_GT(exact_separated, 100) << "L " << L;
+    EXPECT_GT(exact_not, 100) << "L " << L;
+    EXPECT_GT(plane_certified, 50) << "L " << L;
+  }
+}
+
+// An accepted rotation with a defect above 2^-48 (a drifted composition) is stored as its nearest
+// rotation: orthogonal to 2^-48 and within the defect of the input, so that every test decides on
+// the solid of rotation() (tolerances.h, kStoredRotationDefect).
+TEST(Ellipsoid, StoresTheNearestRotationOfADriftedOne) {
+  std::mt19937_64 rng(47);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Matrix3d R = test::randomRotation(rng);
+    Eigen::Matrix3d P;
+    for (int k = 0; k < 9; ++k) P.data()[k] = u(rng);
+    const Eigen::Matrix3d drifted = R + 1e-10 * P;
+    const Ellipsoid e(Eigen::Vector3d(3.0, 2.0, 1.0), drifted, Eigen::Vector3d(1.0, 2.0, 3.0));
+    const double defect = (e.rotation().transpose() * e.rotation() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+    EXPECT_LE(defect, tolerance::kStoredRotationDefect);
+    EXPECT_LT((e.rotation() - drifted).cwiseAbs().maxCoeff(), 1e-9);
+    EXPECT_GT(e.rotation().determinant(), 0.0);
+    // A quaternion-derived rotation is kept as it is, bit for bit.
+    const Ellipsoid f(Eigen::Vector3d(3.0, 2.0, 1.0), R, Eigen::Vector3d::Zero());
+    EXPECT_EQ(f.rotation(), R);
+  }
 }
 
 TEST(CharacteristicPolynomial, ThesisRoutineMatchesExactCoefficients) {

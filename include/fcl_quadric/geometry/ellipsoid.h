@@ -17,6 +17,10 @@ namespace fcl_quadric {
 ///      tolerance::kRotationOrthogonality and
 ///      det R > 0; p finite with coordinates within kMaxLength. A violation throws
 ///      std::invalid_argument naming the bad value.
+///
+/// rotation() is R itself when max|R^T R - I| <= tolerance::kStoredRotationDefect (2^-48; every
+/// quaternion-derived rotation), otherwise its nearest rotation (detail::nearestRotation(), within
+/// ~1e-9 of R): the solid is then the one of the stored rotation, which every test uses.
 class Ellipsoid {
  public:
   Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, const Eigen::Vector3d& p_WE);
@@ -63,8 +67,15 @@ class Ellipsoid {
 
 namespace detail {
 /// Throws std::invalid_argument if `R` is not a finite proper rotation within
-/// tolerance::kRotationOrthogonality. `what` names the value in the message.
-void checkRotation(const Eigen::Matrix3d& R, const char* what);
+/// tolerance::kRotationOrthogonality. `what` names the value in the message. Returns the
+/// orthogonality defect max|R^T R - I| (as computed in double).
+double checkRotation(const Eigen::Matrix3d& R, const char* what);
+/// The nearest rotation to R (the orthogonal polar factor) by Newton-Schulz steps
+/// R <- R (3 I - R^T R) / 2, each of which squares the defect; at most 4 steps, until
+/// max|R^T R - I| <= tolerance::kStoredRotationDefect. \pre checkRotation(R) passed (defect <= 1e-9:
+/// one or two steps). Fallback if 4 steps do not reach it (not expected): the rotation of the
+/// normalised quaternion of R.
+Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& R);
 /// Throws std::invalid_argument("<what> must be finite, ...") if v has a NaN or infinite entry.
 void checkFinite(const Eigen::Vector3d& v, const char* what);
 }  // namespace detail
