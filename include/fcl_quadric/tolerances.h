@@ -42,6 +42,16 @@ constexpr double kRotationOrthogonality = 1e-9;
 /// the certificates use (docs/tolerances.md, "Supports"). Dimensionless.
 constexpr double kStoredRotationDefect = 3.552713678800501e-15;  // 2^-48
 
+/// Absolute rounding of a world point x mapped into an ellipsoid's unit frame S^-1 R^T (x - c):
+/// at most this times |x - c|_1 (1/r_0 + 1/r_1 + 1/r_2) per coordinate (the subtraction is
+/// rounded relative to x - c itself; the rotation's dot products by gamma_3 |x - c|_1, the
+/// division by 1/r_j by 2 more units: <= 6u, and 2^-47 = 64u leaves a factor > 10). Unlike the
+/// relative bound above this is absolute: a thin ellipsoid's unit frame magnifies |x - c|_1 by
+/// its largest 1/r_j, so a point far along the long axis carries an error of ~eps L / r_min,
+/// which the result's own magnitude does not bound. Used by the ellipsoid-box and
+/// ellipsoid-triangle certificates (ellipsoid_polytope.cpp). Dimensionless.
+constexpr double kUnitFrameRoundingBound = 7.105427357601002e-15;  // 2^-47
+
 /// Accepted range of radii and of centre coordinates (absolute, in the user's length unit): keeps
 /// squares and the products formed by the pencil finite. Outside it the constructor throws.
 /// Pairs whose sizes differ by more than ~1e25 can overflow the pencil's determinants: pairs the

@@ -43,12 +43,33 @@ struct Candidate {
   Eigen::Vector3d s = Eigen::Vector3d::Zero();  // parameters (unused components 0)
 };
 
-/// Certification shared by box and triangle: `vertices` are the polytope's vertices in the unit
-/// frame, `best` the computed minimiser, `scale` the magnitude of the unit-frame coordinates.
-void certify(const Candidate& best, const Eigen::Vector3d* vertices, int nv, double scale, EllipsoidPolytopeResult* out) {
+/// The absolute error bound of unit-frame coordinates computed from world vectors whose l1 norms
+/// sum to `world_l1` (tolerances.h, kUnitFrameRoundingBound).
+double unitFrameRounding(const Ellipsoid& e, double world_l1) {
+  return tolerance::kUnitFrameRoundingBound * world_l1 * e.inverseRadii().sum();
+}
+
+/// The two bands of the certificates on unit-frame points: relative (tau over the magnitude
+/// `scale` of the coordinates) plus the absolute transform rounding `eta` of each coordinate (a
+/// point of the polytope is a convex combination of vertices, or g + G s with |s_j| <= 1, so its
+/// error is bounded by the same eta up to sqrt(3) <= 2).
+struct Bands {
+  double overlap;   ///< |u|^2 < 1 - overlap certifies u strictly inside the unit ball
+  double separate;  ///< every vertex beyond the plane u.n = 1 + separate certifies separation
+};
+Bands bands(double scale, double eta) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
+  return {tau * (1.0 + scale * scale) + 4.0 * (1.0 + scale) * eta, tau * (1.0 + scale) + 2.0 * eta};
+}
+
+/// Certification shared by box and triangle: `vertices` are the polytope's vertices in the unit
+/// frame, `best` the computed minimiser, `scale` the magnitude of the unit-frame coordinates and
+/// `eta` their absolute transform rounding (unitFrameRounding()).
+void certify(const Candidate& best, const Eigen::Vector3d* vertices, int nv, double scale, double eta,
+             EllipsoidPolytopeResult* out) {
+  const Bands band = bands(scale, eta);
   out->unit_distance2 = best.value;
-  if (best.value < 1.0 - tau * (1.0 + scale * scale)) {
+  if (best.value < 1.0 - band.overlap) {
     out->status = Separation::Overlapping;  // a polytope point strictly inside the ball
     return;
   }
@@ -59,7 +80,7 @@ void certify(const Candidate& best, const Eigen::Vector3d* vertices, int nv, dou
     const Eigen::Vector3d n = best.u / len;
     double lowest = std::numeric_limits<double>::infinity();
     for (int i = 0; i < nv; ++i) lowest = std::min(lowest, n.dot(vertices[i]));
-    if (lowest > 1.0 + tau * (1.0 + scale)) {
+    if (lowest > 1.0 + band.separate) {
       out->status = Separation::Separated;
       return;
     }
@@ -118,7 +139,8 @@ EllipsoidPolytopeResult classifyEllipsoidBox(const Ellipsoid& e, const Eigen::Ve
   for (int i = 0; i < 8; ++i)
     verts[i] = g + G * Eigen::Vector3d((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
   const double scale = g.cwiseAbs().sum() + G.cwiseAbs().sum();
-  certify(best, verts, 8, scale, &out);
+  const double eta = unitFrameRounding(e, (p_WB - e.center()).cwiseAbs().sum() + (R_WB.cwiseAbs() * half_extents).sum());
+  certify(best, verts, 8, scale, eta, &out);
   out.closest = p_WB + R_WB * half_extents.cwiseProduct(best.s);
   return out;
 }
@@ -135,14 +157,15 @@ Separation ellipsoidBoxStatus(const Ellipsoid& e, const Eigen::Vector3d& half_ex
   const Eigen::Vector3d g = SinvRt * (p_WB - e.center());
   const Eigen::Matrix3d G = SinvRt * R_WB * half_extents.asDiagonal();
   if (g.allFinite() && G.allFinite()) {
-    const double tau = tolerance::kCertificateRelativeBoundDouble;
     const double scale = g.cwiseAbs().sum() + G.cwiseAbs().sum();
+    const Bands band =
+        bands(scale, unitFrameRounding(e, (p_WB - e.center()).cwiseAbs().sum() + (R_WB.cwiseAbs() * half_extents).sum()));
     const double g2 = g.squaredNorm();
-    if (g2 < 1.0 - tau * (1.0 + scale * scale)) return Separation::Overlapping;
+    if (g2 < 1.0 - band.overlap) return Separation::Overlapping;
     const double glen = std::sqrt(g2);
     if (glen > 0.0) {
       const double lowest = glen - (G.transpose() * (g / glen)).cwiseAbs().sum();
-      if (lowest > 1.0 + tau * (1.0 + scale)) return Separation::Separated;
+      if (lowest > 1.0 + band.separate) return Separation::Separated;
     }
     // Near the surface (the OcTree leaves that survive FCL's bounding-volume tests): approximate
     // the point of the parallelepiped nearest the centre, u = g + G s, s in [-1,1]^3, by
@@ -165,12 +188,12 @@ Separation ellipsoidBoxStatus(const Ellipsoid& e, const Eigen::Vector3d& half_ex
     }
     u = g + G * sv;  // recomputed from s: the point of the box the certificates speak about
     const double u2 = u.squaredNorm();
-    if (u2 < 1.0 - tau * (1.0 + scale * scale)) return Separation::Overlapping;
+    if (u2 < 1.0 - band.overlap) return Separation::Overlapping;
     const double ulen = std::sqrt(u2);
     if (ulen > 0.0) {
       const Eigen::Vector3d n = u / ulen;
       const double lowest = n.dot(g) - (G.transpose() * n).cwiseAbs().sum();
-      if (lowest > 1.0 + tau * (1.0 + scale)) return Separation::Separated;
+      if (lowest > 1.0 + band.separate) return Separation::Separated;
     }
   }
   return classifyEllipsoidBox(e, half_extents, R_WB, p_WB).status;  // validates R_WB, p_WB
@@ -213,7 +236,9 @@ EllipsoidPolytopeResult classifyEllipsoidTriangle(const Ellipsoid& e, const Eige
   EllipsoidPolytopeResult out;
   const Eigen::Vector3d verts[3] = {ua, ub, uc};
   const double scale = ua.cwiseAbs().sum() + ub.cwiseAbs().sum() + uc.cwiseAbs().sum();
-  certify(best, verts, 3, scale, &out);
+  const double eta = unitFrameRounding(
+      e, (a - e.center()).cwiseAbs().sum() + (b - e.center()).cwiseAbs().sum() + (c - e.center()).cwiseAbs().sum());
+  certify(best, verts, 3, scale, eta, &out);
   out.closest = a + best.s[0] * (b - a) + best.s[1] * (c - a);
   return out;
 }

@@ -4,6 +4,8 @@
 
 #include <random>
 
+#include <gmpxx.h>
+
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "support/random_ellipsoids.h"
 
@@ -228,6 +230,55 @@ void checkPolytopeDistance(std::uint64_t seed, Make make, int cases) {
   }
   EXPECT_GT(counts[0], cases / 10);
   EXPECT_GT(counts[2], cases / 10);
+}
+
+// Thin ellipsoids (radii L, 1, 1) against single points (a box with zero extents, a triangle with
+// three equal vertices) just outside or inside the surface, near the support point along a
+// direction m with (R^T m)_long ~ 1/L. There the point lies ~L from the centre, so the unit-frame
+// coordinates S^-1 R^T (x - c) carry an absolute rounding of ~eps L, which their own magnitude (~1)
+// does not bound: before the absolute term (tolerances.h, kUnitFrameRoundingBound) the
+// certificates called such points inside or outside wrongly at L = 10^6 and 10^9. Exact oracle:
+// |S^-1 R^T (x - c)|^2 - 1 in rationals, with the ellipsoid's stored R.
+TEST(EllipsoidPolytope, PointsNearTheTipOfThinEllipsoidsAgreeWithTheExactInsideTest) {
+  std::mt19937_64 rng(53);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto exactSide = [](const Ellipsoid& e, const Eigen::Vector3d& x) {  // -1 inside, 0 on, +1 outside
+    mpq_class q = -1;
+    for (int j = 0; j < 3; ++j) {
+      mpq_class w = 0;
+      for (int i = 0; i < 3; ++i) w += mpq_class(e.rotation()(i, j)) * (mpq_class(x[i]) - mpq_class(e.center()[i]));
+      w /= mpq_class(e.radii()[j]);
+      q += w * w;
+    }
+    return sgn(q);
+  };
+  for (double L : {1e3, 1e6, 1e9}) {
+    int inside = 0, outside = 0, decided = 0;
+    for (int i = 0; i < 150; ++i) {
+      const Ellipsoid e(Eigen::Vector3d(L, 1.0, 1.0), test::randomRotation(rng), Eigen::Vector3d::Zero());
+      const double x0 = u(rng) * 3.0 / L, y0 = u(rng), z0 = u(rng);
+      const Eigen::Vector3d m = (e.rotation() * Eigen::Vector3d(x0, y0, z0)).normalized();
+      const Eigen::Vector3d q = e.supportPoint(m);
+      const double h = e.support(m);
+      for (double delta : {-1e-3, -1e-6, -1e-9, -1e-10, -1e-11, 1e-11, 1e-10, 1e-9, 1e-6, 1e-3}) {
+        const Eigen::Vector3d x = q + (delta * h) * m;
+        const int side = exactSide(e, x);
+        (side < 0 ? inside : outside)++;
+        const Separation box = classifyEllipsoidBox(e, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), x).status;
+        const Separation fast = ellipsoidBoxStatus(e, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), x);
+        const Separation tri = classifyEllipsoidTriangle(e, x, x, x).status;
+        for (Separation s : {box, fast, tri}) {
+          if (s == Separation::Touching) continue;
+          ++decided;
+          ASSERT_EQ(s == Separation::Overlapping ? -1 : 1, side) << "L " << L << " case " << i << " delta " << delta;
+        }
+      }
+    }
+    EXPECT_GT(inside, 100) << "L " << L;  // not vacuous: both sides occur near the surface,
+    EXPECT_GT(outside, 100) << "L " << L;
+    // and the points farther out are decided (the band grows with L: ~1e-5 relative at 1:10^9).
+    EXPECT_GT(decided, L < 1e8 ? 1200 : 600) << "L " << L;
+  }
 }
 
 TEST(EllipsoidBoxDistance, IsOptimalAgainstDirectionSampling) {
