@@ -1,5 +1,6 @@
 #include "fcl_quadric/geometry/ellipsoid_capsule.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -23,10 +24,30 @@ SignedDistanceResult signedDistanceEllipsoidCapsule(const Ellipsoid& e, double r
   const Eigen::Vector3d axis = R_WC.col(2) * (0.5 * length);
   const Eigen::Vector3d a = p_WC - axis, b = p_WC + axis;
   SignedDistanceResult d = signedDistanceEllipsoidTriangle(e, a, b, b);  // the segment (exact status)
-  if (d.status == Separation::Separated) {
-    const double gap = d.distance - radius;
-    const double band = tolerance::kCertificateRelativeBoundDouble * (d.distance + radius);
-    d.status = gap > band ? Separation::Separated : (gap < -band ? Separation::Overlapping : Separation::Touching);
+  if (d.status != Separation::Overlapping) {
+    // d.distance = phi(n) = min(n.a, n.b) - n.c - |S R^T n| is a lower bound of the segment's
+    // distance (any n gives one), rounded by tau times its absolute evaluation, which includes
+    // |n|_1 sum(r) (tolerances.h, "Supports"): enough to certify separation, not overlap.
+    const double tau = tolerance::kCertificateRelativeBoundDouble;
+    const Eigen::Vector3d& n = d.normal;
+    const double band = tau * (std::fabs(d.distance) + radius + std::max(std::fabs(n.dot(a)), std::fabs(n.dot(b))) +
+                               std::fabs(n.dot(e.center())) + n.cwiseAbs().sum() * e.radii().sum());
+    if (d.status == Separation::Separated && d.distance - radius > band) {
+      d.status = Separation::Separated;
+    } else {
+      // Overlap needs an upper bound of the distance: a point y certified inside the ellipsoid
+      // (its surface point pulled towards the centre past the rounding of the unit frame,
+      // tolerances.h kUnitFrameRoundingBound) within r of the segment's point.
+      const Eigen::Vector3d rel = d.point_a - e.center();
+      const double eta = tolerance::kUnitFrameRoundingBound *
+                         (d.point_a.cwiseAbs().sum() + 2.0 * e.center().cwiseAbs().sum()) * e.inverseRadii().sum();
+      const double margin = 4.0 * eta + 4.0 * tau;
+      const Eigen::Vector3d y = e.center() + (1.0 - 2.0 * margin) * rel;
+      const double upper = (d.point_b - y).norm();
+      const bool inside = e.implicit(y) < -margin;
+      const bool covered = upper + tau * (d.point_b.cwiseAbs().sum() + y.cwiseAbs().sum() + upper) < radius;
+      d.status = inside && covered ? Separation::Overlapping : Separation::Touching;
+    }
   } else if (radius > 0.0) {
     d.status = Separation::Overlapping;  // the segment meets the ellipsoid, the ball adds volume
   }

@@ -424,9 +424,15 @@ Witness ellipsoidMinimumOverSolid(const Problem& P) {
     }
   }
   W.y_rel = k.dp + k.L * (best_t - 0.5) * k.a + best_xi[0] * k.u + best_xi[1] * k.v;
-  // Rounding bound: every quantity is a few operations on unit-frame magnitudes <= s_u.
+  // Rounding bound: every quantity is a few operations on unit-frame magnitudes <= s_u, plus the
+  // absolute rounding eta of the unit-frame map M = S^-1 R^T of the world vectors dp, z a, xi u,
+  // xi v (~6u |.|_1 / r_j, which a thin ellipsoid's small radius magnifies and s_u does not
+  // bound; tolerances.h, kUnitFrameRoundingBound): f = |y|^2 moves by at most 2 |y| sqrt(3) eta.
   const double s_u = g.norm() + std::sqrt(h.cwiseAbs().sum()) * std::max(k.r[0], k.r[1]) + b.norm() * 0.5 * k.L;
-  W.bound = tolerance::kCertificateRelativeBoundDouble * (1.0 + s_u) * (1.0 + s_u);
+  const double world_l1 = k.dp.cwiseAbs().sum() + 0.5 * k.L * k.a.cwiseAbs().sum() +
+                          std::max(k.r[0], k.r[1]) * (k.u.cwiseAbs().sum() + k.v.cwiseAbs().sum());
+  const double eta = tolerance::kUnitFrameRoundingBound * world_l1 * e.inverseRadii().sum();
+  W.bound = tolerance::kCertificateRelativeBoundDouble * (1.0 + s_u) * (1.0 + s_u) + 4.0 * (1.0 + s_u) * eta;
   return W;
 }
 
@@ -491,12 +497,17 @@ RoundSolid validated(const char* what, const Ellipsoid& e, double radius, double
     }
   }
   const std::string w(what);
-  detail::checkRotation(R, (w + " rotation").c_str());
+  // As for Ellipsoid (tolerances.h, kStoredRotationDefect): the supports r |n - (n.a) a| treat
+  // (u, v, a) as orthonormal and the witness parametrises the solid by them, so an accepted but
+  // drifted rotation is replaced by its nearest rotation, which both then describe.
+  const Eigen::Matrix3d Rs = detail::checkRotation(R, (w + " rotation").c_str()) > tolerance::kStoredRotationDefect
+                                 ? detail::nearestRotation(R)
+                                 : R;
   detail::checkFinite(p, (w + " centre").c_str());
   RoundSolid k;
-  k.u = R.col(0);
-  k.v = R.col(1);
-  k.a = R.col(2);
+  k.u = Rs.col(0);
+  k.v = Rs.col(1);
+  k.a = Rs.col(2);
   k.dp = p - e.center();
   k.L = length;
   k.dq[0] = k.dp - (0.5 * length) * k.a;

@@ -385,6 +385,114 @@ TEST(EllipsoidCylinder, DegenerateSolids) {
   EXPECT_EQ(signedDistanceEllipsoidCone(e, 0.5, 1.0, flip, {0, 0, 2}).status, Separation::Overlapping);
 }
 
+// Distance bounds of a point x from the solid { y : |S^-1 R^T (y - c)| <= 1 } along the outward
+// direction m, in long double (64-bit significand), independent of the library: lower =
+// m.x - h(m) with the exact support h(m) = m.c + |S R^-1 m| (R^-1 m solved by Cramer's rule, as R
+// is orthogonal only to rounding and a long radius magnifies the difference to R^T m), upper =
+// the Euclidean distance of x (Lagrange multiplier of the nearest point by bisection).
+struct LongDoubleBounds {
+  long double lower, upper;
+};
+LongDoubleBounds pointBoundsAlong(const Ellipsoid& e, const Eigen::Vector3d& x, const Eigen::Vector3d& m) {
+  typedef long double F;
+  F R[3][3], r[3], w[3], z[3];
+  for (int i = 0; i < 3; ++i) {
+    r[i] = e.radii()[i];
+    for (int j = 0; j < 3; ++j) R[i][j] = e.rotation()(i, j);
+  }
+  auto det3 = [](F a[3][3]) {
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  };
+  const F D = det3(R);
+  for (int k = 0; k < 3; ++k) {  // z = R^-1 m
+    F A[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) A[i][j] = j == k ? F(m[i]) : R[i][j];
+    z[k] = det3(A) / D;
+  }
+  F h = 0, mx = 0;
+  for (int i = 0; i < 3; ++i) {
+    h += (r[i] * z[i]) * (r[i] * z[i]);
+    mx += F(m[i]) * (F(x[i]) - F(e.center()[i]));
+    w[i] = 0;
+    for (int j = 0; j < 3; ++j) w[i] += R[j][i] * (F(x[j]) - F(e.center()[j]));  // R^T (x - c)
+  }
+  auto g = [&](F t) {
+    F v = -1;
+    for (int i = 0; i < 3; ++i) v += (r[i] * w[i] / (r[i] * r[i] + t)) * (r[i] * w[i] / (r[i] * r[i] + t));
+    return v;
+  };
+  F lo = 0, hi = 1;
+  while (g(hi) > 0) hi *= 2;
+  for (int it = 0; it < 200; ++it) (g(0.5L * (lo + hi)) > 0 ? lo : hi) = 0.5L * (lo + hi);
+  F d2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const F y = r[i] * r[i] * w[i] / (r[i] * r[i] + hi);
+    d2 += (y - w[i]) * (y - w[i]);
+  }
+  return {mx - std::sqrt(h), g(0) <= 0 ? F(0) : std::sqrt(d2)};
+}
+
+// Thin ellipsoids (radii L, 1, 1) against a capsule standing on its end and a cylinder and a cone
+// standing on their base, at relative gaps of 1e-11 to 1e-3 near the support point along a
+// direction m with (R^T m)_long ~ 1/L. The solids extend away from the ellipsoid along m, so their
+// distance lies between the bounds of their nearest point along m (the base centre; for the
+// capsule those of its end centre, less r), computed in long double. Before the absolute rounding terms (tolerances.h:
+// "Supports", kUnitFrameRoundingBound) the capsule called separated pairs overlapping from a lower
+// bound of the distance, and the witness of the cylinder and the cone called separated pairs
+// overlapping at 1:10^6 and 1:10^9. Every certified status must agree with a decided oracle.
+TEST(EllipsoidCylinder, ThinEllipsoidsNearTangencyAgreeWithExtendedPrecisionDistanceBounds) {
+  std::mt19937_64 rng(59);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double L : {1e3, 1e6}) {
+    int decided = 0, oracle_sep = 0, oracle_ovl = 0;
+    for (int i = 0; i < 40; ++i) {
+      const Ellipsoid e(Eigen::Vector3d(L, 1.0, 1.0), test::randomRotation(rng), Eigen::Vector3d::Zero());
+      const double x0 = u(rng) * 3.0 / L, y0 = u(rng), z0 = u(rng);
+      const Eigen::Vector3d m = (e.rotation() * Eigen::Vector3d(x0, y0, z0)).normalized();
+      const double h = e.support(m);
+      const Eigen::Vector3d q = e.supportPoint(m);
+      // A frame with its third axis along m.
+      const Eigen::Vector3d t = (std::fabs(m.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY());
+      Eigen::Matrix3d R;
+      R.col(2) = m;
+      R.col(0) = (t - t.dot(m) * m).normalized();
+      R.col(1) = m.cross(R.col(0));
+      const double radius = 1.0, length = 1.0;
+      for (double delta : {-1e-3, -1e-9, -1e-10, -1e-11, 1e-11, 1e-10, 1e-9, 1e-3}) {
+        const Eigen::Vector3d x = q + (delta * h) * m;  // nearest centre of each solid
+        const LongDoubleBounds b = pointBoundsAlong(e, x, m);
+        const LongDoubleBounds end = pointBoundsAlong(e, x + radius * m, m);  // the capsule's end centre
+        struct Case {
+          const char* what;
+          Separation status;
+          long double lower, upper;  // bounds of the solid's distance
+        };
+        const Case cases[] = {
+            {"capsule", signedDistanceEllipsoidCapsule(e, radius, length, R, x + (radius + 0.5 * length) * m).status,
+             end.lower - radius, end.upper - radius},
+            {"cylinder", signedDistanceEllipsoidCylinder(e, radius, length, R, x + (0.5 * length) * m).status, b.lower,
+             b.upper},
+            {"cone", signedDistanceEllipsoidCone(e, radius, length, R, x + (0.5 * length) * m).status, b.lower, b.upper},
+        };
+        for (const Case& c : cases) {
+          const bool sep = c.lower > 0, ovl = c.upper < 0;
+          oracle_sep += sep;
+          oracle_ovl += ovl;
+          if (c.status == Separation::Touching || !(sep || ovl)) continue;
+          ++decided;
+          ASSERT_EQ(c.status, sep ? Separation::Separated : Separation::Overlapping)
+              << c.what << " L " << L << " case " << i << " delta " << delta;
+        }
+      }
+    }
+    EXPECT_GT(oracle_sep, 100) << "L " << L;  // not vacuous
+    EXPECT_GT(oracle_ovl, 20) << "L " << L;
+    EXPECT_GT(decided, 100) << "L " << L;
+  }
+}
+
 TEST(EllipsoidCylinder, BadInputThrowsNamingTheValue) {
   const Ellipsoid e({1, 2, 3}, Eigen::Matrix3d::Identity(), {0, 0, 0});
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();

@@ -8,8 +8,10 @@
 /// degenerate triangle: its intersection test is the exact classifyEllipsoidTriangle, and its
 /// signed distance the feature-candidate method of signedDistanceEllipsoidTriangle (vertices by
 /// the point-ellipsoid root, the edge by the point-ellipse root of its projected line; both solved
-/// in long double). Status: Overlapping when the segment meets the ellipsoid (r > 0); otherwise the
-/// sign of (segment distance - r), Touching within a relative band of 2^-40 (contact).
+/// in long double). Status: Overlapping when the segment meets the ellipsoid (r > 0); otherwise
+/// Separated when the certified lower bound of the segment's distance exceeds r (band: 2^-40 times
+/// the bound's absolute evaluation), Overlapping when a point certified inside the ellipsoid lies
+/// within r of the segment (an upper bound), and Touching (contact) in between.
 
 #include <Eigen/Core>
 
