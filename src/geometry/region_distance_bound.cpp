@@ -66,8 +66,18 @@ double ellipsoidRegionDistanceLowerBound(const Ellipsoid& e, const QuadricRegion
   detail::checkRotation(R, "ellipsoidRegionDistanceLowerBound: region rotation");
   // The region lies in its box: the distance to the box is a lower bound.
   const Eigen::Vector3d half = region_box.halfWidth().cwiseMax(tolerance::kMinRadius);
-  const SignedDistanceResult to_box = signedDistanceEllipsoidBox(e, half, R, p + R * region_box.center());
-  const double lo = std::clamp(to_box.distance, 0.0, cap);
+  const Eigen::Vector3d box_centre = p + R * region_box.center();
+  const SignedDistanceResult to_box = signedDistanceEllipsoidBox(e, half, R, box_centre);
+  // to_box.distance = phi(n) = min_j n.v_j - n.c - |S R^T n| (a lower bound of the distance for
+  // any n) is rounded by up to tau times its absolute evaluation, which includes |n|_1 sum(r)
+  // (tolerances.h, "Supports": a long radius magnifies the rounding of R^T n); subtracting that
+  // keeps it a lower bound for thin ellipsoids too.
+  const Eigen::Vector3d& n = to_box.normal;
+  const double phi_rounding =
+      tolerance::kCertificateRelativeBoundDouble *
+      (std::fabs(to_box.distance) + box_centre.norm() + 2.0 * half.norm() + e.center().norm() +
+       n.cwiseAbs().sum() * e.radii().sum());
+  const double lo = std::clamp(to_box.distance - phi_rounding, 0.0, cap);
   if (lo >= cap) return cap;
   // The ellipsoid scaled about its centre by s = 1 + delta / r_min, in the region's frame
   // (x_R = R^T (R_e x + c_e - p)), certified separate => the distance is >= delta (file comment).
