@@ -48,8 +48,8 @@ constexpr double kStoredRotationDefect = 3.552713678800501e-15;  // 2^-48
 /// division by 1/r_j by 2 more units: <= 6u, and 2^-47 = 64u leaves a factor > 10). Unlike the
 /// relative bound above this is absolute: a thin ellipsoid's unit frame magnifies |x - c|_1 by
 /// its largest 1/r_j, so a point far along the long axis carries an error of ~eps L / r_min,
-/// which the result's own magnitude does not bound. Used by the ellipsoid-box and
-/// ellipsoid-triangle certificates (ellipsoid_polytope.cpp). Dimensionless.
+/// which the result's own magnitude does not bound. Used through detail::unitFrameRounding() by
+/// the ellipsoid-box, -triangle, -capsule and -cylinder / -cone certificates. Dimensionless.
 constexpr double kUnitFrameRoundingBound = 7.105427357601002e-15;  // 2^-47
 
 /// Accepted range of radii and of centre coordinates (absolute, in the user's length unit): keeps

@@ -103,6 +103,17 @@ Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& R) {
   return Eigen::Quaterniond(R).normalized().toRotationMatrix();  // documented fallback
 }
 
+Eigen::Matrix3d storedRotation(const Eigen::Matrix3d& R, const char* what) {
+  // The rare rotation that is accepted but less orthogonal than 2^-48 (a drifted composition)
+  // is replaced by its nearest rotation, so that supports |S R^T n| and the implicit form
+  // |S^-1 R^T (x - p)| describe one solid (tolerances.h).
+  return checkRotation(R, what) > tolerance::kStoredRotationDefect ? nearestRotation(R) : R;
+}
+
+double unitFrameRounding(const Ellipsoid& e, double world_l1) {
+  return tolerance::kUnitFrameRoundingBound * world_l1 * e.inverseRadii().sum();
+}
+
 }  // namespace detail
 
 Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, const Eigen::Vector3d& p_WE)
@@ -113,11 +124,7 @@ Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, 
     if (!(std::isfinite(radii[i]) && radii[i] >= tolerance::kMinRadius && radii[i] <= tolerance::kMaxLength))
       throwBadRadius(radii, i);
   }
-  // The rare rotation that is accepted but less orthogonal than 2^-48 (a drifted composition)
-  // is replaced by its nearest rotation, so that the supports |S R^T n| of the pre-tests and the
-  // implicit form |S^-1 R^T (x - p)| of the pencil describe one solid (tolerances.h).
-  if (detail::checkRotation(R_WE, "ellipsoid rotation") > tolerance::kStoredRotationDefect)
-    R_ = detail::nearestRotation(R_WE);
+  R_ = detail::storedRotation(R_WE, "ellipsoid rotation");  // the pre-tests' supports need it
   detail::checkFinite(p_WE, "ellipsoid centre");
   if (!(std::fabs(p_WE[0]) <= tolerance::kMaxLength && std::fabs(p_WE[1]) <= tolerance::kMaxLength &&
         std::fabs(p_WE[2]) <= tolerance::kMaxLength))

@@ -39,8 +39,8 @@ SignedDistanceResult signedDistanceEllipsoidCapsule(const Ellipsoid& e, double r
       // (its surface point pulled towards the centre past the rounding of the unit frame,
       // tolerances.h kUnitFrameRoundingBound) within r of the segment's point.
       const Eigen::Vector3d rel = d.point_a - e.center();
-      const double eta = tolerance::kUnitFrameRoundingBound *
-                         (d.point_a.cwiseAbs().sum() + 2.0 * e.center().cwiseAbs().sum()) * e.inverseRadii().sum();
+      const double eta =
+          detail::unitFrameRounding(e, d.point_a.cwiseAbs().sum() + 2.0 * e.center().cwiseAbs().sum());
       const double margin = 4.0 * eta + 4.0 * tau;
       const Eigen::Vector3d y = e.center() + (1.0 - 2.0 * margin) * rel;
       const double upper = (d.point_b - y).norm();

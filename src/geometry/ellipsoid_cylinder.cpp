@@ -431,7 +431,7 @@ Witness ellipsoidMinimumOverSolid(const Problem& P) {
   const double s_u = g.norm() + std::sqrt(h.cwiseAbs().sum()) * std::max(k.r[0], k.r[1]) + b.norm() * 0.5 * k.L;
   const double world_l1 = k.dp.cwiseAbs().sum() + 0.5 * k.L * k.a.cwiseAbs().sum() +
                           std::max(k.r[0], k.r[1]) * (k.u.cwiseAbs().sum() + k.v.cwiseAbs().sum());
-  const double eta = tolerance::kUnitFrameRoundingBound * world_l1 * e.inverseRadii().sum();
+  const double eta = detail::unitFrameRounding(e, world_l1);
   W.bound = tolerance::kCertificateRelativeBoundDouble * (1.0 + s_u) * (1.0 + s_u) + 4.0 * (1.0 + s_u) * eta;
   return W;
 }
@@ -497,12 +497,9 @@ RoundSolid validated(const char* what, const Ellipsoid& e, double radius, double
     }
   }
   const std::string w(what);
-  // As for Ellipsoid (tolerances.h, kStoredRotationDefect): the supports r |n - (n.a) a| treat
-  // (u, v, a) as orthonormal and the witness parametrises the solid by them, so an accepted but
-  // drifted rotation is replaced by its nearest rotation, which both then describe.
-  const Eigen::Matrix3d Rs = detail::checkRotation(R, (w + " rotation").c_str()) > tolerance::kStoredRotationDefect
-                                 ? detail::nearestRotation(R)
-                                 : R;
+  // As for Ellipsoid: the supports r |n - (n.a) a| treat (u, v, a) as orthonormal and the witness
+  // parametrises the solid by them, so both describe the stored rotation.
+  const Eigen::Matrix3d Rs = detail::storedRotation(R, (w + " rotation").c_str());
   detail::checkFinite(p, (w + " centre").c_str());
   RoundSolid k;
   k.u = Rs.col(0);

@@ -43,10 +43,10 @@ struct Candidate {
   Eigen::Vector3d s = Eigen::Vector3d::Zero();  // parameters (unused components 0)
 };
 
-/// The absolute error bound of unit-frame coordinates computed from world vectors whose l1 norms
-/// sum to `world_l1` (tolerances.h, kUnitFrameRoundingBound).
-double unitFrameRounding(const Ellipsoid& e, double world_l1) {
-  return tolerance::kUnitFrameRoundingBound * world_l1 * e.inverseRadii().sum();
+/// The unit-frame rounding of a box's g = S^-1 R^T (p_WB - c) and G = S^-1 R^T R_WB diag(h).
+double boxUnitFrameRounding(const Ellipsoid& e, const Eigen::Vector3d& half_extents, const Eigen::Matrix3d& R_WB,
+                            const Eigen::Vector3d& p_WB) {
+  return detail::unitFrameRounding(e, (p_WB - e.center()).cwiseAbs().sum() + (R_WB.cwiseAbs() * half_extents).sum());
 }
 
 /// The two bands of the certificates on unit-frame points: relative (tau over the magnitude
@@ -64,7 +64,7 @@ Bands bands(double scale, double eta) {
 
 /// Certification shared by box and triangle: `vertices` are the polytope's vertices in the unit
 /// frame, `best` the computed minimiser, `scale` the magnitude of the unit-frame coordinates and
-/// `eta` their absolute transform rounding (unitFrameRounding()).
+/// `eta` their absolute transform rounding (detail::unitFrameRounding()).
 void certify(const Candidate& best, const Eigen::Vector3d* vertices, int nv, double scale, double eta,
              EllipsoidPolytopeResult* out) {
   const Bands band = bands(scale, eta);
@@ -139,8 +139,7 @@ EllipsoidPolytopeResult classifyEllipsoidBox(const Ellipsoid& e, const Eigen::Ve
   for (int i = 0; i < 8; ++i)
     verts[i] = g + G * Eigen::Vector3d((i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0);
   const double scale = g.cwiseAbs().sum() + G.cwiseAbs().sum();
-  const double eta = unitFrameRounding(e, (p_WB - e.center()).cwiseAbs().sum() + (R_WB.cwiseAbs() * half_extents).sum());
-  certify(best, verts, 8, scale, eta, &out);
+  certify(best, verts, 8, scale, boxUnitFrameRounding(e, half_extents, R_WB, p_WB), &out);
   out.closest = p_WB + R_WB * half_extents.cwiseProduct(best.s);
   return out;
 }
@@ -158,8 +157,7 @@ Separation ellipsoidBoxStatus(const Ellipsoid& e, const Eigen::Vector3d& half_ex
   const Eigen::Matrix3d G = SinvRt * R_WB * half_extents.asDiagonal();
   if (g.allFinite() && G.allFinite()) {
     const double scale = g.cwiseAbs().sum() + G.cwiseAbs().sum();
-    const Bands band =
-        bands(scale, unitFrameRounding(e, (p_WB - e.center()).cwiseAbs().sum() + (R_WB.cwiseAbs() * half_extents).sum()));
+    const Bands band = bands(scale, boxUnitFrameRounding(e, half_extents, R_WB, p_WB));
     const double g2 = g.squaredNorm();
     if (g2 < 1.0 - band.overlap) return Separation::Overlapping;
     const double glen = std::sqrt(g2);
@@ -236,7 +234,7 @@ EllipsoidPolytopeResult classifyEllipsoidTriangle(const Ellipsoid& e, const Eige
   EllipsoidPolytopeResult out;
   const Eigen::Vector3d verts[3] = {ua, ub, uc};
   const double scale = ua.cwiseAbs().sum() + ub.cwiseAbs().sum() + uc.cwiseAbs().sum();
-  const double eta = unitFrameRounding(
+  const double eta = detail::unitFrameRounding(
       e, (a - e.center()).cwiseAbs().sum() + (b - e.center()).cwiseAbs().sum() + (c - e.center()).cwiseAbs().sum());
   certify(best, verts, 3, scale, eta, &out);
   out.closest = a + best.s[0] * (b - a) + best.s[1] * (c - a);

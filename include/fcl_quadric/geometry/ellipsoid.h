@@ -76,6 +76,14 @@ double checkRotation(const Eigen::Matrix3d& R, const char* what);
 /// one or two steps). Fallback if 4 steps do not reach it (not expected): the rotation of the
 /// normalised quaternion of R.
 Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& R);
+/// checkRotation(R, what), then the rotation a solid is stored with: R itself when its defect is
+/// at most tolerance::kStoredRotationDefect, otherwise nearestRotation(R) (Ellipsoid, cylinders and
+/// cones: their supports assume orthonormal axes). Throws as checkRotation.
+Eigen::Matrix3d storedRotation(const Eigen::Matrix3d& R, const char* what);
+/// The absolute rounding bound of coordinates in e's unit frame S^-1 R^T (x - c) computed from
+/// world vectors whose l1 norms sum to `world_l1`: tolerance::kUnitFrameRoundingBound * world_l1 *
+/// (1/r_0 + 1/r_1 + 1/r_2). No failure mode (a non-finite world_l1 gives a non-finite bound).
+double unitFrameRounding(const Ellipsoid& e, double world_l1);
 /// Throws std::invalid_argument("<what> must be finite, ...") if v has a NaN or infinite entry.
 void checkFinite(const Eigen::Vector3d& v, const char* what);
 }  // namespace detail
