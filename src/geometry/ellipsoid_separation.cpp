@@ -1,6 +1,7 @@
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <type_traits>
 
@@ -67,43 +68,71 @@ bool certify(const detail::Pencil<T>& p, const T& mu, double tau, SeparationCert
 }
 
 
-/// Separation along a direction m (any length): h_a(m) + h_b(-m) < m.(p_b - p_a) with
-/// h(m) = m.p + |S R^T m| the support function. Every rounded quantity (m.d, |S R^T m|) is a sum
-/// or norm whose rounding is below 8 eps times its absolute evaluation: sum|m_i d_i| for m.d, and
-/// |m|_1 sum(r) for |S R^T m| (R^T m is rounded absolutely, ~eps |m|, and a long radius
-/// multiplies that; tolerances.h, kStoredRotationDefect), so the relative margin tau = 2^-40 over
-/// their sum covers it.
-template <class Out>
-bool separatedAlong(const Eigen::Vector3d& m, const Eigen::Vector3d& d, const Ellipsoid& a,
-                    const Ellipsoid& b, double tau, Out* out) {
-  const double ha = (a.rotation().transpose() * m).cwiseProduct(a.radii()).norm();
-  const double hb = (b.rotation().transpose() * m).cwiseProduct(b.radii()).norm();
-  const double md = m.dot(d);
-  const double scale = m.cwiseAbs().dot(d.cwiseAbs()) + ha + hb + m.cwiseAbs().sum() * (a.radii().sum() + b.radii().sum());
-  if (!(md - ha - hb > tau * scale)) return false;
-  out->status = Separation::Separated;
-  if constexpr (kWantsWitness<Out>) {
-    const double m2 = m.squaredNorm();
-    out->normal = m * (1.0 / std::sqrt(m2));
-    out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (ha - hb) / m2) * m;  // on the mid-plane of the gap
-    out->precision_stage = -1;
-  }
-  return true;
-}
-
-/// x strictly inside e: q_e(x) = |S^-1 R^T (x - p)|^2 - 1 < -tau (1 + (|x|_1 + |p|_1) / r_min),
-/// with inv_r = reciprocalRadii(e). The rounding of x - p is below eps (|x|_1 + |p|_1) per
-/// coordinate, that of the rotation and of the reciprocals a few eps of |S^-1 R^T (x - p)| <= 1
-/// (otherwise the test fails anyway), so the margin covers the rounding of q_e(x) for any x with a
-/// relative factor of > 1000.
-bool strictlyInside(const Ellipsoid& e, const Eigen::Vector3d& inv_r, const Eigen::Vector3d& x, double tau) {
-  const double q = (e.rotation().transpose() * (x - e.center())).cwiseProduct(inv_r).squaredNorm() - 1.0;
-  const double spread = (x.cwiseAbs().sum() + e.center().cwiseAbs().sum()) * inv_r.maxCoeff();
-  return q < -tau * (1.0 + spread);
-}
-
 using detail::Lanes2;
 using detail::lanes;
+
+/// Separation along a direction m (any finite length, 0 included, which never separates):
+/// h_a(m) + h_b(-m) < m.(p_b - p_a) with h(m) = m.p + |S R^T m| the support function, both
+/// supports in one pass of lanes (r: the radii lanes; *h receives the centred supports |S R^T m|
+/// of a and b, for the witness). Every rounded quantity (m.d, |S R^T m|) is a sum or norm whose
+/// rounding is below 8 eps times its absolute evaluation: sum|m_i d_i| for m.d, and |m|_1 sum(r)
+/// for |S R^T m| (R^T m is rounded absolutely, ~eps |m|, and a long radius multiplies that;
+/// tolerances.h, kStoredRotationDefect), so the relative margin tau = 2^-40 over their sum covers
+/// it.
+inline bool separatedAlong(const Eigen::Vector3d& m, const Eigen::Vector3d& d, const Ellipsoid& a, const Ellipsoid& b,
+                           const Lanes2 r[3], double tau, Lanes2* h) {
+  Lanes2 u[3];
+  detail::bodyFrameLanes(a, b, m, u);
+  const Lanes2 s0 = u[0] * r[0], s1 = u[1] * r[1], s2 = u[2] * r[2];
+  *h = detail::sqrtLanes(s0 * s0 + s1 * s1 + s2 * s2);
+  const Lanes2 rsum = r[0] + r[1] + r[2];
+  const double ha = (*h)[0], hb = (*h)[1];
+  const double md = m.dot(d);
+  const double scale = m.cwiseAbs().dot(d.cwiseAbs()) + ha + hb + m.cwiseAbs().sum() * (rsum[0] + rsum[1]);
+  return md - ha - hb > tau * scale;
+}
+
+/// x strictly inside a and inside b: per lane (e = a, b), q_e(x) = |S^-1 R^T (x - p)|^2 - 1 <
+/// -tau (1 + (|x|_1 + |p|_1) / r_min), with q the reciprocal radii lanes. The rounding of x - p is
+/// below eps (|x|_1 + |p|_1) per coordinate, that of the rotation and of the reciprocals a few eps
+/// of |S^-1 R^T (x - p)| <= 1 (otherwise the test fails anyway), so the margin covers the
+/// rounding of q_e(x) for any x with a relative factor of > 1000.
+bool strictlyInsideBoth(const Ellipsoid& a, const Ellipsoid& b, const Lanes2 q[3], const Eigen::Vector3d& x,
+                        double tau) {
+  const Eigen::Vector3d& pa = a.center();
+  const Eigen::Vector3d& pb = b.center();
+  Lanes2 y[3], z[3];
+  for (int i = 0; i < 3; ++i) y[i] = lanes(x[i], x[i]) - lanes(pa[i], pb[i]);
+  detail::bodyFrameLanes(a, b, y, z);
+  const Lanes2 t0 = z[0] * q[0], t1 = z[1] * q[1], t2 = z[2] * q[2];
+  const Lanes2 value = (t0 * t0 + t1 * t1 + t2 * t2) - 1.0;
+  const double x1 = std::fabs(x[0]) + std::fabs(x[1]) + std::fabs(x[2]);
+  const Lanes2 p1 = lanes(pa.cwiseAbs().sum(), pb.cwiseAbs().sum());
+  const Lanes2 spread = (x1 + p1) * detail::maxLanes(detail::maxLanes(q[0], q[1]), q[2]);
+  const auto inside = value < -tau * (1.0 + spread);  // per lane: all ones or zero
+  return (inside[0] & inside[1]) != 0;
+}
+
+/// What the centre-line tests compute on v for both ellipsoids at once (lane 0: a, lane 1: b):
+/// u = R^T v, the radii r and their reciprocals q = 1 / r.
+struct LineLanes {
+  Lanes2 u[3], r[3], q[3];
+};
+
+/// 1 / r with one division per ellipsoid: k = 1 / (r0 r1 r2), then 1 / r0 = r1 r2 k, ...; each
+/// within 3 ulps of the correctly rounded reciprocal, far inside the 2^-40 margins; the product
+/// r0 r1 r2 stays within [1e-300, 1e300].
+__attribute__((always_inline)) inline void lineLanes(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& v,
+                                                     LineLanes* L) {
+  detail::bodyFrameLanes(a, b, v, L->u);  // R^T v
+  detail::radiusLanes(a, b, L->r);
+  const Lanes2 r0 = L->r[0], r1 = L->r[1], r2 = L->r[2];
+  const Lanes2 r12 = r1 * r2;
+  const Lanes2 k = 1.0 / (r0 * r12);
+  L->q[0] = r12 * k;
+  L->q[1] = r0 * r2 * k;
+  L->q[2] = r0 * r1 * k;
+}
 
 /// Tests 1 and 2 below are homogeneous in the direction of the centre line, so they run on
 /// v = d = p_b - p_a itself (no square root or division) while |d| is in [1e-50, 1e50], where
@@ -127,16 +156,10 @@ struct LineValues {
 __attribute__((always_inline)) inline Separation lineTests(const Ellipsoid& a, const Ellipsoid& b,
                                                              const Eigen::Vector3d& v, double d_times_v, double s,
                                                              LineValues* values) {
-  Lanes2 u[3], r[3];
-  detail::bodyFrameLanes(a, b, v, u);  // R^T v
-  detail::radiusLanes(a, b, r);
-  const Lanes2 u0 = u[0], u1 = u[1], u2 = u[2], r0 = r[0], r1 = r[1], r2 = r[2];
-  // 1 / r with one division per ellipsoid: k = 1 / (r0 r1 r2), then 1 / r0 = r1 r2 k, ...; each
-  // within 3 ulps of the correctly rounded reciprocal, far inside the 2^-40 margins; the product
-  // r0 r1 r2 stays within [1e-300, 1e300].
-  const Lanes2 r12 = r1 * r2;
-  const Lanes2 k = 1.0 / (r0 * r12);
-  const Lanes2 q0 = r12 * k, q1 = r0 * r2 * k, q2 = r0 * r1 * k;  // 1 / r
+  LineLanes L;
+  lineLanes(a, b, v, &L);
+  const Lanes2 u0 = L.u[0], u1 = L.u[1], u2 = L.u[2], r0 = L.r[0], r1 = L.r[1], r2 = L.r[2];
+  const Lanes2 q0 = L.q[0], q1 = L.q[1], q2 = L.q[2];
   const Lanes2 s0 = u0 * r0, s1 = u1 * r1, s2 = u2 * r2;
   const Lanes2 i0 = u0 * q0, i1 = u1 * q1, i2 = u2 * q2;
   const Lanes2 h = detail::sqrtLanes(s0 * s0 + s1 * s1 + s2 * s2);
@@ -165,46 +188,67 @@ __attribute__((always_inline)) inline Separation lineTests(const Ellipsoid& a, c
   return static_cast<Separation>((1 + int(overlapping)) * int(!separated));
 }
 
-/// 1 / r for the three radii with one division, as in lineTests().
-Eigen::Vector3d reciprocalRadii(const Ellipsoid& e) {
-  const Eigen::Vector3d& r = e.radii();
-  const double r12 = r[1] * r[2];
-  const double k = 1.0 / (r[0] * r12);
-  return Eigen::Vector3d(r12 * k, r[0] * r[2] * k, r[0] * r[1] * k);
-}
-
-/// Tests 3 and 4 of centreLineTest(), for the pairs tests 1 and 2 leave open (~8% of random pairs):
-/// they recompute what they need on v = d / s (D2 = |d|^2).
+/// Tests 3 and 4 of centreLineTest(), for the pairs tests 1 and 2 leave open (~11% of the random
+/// pairs of the benchmarks): they recompute the lanes on v = d / s (D2 = |d|^2), both ellipsoids
+/// in one pass as in lineTests().
 template <class Out>
 bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& d, double D2, bool unscaled,
                    double s, Out* out) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   const Eigen::Vector3d v = unscaled ? d : Eigen::Vector3d(d * (1.0 / s));
-  const Eigen::Vector3d ua = a.rotation().transpose() * v, ub = b.rotation().transpose() * v;
-  const Eigen::Vector3d inv_ra = reciprocalRadii(a), inv_rb = reciprocalRadii(b);
-  const Eigen::Vector3d ia = ua.cwiseProduct(inv_ra), ib = ub.cwiseProduct(inv_rb);
-  // 3. Outward normal of a at p_a + rho_a n is R_a S_a^-1 (S_a^-1 R_a^T n) = R_a (ia ./ r_a) / |v|;
-  // the outward normal of b at p_b - rho_b n is -R_b (ib ./ r_b) / |v|, so -b's is +R_b (ib ./ r_b)
-  // / |v|. The factor 1 / |v| keeps their squared norms in range as on the unit direction.
+  LineLanes L;
+  lineLanes(a, b, v, &L);
+  // 3. Outward normal of a at p_a + rho_a n is R_a S_a^-1 (S_a^-1 R_a^T n) = R_a (u_a ./ r_a^2) / |v|;
+  // the outward normal of b at p_b - rho_b n is -R_b (u_b ./ r_b^2) / |v|, so -b's is
+  // +R_b (u_b ./ r_b^2) / |v|: one formula for both lanes. The factor 1 / |v| keeps their squared
+  // norms in range as on the unit direction.
   const double kv = unscaled ? 1.0 / std::sqrt(D2) : 1.0;
-  const Eigen::Vector3d na = a.rotation() * (ia.cwiseProduct(inv_ra) * kv);
-  const Eigen::Vector3d nb = b.rotation() * (ib.cwiseProduct(inv_rb) * kv);
-  const double la = na.norm(), lb = nb.norm();
-  if (la > 0.0 && lb > 0.0 && separatedAlong(na * (1.0 / la) + nb * (1.0 / lb), d, a, b, tau, out)) return true;
-  // 4. Support points: p_a + R_a S_a (sa / ha) and p_b - R_b S_b (sb / hb) (scale-free in v).
-  const Eigen::Vector3d sa = ua.cwiseProduct(a.radii()), sb = ub.cwiseProduct(b.radii());
-  const Eigen::Vector3d x = 0.5 * ((a.center() + a.rotation() * (sa.cwiseProduct(a.radii()) * (1.0 / sa.norm()))) +
-                                   (b.center() - b.rotation() * (sb.cwiseProduct(b.radii()) * (1.0 / sb.norm()))));
-  if (strictlyInside(a, inv_ra, x, tau) && strictlyInside(b, inv_rb, x, tau)) {
-    out->status = Separation::Overlapping;
-    if constexpr (kWantsWitness<Out>) {
+  Lanes2 w[3], normal[3];
+  for (int j = 0; j < 3; ++j) w[j] = L.u[j] * L.q[j] * (L.q[j] * kv);
+  detail::worldFrameLanes(a, b, w, normal);
+  // m = n_a / |n_a| + n_b / |n_b|. A zero length (not expected: v != 0) gives m = 0 through the
+  // floor DBL_MIN instead of a NaN, and m = 0 never separates.
+  const Lanes2 len = detail::sqrtLanes(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  const Lanes2 inv_len = 1.0 / detail::maxLanes(len, lanes(DBL_MIN, DBL_MIN));
+  Eigen::Vector3d m;
+  for (int i = 0; i < 3; ++i) {
+    const Lanes2 unit = normal[i] * inv_len;
+    m[i] = unit[0] + unit[1];
+  }
+  Lanes2 hm;
+  const bool separated = separatedAlong(m, d, a, b, L.r, tau, &hm);
+  // 4. Support points: p_a + R_a S_a (S_a u_a / h_a) and p_b - R_b S_b (S_b u_b / h_b), h = |S u|
+  // (scale-free in v). Computed whatever test 3 found: on random pairs its outcome is
+  // unpredictable, and the two independent chains of square roots and divisions overlap.
+  const Lanes2 s0 = L.u[0] * L.r[0], s1 = L.u[1] * L.r[1], s2 = L.u[2] * L.r[2];
+  const Lanes2 h = detail::sqrtLanes(s0 * s0 + s1 * s1 + s2 * s2);
+  const Lanes2 inv_h = 1.0 / detail::maxLanes(h, lanes(DBL_MIN, DBL_MIN));  // h = 0 only on underflow
+  const Lanes2 t[3] = {s0 * L.r[0] * inv_h, s1 * L.r[1] * inv_h, s2 * L.r[2] * inv_h};
+  Lanes2 offset[3];
+  detail::worldFrameLanes(a, b, t, offset);
+  const Eigen::Vector3d& pa = a.center();
+  const Eigen::Vector3d& pb = b.center();
+  Eigen::Vector3d x;
+  for (int i = 0; i < 3; ++i) x[i] = 0.5 * ((pa[i] + offset[i][0]) + (pb[i] - offset[i][1]));
+  const bool inside = strictlyInsideBoth(a, b, L.q, x, tau);
+  if constexpr (kWantsWitness<Out>) {
+    if (separated) {
+      out->status = Separation::Separated;
+      const double m2 = m.squaredNorm();
+      out->normal = m * (1.0 / std::sqrt(m2));
+      out->witness = 0.5 * (pa + pb) + (0.5 * (hm[0] - hm[1]) / m2) * m;  // on the mid-plane of the gap
+    } else if (inside) {
+      out->status = Separation::Overlapping;
       out->normal = d * (1.0 / std::sqrt(D2));
       out->witness = x;
-      out->precision_stage = -1;
     }
-    return true;
+    out->precision_stage = -1;
+  } else {
+    // Separated (0) or Overlapping (2) without a branch (both tests are certified, so they never
+    // both hold); meaningful only when a test decided.
+    out->status = static_cast<Separation>(2 * int(!separated));
   }
-  return false;
+  return separated | inside;
 }
 
 /// Writes the certificate of a decision of test 1 or 2 (status `st`): the normal n = d / |d| and
@@ -260,7 +304,7 @@ bool scaledCentreLineTest(const Ellipsoid& a, const Ellipsoid& b, const Eigen::V
 ///     points where the centre line leaves a and enters b (a Gauss-map step towards the common
 ///     normal of Theorem 4.6's plane): certified by separatedAlong().
 ///  4. Overlapping if the midpoint of the support points of a along n and of b along -n is
-///     strictly inside both (strictlyInside()).
+///     strictly inside both (strictlyInsideBoth()).
 /// Every test is certified (a relative margin of 2^-40 over the absolute evaluation) and
 /// symmetric in (a, b) bit for bit: swapping negates d, v, n and m exactly and swaps the lanes,
 /// which leaves every sum and product of the two lanes, every norm, decision and witness (written

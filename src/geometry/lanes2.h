@@ -49,6 +49,33 @@ inline void bodyFrameLanes(const Ellipsoid& a, const Ellipsoid& b, const Eigen::
     u[j] = lanes(Ra(0, j), Rb(0, j)) * v0 + lanes(Ra(1, j), Rb(1, j)) * v1 + lanes(Ra(2, j), Rb(2, j)) * v2;
 }
 
+/// u[j] = (R_a^T y_a)_j in lane 0 and (R_b^T y_b)_j in lane 1 for a vector per lane (y[i] holds
+/// coordinate i of y_a and y_b), each sum in the order of bodyFrameLanes().
+inline void bodyFrameLanes(const Ellipsoid& a, const Ellipsoid& b, const Lanes2 y[3], Lanes2 u[3]) {
+  const Eigen::Matrix3d& Ra = a.rotation();
+  const Eigen::Matrix3d& Rb = b.rotation();
+  for (int j = 0; j < 3; ++j)
+    u[j] = lanes(Ra(0, j), Rb(0, j)) * y[0] + lanes(Ra(1, j), Rb(1, j)) * y[1] + lanes(Ra(2, j), Rb(2, j)) * y[2];
+}
+
+/// x[i] = (R_a w_a)_i in lane 0 and (R_b w_b)_i in lane 1: body-frame vectors back in the world
+/// frame, each sum R(i,0) w_0 + R(i,1) w_1 + R(i,2) w_2 in that order.
+inline void worldFrameLanes(const Ellipsoid& a, const Ellipsoid& b, const Lanes2 w[3], Lanes2 x[3]) {
+  const Eigen::Matrix3d& Ra = a.rotation();
+  const Eigen::Matrix3d& Rb = b.rotation();
+  for (int i = 0; i < 3; ++i)
+    x[i] = lanes(Ra(i, 0), Rb(i, 0)) * w[0] + lanes(Ra(i, 1), Rb(i, 1)) * w[1] + lanes(Ra(i, 2), Rb(i, 2)) * w[2];
+}
+
+/// max per lane.
+inline Lanes2 maxLanes(Lanes2 x, Lanes2 y) {
+#if defined(__SSE2__)
+  return Lanes2(_mm_max_pd(__m128d(x), __m128d(y)));
+#else
+  return Lanes2{std::fmax(x[0], y[0]), std::fmax(x[1], y[1])};
+#endif
+}
+
 /// The radii of a and b, radius j in r[j].
 inline void radiusLanes(const Ellipsoid& a, const Ellipsoid& b, Lanes2 r[3]) {
   for (int j = 0; j < 3; ++j) r[j] = lanes(a.radii()[j], b.radii()[j]);
