@@ -263,7 +263,19 @@ EllipsoidQuadricResult classifyEllipsoidQuadric(const Ellipsoid& e, const Eigen:
   M.topRightCorner<3, 1>() = e.center();
   Eigen::Matrix4d B = M.transpose() * Q * M;
   B = 0.5 * (B + B.transpose());
-  Eigen::Matrix4d E = 24.0 * u * (M.cwiseAbs().transpose() * Q.cwiseAbs() * M.cwiseAbs());
+  const Eigen::Matrix4d absM = M.cwiseAbs(), absQ = Q.cwiseAbs();
+  Eigen::Matrix4d E = 24.0 * u * (absM.transpose() * absQ * absM);
+  // The solid is { p + R^-T S y : |y| <= 1 }, and the stored R is orthogonal only to
+  // delta = kStoredRotationDefect (2^-48, tolerances.h), above 24 u: R^-T - R = R^-T (I - R^T R)
+  // has entries below sqrt(3) (1 + delta) delta (the rows of R^-T have 1-norm <= sqrt(3) (1 +
+  // delta)), so the solid's map differs from M by |Delta| <= 2 delta N with N_ij = r_j for
+  // i, j < 3 (0 elsewhere), a bound that does not vanish where |M| does (R = I). Then
+  // |B_solid - B| <= |Delta|^T |Q| |M| + |M|^T |Q| |Delta| + |Delta|^T |Q| |Delta|.
+  Eigen::Matrix4d N = Eigen::Matrix4d::Zero();
+  N.topLeftCorner<3, 3>().rowwise() = e.radii().transpose();
+  const double delta = 2.0 * tolerance::kStoredRotationDefect;
+  const Eigen::Matrix4d QN = absQ * N;
+  E += delta * (N.transpose() * absQ * absM + absM.transpose() * QN) + (delta * delta) * (N.transpose() * QN);
   const double sb = B.cwiseAbs().maxCoeff();
   if (!(sb > 0.0) || !std::isfinite(sb)) return r;
   B /= sb;
