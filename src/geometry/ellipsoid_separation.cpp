@@ -113,6 +113,30 @@ bool strictlyInsideBoth(const Ellipsoid& a, const Ellipsoid& b, const Lanes2 q[3
   return (inside[0] & inside[1]) != 0;
 }
 
+/// The midpoint of the support points p_a + R_a S_a (S_a u_a / h_a) of a along w and
+/// p_b - R_b S_b (S_b u_b / h_b) of b along -w, with u = R^T w in lanes and h = |S u| (scale-free
+/// in w; h = 0 only on underflow, floored at DBL_MIN instead of a division by zero).
+inline void supportMidpoint(const Ellipsoid& a, const Ellipsoid& b, const Lanes2 u[3], const Lanes2 r[3],
+                            Eigen::Vector3d* x) {
+  const Lanes2 s0 = u[0] * r[0], s1 = u[1] * r[1], s2 = u[2] * r[2];
+  const Lanes2 h = detail::sqrtLanes(s0 * s0 + s1 * s1 + s2 * s2);
+  const Lanes2 inv_h = 1.0 / detail::maxLanes(h, lanes(DBL_MIN, DBL_MIN));
+  const Lanes2 t[3] = {s0 * r[0] * inv_h, s1 * r[1] * inv_h, s2 * r[2] * inv_h};
+  Lanes2 offset[3];
+  detail::worldFrameLanes(a, b, t, offset);
+  const Eigen::Vector3d& pa = a.center();
+  const Eigen::Vector3d& pb = b.center();
+  for (int i = 0; i < 3; ++i) (*x)[i] = 0.5 * ((pa[i] + offset[i][0]) + (pb[i] - offset[i][1]));
+}
+
+/// The same along a world direction w.
+inline void supportMidpoint(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& w, const Lanes2 r[3],
+                            Eigen::Vector3d* x) {
+  Lanes2 u[3];
+  detail::bodyFrameLanes(a, b, w, u);
+  supportMidpoint(a, b, u, r, x);
+}
+
 /// What the centre-line tests compute on v for both ellipsoids at once (lane 0: a, lane 1: b):
 /// u = R^T v, the radii r and their reciprocals q = 1 / r.
 struct LineLanes {
@@ -217,26 +241,25 @@ bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d
   }
   Lanes2 hm;
   const bool separated = separatedAlong(m, d, a, b, L.r, tau, &hm);
-  // 4. Support points: p_a + R_a S_a (S_a u_a / h_a) and p_b - R_b S_b (S_b u_b / h_b), h = |S u|
-  // (scale-free in v). Computed whatever test 3 found: on random pairs its outcome is
-  // unpredictable, and the two independent chains of square roots and divisions overlap.
-  const Lanes2 s0 = L.u[0] * L.r[0], s1 = L.u[1] * L.r[1], s2 = L.u[2] * L.r[2];
-  const Lanes2 h = detail::sqrtLanes(s0 * s0 + s1 * s1 + s2 * s2);
-  const Lanes2 inv_h = 1.0 / detail::maxLanes(h, lanes(DBL_MIN, DBL_MIN));  // h = 0 only on underflow
-  const Lanes2 t[3] = {s0 * L.r[0] * inv_h, s1 * L.r[1] * inv_h, s2 * L.r[2] * inv_h};
-  Lanes2 offset[3];
-  detail::worldFrameLanes(a, b, t, offset);
-  const Eigen::Vector3d& pa = a.center();
-  const Eigen::Vector3d& pb = b.center();
+  // 4. The midpoint of the support points of a along v and of b along -v, strictly inside both?
+  // Computed whatever test 3 found: on random pairs its outcome is unpredictable, and the two
+  // independent chains of square roots and divisions overlap.
   Eigen::Vector3d x;
-  for (int i = 0; i < 3; ++i) x[i] = 0.5 * ((pa[i] + offset[i][0]) + (pb[i] - offset[i][1]));
-  const bool inside = strictlyInsideBoth(a, b, L.q, x, tau);
+  supportMidpoint(a, b, L.u, L.r, &x);
+  bool inside = strictlyInsideBoth(a, b, L.q, x, tau);
+  if (!(separated | inside)) {
+    // 5. As 4, with the support points along m (test 3's direction, closer to the common normal
+    // where the solids overlap off the centre line): decides about 45% of the overlapping pairs
+    // that would otherwise go to the pencil (1,060 of 2,363 among the 100,000 ANCHORS pairs).
+    supportMidpoint(a, b, m, L.r, &x);
+    inside = strictlyInsideBoth(a, b, L.q, x, tau);
+  }
   if constexpr (kWantsWitness<Out>) {
     if (separated) {
       out->status = Separation::Separated;
       const double m2 = m.squaredNorm();
       out->normal = m * (1.0 / std::sqrt(m2));
-      out->witness = 0.5 * (pa + pb) + (0.5 * (hm[0] - hm[1]) / m2) * m;  // on the mid-plane of the gap
+      out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (hm[0] - hm[1]) / m2) * m;  // on the mid-plane of the gap
     } else if (inside) {
       out->status = Separation::Overlapping;
       out->normal = d * (1.0 / std::sqrt(D2));
