@@ -179,8 +179,8 @@ struct LineValues {
 /// if values is not null. Always inlined, so that the lanes stay in registers.
 __attribute__((always_inline)) inline Separation lineTests(const Ellipsoid& a, const Ellipsoid& b,
                                                              const Eigen::Vector3d& v, double d_times_v, double s,
-                                                             LineValues* values) {
-  LineLanes L;
+                                                             LineValues* values, LineLanes* lanes_out) {
+  LineLanes& L = *lanes_out;
   lineLanes(a, b, v, &L);
   const Lanes2 u0 = L.u[0], u1 = L.u[1], u2 = L.u[2], r0 = L.r[0], r1 = L.r[1], r2 = L.r[2];
   const Lanes2 q0 = L.q[0], q1 = L.q[1], q2 = L.q[2];
@@ -212,16 +212,13 @@ __attribute__((always_inline)) inline Separation lineTests(const Ellipsoid& a, c
   return static_cast<Separation>((1 + int(overlapping)) * int(!separated));
 }
 
-/// Tests 3 and 4 of centreLineTest(), for the pairs tests 1 and 2 leave open (~11% of the random
-/// pairs of the benchmarks): they recompute the lanes on v = d / s (D2 = |d|^2), both ellipsoids
-/// in one pass as in lineTests().
+/// Tests 3, 4 and 5 of centreLineTest(), for the pairs tests 1 and 2 leave open (~11% of the
+/// random pairs of the benchmarks), on the lanes L that lineTests() computed on v (d itself when
+/// unscaled, else d / s; D2 = |d|^2).
 template <class Out>
 bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& d, double D2, bool unscaled,
-                   double s, Out* out) {
+                   const LineLanes& L, Out* out) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
-  const Eigen::Vector3d v = unscaled ? d : Eigen::Vector3d(d * (1.0 / s));
-  LineLanes L;
-  lineLanes(a, b, v, &L);
   // 3. Outward normal of a at p_a + rho_a n is R_a S_a^-1 (S_a^-1 R_a^T n) = R_a (u_a ./ r_a^2) / |v|;
   // the outward normal of b at p_b - rho_b n is -R_b (u_b ./ r_b^2) / |v|, so -b's is
   // +R_b (u_b ./ r_b^2) / |v|: one formula for both lanes. The factor 1 / |v| keeps their squared
@@ -308,12 +305,13 @@ bool scaledCentreLineTest(const Ellipsoid& a, const Ellipsoid& b, const Eigen::V
   const double s = std::sqrt(D2);
   const Eigen::Vector3d v = d * (1.0 / s);  // |v| = 1 to 2 ulps: covered by the 2^-40 margins
   LineValues w;
-  const Separation st = lineTests(a, b, v, s, s, kWantsWitness<Out> ? &w : nullptr);
+  LineLanes L;
+  const Separation st = lineTests(a, b, v, s, s, kWantsWitness<Out> ? &w : nullptr, &L);
   if (st != Separation::Touching) {
     lineDecision(st, a, b, d, 1.0, w, out);
     return true;
   }
-  return followUpTests(a, b, d, D2, false, s, out);
+  return followUpTests(a, b, d, D2, false, L, out);
 }
 
 /// The pre-tests along the centre line n = (p_b - p_a)/|p_b - p_a| (docs/algorithms.md §1,
@@ -351,7 +349,8 @@ __attribute__((always_inline)) inline bool centreLineTest(const Ellipsoid& a, co
   }
   if (!(D2 > 1e-100 && D2 < 1e100)) return scaledCentreLineTest(a, b, d, D2, out);
   LineValues w;
-  const Separation st = lineTests(a, b, d, D2, 1.0, kWantsWitness<Out> ? &w : nullptr);
+  LineLanes L;
+  const Separation st = lineTests(a, b, d, D2, 1.0, kWantsWitness<Out> ? &w : nullptr, &L);
   if (st != Separation::Touching) {
     if constexpr (kWantsWitness<Out>) {
       lineDecision(st, a, b, d, std::sqrt(D2), w, out);
@@ -360,7 +359,7 @@ __attribute__((always_inline)) inline bool centreLineTest(const Ellipsoid& a, co
     }
     return true;
   }
-  return followUpTests(a, b, d, D2, true, 1.0, out);
+  return followUpTests(a, b, d, D2, true, L, out);
 }
 
 /// The classification after the pre-tests left it open: the pencil in double, then in
