@@ -272,18 +272,37 @@ bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d
 }
 
 /// Writes the certificate of a decision of test 1 or 2 (status `st`): the normal n = d / |d| and
-/// a witness on the centre line (Separated: on the mid-plane of the gap; Overlapping: midway
-/// between the surface points p_a + rho_a n and p_b - rho_b n, inside both).
+/// a witness on the centre line. Separated: on the mid-plane of the gap between the supports.
+/// Overlapping: the midpoint of the common part of the two chords of the centre line, a's
+/// [p_a - rho_a n, p_a + rho_a n] and b's [p_b - rho_b n, p_b + rho_b n] (b's centre when b's
+/// chord lies inside a's). Written about the midpoint of the centres, where the chords are
+/// [-D/2 - rho_a, -D/2 + rho_a] and [D/2 - rho_b, D/2 + rho_b] (D = |d|), so that swapping a and b
+/// negates every coordinate and gives the same point bit for bit. Returns false (no certificate
+/// written) when that witness is not certified strictly inside both solids: test 2's decision
+/// is certified, but a nearly tangent pair's common chord can be shorter than the rounding of a
+/// witness far from the origin; the caller then goes on to the other tests.
 template <class Out>
-void lineDecision(Separation st, const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& d, double v_norm,
-                  const LineValues& w, Out* out) {
-  out->status = st;
-  if constexpr (kWantsWitness<Out>) {
-    out->normal = d * (1.0 / d.norm());
-    const double shift = st == Separation::Separated ? (w.h[0] - w.h[1]) / v_norm : v_norm / w.l[0] - v_norm / w.l[1];
-    out->witness = 0.5 * (a.center() + b.center()) + (0.5 * shift) * out->normal;
-    out->precision_stage = -1;
+bool lineDecision(Separation st, const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& d, double v_norm,
+                  const LineValues& w, const LineLanes& L, Out* out) {
+  const double D = d.norm();
+  const Eigen::Vector3d n = d * (1.0 / D);
+  double shift;
+  if (st == Separation::Separated) {
+    shift = 0.5 * ((w.h[0] - w.h[1]) / v_norm);
+  } else {
+    const double rho_a = v_norm / w.l[0], rho_b = v_norm / w.l[1];
+    const double lo = std::max(-0.5 * D - rho_a, 0.5 * D - rho_b), hi = std::min(-0.5 * D + rho_a, 0.5 * D + rho_b);
+    shift = 0.5 * (lo + hi);
   }
+  const Eigen::Vector3d x = 0.5 * (a.center() + b.center()) + shift * n;
+  if (st == Separation::Overlapping &&
+      !strictlyInsideBoth(a, b, L.q, x, tolerance::kCertificateRelativeBoundDouble))
+    return false;
+  out->status = st;
+  out->normal = n;
+  out->witness = x;
+  out->precision_stage = -1;
+  return true;
 }
 
 /// The centre-line tests outside |d| in [1e-50, 1e50] (rare): on the unit direction, or at once
@@ -308,8 +327,12 @@ bool scaledCentreLineTest(const Ellipsoid& a, const Ellipsoid& b, const Eigen::V
   LineLanes L;
   const Separation st = lineTests(a, b, v, s, s, kWantsWitness<Out> ? &w : nullptr, &L);
   if (st != Separation::Touching) {
-    lineDecision(st, a, b, d, 1.0, w, out);
-    return true;
+    if constexpr (kWantsWitness<Out>) {
+      if (lineDecision(st, a, b, d, 1.0, w, L, out)) return true;
+    } else {
+      out->status = st;
+      return true;
+    }
   }
   return followUpTests(a, b, d, D2, false, L, out);
 }
@@ -353,11 +376,11 @@ __attribute__((always_inline)) inline bool centreLineTest(const Ellipsoid& a, co
   const Separation st = lineTests(a, b, d, D2, 1.0, kWantsWitness<Out> ? &w : nullptr, &L);
   if (st != Separation::Touching) {
     if constexpr (kWantsWitness<Out>) {
-      lineDecision(st, a, b, d, std::sqrt(D2), w, out);
+      if (lineDecision(st, a, b, d, std::sqrt(D2), w, L, out)) return true;
     } else {
       out->status = st;
+      return true;
     }
-    return true;
   }
   return followUpTests(a, b, d, D2, true, L, out);
 }

@@ -31,7 +31,9 @@ struct SeparationCertificate {
   Eigen::Vector3d witness = Eigen::Vector3d::Zero();
   /// For Separated: a unit normal n pointing from the first argument to the second such that
   /// h_a(n) < -h_b(-n), i.e. some plane with this normal separates them (planeWithNormal()).
-  /// For the other states: the normal of the first ellipsoid's level set at the witness.
+  /// For the other states: the normal of the first ellipsoid's level set at the witness, except
+  /// for an Overlapping pair decided by a pre-test (precision_stage -1), where it is the direction
+  /// of the line of centres, from the first centre to the second.
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
   /// -1: decided by a pre-test (bounding / inscribed spheres, or supports and radii along the
   /// line of centres); 0: decided in double; 1: decided in
