@@ -130,12 +130,12 @@ constexpr double kCcdBalanceRatio = 4.0;
 constexpr int kCcdMaxBalanceDepth = 48;
 constexpr int kCcdMaxBalanceSegments = 256;
 
-/// Precision check of the CCD function (docs/algorithms.md section 8): when the condition
-/// estimate (aspect ratio x condition of the motion's linear part)^2 of either moving quadric
-/// exceeds this, the double rounding of F(u, t) (about this many times u, times the growth of the
-/// determinant expansion) can exceed the touching band kCcdTouchingRelative, so F is rebuilt in
-/// extended precision and the difference of the two widens every margin. Rigid motions of bodies
-/// with aspect ratio below 100 never reach it.
+/// Ill-conditioned CCD pairs (docs/algorithms.md section 8): a condition estimate (aspect ratio x
+/// condition of the motion's linear part)^2 of either moving quadric above this sets
+/// EllipsoidCcdResult::precision_checked, whose answers the extended-precision error estimate
+/// moves further toward contact. Until session 18 the precision check itself ran only above it;
+/// it now runs for every rigid pair (finding 16: F's rounding is not bounded by this estimate at
+/// grazing instants).
 constexpr double kCcdCheckedCondition = 1e4;
 
 /// Beyond this condition estimate even the extended-precision F (64-bit significand) is mostly

@@ -728,7 +728,8 @@ struct SegmentPencil {
   Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
   BivariateBernstein F;
   Eigen::MatrixXd E;
-  bool precision_checked = false;
+  bool has_F = false;              ///< F (and E) built by the precision check
+  bool precision_checked = false;  ///< condition above kCcdCheckedCondition (diagnostic)
 };
 
 std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEllipsoid& b,
@@ -748,19 +749,23 @@ std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const Motio
     } catch (const std::invalid_argument&) {
       return std::nullopt;  // a coefficient overflowed to inf / NaN (Polynomial rejects it)
     }
-    // Precision check (docs/algorithms.md section 8): when the motions' and shapes' conditioning
-    // puts the double rounding of F above the touching band, F is rebuilt in extended precision
-    // from N's extended coefficients and the difference widens every margin (finding 8: a shear
-    // of condition 6e7 was certified separate on rounding noise). Well-conditioned pairs (every
-    // rigid motion of moderate aspect ratio) skip it: the fixed relative band covers them.
-    if (condition > tolerance::kCcdCheckedCondition) {
-      CheckedCcdFunction checked = ccdFunctionChecked(
-          p.A.Q, p.B.Q, scaledQuadricExtended(a.body.quadricMatrix(), ma.inverseCoefficientsExtended(), p.S, p.A.scale),
-          scaledQuadricExtended(b.body.quadricMatrix(), mb.inverseCoefficientsExtended(), p.S, p.B.scale));
-      p.F = std::move(checked.F);
-      p.E = std::move(checked.error);
-      p.precision_checked = true;
-    }
+    // Precision check (docs/algorithms.md section 8): F is rebuilt in extended precision from N's
+    // extended coefficients and the difference widens every margin (finding 8: a shear of
+    // condition 6e7 was certified separate on rounding noise). Every rigid pair since session 18:
+    // the touching band 2^-40 max|c_i(t)| is relative to F's value at t, but F's rounding is
+    // relative to its coefficients over the whole segment, and at a grazing instant F(., t) is
+    // 1e-5 .. 1e-7 of those, so even a pair of aspect ratio 50-100 under a pure translation could
+    // be certified separate on rounding noise (finding 16: computed max_u F = +4e-15 against a band
+    // of 6e-19 where the exact pair overlaps). precision_checked still flags the ill-conditioned
+    // pairs (condition above kCcdCheckedCondition), whose answers the estimate moves further
+    // toward contact.
+    CheckedCcdFunction checked = ccdFunctionChecked(
+        p.A.Q, p.B.Q, scaledQuadricExtended(a.body.quadricMatrix(), ma.inverseCoefficientsExtended(), p.S, p.A.scale),
+        scaledQuadricExtended(b.body.quadricMatrix(), mb.inverseCoefficientsExtended(), p.S, p.B.scale));
+    p.F = std::move(checked.F);
+    p.E = std::move(checked.error);
+    p.has_F = true;
+    p.precision_checked = condition > tolerance::kCcdCheckedCondition;
   } else {
     // In a's body frame: a is constant, b's shape and centre are interpolated (thesis §5.2).
     Eigen::Matrix3d Bs[2];
@@ -783,7 +788,7 @@ std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const Motio
     const PolynomialMatrix4 Bq = affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], p.S);
     p.B = {balanced(Bq, balanceScale(Bq)), 1.0};
   }
-  if (!p.precision_checked) {
+  if (!p.has_F) {  // affine interpolation: F in double (docs/algorithms.md section 8)
     p.F = ccdFunction(p.A.Q, p.B.Q);
     p.E = Eigen::MatrixXd::Zero(p.F.coefficients().rows(), p.F.coefficients().cols());
   }
