@@ -728,7 +728,6 @@ struct SegmentPencil {
   Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
   BivariateBernstein F;
   Eigen::MatrixXd E;
-  bool has_F = false;              ///< F (and E) built by the precision check
   bool precision_checked = false;  ///< condition above kCcdCheckedCondition (diagnostic)
 };
 
@@ -764,7 +763,6 @@ std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const Motio
         scaledQuadricExtended(b.body.quadricMatrix(), mb.inverseCoefficientsExtended(), p.S, p.B.scale));
     p.F = std::move(checked.F);
     p.E = std::move(checked.error);
-    p.has_F = true;
     p.precision_checked = condition > tolerance::kCcdCheckedCondition;
   } else {
     // In a's body frame: a is constant, b's shape and centre are interpolated (thesis §5.2).
@@ -788,7 +786,7 @@ std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const Motio
     const PolynomialMatrix4 Bq = affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], p.S);
     p.B = {balanced(Bq, balanceScale(Bq)), 1.0};
   }
-  if (!p.has_F) {  // affine interpolation: F in double (docs/algorithms.md section 8)
+  if (affine) {  // rigid pairs got F from the precision check above; here F in double
     p.F = ccdFunction(p.A.Q, p.B.Q);
     p.E = Eigen::MatrixXd::Zero(p.F.coefficients().rows(), p.F.coefficients().cols());
   }

@@ -39,23 +39,20 @@ inline Lanes2 absLanes(Lanes2 x) {
   return Lanes2(Bits2(x) & mask);
 }
 
-/// u[j] = (R_a^T v)_j in lane 0 and (R_b^T v)_j in lane 1, each the sum R(0,j) v_0 + R(1,j) v_1 +
-/// R(2,j) v_2 in that order: v in the body frames of a and b.
-inline void bodyFrameLanes(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& v, Lanes2 u[3]) {
-  const Eigen::Matrix3d& Ra = a.rotation();
-  const Eigen::Matrix3d& Rb = b.rotation();
-  const Lanes2 v0 = lanes(v[0], v[0]), v1 = lanes(v[1], v[1]), v2 = lanes(v[2], v[2]);
-  for (int j = 0; j < 3; ++j)
-    u[j] = lanes(Ra(0, j), Rb(0, j)) * v0 + lanes(Ra(1, j), Rb(1, j)) * v1 + lanes(Ra(2, j), Rb(2, j)) * v2;
-}
-
 /// u[j] = (R_a^T y_a)_j in lane 0 and (R_b^T y_b)_j in lane 1 for a vector per lane (y[i] holds
-/// coordinate i of y_a and y_b), each sum in the order of bodyFrameLanes().
+/// coordinate i of y_a and y_b), each the sum R(0,j) y_0 + R(1,j) y_1 + R(2,j) y_2 in that order.
 inline void bodyFrameLanes(const Ellipsoid& a, const Ellipsoid& b, const Lanes2 y[3], Lanes2 u[3]) {
   const Eigen::Matrix3d& Ra = a.rotation();
   const Eigen::Matrix3d& Rb = b.rotation();
   for (int j = 0; j < 3; ++j)
     u[j] = lanes(Ra(0, j), Rb(0, j)) * y[0] + lanes(Ra(1, j), Rb(1, j)) * y[1] + lanes(Ra(2, j), Rb(2, j)) * y[2];
+}
+
+/// u[j] = (R_a^T v)_j in lane 0 and (R_b^T v)_j in lane 1, each the sum R(0,j) v_0 + R(1,j) v_1 +
+/// R(2,j) v_2 in that order: v in the body frames of a and b.
+inline void bodyFrameLanes(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& v, Lanes2 u[3]) {
+  const Lanes2 y[3] = {lanes(v[0], v[0]), lanes(v[1], v[1]), lanes(v[2], v[2])};
+  bodyFrameLanes(a, b, y, u);
 }
 
 /// x[i] = (R_a w_a)_i in lane 0 and (R_b w_b)_i in lane 1: body-frame vectors back in the world

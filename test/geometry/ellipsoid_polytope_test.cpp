@@ -7,6 +7,7 @@
 #include <gmpxx.h>
 
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
+#include "support/exact_oracle.h"
 #include "support/random_ellipsoids.h"
 
 namespace fcl_quadric {
@@ -243,14 +244,7 @@ TEST(EllipsoidPolytope, PointsNearTheTipOfThinEllipsoidsAgreeWithTheExactInsideT
   std::mt19937_64 rng(53);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   auto exactSide = [](const Ellipsoid& e, const Eigen::Vector3d& x) {  // -1 inside, 0 on, +1 outside
-    mpq_class q = -1;
-    for (int j = 0; j < 3; ++j) {
-      mpq_class w = 0;
-      for (int i = 0; i < 3; ++i) w += mpq_class(e.rotation()(i, j)) * (mpq_class(x[i]) - mpq_class(e.center()[i]));
-      w /= mpq_class(e.radii()[j]);
-      q += w * w;
-    }
-    return sgn(q);
+    return sgn(test::exactImplicit(e, x));
   };
   for (double L : {1e3, 1e6, 1e9}) {
     int inside = 0, outside = 0, decided = 0;

@@ -90,19 +90,6 @@ TEST(EllipsoidSeparation, AgreesWithExactOracleOnAnchorDistribution) {
   EXPECT_NEAR(collide / double(n), 0.374, 0.03);
 }
 
-/// Exact q_e(x) = |S^-1 R^T (x - p)|^2 - 1 of the solid as the library defines it (ellipsoid.h),
-/// in rationals from the stored doubles.
-test::Rational exactImplicit(const Ellipsoid& e, const Eigen::Vector3d& x) {
-  test::Rational q = -1;
-  for (int j = 0; j < 3; ++j) {
-    test::Rational t = 0;
-    for (int i = 0; i < 3; ++i) t += test::Rational(e.rotation()(i, j)) * (test::Rational(x[i]) - test::Rational(e.center()[i]));
-    t /= test::Rational(e.radii()[j]);
-    q += t * t;
-  }
-  return q;
-}
-
 /// True iff the solid e lies strictly on the side s * (n.x - c) < 0 of the plane n.x = c, decided
 /// exactly: the solid is { p + R^-T S y : |y| <= 1 }, so max over it of s n.x is s n.p + |S R^-1 n|,
 /// and R^-1 n = z solves R z = n (Cramer's rule in rationals).
@@ -154,7 +141,7 @@ TEST(EllipsoidSeparation, PreTestCertificatesHoldExactly) {
     bool ok = false;
     if (c.status == Separation::Overlapping) {
       ++overlapping;
-      ok = exactImplicit(a, c.witness) < 0 && exactImplicit(b, c.witness) < 0;
+      ok = test::exactImplicit(a, c.witness) < 0 && test::exactImplicit(b, c.witness) < 0;
     } else if (c.status == Separation::Separated) {
       ++separated;
       test::Rational plane_offset = 0;

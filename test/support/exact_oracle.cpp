@@ -229,5 +229,16 @@ Separation exactClassify(const Ellipsoid& a, const Ellipsoid& b) {
   return Separation::Overlapping;
 }
 
+Rational exactImplicit(const Ellipsoid& e, const Eigen::Vector3d& x) {
+  Rational q = -1;
+  for (int j = 0; j < 3; ++j) {
+    Rational t = 0;
+    for (int i = 0; i < 3; ++i) t += Rational(e.rotation()(i, j)) * (Rational(x[i]) - Rational(e.center()[i]));
+    t /= Rational(e.radii()[j]);
+    q += t * t;
+  }
+  return q;
+}
+
 }  // namespace test
 }  // namespace fcl_quadric

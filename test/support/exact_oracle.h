@@ -33,5 +33,9 @@ int exactDistinctRootsBelow(const RationalPolynomial& p, const Rational& hi);
 /// (a double root) -> Touching, none -> Overlapping.
 Separation exactClassify(const Ellipsoid& a, const Ellipsoid& b);
 
+/// Exact q_e(x) = |S^-1 R^T (x - p)|^2 - 1 of the solid as the library defines it (ellipsoid.h),
+/// in rationals from the stored doubles: negative inside, zero on the surface.
+Rational exactImplicit(const Ellipsoid& e, const Eigen::Vector3d& x);
+
 }  // namespace test
 }  // namespace fcl_quadric
