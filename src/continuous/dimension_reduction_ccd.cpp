@@ -12,12 +12,13 @@
 #include <stdexcept>
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 
 #include "fcl_quadric/algebra/bernstein_polynomial.h"
 #include "fcl_quadric/algebra/bivariate_bernstein.h"
+#include "fcl_quadric/algebra/low_degree_roots.h"
 #include "fcl_quadric/algebra/polynomial.h"
 #include "fcl_quadric/algebra/root_isolation.h"
+#include "fcl_quadric/algebra/symmetric_eigen.h"
 
 #include "../geometry/region_formula.h"
 
@@ -300,21 +301,14 @@ std::vector<double> numericCharacteristic(const Eigen::MatrixXd& M1, const Eigen
 std::optional<double> multipleRoot(const std::vector<double>& c) {
   const int n = static_cast<int>(c.size()) - 1;
   if (n < 2 || c[n] == 0.0) return std::nullopt;
-  // Roots of f' (degree n - 1 <= 3) from its companion matrix.
-  const int m = n - 1;
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
-  const double lead = n * c[n];
-  for (int i = 0; i < m; ++i) C(0, i) = -(m - i) * c[m - i] / lead;  // f' coefficients (k+1) c_{k+1}
-  for (int i = 1; i < m; ++i) C(i, i - 1) = 1.0;
-  Eigen::VectorXcd z;
-  if (m == 1) {
-    z = Eigen::VectorXcd::Constant(1, std::complex<double>(C(0, 0), 0.0));
-  } else {
-    z = Eigen::EigenSolver<Eigen::MatrixXd>(C, false).eigenvalues();
-  }
+  // Roots of f' (degree n - 1 <= 3), complex ones included: a multiple root of f perturbed by
+  // rounding may leave f' a near-real pair.
+  std::vector<double> dc(n);
+  for (int k = 1; k <= n; ++k) dc[k - 1] = k * c[k];
+  const std::vector<std::complex<double>> z = lowDegreeRoots(dc);
   std::optional<double> best;
   double best_score = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < z.size(); ++i) {
+  for (std::size_t i = 0; i < z.size(); ++i) {
     if (std::fabs(z[i].imag()) > 1e-6 * (1.0 + std::fabs(z[i].real()))) continue;
     const double x = z[i].real();
     if (x >= 0.0) continue;
@@ -335,12 +329,17 @@ std::optional<double> multipleRoot(const std::vector<double>& c) {
 // Null vectors of the symmetric matrix M (rank n - 1: one; rank n - 2: the real points of the
 // null line on the quadric Q, two at most). In the matrix's own coordinates.
 std::vector<Eigen::VectorXd> nullPoints(const Eigen::MatrixXd& M, const Eigen::MatrixXd& Q) {
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
-  const Eigen::VectorXd& sv = svd.singularValues();
+  // Singular values of a symmetric matrix: |eigenvalues|; right singular vectors: eigenvectors.
+  const SymmetricEigenDecomposition eig = symmetricEigen(M);
   const int n = static_cast<int>(M.rows());
-  const Eigen::VectorXd x0 = svd.matrixV().col(n - 1);
-  if (n < 2 || sv[n - 2] > 1e-6 * sv[0]) return {x0};
-  const Eigen::VectorXd x1 = svd.matrixV().col(n - 2);
+  std::vector<int> order(n);  // by decreasing |eigenvalue|, as singular values
+  for (int i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&eig](int i, int j) { return std::fabs(eig.values[i]) > std::fabs(eig.values[j]); });
+  const auto sv = [&](int i) { return std::fabs(eig.values[order[i]]); };
+  const Eigen::VectorXd x0 = eig.vectors.col(order[n - 1]);
+  if (n < 2 || sv(n - 2) > 1e-6 * sv(0)) return {x0};
+  const Eigen::VectorXd x1 = eig.vectors.col(order[n - 2]);
   const double qa = x1.dot(Q * x1), qb = x0.dot(Q * x1), qc = x0.dot(Q * x0);
   // Points x0 + s x1 (and x1 itself when qc ~ 0 fails): qa s^2 + 2 qb s + qc = 0.
   std::vector<Eigen::VectorXd> out;

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <Eigen/Eigenvalues>
+#include "fcl_quadric/algebra/symmetric_eigen.h"
 
 namespace fcl_quadric {
 
@@ -320,9 +320,9 @@ void contactPoints(const Eigen::Matrix4d& X, const Eigen::MatrixXd& N, bool plan
     push(N.col(0));  // Lemma 6.2 case 1: the null vector lies on both quadrics
   } else if (dim == 2 || dim == 3) {
     const Eigen::MatrixXd C = N.transpose() * X * N;
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (C + C.transpose()));
-    const Eigen::VectorXd& c = es.eigenvalues();  // ascending
-    const Eigen::MatrixXd& V = es.eigenvectors();
+    const SymmetricEigenDecomposition es = symmetricEigen(C);  // of (C + C^T) / 2
+    const Eigen::VectorXd& c = es.values;  // ascending
+    const Eigen::MatrixXd& V = es.vectors;
     // Relative to C's own scale (far from the origin the restricted form shrinks as a whole),
     // but never below kRankRelative * 1e-4 (rounding of C and of the null space N).
     const double threshold = kRankRelative * std::max(c.cwiseAbs().maxCoeff(), 1e-4);
@@ -480,9 +480,9 @@ ContactConfiguration contactConfiguration(const Eigen::Matrix4d& A, const Eigen:
   Eigen::Vector4d sigma = Eigen::Vector4d::Zero();
   Eigen::Matrix4d vectors = Eigen::Matrix4d::Identity();
   if (M.cwiseAbs().maxCoeff() > 0.0) {
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> es(M);
-    sigma = es.eigenvalues();
-    vectors = es.eigenvectors();
+    const SymmetricEigenDecomposition es = symmetricEigen(M);
+    sigma = es.values;
+    vectors = es.vectors;
   }
   std::array<int, 4> order{0, 1, 2, 3};
   std::sort(order.begin(), order.end(), [&sigma](int a, int b) { return std::fabs(sigma(a)) < std::fabs(sigma(b)); });
