@@ -245,6 +245,39 @@ PolynomialMatrix4 affineInterpolant(const Eigen::Matrix3d B0, const Eigen::Vecto
   return Q;
 }
 
+// affineInterpolant's quadric recomputed in long double from the same inputs (power-basis
+// coefficient matrices, degree 3), symmetric and divided by `scale` as balanced() does: the
+// precision check's extended operand. The constant term c^T B c - 1 cancels heavily (a centre
+// several radii away along a short axis), which the double interpolant carries into F.
+std::vector<Matrix4ld> affineInterpolantExtended(const Eigen::Matrix3d& B0, const Eigen::Vector3d& c0,
+                                                 const Eigen::Matrix3d& B1, const Eigen::Vector3d& c1,
+                                                 const Eigen::Matrix4d& S, double scale) {
+  using ld = long double;
+  const ld L = S(0, 0);
+  Eigen::Matrix<ld, 3, 1> c[2];   // centre: c[0] + t c[1], scaled
+  Eigen::Matrix<ld, 3, 3> Bt[2];  // shape: Bt[0] + t Bt[1], scaled
+  for (int i = 0; i < 3; ++i) {
+    c[0][i] = (static_cast<ld>(c0[i]) - S(i, 3)) / L;
+    c[1][i] = (static_cast<ld>(c1[i]) - c0[i]) / L;
+    for (int j = 0; j < 3; ++j) {
+      Bt[0](i, j) = L * L * B0(i, j);
+      Bt[1](i, j) = L * L * (static_cast<ld>(B1(i, j)) - B0(i, j));
+    }
+  }
+  std::vector<Matrix4ld> Q(4, Matrix4ld::Zero());
+  for (int k = 0; k < 2; ++k) Q[k].topLeftCorner<3, 3>() = Bt[k];
+  Eigen::Matrix<ld, 3, 1> Bc[3] = {Bt[0] * c[0], Bt[0] * c[1] + Bt[1] * c[0], Bt[1] * c[1]};  // by power of t
+  for (int k = 0; k < 3; ++k) {
+    Q[k].block<3, 1>(0, 3) = -Bc[k];
+    Q[k].block<1, 3>(3, 0) = -Bc[k].transpose();
+  }
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 2; ++l) Q[k + l](3, 3) += c[l].dot(Bc[k]);
+  Q[0](3, 3) -= 1.0L;
+  for (Matrix4ld& m : Q) m = ((m + m.transpose()) * (0.5L / scale)).eval();
+  return Q;
+}
+
 // de Casteljau restriction of Bernstein coefficients on [0, 1] to [a, b] (0 <= a < b <= 1),
 // applied alike to the margins (every weight is convex, so restricted margins bound the
 // restricted errors: a margin of the form ulps |c| + e covers the rounding of the restriction,
@@ -777,18 +810,29 @@ std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const Motio
         return std::nullopt;  // b's end state is not representable: no interpolant
       }
       const Eigen::Matrix3d Lin = Ta.topLeftCorner<3, 3>().inverse();
-      const Eigen::Matrix3d Lb = Lin * bk->rotation() * bk->radii().asDiagonal();
       cs[k] = Lin * (bk->center() - Ta.block<3, 1>(0, 3));
-      Bs[k] = (Lb * Lb.transpose()).inverse();
+      // b's shape in a's frame, B = (Lb Lb^T)^-1 with Lb = Lin R_b diag(r_b), formed from its
+      // inverse factor Lb^-1 = diag(1/r_b) R_b^T Ta_lin (R_b orthonormal): inverting Lb Lb^T in
+      // double amplified rounding by its condition, the aspect ratio squared (at aspect 100 the
+      // interpolant's b was 1e-8 of its length too long or short along its long axis; finding 18).
+      const Eigen::Matrix3d Linv = bk->radii().cwiseInverse().asDiagonal() * bk->rotation().transpose() * Ta.topLeftCorner<3, 3>();
+      Bs[k] = Linv.transpose() * Linv;
     }
     p.S.block<3, 1>(0, 3) = 0.5 * (a.body.center() + cs[0]);
     p.A = scaledQuadric(a.body.quadricMatrix(), {Eigen::Matrix4d::Identity()}, p.S);
     const PolynomialMatrix4 Bq = affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], p.S);
-    p.B = {balanced(Bq, balanceScale(Bq)), 1.0};
-  }
-  if (affine) {  // rigid pairs got F from the precision check above; here F in double
-    p.F = ccdFunction(p.A.Q, p.B.Q);
-    p.E = Eigen::MatrixXd::Zero(p.F.coefficients().rows(), p.F.coefficients().cols());
+    const double b_scale = balanceScale(Bq);
+    p.B = {balanced(Bq, b_scale), 1.0};
+    // The precision check as for rigid pairs (finding 16 holds for the interpolant too: F's
+    // rounding is relative to its coefficients, the touching band to F's value at t). a's
+    // quadric and the interpolant are rebuilt in extended precision from the same inputs (the
+    // interpolant is defined by b's end states B_k, c_k in a's frame, as computed above).
+    CheckedCcdFunction checked = ccdFunctionChecked(
+        p.A.Q, p.B.Q, scaledQuadricExtended(a.body.quadricMatrix(), {Matrix4ld::Identity()}, p.S, p.A.scale),
+        affineInterpolantExtended(Bs[0], cs[0], Bs[1], cs[1], p.S, b_scale));
+    p.F = std::move(checked.F);
+    p.E = std::move(checked.error);
+    p.precision_checked = condition > tolerance::kCcdCheckedCondition;
   }
   const double m = p.F.coefficients().cwiseAbs().maxCoeff();
   if (m > 0.0 && std::isfinite(m)) {

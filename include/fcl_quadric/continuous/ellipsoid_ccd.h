@@ -62,8 +62,8 @@ struct CcdOptions {
   bool culling = true;
   /// Conditioning limit (docs/algorithms.md section 8): a pair whose condition estimate
   /// (aspect ratio x condition of the motion's linear part)^2 exceeds it is not decided, it is
-  /// reported colliding throughout [0, t_max] and flagged unresolved. Every rigid pair below it is
-  /// decided with the extended-precision check (precision_checked flags those above
+  /// reported colliding throughout [0, t_max] and flagged unresolved. Every pair below it, rigid or
+  /// affine, is decided with the extended-precision check (precision_checked flags those above
   /// tolerance::kCcdCheckedCondition).
   /// Must be positive (infinity disables the fallback).
   double max_condition = tolerance::kCcdMaxCondition;
@@ -99,7 +99,7 @@ struct EllipsoidCcdResult {
   /// The work cap was reached: some interval was reported colliding without certification.
   bool unresolved = false;
   /// The pair was ill-conditioned (condition estimate above tolerance::kCcdCheckedCondition): the
-  /// extended-precision rebuild of F(u, t) that every rigid pair gets (docs/algorithms.md section
+  /// extended-precision rebuild of F(u, t) that every pair gets (docs/algorithms.md section
   /// 8, "precision check") widens its margins materially, so answers lean further toward contact.
   bool precision_checked = false;
   /// The pair was declared collision-free by a cull (0 = none, 1 = bounding spheres,
