@@ -305,6 +305,10 @@ std::optional<double> multipleRoot(const std::vector<double>& c) {
   // rounding may leave f' a near-real pair.
   std::vector<double> dc(n);
   for (int k = 1; k <= n; ++k) dc[k - 1] = k * c[k];
+  // Non-finite coefficients (an overflowed evaluation): no critical point, as the companion
+  // matrix's NaN eigenvalues gave before (lowDegreeRoots would throw).
+  for (double v : dc)
+    if (!std::isfinite(v)) return std::nullopt;
   const std::vector<std::complex<double>> z = lowDegreeRoots(dc);
   std::optional<double> best;
   double best_score = std::numeric_limits<double>::infinity();
