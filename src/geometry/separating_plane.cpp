@@ -8,6 +8,14 @@
 #include "geometry/lanes2.h"
 #include "geometry/pencil.h"
 
+// Runtime dispatch of the cached-plane kernel to an FMA build of it (x86-64, GCC or Clang, when
+// the whole build does not already target FMA).
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(__FMA__)
+#define FCL_QUADRIC_FMA_DISPATCH 1
+#else
+#define FCL_QUADRIC_FMA_DISPATCH 0
+#endif
+
 namespace fcl_quadric {
 
 namespace {
@@ -109,7 +117,15 @@ bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) 
 // long radius multiplies it, so g also subtracts tau |n|_1 sum(r), which bounds its effect on
 // the half-width. Written out by hand, both sides at once and without a branch: this is the
 // whole cost of a cached-plane query.
-bool detail::planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
+//
+// The bounds hold for any evaluation order and for fused multiply-adds (each sum of products is
+// then rounded fewer times, Higham, Accuracy and Stability, §3.1), so the same source is also
+// compiled with FMA enabled (planeSeparatesFma below): which of the two runs may change whether
+// a plane within ~tau of tangency is certified, never a certified answer.
+namespace {
+
+inline __attribute__((always_inline)) bool planeSeparatesKernel(const Plane& plane, const Ellipsoid& a,
+                                                                const Ellipsoid& b) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   const Eigen::Vector3d& n = plane.normal;
   const double off = plane.offset;
@@ -129,6 +145,42 @@ bool detail::planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const 
   const Lanes2 g = lanes(1.0, -1.0) * (off - nc) - tau * (abs_sum + std::fabs(off) + n1norm * (r[0] + r[1] + r[2]));
   const auto ok = (g > 0.0) & (g * g > msq * (1.0 + 4.0 * tau));  // per lane: all ones or zero
   return (ok[0] & ok[1]) != 0;
+}
+
+#if FCL_QUADRIC_FMA_DISPATCH
+/// The CPU runs FMA and AVX and the OS saves their registers (libgcc's feature check includes
+/// XGETBV). Initialised before main(); read as false before then, which selects the generic
+/// kernel: a call from another static initialiser is still answered correctly.
+const bool kCpuHasFma = [] {
+  __builtin_cpu_init();  // required when this initialiser runs before libgcc's own
+  return __builtin_cpu_supports("fma") && __builtin_cpu_supports("avx");
+}();
+#endif
+
+}  // namespace
+
+bool detail::planeSeparatesGeneric(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
+  return planeSeparatesKernel(plane, a, b);
+}
+
+#if FCL_QUADRIC_FMA_DISPATCH
+__attribute__((target("fma"))) bool detail::planeSeparatesFma(const Plane& plane, const Ellipsoid& a,
+                                                               const Ellipsoid& b) {
+  return planeSeparatesKernel(plane, a, b);
+}
+bool detail::cpuHasFma() { return kCpuHasFma; }
+#else
+bool detail::planeSeparatesFma(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
+  return planeSeparatesKernel(plane, a, b);
+}
+bool detail::cpuHasFma() { return false; }
+#endif
+
+bool detail::planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
+#if FCL_QUADRIC_FMA_DISPATCH
+  if (kCpuHasFma) return planeSeparatesFma(plane, a, b);
+#endif
+  return planeSeparatesKernel(plane, a, b);
 }
 
 std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipsoid& b) {

@@ -99,6 +99,71 @@ TEST(SeparatingPlane, PlaneEllipsoidGapIsTheDistanceForUnitNormals) {
   EXPECT_NEAR(planeEllipsoidGap(p, e), -0.5, 1e-15);
 }
 
+/// Support of e along n in long double: n.c + |S R^T n| (independent of the kernels' lanes).
+long double supportLong(const Ellipsoid& e, const Eigen::Vector3d& n) {
+  long double nc = 0, sq = 0;
+  for (int i = 0; i < 3; ++i) nc += static_cast<long double>(n[i]) * e.center()[i];
+  for (int j = 0; j < 3; ++j) {
+    long double u = 0;
+    for (int i = 0; i < 3; ++i) u += static_cast<long double>(e.rotation()(i, j)) * n[i];
+    const long double m = u * e.radii()[j];
+    sq += m * m;
+  }
+  return nc + std::sqrt(sq);
+}
+
+// The cached-plane kernel exists twice, for the baseline instruction set and with fused
+// multiply-adds (chosen at run time). Both must be sound against an independent long double
+// evaluation of the supports, agree outside a band of relative width 1e-9 around touching, and
+// planeSeparatesFinite() must be the one cpuHasFma() names.
+TEST(SeparatingPlane, GenericAndFmaKernelsAreSoundAndAgreeAwayFromTangency) {
+  std::mt19937_64 rng(61);
+  const bool fma = detail::cpuHasFma();
+  const double ts[] = {-0.1, -1e-12, 0.0, 1e-13, 1e-9, 0.5, 1 - 1e-9, 1 - 1e-13, 1.0, 1 + 1e-12, 1.1};
+  int certified = 0, declined = 0, band = 0, disagreements = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Ellipsoid a = test::anchorEllipsoid(rng), b = test::anchorEllipsoid(rng);
+    // The certificate's normal (slightly perturbed) on separated pairs, else a random direction.
+    const SeparationCertificate cert = classifyEllipsoids(a, b);
+    Plane p;
+    p.normal = cert.status == Separation::Separated
+                   ? (cert.normal.normalized() + 1e-3 * test::randomUnitVector(rng)).normalized()
+                   : test::randomUnitVector(rng);
+    const long double lo = supportLong(a, p.normal);    // a lies in n.x <= lo
+    const long double hi = -supportLong(b, -p.normal);  // b lies in n.x >= hi
+    const double scale = std::fabs(static_cast<double>(lo)) + std::fabs(static_cast<double>(hi)) +
+                         p.normal.lpNorm<1>() * (a.center().lpNorm<Eigen::Infinity>() + b.center().lpNorm<Eigen::Infinity>() +
+                                                 a.radii().sum() + b.radii().sum());
+    for (double t : ts) {
+      p.offset = static_cast<double>(lo + t * (hi - lo));
+      const long double margin = std::min(p.offset - lo, hi - p.offset);  // > 0: strictly separates
+      const bool generic = detail::planeSeparatesGeneric(p, a, b);
+      const bool chosen = detail::planeSeparatesFinite(p, a, b);
+      const bool other = fma ? detail::planeSeparatesFma(p, a, b) : generic;
+      ASSERT_EQ(chosen, fma ? other : generic) << "pair " << i << " t " << t;
+      for (bool c : {generic, other}) {
+        if (c) {
+          ASSERT_GT(margin, 0.0L) << "certified a plane that does not separate: pair " << i << " t " << t;
+        }
+      }
+      if (std::fabs(static_cast<double>(margin)) > 1e-9 * scale) {
+        ASSERT_EQ(generic, margin > 0) << "pair " << i << " t " << t << " margin " << static_cast<double>(margin);
+        ASSERT_EQ(other, margin > 0) << "pair " << i << " t " << t;
+      } else {
+        ++band;
+        disagreements += generic != other;
+      }
+      certified += generic;
+      declined += !generic;
+    }
+  }
+  EXPECT_GT(certified, 20000);
+  EXPECT_GT(declined, 20000);
+  EXPECT_GT(band, 40000);  // t = 0, 1 and the 1e-12 / 1e-13 offsets of every separated pair
+  EXPECT_LE(disagreements, band / 100);
+  if (!fma) GTEST_SKIP() << "no FMA on this CPU (or no dispatch in this build): only the generic kernel was run";
+}
+
 /// Two ellipsoids (3,3,5) 8 apart, rotating about random axes (the separating-planes experiment).
 TEST(PairCoherence, AgreesWithTheFullTestFrameByFrameAndUsesItsPlanes) {
   std::mt19937_64 rng(55);

@@ -66,7 +66,18 @@ bool isFinitePlane(const Plane& plane);
 /// planeSeparates() for a plane already known to be finite: the hot path of the plane caches
 /// (PairCoherence, PairCache), which check isFinitePlane() once when they store a plane instead
 /// of on every query. \pre isFinitePlane(plane) (else the comparisons raise FE_INVALID on NaN).
+/// On x86-64 with GCC or Clang it runs planeSeparatesFma() when the CPU has FMA (checked once,
+/// before main()), else planeSeparatesGeneric(); the two may differ only for a plane within the
+/// certificate's tolerance of touching, where either may decline (never certify a plane that
+/// does not separate).
 bool planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
+/// The kernel compiled for the baseline instruction set (SSE2 on x86-64).
+bool planeSeparatesGeneric(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
+/// The same kernel compiled with fused multiply-adds. \pre cpuHasFma() (where the build has no
+/// FMA dispatch, it is planeSeparatesGeneric()).
+bool planeSeparatesFma(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
+/// True when planeSeparatesFinite() dispatches to planeSeparatesFma().
+bool cpuHasFma();
 }  // namespace detail
 
 /// Gap between the plane and the ellipsoid on its positive side: min over x in E of
