@@ -6,7 +6,7 @@
 #                                         scripts/ci-sanitizers.sh and the fuzz targets
 set -euo pipefail
 PKGS=(
-  build-essential cmake pkg-config
+  build-essential cmake ninja-build pkg-config
   libfcl-dev libccd-dev libeigen3-dev liboctomap-dev libompl-dev
   googletest libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev libcairo2-dev
