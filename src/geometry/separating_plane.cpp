@@ -12,8 +12,10 @@
 // the whole build does not already target FMA).
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(__FMA__)
 #define FCL_QUADRIC_FMA_DISPATCH 1
+#define FCL_QUADRIC_TARGET_FMA __attribute__((target("fma")))
 #else
 #define FCL_QUADRIC_FMA_DISPATCH 0
+#define FCL_QUADRIC_TARGET_FMA
 #endif
 
 namespace fcl_quadric {
@@ -155,6 +157,8 @@ const bool kCpuHasFma = [] {
   __builtin_cpu_init();  // required when this initialiser runs before libgcc's own
   return __builtin_cpu_supports("fma") && __builtin_cpu_supports("avx");
 }();
+#else
+constexpr bool kCpuHasFma = false;  // no dispatch: one kernel, the build's own
 #endif
 
 }  // namespace
@@ -163,24 +167,14 @@ bool detail::planeSeparatesGeneric(const Plane& plane, const Ellipsoid& a, const
   return planeSeparatesKernel(plane, a, b);
 }
 
-#if FCL_QUADRIC_FMA_DISPATCH
-__attribute__((target("fma"))) bool detail::planeSeparatesFma(const Plane& plane, const Ellipsoid& a,
-                                                               const Ellipsoid& b) {
+FCL_QUADRIC_TARGET_FMA bool detail::planeSeparatesFma(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
   return planeSeparatesKernel(plane, a, b);
 }
+
 bool detail::cpuHasFma() { return kCpuHasFma; }
-#else
-bool detail::planeSeparatesFma(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
-  return planeSeparatesKernel(plane, a, b);
-}
-bool detail::cpuHasFma() { return false; }
-#endif
 
 bool detail::planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
-#if FCL_QUADRIC_FMA_DISPATCH
-  if (kCpuHasFma) return planeSeparatesFma(plane, a, b);
-#endif
-  return planeSeparatesKernel(plane, a, b);
+  return kCpuHasFma ? planeSeparatesFma(plane, a, b) : planeSeparatesKernel(plane, a, b);
 }
 
 std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipsoid& b) {

@@ -71,10 +71,12 @@ bool isFinitePlane(const Plane& plane);
 /// certificate's tolerance of touching, where either may decline (never certify a plane that
 /// does not separate).
 bool planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
-/// The kernel compiled for the baseline instruction set (SSE2 on x86-64).
+/// The plane test of EECD (Wang et al. 2004 §4; Choi 2008 §4.3) compiled for the baseline
+/// instruction set (SSE2 on x86-64). \pre isFinitePlane(plane), as planeSeparatesFinite().
 bool planeSeparatesGeneric(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
-/// The same kernel compiled with fused multiply-adds. \pre cpuHasFma() (where the build has no
-/// FMA dispatch, it is planeSeparatesGeneric()).
+/// The same kernel compiled with fused multiply-adds. \pre isFinitePlane(plane) and cpuHasFma()
+/// (on a CPU without FMA it would stop on an illegal instruction; where the build has no FMA
+/// dispatch, it is planeSeparatesGeneric()).
 bool planeSeparatesFma(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
 /// True when planeSeparatesFinite() dispatches to planeSeparatesFma().
 bool cpuHasFma();
