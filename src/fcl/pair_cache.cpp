@@ -48,15 +48,15 @@ std::size_t PairCache::collide(const fcl::CollisionObject<double>* o1, const fcl
   const void* gb = (swap ? o1 : o2)->collisionGeometry().get();
   auto it = entries_.find(key);
   if (it != entries_.end() && it->second.geometry_a == ga && it->second.geometry_b == gb &&
-      detail::planeSeparatesFinite(it->second.plane, ea, eb)) {  // stored planes are finite
+      it->second.plane.separates(ea, eb)) {
     ++plane_hits_;
     return 0;  // certified separate: no contact
   }
   const SeparationCertificate cert = classifyEllipsoids(ea, eb);
   if (cert.status == Separation::Separated) {
-    const Plane plane = planeWithNormal(cert.normal, ea, eb);
-    if (detail::isFinitePlane(plane)) {
-      entries_[key] = Entry{plane, ga, gb};
+    const std::optional<CachedPlane> plane = CachedPlane::fromPlane(planeWithNormal(cert.normal, ea, eb));
+    if (plane) {
+      entries_[key] = Entry{*plane, ga, gb};
     } else if (it != entries_.end()) {
       entries_.erase(it);
     }

@@ -20,6 +20,8 @@ namespace fcl_quadric {
 namespace detail {
 
 typedef double Lanes2 __attribute__((vector_size(16)));
+/// The result of comparing two Lanes2 (all ones or zero per lane), and their bits.
+typedef long long Mask2 __attribute__((vector_size(16)));
 
 inline Lanes2 lanes(double x, double y) { return Lanes2{x, y}; }
 
@@ -34,9 +36,23 @@ inline Lanes2 sqrtLanes(Lanes2 x) {
 
 /// |x| per lane: the sign bit cleared (one andpd).
 inline Lanes2 absLanes(Lanes2 x) {
-  typedef long long Bits2 __attribute__((vector_size(16)));
-  const Bits2 mask = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
-  return Lanes2(Bits2(x) & mask);
+  const Mask2 mask = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
+  return Lanes2(Mask2(x) & mask);
+}
+
+/// (x[0], -x[1]): lane 1's sign bit flipped (one xorpd; exact).
+inline Lanes2 negateLane1(Lanes2 x) {
+  const Mask2 sign = {0, static_cast<long long>(0x8000000000000000ULL)};
+  return Lanes2(Mask2(x) ^ sign);
+}
+
+/// True when both lanes of a comparison are true (one movmskpd).
+inline bool bothLanes(Mask2 m) {
+#if defined(__SSE2__)
+  return _mm_movemask_pd(__m128d(m)) == 3;
+#else
+  return (m[0] & m[1]) != 0;
+#endif
 }
 
 /// u[j] = (R_a^T y_a)_j in lane 0 and (R_b^T y_b)_j in lane 1 for a vector per lane (y[i] holds

@@ -8,10 +8,9 @@ Separation PairCoherence::classifyAndRemember(const Ellipsoid& a, const Ellipsoi
     // Keep the certificate's normal placed midway between the solids (planeWithNormal() proves it
     // separates them now). It is not re-certified here: every use certifies it against the poses
     // of that frame, so a plane spoilt by rounding can only cost a miss, never a wrong answer.
-    candidate_ = planeWithNormal(cert.normal, a, b);
-    if (!detail::isFinitePlane(*candidate_)) candidate_.reset();  // query() relies on finite planes
+    candidate_ = CachedPlane::fromPlane(planeWithNormal(cert.normal, a, b)).value_or(CachedPlane());
   } else {
-    candidate_.reset();
+    candidate_ = CachedPlane();
   }
   return cert.status;
 }

@@ -99,15 +99,51 @@ Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellips
 using detail::Lanes2;
 using detail::lanes;
 
-bool detail::isFinitePlane(const Plane& plane) {
+/// The kernels' view of a CachedPlane's fields.
+struct CachedPlaneAccess {
+  static const double* normal(const CachedPlane& c) { return c.normal_; }
+  static double offset(const CachedPlane& c) { return c.offset_; }
+  static double tauNormalL1(const CachedPlane& c) { return c.tau_normal_l1_; }
+  static double tauAbsOffset(const CachedPlane& c) { return c.tau_abs_offset_; }
+  static CachedPlane make(const double n[3], double offset) {
+    const double tau = tolerance::kCertificateRelativeBoundDouble;
+    CachedPlane c;
+    for (int i = 0; i < 3; ++i) c.normal_[i] = n[i];
+    c.offset_ = offset;
+    c.tau_normal_l1_ = tau * (std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]));
+    c.tau_abs_offset_ = tau * std::fabs(offset);
+    return c;
+  }
+};
+
+std::optional<CachedPlane> CachedPlane::fromPlane(const Plane& plane) {
   const Eigen::Vector3d& n = plane.normal;
-  return std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]) && std::isfinite(plane.offset);
+  if (!(std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]) && std::isfinite(plane.offset))) {
+    return std::nullopt;
+  }
+  const double big = n.cwiseAbs().maxCoeff();
+  if (!(big > 0.0)) return std::nullopt;  // a zero normal never separates
+  // A normal far from unit length is scaled by a power of two (exact) into [1, 2): with the radii
+  // in [kMinRadius, kMaxLength], max |n_i| in [2^-64, 2^64] keeps every square of the test (the
+  // support's m_j^2 >= (kMinRadius 2^-64)^2 / 3) far above the subnormal range, where rounding
+  // would stop being relative. Normals in that range, unit ones included, are stored unchanged.
+  int k = 0;
+  if (big < 0x1p-64 || big > 0x1p64) {
+    int e = 0;
+    std::frexp(big, &e);  // big = f 2^e, f in [0.5, 1)
+    k = 1 - e;
+  }
+  const double scaled[3] = {std::ldexp(n[0], k), std::ldexp(n[1], k), std::ldexp(n[2], k)};
+  const double offset = std::ldexp(plane.offset, k);
+  if (!std::isfinite(offset)) return std::nullopt;  // beyond every centre: cannot separate a from b
+  return CachedPlaneAccess::make(scaled, offset);
 }
 
-// A non-finite plane is never certified (the comparisons of the test would raise FE_INVALID on
-// NaN).
-bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
-  return detail::isFinitePlane(plane) && detail::planeSeparatesFinite(plane, a, b);
+Plane CachedPlane::plane() const {
+  Plane p;
+  p.normal = Eigen::Vector3d(normal_[0], normal_[1], normal_[2]);
+  p.offset = offset_;
+  return p;
 }
 
 // The certified gap of an ellipsoid e on its side of the plane { n.x = off } (a below: sgn = +1;
@@ -117,36 +153,39 @@ bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) 
 // evaluation of off - n.p, and tau = 2^-40 covers its rounding with a wide margin. The rounding
 // of R^T n is absolute (~eps |n|_1 per coordinate, tolerances.h kStoredRotationDefect), and a
 // long radius multiplies it, so g also subtracts tau |n|_1 sum(r), which bounds its effect on
-// the half-width. Written out by hand, both sides at once and without a branch: this is the
-// whole cost of a cached-plane query.
+// the half-width. tau |n|_1 and tau |off| come precomputed with the plane (CachedPlane): tau is a
+// power of two, so they are the exact products unless they underflow, which fromPlane()'s scaling
+// (max |n_i| >= 2^-64) rules out for tau |n|_1; an underflowing tau |off| (|off| < 2^-982) is
+// covered by the tau |n|_1 sum(r) term, at least 2^-104 kMinRadius. Both sides at once in two
+// lanes, without a branch, ending in one movmskpd: this is the whole cost of a cached-plane query
+// (docs/benchmarks.md, target (c)).
 //
 // The bounds hold for any evaluation order and for fused multiply-adds (each sum of products is
 // then rounded fewer times, Higham, Accuracy and Stability, §3.1), so the same source is also
-// compiled with FMA enabled (planeSeparatesFma below): which of the two runs may change whether
-// a plane within ~tau of tangency is certified, never a certified answer.
+// compiled with FMA enabled (cachedPlaneSeparatesFma below): which of the two runs may change
+// whether a plane within ~tau of tangency is certified, never a certified answer.
 namespace {
 
-inline __attribute__((always_inline)) bool planeSeparatesKernel(const Plane& plane, const Ellipsoid& a,
-                                                                const Ellipsoid& b) {
+inline __attribute__((always_inline)) bool cachedPlaneKernel(const CachedPlane& plane, const Ellipsoid& a,
+                                                             const Ellipsoid& b) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
-  const Eigen::Vector3d& n = plane.normal;
-  const double off = plane.offset;
+  const double* n = CachedPlaneAccess::normal(plane);
   const Eigen::Vector3d& ca = a.center();
   const Eigen::Vector3d& cb = b.center();
+  const Lanes2 n0 = lanes(n[0], n[0]), n1 = lanes(n[1], n[1]), n2 = lanes(n[2], n[2]);
+  const Lanes2 y[3] = {n0, n1, n2};
   Lanes2 u[3], r[3];
-  detail::bodyFrameLanes(a, b, n, u);  // R^T n
+  detail::bodyFrameLanes(a, b, y, u);  // R^T n
   detail::radiusLanes(a, b, r);
   const Lanes2 m0 = u[0] * r[0], m1 = u[1] * r[1], m2 = u[2] * r[2];  // S R^T n
-  const Lanes2 n0 = lanes(n[0], n[0]), n1 = lanes(n[1], n[1]), n2 = lanes(n[2], n[2]);
   const Lanes2 msq = m0 * m0 + m1 * m1 + m2 * m2;
-  const Lanes2 c0 = lanes(ca[0], cb[0]), c1 = lanes(ca[1], cb[1]), c2 = lanes(ca[2], cb[2]);
-  const Lanes2 p0 = n0 * c0, p1 = n1 * c1, p2 = n2 * c2;
+  const Lanes2 p0 = n0 * lanes(ca[0], cb[0]), p1 = n1 * lanes(ca[1], cb[1]), p2 = n2 * lanes(ca[2], cb[2]);
   const Lanes2 nc = p0 + p1 + p2;
   const Lanes2 abs_sum = detail::absLanes(p0) + detail::absLanes(p1) + detail::absLanes(p2);
-  const double n1norm = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
-  const Lanes2 g = lanes(1.0, -1.0) * (off - nc) - tau * (abs_sum + std::fabs(off) + n1norm * (r[0] + r[1] + r[2]));
-  const auto ok = (g > 0.0) & (g * g > msq * (1.0 + 4.0 * tau));  // per lane: all ones or zero
-  return (ok[0] & ok[1]) != 0;
+  const Lanes2 margin = tau * abs_sum + (CachedPlaneAccess::tauNormalL1(plane) * (r[0] + r[1] + r[2]) +
+                                         CachedPlaneAccess::tauAbsOffset(plane));
+  const Lanes2 g = detail::negateLane1(CachedPlaneAccess::offset(plane) - nc) - margin;
+  return detail::bothLanes((g > 0.0) & (g * g > msq * (1.0 + 4.0 * tau)));
 }
 
 #if FCL_QUADRIC_FMA_DISPATCH
@@ -163,18 +202,24 @@ constexpr bool kCpuHasFma = false;  // no dispatch: one kernel, the build's own
 
 }  // namespace
 
-bool detail::planeSeparatesGeneric(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
-  return planeSeparatesKernel(plane, a, b);
+bool detail::cachedPlaneSeparatesGeneric(const CachedPlane& plane, const Ellipsoid& a, const Ellipsoid& b) {
+  return cachedPlaneKernel(plane, a, b);
 }
 
-FCL_QUADRIC_TARGET_FMA bool detail::planeSeparatesFma(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
-  return planeSeparatesKernel(plane, a, b);
+FCL_QUADRIC_TARGET_FMA bool detail::cachedPlaneSeparatesFma(const CachedPlane& plane, const Ellipsoid& a,
+                                                            const Ellipsoid& b) {
+  return cachedPlaneKernel(plane, a, b);
 }
 
 bool detail::cpuHasFma() { return kCpuHasFma; }
 
-bool detail::planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
-  return kCpuHasFma ? planeSeparatesFma(plane, a, b) : planeSeparatesKernel(plane, a, b);
+bool CachedPlane::separates(const Ellipsoid& a, const Ellipsoid& b) const {
+  return kCpuHasFma ? detail::cachedPlaneSeparatesFma(*this, a, b) : cachedPlaneKernel(*this, a, b);
+}
+
+bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
+  const std::optional<CachedPlane> c = CachedPlane::fromPlane(plane);
+  return c && c->separates(a, b);
 }
 
 std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipsoid& b) {

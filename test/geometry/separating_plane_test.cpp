@@ -115,7 +115,7 @@ long double supportLong(const Ellipsoid& e, const Eigen::Vector3d& n) {
 // The cached-plane kernel exists twice, for the baseline instruction set and with fused
 // multiply-adds (chosen at run time). Both must be sound against an independent long double
 // evaluation of the supports, agree outside a band of relative width 1e-9 around touching, and
-// planeSeparatesFinite() must be the one cpuHasFma() names.
+// CachedPlane::separates() and planeSeparates() must run the one cpuHasFma() names.
 TEST(SeparatingPlane, GenericAndFmaKernelsAreSoundAndAgreeAwayFromTangency) {
   std::mt19937_64 rng(61);
   const bool fma = detail::cpuHasFma();
@@ -137,10 +137,13 @@ TEST(SeparatingPlane, GenericAndFmaKernelsAreSoundAndAgreeAwayFromTangency) {
     for (double t : ts) {
       p.offset = static_cast<double>(lo + t * (hi - lo));
       const long double margin = std::min(p.offset - lo, hi - p.offset);  // > 0: strictly separates
-      const bool generic = detail::planeSeparatesGeneric(p, a, b);
-      const bool chosen = detail::planeSeparatesFinite(p, a, b);
-      const bool other = fma ? detail::planeSeparatesFma(p, a, b) : generic;
+      const std::optional<CachedPlane> c = CachedPlane::fromPlane(p);
+      ASSERT_TRUE(c.has_value());
+      const bool generic = detail::cachedPlaneSeparatesGeneric(*c, a, b);
+      const bool chosen = c->separates(a, b);
+      const bool other = fma ? detail::cachedPlaneSeparatesFma(*c, a, b) : generic;
       ASSERT_EQ(chosen, other) << "pair " << i << " t " << t;  // other is generic without FMA
+      ASSERT_EQ(planeSeparates(p, a, b), chosen) << "pair " << i << " t " << t;
       for (bool c : {generic, other}) {
         if (c) {
           ASSERT_GT(margin, 0.0L) << "certified a plane that does not separate: pair " << i << " t " << t;
@@ -162,6 +165,58 @@ TEST(SeparatingPlane, GenericAndFmaKernelsAreSoundAndAgreeAwayFromTangency) {
   EXPECT_GT(band, 40000);  // t = 0, 1 and the 1e-12 / 1e-13 offsets of every separated pair
   EXPECT_LE(disagreements, band / 100);
   if (!fma) GTEST_SKIP() << "no FMA on this CPU (or no dispatch in this build): only the generic kernel was run";
+}
+
+// CachedPlane's record: planes that can never be certified are refused, the empty record certifies
+// nothing, a stored plane comes back unchanged, and a plane's answer does not depend on the length
+// of its normal: (n, off) and (2^k n, 2^k off) bound the same half-spaces, including where the
+// normal is so short or so long that fromPlane() rescales it (without the rescaling, |S R^T n|^2
+// of a normal of length 2^-600 underflows to 0 and a plane through b would be certified).
+TEST(CachedPlane, RefusesUncertifiablePlanesAndAnswersAlikeForEveryNormalLength) {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Plane& bad : {Plane{Eigen::Vector3d(nan, 0, 0), 0.0}, Plane{Eigen::Vector3d(1, 0, 0), inf},
+                           Plane{Eigen::Vector3d(0, inf, 0), 1.0}, Plane{Eigen::Vector3d::Zero(), 1.0},
+                           Plane{Eigen::Vector3d(0x1p-1000, 0, 0), 1e300}}) {
+    EXPECT_FALSE(CachedPlane::fromPlane(bad).has_value()) << bad.normal.transpose() << " " << bad.offset;
+    EXPECT_FALSE(planeSeparates(bad, Ellipsoid::sphere(1, {-2, 0, 0}), Ellipsoid::sphere(1, {2, 0, 0})));
+  }
+  const CachedPlane empty;
+  EXPECT_TRUE(empty.empty());
+  EXPECT_FALSE(empty.separates(Ellipsoid::sphere(1, {-2, 0, 0}), Ellipsoid::sphere(1, {2, 0, 0})));
+
+  std::mt19937_64 rng(67);
+  int certified = 0, checked = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Ellipsoid a = test::anchorEllipsoid(rng), b = test::anchorEllipsoid(rng);
+    const SeparationCertificate cert = classifyEllipsoids(a, b);
+    if (cert.status != Separation::Separated) continue;
+    Plane p = planeWithNormal(cert.normal, a, b);
+    // Slide the plane towards b by a fraction of the gap: some stay certified, some cut b.
+    const double gap = -a.support(p.normal) - b.support(-p.normal);
+    std::uniform_real_distribution<double> frac(0.0, 1.5);
+    p.offset += frac(rng) * gap;
+    const std::optional<CachedPlane> c = CachedPlane::fromPlane(p);
+    ASSERT_TRUE(c.has_value());
+    ASSERT_EQ(c->plane().normal, p.normal);  // a unit normal is stored as it is
+    ASSERT_EQ(c->plane().offset, p.offset);
+    const bool base = c->separates(a, b);
+    const long double margin = std::min(p.offset - supportLong(a, p.normal), -supportLong(b, -p.normal) - p.offset);
+    if (base) {
+      ASSERT_GT(margin, 0.0L) << "pair " << i;
+    }
+    certified += base;
+    // Scaling by 2^k is exact while the components stay normal numbers (|n_i| > 2^-1000 here).
+    if (p.normal.cwiseAbs().minCoeff() < 0x1p-20) continue;
+    for (int k : {-1000, -600, -70, 70, 600, 1000}) {
+      if (k < 0 && p.offset != 0.0 && std::fabs(p.offset) < 0x1p-20) continue;  // would turn subnormal
+      const Plane q{p.normal * std::ldexp(1.0, k), std::ldexp(p.offset, k)};
+      ASSERT_TRUE(std::isfinite(q.offset));
+      ASSERT_EQ(planeSeparates(q, a, b), base) << "pair " << i << " k " << k;
+      ++checked;
+    }
+  }
+  EXPECT_GT(certified, 300);
+  EXPECT_GT(checked, 3000);
 }
 
 /// Two ellipsoids (3,3,5) 8 apart, rotating about random axes (the separating-planes experiment).

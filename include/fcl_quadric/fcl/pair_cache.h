@@ -61,7 +61,7 @@ class PairCache {
     }
   };
   struct Entry {
-    Plane plane;  ///< first object (key.a) on the negative side
+    CachedPlane plane;  ///< first object (key.a) on the negative side
     const void* geometry_a;
     const void* geometry_b;
   };

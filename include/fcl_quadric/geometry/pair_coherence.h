@@ -16,22 +16,27 @@ namespace fcl_quadric {
 class PairCoherence {
  public:
   /// Classify (a, b), using and refreshing the candidate plane:
-  ///  1. if a candidate plane exists and planeSeparates() certifies it, report Separated;
+  ///  1. if a candidate plane exists and CachedPlane::separates() certifies it (the margins of
+  ///     planeSeparates()), report Separated;
   ///  2. else run classifyEllipsoids(); if Separated, compute a new plane for the next frame.
   /// The answer is always identical to classifyEllipsoids(a, b).status except that a certified
   /// plane short-cuts the work (a plane is only trusted when it provably separates).
   /// Never throws for valid Ellipsoid objects.
   Separation query(const Ellipsoid& a, const Ellipsoid& b) {
     ++queries_;
-    if (candidate_ && detail::planeSeparatesFinite(*candidate_, a, b)) {  // stored planes are finite
+    if (candidate_.separates(a, b)) {  // false for the empty record: no branch on it here
       ++plane_hits_;
       return Separation::Separated;
     }
     return classifyAndRemember(a, b);
   }
 
-  const std::optional<Plane>& candidate() const { return candidate_; }
-  void reset() { candidate_.reset(); }
+  /// The plane the next query tries first (the certificate's unit normal, placed midway by
+  /// planeWithNormal()), or std::nullopt.
+  std::optional<Plane> candidate() const {
+    return candidate_.empty() ? std::nullopt : std::optional<Plane>(candidate_.plane());
+  }
+  void reset() { candidate_ = CachedPlane(); }
 
   std::uint64_t queries() const { return queries_; }
   std::uint64_t planeHits() const { return plane_hits_; }
@@ -40,7 +45,7 @@ class PairCoherence {
   /// Step 2 of query(): the full classification, keeping a new (finite) plane if Separated.
   Separation classifyAndRemember(const Ellipsoid& a, const Ellipsoid& b);
 
-  std::optional<Plane> candidate_;
+  CachedPlane candidate_;  ///< empty when there is none
   std::uint64_t queries_ = 0;
   std::uint64_t plane_hits_ = 0;
 };

@@ -55,30 +55,57 @@ Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellips
 /// Certified test that `plane` strictly separates a (negative side) from b (positive side):
 /// support(a, n) < offset < -support(b, -n), each with a relative margin covering rounding.
 /// A plane that cannot be certified is reported as not separating (the caller then runs the
-/// full algebraic test), so a stale plane can never hide a collision. Never throws: a zero,
-/// non-unit or non-finite plane simply fails the certificate (returns false).
+/// full algebraic test), so a stale plane can never hide a collision. Never throws: a zero or
+/// non-finite plane simply fails the certificate (returns false); the normal need not be unit.
+/// The same as CachedPlane::fromPlane(plane)->separates(a, b): callers that test one plane
+/// frame after frame keep the CachedPlane.
 bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
 
+/// A plane prepared for repeated certified tests: the record the plane caches keep
+/// (PairCoherence, PairCache; EECD, Wang et al. 2004 §4, Choi 2008 §4.3). fromPlane() keeps the
+/// plane (a normal with max_i |normal_i| outside [2^-64, 2^64] is first scaled into [1, 2) by a
+/// power of two, exactly, so that no square of the test underflows), and stores with it
+/// the plane-dependent parts of the certificate's rounding margin, tau |n|_1 and tau |offset|;
+/// separates() then does only the pose-dependent work of planeSeparates(), which a cached query
+/// pays every frame. A default-constructed record is empty: its normal is zero and its offset
+/// -1, so separates() is false for every pair without a branch and without a NaN.
+class CachedPlane {
+ public:
+  CachedPlane() = default;
+  /// The record of `plane`, or std::nullopt when the plane can never be certified: a normal or
+  /// offset that is not finite, a zero normal, or an offset that overflows when the normal is
+  /// scaled up. Never throws.
+  static std::optional<CachedPlane> fromPlane(const Plane& plane);
+  /// True for the default-constructed record.
+  bool empty() const { return normal_[0] == 0.0 && normal_[1] == 0.0 && normal_[2] == 0.0; }
+  /// The stored plane: the plane given to fromPlane(), unchanged unless its normal was scaled (the
+  /// same half-spaces; a unit normal comes back as it was). The empty record gives normal 0,
+  /// offset -1.
+  Plane plane() const;
+  /// Certified: true only if the plane strictly separates a (negative side) from b (positive
+  /// side), as planeSeparates(plane(), a, b) (the same margins, docs/algorithms.md section 1,
+  /// "Inter-frame coherence"). False for the empty record. Never throws.
+  bool separates(const Ellipsoid& a, const Ellipsoid& b) const;
+
+ private:
+  friend struct CachedPlaneAccess;
+  double normal_[3] = {0.0, 0.0, 0.0};
+  double offset_ = -1.0;
+  double tau_normal_l1_ = 0.0;   ///< kCertificateRelativeBoundDouble * |normal|_1
+  double tau_abs_offset_ = 0.0;  ///< kCertificateRelativeBoundDouble * |offset|
+};
+
 namespace detail {
-/// True when the plane's normal and offset are all finite (std::isfinite: no floating-point
-/// exception).
-bool isFinitePlane(const Plane& plane);
-/// planeSeparates() for a plane already known to be finite: the hot path of the plane caches
-/// (PairCoherence, PairCache), which check isFinitePlane() once when they store a plane instead
-/// of on every query. \pre isFinitePlane(plane) (else the comparisons raise FE_INVALID on NaN).
-/// On x86-64 with GCC or Clang it runs planeSeparatesFma() when the CPU has FMA (checked once,
-/// before main()), else planeSeparatesGeneric(); the two may differ only for a plane within the
-/// certificate's tolerance of touching, where either may decline (never certify a plane that
-/// does not separate).
-bool planeSeparatesFinite(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
-/// The plane test of EECD (Wang et al. 2004 §4; Choi 2008 §4.3) compiled for the baseline
-/// instruction set (SSE2 on x86-64). \pre isFinitePlane(plane), as planeSeparatesFinite().
-bool planeSeparatesGeneric(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
-/// The same kernel compiled with fused multiply-adds. \pre isFinitePlane(plane) and cpuHasFma()
-/// (on a CPU without FMA it would stop on an illegal instruction; where the build has no FMA
-/// dispatch, it is planeSeparatesGeneric()).
-bool planeSeparatesFma(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b);
-/// True when planeSeparatesFinite() dispatches to planeSeparatesFma().
+/// CachedPlane::separates() compiled for the baseline instruction set (SSE2 on x86-64).
+bool cachedPlaneSeparatesGeneric(const CachedPlane& plane, const Ellipsoid& a, const Ellipsoid& b);
+/// The same kernel compiled with fused multiply-adds. \pre cpuHasFma() (on a CPU without FMA it
+/// would stop on an illegal instruction; where the build has no FMA dispatch, it is
+/// cachedPlaneSeparatesGeneric()).
+bool cachedPlaneSeparatesFma(const CachedPlane& plane, const Ellipsoid& a, const Ellipsoid& b);
+/// True when CachedPlane::separates() (and so planeSeparates()) runs cachedPlaneSeparatesFma():
+/// on x86-64 with GCC or Clang, when the CPU has FMA and AVX (checked once, before main()). The
+/// two kernels may differ only for a plane within the certificate's tolerance of touching, where
+/// either may decline (neither certifies a plane that does not separate).
 bool cpuHasFma();
 }  // namespace detail
 
