@@ -23,11 +23,9 @@ class PairCoherence {
   /// plane short-cuts the work (a plane is only trusted when it provably separates).
   /// Never throws for valid Ellipsoid objects.
   Separation query(const Ellipsoid& a, const Ellipsoid& b) {
-    ++queries_;
-    if (candidate_.separates(a, b)) {  // false for the empty record: no branch on it here
-      ++plane_hits_;
-      return Separation::Separated;
-    }
+    ++queries_;  // the plane hits are counted as queries less full tests: one store on this path
+    if (candidate_.separates(a, b)) return Separation::Separated;  // false for the empty record
+    ++full_tests_;
     return classifyAndRemember(a, b);
   }
 
@@ -39,7 +37,7 @@ class PairCoherence {
   void reset() { candidate_ = CachedPlane(); }
 
   std::uint64_t queries() const { return queries_; }
-  std::uint64_t planeHits() const { return plane_hits_; }
+  std::uint64_t planeHits() const { return queries_ - full_tests_; }
 
  private:
   /// Step 2 of query(): the full classification, keeping a new (finite) plane if Separated.
@@ -47,7 +45,7 @@ class PairCoherence {
 
   CachedPlane candidate_;  ///< empty when there is none
   std::uint64_t queries_ = 0;
-  std::uint64_t plane_hits_ = 0;
+  std::uint64_t full_tests_ = 0;  ///< queries the plane did not answer
 };
 
 }  // namespace fcl_quadric
