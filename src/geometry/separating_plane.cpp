@@ -105,6 +105,7 @@ struct CachedPlaneAccess {
   static double offset(const CachedPlane& c) { return c.offset_; }
   static double tauNormalL1(const CachedPlane& c) { return c.tau_normal_l1_; }
   static double tauAbsOffset(const CachedPlane& c) { return c.tau_abs_offset_; }
+  static bool prepare(const Plane& plane, CachedPlane* out);
   static CachedPlane make(const double n[3], double offset) {
     const double tau = tolerance::kCertificateRelativeBoundDouble;
     CachedPlane c;
@@ -116,27 +117,36 @@ struct CachedPlaneAccess {
   }
 };
 
-std::optional<CachedPlane> CachedPlane::fromPlane(const Plane& plane) {
+// The record of `plane` in *out, or false when the plane can never be certified (fromPlane()).
+bool CachedPlaneAccess::prepare(const Plane& plane, CachedPlane* out) {
   const Eigen::Vector3d& n = plane.normal;
   if (!(std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]) && std::isfinite(plane.offset))) {
-    return std::nullopt;
+    return false;
   }
-  const double big = n.cwiseAbs().maxCoeff();
-  if (!(big > 0.0)) return std::nullopt;  // a zero normal never separates
+  const double big = std::max(std::fabs(n[0]), std::max(std::fabs(n[1]), std::fabs(n[2])));
+  if (!(big > 0.0)) return false;  // a zero normal never separates
   // A normal far from unit length is scaled by a power of two (exact) into [1, 2): with the radii
   // in [kMinRadius, kMaxLength], max |n_i| in [2^-64, 2^64] keeps every square of the test (the
   // support's m_j^2 >= (kMinRadius 2^-64)^2 / 3) far above the subnormal range, where rounding
   // would stop being relative. Normals in that range, unit ones included, are stored unchanged.
-  int k = 0;
+  double scaled[3] = {n[0], n[1], n[2]};
+  double offset = plane.offset;
   if (big < 0x1p-64 || big > 0x1p64) {
     int e = 0;
     std::frexp(big, &e);  // big = f 2^e, f in [0.5, 1)
-    k = 1 - e;
+    const int k = 1 - e;
+    for (double& x : scaled) x = std::ldexp(x, k);
+    offset = std::ldexp(offset, k);
+    if (!std::isfinite(offset)) return false;  // beyond every centre: cannot separate a from b
   }
-  const double scaled[3] = {std::ldexp(n[0], k), std::ldexp(n[1], k), std::ldexp(n[2], k)};
-  const double offset = std::ldexp(plane.offset, k);
-  if (!std::isfinite(offset)) return std::nullopt;  // beyond every centre: cannot separate a from b
-  return CachedPlaneAccess::make(scaled, offset);
+  *out = make(scaled, offset);
+  return true;
+}
+
+std::optional<CachedPlane> CachedPlane::fromPlane(const Plane& plane) {
+  CachedPlane c;
+  if (!CachedPlaneAccess::prepare(plane, &c)) return std::nullopt;
+  return c;
 }
 
 Plane CachedPlane::plane() const {
@@ -218,8 +228,8 @@ bool CachedPlane::separates(const Ellipsoid& a, const Ellipsoid& b) const {
 }
 
 bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {
-  const std::optional<CachedPlane> c = CachedPlane::fromPlane(plane);
-  return c && c->separates(a, b);
+  CachedPlane c;
+  return CachedPlaneAccess::prepare(plane, &c) && c.separates(a, b);
 }
 
 std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipsoid& b) {
