@@ -83,8 +83,8 @@ class CachedPlane {
   /// offset -1.
   Plane plane() const;
   /// Certified: true only if the plane strictly separates a (negative side) from b (positive
-  /// side), as planeSeparates(plane(), a, b) (the same margins, docs/algorithms.md section 1,
-  /// "Inter-frame coherence"). False for the empty record. Never throws.
+  /// side), as planeSeparates(plane(), a, b) (the same margins, docs/algorithms.md section 2,
+  /// "Coherence"). False for the empty record. Never throws.
   bool separates(const Ellipsoid& a, const Ellipsoid& b) const;
 
  private:
