@@ -99,22 +99,11 @@ Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellips
 using detail::Lanes2;
 using detail::lanes;
 
-/// The kernels' view of a CachedPlane's fields.
+/// The code that reads and writes a CachedPlane's fields: its preparation and the kernel.
 struct CachedPlaneAccess {
-  static const double* normal(const CachedPlane& c) { return c.normal_; }
-  static double offset(const CachedPlane& c) { return c.offset_; }
-  static double tauNormalL1(const CachedPlane& c) { return c.tau_normal_l1_; }
-  static double tauAbsOffset(const CachedPlane& c) { return c.tau_abs_offset_; }
   static bool prepare(const Plane& plane, CachedPlane* out);
-  static CachedPlane make(const double n[3], double offset) {
-    const double tau = tolerance::kCertificateRelativeBoundDouble;
-    CachedPlane c;
-    for (int i = 0; i < 3; ++i) c.normal_[i] = n[i];
-    c.offset_ = offset;
-    c.tau_normal_l1_ = tau * (std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]));
-    c.tau_abs_offset_ = tau * std::fabs(offset);
-    return c;
-  }
+  static inline __attribute__((always_inline)) bool kernel(const CachedPlane& plane, const Ellipsoid& a,
+                                                           const Ellipsoid& b);
 };
 
 // The record of `plane` in *out, or false when the plane can never be certified (fromPlane()).
@@ -139,7 +128,11 @@ bool CachedPlaneAccess::prepare(const Plane& plane, CachedPlane* out) {
     offset = std::ldexp(offset, k);
     if (!std::isfinite(offset)) return false;  // beyond every centre: cannot separate a from b
   }
-  *out = make(scaled, offset);
+  const double tau = tolerance::kCertificateRelativeBoundDouble;
+  for (int i = 0; i < 3; ++i) out->normal_[i] = scaled[i];
+  out->offset_ = offset;
+  out->tau_normal_l1_ = tau * (std::fabs(scaled[0]) + std::fabs(scaled[1]) + std::fabs(scaled[2]));
+  out->tau_abs_offset_ = tau * std::fabs(offset);
   return true;
 }
 
@@ -174,12 +167,9 @@ Plane CachedPlane::plane() const {
 // then rounded fewer times, Higham, Accuracy and Stability, §3.1), so the same source is also
 // compiled with FMA enabled (cachedPlaneSeparatesFma below): which of the two runs may change
 // whether a plane within ~tau of tangency is certified, never a certified answer.
-namespace {
-
-inline __attribute__((always_inline)) bool cachedPlaneKernel(const CachedPlane& plane, const Ellipsoid& a,
-                                                             const Ellipsoid& b) {
+bool CachedPlaneAccess::kernel(const CachedPlane& plane, const Ellipsoid& a, const Ellipsoid& b) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
-  const double* n = CachedPlaneAccess::normal(plane);
+  const double* n = plane.normal_;
   const Eigen::Vector3d& ca = a.center();
   const Eigen::Vector3d& cb = b.center();
   const Lanes2 n0 = lanes(n[0], n[0]), n1 = lanes(n[1], n[1]), n2 = lanes(n[2], n[2]);
@@ -192,11 +182,12 @@ inline __attribute__((always_inline)) bool cachedPlaneKernel(const CachedPlane& 
   const Lanes2 p0 = n0 * lanes(ca[0], cb[0]), p1 = n1 * lanes(ca[1], cb[1]), p2 = n2 * lanes(ca[2], cb[2]);
   const Lanes2 nc = p0 + p1 + p2;
   const Lanes2 abs_sum = detail::absLanes(p0) + detail::absLanes(p1) + detail::absLanes(p2);
-  const Lanes2 margin = tau * abs_sum + (CachedPlaneAccess::tauNormalL1(plane) * (r[0] + r[1] + r[2]) +
-                                         CachedPlaneAccess::tauAbsOffset(plane));
-  const Lanes2 g = detail::negateLane1(CachedPlaneAccess::offset(plane) - nc) - margin;
+  const Lanes2 margin = tau * abs_sum + (plane.tau_normal_l1_ * (r[0] + r[1] + r[2]) + plane.tau_abs_offset_);
+  const Lanes2 g = detail::negateLane1(plane.offset_ - nc) - margin;
   return detail::bothLanes((g > 0.0) & (g * g > msq * (1.0 + 4.0 * tau)));
 }
+
+namespace {
 
 #if FCL_QUADRIC_FMA_DISPATCH
 /// The CPU runs FMA and AVX and the OS saves their registers (libgcc's feature check includes
@@ -213,18 +204,18 @@ constexpr bool kCpuHasFma = false;  // no dispatch: one kernel, the build's own
 }  // namespace
 
 bool detail::cachedPlaneSeparatesGeneric(const CachedPlane& plane, const Ellipsoid& a, const Ellipsoid& b) {
-  return cachedPlaneKernel(plane, a, b);
+  return CachedPlaneAccess::kernel(plane, a, b);
 }
 
 FCL_QUADRIC_TARGET_FMA bool detail::cachedPlaneSeparatesFma(const CachedPlane& plane, const Ellipsoid& a,
                                                             const Ellipsoid& b) {
-  return cachedPlaneKernel(plane, a, b);
+  return CachedPlaneAccess::kernel(plane, a, b);
 }
 
 bool detail::cpuHasFma() { return kCpuHasFma; }
 
 bool CachedPlane::separates(const Ellipsoid& a, const Ellipsoid& b) const {
-  return kCpuHasFma ? detail::cachedPlaneSeparatesFma(*this, a, b) : cachedPlaneKernel(*this, a, b);
+  return kCpuHasFma ? detail::cachedPlaneSeparatesFma(*this, a, b) : CachedPlaneAccess::kernel(*this, a, b);
 }
 
 bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {

@@ -96,7 +96,9 @@ class CachedPlane {
 };
 
 namespace detail {
-/// CachedPlane::separates() compiled for the baseline instruction set (SSE2 on x86-64).
+/// CachedPlane::separates(), the plane test of EECD (Wang et al. 2004 §4; Choi 2008 §4.3),
+/// compiled for the baseline instruction set (SSE2 on x86-64). Any record, the empty one included;
+/// never throws.
 bool cachedPlaneSeparatesGeneric(const CachedPlane& plane, const Ellipsoid& a, const Ellipsoid& b);
 /// The same kernel compiled with fused multiply-adds. \pre cpuHasFma() (on a CPU without FMA it
 /// would stop on an illegal instruction; where the build has no FMA dispatch, it is
