@@ -3,7 +3,7 @@
 # docs/benchmarks.md. benchmarks/update_docs.sh calls this script and copies the end-of-run blocks
 # of its outputs into docs/benchmarks.md.
 # Usage: benchmarks/run_benchmarks.sh BUILD_DIR [OUTPUT_DIR (default BUILD_DIR/results)]
-# Env: MIN_TIME (s, default 0.2), REPS (default 3), PAIRS (default 100000), TABLE1_SEEDS (default
+# Env: MIN_TIME (s, default 0.2), REPS (default 5), PAIRS (default 100000), TABLE1_SEEDS (default
 #      16), FRAMES (bench_fcl_scenes, default 1000), FRAMES_1000 (its 1,000-ellipsoid sequence,
 #      default FRAMES), QUERIES (bench_fcl_scenes, default 400); smaller values for smoke runs.
 #      CCD_FRAMES (bench_ccd boxing frames, default 1000), CCD_RANDOM (bench_ccd random pairs,
@@ -25,7 +25,7 @@ src=$(cd "$(dirname "$0")/.." && pwd)
 build=$1
 out=${2:-${build}/results}
 min_time=${MIN_TIME:-0.2}
-reps=${REPS:-3}
+reps=${REPS:-5}
 pairs=${PAIRS:-100000}
 table1_seeds=${TABLE1_SEEDS:-16}
 frames=${FRAMES:-1000}
@@ -95,6 +95,12 @@ os=$(sed -n 's/^PRETTY_NAME="\(.*\)"$/\1/p' /etc/os-release 2>/dev/null || true)
     "FRAMES=${frames} FRAMES_1000=${frames_1000} QUERIES=${queries} CCD_FRAMES=${ccd_frames} CCD_RANDOM=${ccd_random}"
   echo "programs: ${programs[*]}"
   echo "load before: $(uptime | sed 's/^ *//')"
+  # The timed loops assume an otherwise idle machine: a run started while something else is
+  # running (a build, tests, another benchmark) says so, above its numbers.
+  read -r load1 _ </proc/loadavg
+  if awk -v l="${load1}" 'BEGIN { exit !(l > 0.5) }'; then
+    echo "WARNING: 1-minute load ${load1} > 0.5 at the start: the machine was not idle, numbers may be noisy"
+  fi
 } | tee "${out}/run_info.txt"
 common=(--benchmark_min_time="${min_time}" --benchmark_repetitions="${reps}"
         --benchmark_report_aggregates_only=true --benchmark_color=false --benchmark_out_format=json)

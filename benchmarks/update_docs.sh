@@ -2,7 +2,8 @@
 # Regenerates every measured number of docs/benchmarks.md from one real run.
 #
 # Runs benchmarks/run_benchmarks.sh BUILD_DIR into benchmarks/results/TAG/ (the folder is replaced
-# when the run succeeds), then replaces everything between the marker lines
+# when the run succeeds; the files of programs this run did not run, e.g. bench_quadric_shapes.txt,
+# are carried over from the old folder), then replaces everything between the marker lines
 #   <!-- BEGIN GENERATED: NAME -->
 #   <!-- END GENERATED: NAME -->
 # of docs/benchmarks.md with block NAME of the run's output in a ```text fence. Blocks:
@@ -78,6 +79,17 @@ if [[ "${SKIP_RUN:-0}" != 1 ]]; then
   mkdir -p "${src}/benchmarks/results"
   staging=$(mktemp -d "${src}/benchmarks/results/.${tag}.run.XXXXXX")
   "${src}/benchmarks/run_benchmarks.sh" "${build}" "${staging}" || die "benchmark run failed"
+  # Keep the old folder's files of programs this run did not run: a file belongs to the program
+  # its name starts with (bench_ccd.txt, bench_ccd.json and bench_ccd_run_info.txt to bench_ccd).
+  if [[ -d "${results}" ]]; then
+    for f in "${results}"/*; do
+      [[ -f "${f}" ]] || continue
+      name=$(basename "${f}")
+      program=${name%%.*}
+      program=${program%_run_info}
+      if ! compgen -G "${staging}/${program}.*" >/dev/null; then cp -p "${f}" "${staging}/"; fi
+    done
+  fi
   rm -rf "${results}"
   mv "${staging}" "${results}"
   staging=""
