@@ -806,17 +806,17 @@ int main(int argc, char** argv) {
   static Arm arm = makeArm();
   for (ArmPair& p : arm.pairs) checkArmPair(&p);
 
-  benchmark::RegisterBenchmark("Boxing/motions", benchMotions, &scene);
+  registerBenchmark("Boxing/motions", benchMotions, &scene);
   for (Setup s : {Setup::kCulled, Setup::kNoCull, Setup::kAffine})
-    benchmark::RegisterBenchmark((std::string("Boxing/") + setupName(s)).c_str(), benchBoxing, &scene, s);
+    registerBenchmark((std::string("Boxing/") + setupName(s)).c_str(), benchBoxing, &scene, s);
   for (const PairSetReport& s : sets) {
     if (s.pairs.empty()) continue;
-    benchmark::RegisterBenchmark(("Fcl/" + s.name + "/fcl_quadric").c_str(), benchPairSet, &s, true);
-    benchmark::RegisterBenchmark(("Fcl/" + s.name + "/fcl_naive").c_str(), benchPairSet, &s, false);
+    registerBenchmark(("Fcl/" + s.name + "/fcl_quadric").c_str(), benchPairSet, &s, true);
+    registerBenchmark(("Fcl/" + s.name + "/fcl_naive").c_str(), benchPairSet, &s, false);
   }
   for (const ArmPair& p : arm.pairs) {
-    benchmark::RegisterBenchmark(("ArmF/" + p.name).c_str(), benchArmF, &p);
-    benchmark::RegisterBenchmark(("Arm/" + p.name).c_str(), benchArmSolve, &p);
+    registerBenchmark(("ArmF/" + p.name).c_str(), benchArmF, &p);
+    registerBenchmark(("Arm/" + p.name).c_str(), benchArmSolve, &p);
   }
 
   SummaryReporter reporter(console);

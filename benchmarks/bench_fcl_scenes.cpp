@@ -432,12 +432,12 @@ int main(int argc, char** argv) {
     const MovingReport* rep = &moving_reports[i];
     for (Peer p : kPeers) {
       const std::string name = "Moving/N" + std::to_string(s->size()) + "/" + peerName(p);
-      benchmark::RegisterBenchmark(name.c_str(), benchMoving, s, p, rep);
+      registerBenchmark(name.c_str(), benchMoving, s, p, rep);
     }
   }
   for (const QueryScene* s : query_scenes) {
-    benchmark::RegisterBenchmark((s->group + "/fcl_quadric").c_str(), benchQuery, s, true);
-    benchmark::RegisterBenchmark((s->group + "/fcl_libccd").c_str(), benchQuery, s, false);
+    registerBenchmark((s->group + "/fcl_quadric").c_str(), benchQuery, s, true);
+    registerBenchmark((s->group + "/fcl_libccd").c_str(), benchQuery, s, false);
   }
 
   SummaryReporter reporter(console);

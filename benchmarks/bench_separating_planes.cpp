@@ -421,9 +421,9 @@ int main(int argc, char** argv) {
   for (double omega : kTable1Omegas) rotating.push_back(makeRotatingScene(omega, n_sequences));
   for (const RotatingScene& s : rotating) {
     const std::string g = s.group();
-    benchmark::RegisterBenchmark((g + "/fcl_quadric").c_str(), benchTable1Plain, &s);
-    benchmark::RegisterBenchmark((g + "/pair_coherence").c_str(), benchTable1Coherence, &s);
-    benchmark::RegisterBenchmark((g + "/fcl_libccd").c_str(), benchTable1Fcl, &s);
+    registerBenchmark((g + "/fcl_quadric").c_str(), benchTable1Plain, &s);
+    registerBenchmark((g + "/pair_coherence").c_str(), benchTable1Coherence, &s);
+    registerBenchmark((g + "/fcl_libccd").c_str(), benchTable1Fcl, &s);
   }
 
   // ---- Table 2
@@ -460,15 +460,15 @@ int main(int argc, char** argv) {
     const OrbitPeer* p = &peers[i];
     const std::string name = "Table2/" + p->name;
     if (i == 0) {
-      benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) {
+      registerBenchmark(name.c_str(), [=](benchmark::State& st) {
         benchOrbit(st, orbit, *p, no_reset, plain);
       });
     } else if (i == 1) {
-      benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) {
+      registerBenchmark(name.c_str(), [=](benchmark::State& st) {
         benchOrbit(st, orbit, *p, reset_coherence, eecd);
       });
     } else {
-      benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& st) {
+      registerBenchmark(name.c_str(), [=](benchmark::State& st) {
         benchOrbit(st, orbit, *p, no_reset, [p](int k) {
           return fclCollide(p->a.get(), orbit.X_WA[k], p->b.get(), orbit.X_WB, fcl::GST_LIBCCD);
         });

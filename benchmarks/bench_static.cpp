@@ -611,49 +611,49 @@ int main(int argc, char** argv) {
   countDistanceAgreement(distance_separated, ours_distance_separated, fcl::GST_INDEP,
                          &rep.distance_indep_separated);
 
-  benchmark::RegisterBenchmark("Static/Collide/fcl_quadric", benchStatus, &scene);
-  benchmark::RegisterBenchmark("Static/Collide/certificate", benchClassify, &scene);
-  benchmark::RegisterBenchmark("Static/Collide/fcl_libccd", benchFclCollide, &scene, fcl::GST_LIBCCD,
+  registerBenchmark("Static/Collide/fcl_quadric", benchStatus, &scene);
+  registerBenchmark("Static/Collide/certificate", benchClassify, &scene);
+  registerBenchmark("Static/Collide/fcl_libccd", benchFclCollide, &scene, fcl::GST_LIBCCD,
                                &rep.collide_libccd);
-  benchmark::RegisterBenchmark("Static/Collide/fcl_indep", benchFclCollide, &scene, fcl::GST_INDEP,
+  registerBenchmark("Static/Collide/fcl_indep", benchFclCollide, &scene, fcl::GST_INDEP,
                                &rep.collide_indep);
-  benchmark::RegisterBenchmark("Static/Collide/bullet", benchBulletCollide, &scene, &rep.collide_bullet);
-  benchmark::RegisterBenchmark("Static/CollideHot/fcl_quadric", benchStatus, &hot_all);
-  benchmark::RegisterBenchmark("Static/CollideHot/certificate", benchClassify, &hot_all);
-  benchmark::RegisterBenchmark("Static/CollideHot/fcl_libccd", benchFclCollide, &hot_all, fcl::GST_LIBCCD,
+  registerBenchmark("Static/Collide/bullet", benchBulletCollide, &scene, &rep.collide_bullet);
+  registerBenchmark("Static/CollideHot/fcl_quadric", benchStatus, &hot_all);
+  registerBenchmark("Static/CollideHot/certificate", benchClassify, &hot_all);
+  registerBenchmark("Static/CollideHot/fcl_libccd", benchFclCollide, &hot_all, fcl::GST_LIBCCD,
                                nullptr);
   if (separated.size() > 0) {
-    benchmark::RegisterBenchmark("Static/CollideSeparated/fcl_quadric", benchStatus, &separated);
-    benchmark::RegisterBenchmark("Static/CollideSeparated/cached_plane_query", benchCachedPlane,
+    registerBenchmark("Static/CollideSeparated/fcl_quadric", benchStatus, &separated);
+    registerBenchmark("Static/CollideSeparated/cached_plane_query", benchCachedPlane,
                                  &separated);
-    benchmark::RegisterBenchmark("Static/CollideSeparated/memory_floor", benchCachedPlaneMemoryFloor,
+    registerBenchmark("Static/CollideSeparated/memory_floor", benchCachedPlaneMemoryFloor,
                                  &separated);
-    benchmark::RegisterBenchmark("Static/CollideSeparated/plane_separates", benchPlaneSeparates,
+    registerBenchmark("Static/CollideSeparated/plane_separates", benchPlaneSeparates,
                                  &separated);
-    benchmark::RegisterBenchmark("Static/CollideSeparated/separating_plane", benchSeparatingPlane,
+    registerBenchmark("Static/CollideSeparated/separating_plane", benchSeparatingPlane,
                                  &separated);
-    benchmark::RegisterBenchmark("Static/CollideSeparated/fcl_libccd", benchFclCollide, &separated,
+    registerBenchmark("Static/CollideSeparated/fcl_libccd", benchFclCollide, &separated,
                                  fcl::GST_LIBCCD, nullptr);
-    benchmark::RegisterBenchmark("Static/CollideSeparatedHot/fcl_quadric", benchStatus, &hot);
-    benchmark::RegisterBenchmark("Static/CollideSeparatedHot/cached_plane_query", benchCachedPlane,
+    registerBenchmark("Static/CollideSeparatedHot/fcl_quadric", benchStatus, &hot);
+    registerBenchmark("Static/CollideSeparatedHot/cached_plane_query", benchCachedPlane,
                                  &hot);
-    benchmark::RegisterBenchmark("Static/CollideSeparatedHot/memory_floor", benchCachedPlaneMemoryFloor, &hot);
+    registerBenchmark("Static/CollideSeparatedHot/memory_floor", benchCachedPlaneMemoryFloor, &hot);
   }
-  benchmark::RegisterBenchmark("Static/Distance/fcl_quadric", benchSignedDistance, &scene);
-  benchmark::RegisterBenchmark("Static/Distance/fcl_libccd", benchFclDistance, &scene, fcl::GST_LIBCCD,
+  registerBenchmark("Static/Distance/fcl_quadric", benchSignedDistance, &scene);
+  registerBenchmark("Static/Distance/fcl_libccd", benchFclDistance, &scene, fcl::GST_LIBCCD,
                                &rep.distance_libccd);
-  benchmark::RegisterBenchmark("Static/Distance/bullet", benchBulletDistance, &scene, &rep.distance_bullet);
+  registerBenchmark("Static/Distance/bullet", benchBulletDistance, &scene, &rep.distance_bullet);
   if (overlapping.size() > 0) {
-    benchmark::RegisterBenchmark("Static/DistanceOverlapping/fcl_quadric", benchSignedDistance, &overlapping);
-    benchmark::RegisterBenchmark("Static/DistanceOverlapping/fcl_libccd", benchFclDistance, &overlapping,
+    registerBenchmark("Static/DistanceOverlapping/fcl_quadric", benchSignedDistance, &overlapping);
+    registerBenchmark("Static/DistanceOverlapping/fcl_libccd", benchFclDistance, &overlapping,
                                  fcl::GST_LIBCCD, &rep.distance_libccd_overlapping);
   }
   if (distance_separated.size() > 0) {
-    benchmark::RegisterBenchmark("Static/DistanceSeparated/fcl_quadric", benchSignedDistance,
+    registerBenchmark("Static/DistanceSeparated/fcl_quadric", benchSignedDistance,
                                  &distance_separated);
-    benchmark::RegisterBenchmark("Static/DistanceSeparated/fcl_libccd", benchFclDistance,
+    registerBenchmark("Static/DistanceSeparated/fcl_libccd", benchFclDistance,
                                  &distance_separated, fcl::GST_LIBCCD, &rep.distance_libccd_separated);
-    benchmark::RegisterBenchmark("Static/DistanceSeparated/fcl_indep", benchFclDistance,
+    registerBenchmark("Static/DistanceSeparated/fcl_indep", benchFclDistance,
                                  &distance_separated, fcl::GST_INDEP, &rep.distance_indep_separated);
   }
 

@@ -17,6 +17,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -161,17 +162,32 @@ inline void setPerItemTime(benchmark::State& state, double items_per_iteration,
       benchmark::Counter(items, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+/// The names given to registerBenchmark(), in registration order: the order of the summary table
+/// whatever order the runs come in (--benchmark_enable_random_interleaving shuffles them).
+inline std::vector<std::string>& registrationOrder() {
+  static std::vector<std::string> names;
+  return names;
+}
+
+/// benchmark::RegisterBenchmark(name, ...), remembering the name for the summary's order.
+template <class... Args>
+benchmark::internal::Benchmark* registerBenchmark(const char* name, Args&&... args) {
+  registrationOrder().emplace_back(name);
+  return benchmark::RegisterBenchmark(name, std::forward<Args>(args)...);
+}
+
 /// Console reporter that (1) adds `x_ours` = (time per item) / (time per item of the group's
-/// "<group>/fcl_quadric" run) to every other member of the group, and (2) remembers every run for
-/// a summary table printed by printSummary(). Group = name up to the last '/'. With
-/// --benchmark_repetitions the summary keeps the median aggregate.
+/// "<group>/fcl_quadric" run) to every other member of the group whose baseline has already run
+/// (with random interleaving it may run later: then the console line has no x_ours, the summary
+/// still has the ratio), and (2) remembers every run for a summary table printed by
+/// printSummary(), in registration order (registerBenchmark()). Group = name up to the last '/'.
+/// With --benchmark_repetitions the summary keeps the median aggregate.
 class SummaryReporter : public benchmark::ConsoleReporter {
  public:
   struct Row {
     std::string name;
     double ns_per_item = 0.0;
-    double ratio = 0.0;  ///< 0 when there is no baseline
-    double cv = -1.0;    ///< coefficient of variation of CPU time over repetitions; < 0: none
+    double cv = -1.0;  ///< coefficient of variation of CPU time over repetitions; < 0: none
   };
 
   explicit SummaryReporter(OutputOptions options) : ConsoleReporter(options) {}
@@ -194,13 +210,9 @@ class SummaryReporter : public benchmark::ConsoleReporter {
       if (it == run.counters.end() || !(it->second.value > 0.0)) continue;
       const double ns = 1e9 / it->second.value;
       const std::string name = run.run_name.str();
-      const std::string group = name.substr(0, name.rfind('/'));
-      Row row{name, ns, 0.0, -1.0};
-      if (endsWith(name, kOursSuffix)) {
-        baseline_[group] = ns;
-      } else if (const auto b = baseline_.find(group); b != baseline_.end()) {
-        row.ratio = ns / b->second;
-        run.counters["x_ours"] = benchmark::Counter(row.ratio);
+      const Row row{name, ns, -1.0};
+      if (const double baseline = nsPerItem(baselineOf(name)); baseline > 0.0 && !isBaseline(name)) {
+        run.counters["x_ours"] = benchmark::Counter(ns / baseline);
       }
       const auto same = std::find_if(rows_.begin(), rows_.end(), [&](const Row& r) { return r.name == name; });
       if (same != rows_.end()) {
@@ -212,7 +224,6 @@ class SummaryReporter : public benchmark::ConsoleReporter {
     ConsoleReporter::ReportRuns(copy);
   }
 
-  const std::vector<Row>& rows() const { return rows_; }
   /// Time per item of the run with this exact name, or 0 if it did not run.
   double nsPerItem(const std::string& name) const {
     for (const Row& r : rows_) {
@@ -227,7 +238,8 @@ class SummaryReporter : public benchmark::ConsoleReporter {
     return n > 0.0 && d > 0.0 ? n / d : 0.0;
   }
 
-  /// Prints "name | ns per item | x fcl_quadric | CV" for every run, in run order.
+  /// Prints "name | ns per item | x fcl_quadric | CV" for every run, in registration order (runs
+  /// of names not registered through registerBenchmark() last, in run order).
   void printSummary(const char* title, const char* item) const {
     bool any_cv = false;
     for (const Row& r : rows_) any_cv = any_cv || r.cv >= 0.0;
@@ -236,9 +248,14 @@ class SummaryReporter : public benchmark::ConsoleReporter {
                        : "one run, no repetitions");
     std::printf("%-52s %14s %14s %8s\n", "benchmark", (std::string("ns/") + item).c_str(), "x fcl_quadric",
                 "CV");
-    for (const Row& r : rows_) {
+    std::vector<Row> rows = rows_;
+    std::stable_sort(rows.begin(), rows.end(),
+                     [](const Row& x, const Row& y) { return registrationIndex(x.name) < registrationIndex(y.name); });
+    for (const Row& r : rows) {
       char ratio_text[32] = "-", cv_text[32] = "-";
-      if (r.ratio > 0.0) std::snprintf(ratio_text, sizeof ratio_text, "%.2f", r.ratio);
+      if (const double q = ratio(r.name, baselineOf(r.name)); q > 0.0 && !isBaseline(r.name)) {
+        std::snprintf(ratio_text, sizeof ratio_text, "%.2f", q);
+      }
       if (r.cv >= 0.0) std::snprintf(cv_text, sizeof cv_text, "%.1f %%", 100.0 * r.cv);
       std::printf("%-52s %14.1f %14s %8s\n", r.name.c_str(), r.ns_per_item, ratio_text, cv_text);
     }
@@ -246,11 +263,24 @@ class SummaryReporter : public benchmark::ConsoleReporter {
   }
 
  private:
+  /// "<group>/fcl_quadric" for a run "<group>/<peer>".
+  static std::string baselineOf(const std::string& name) {
+    return name.substr(0, name.rfind('/')) + kOursSuffix;
+  }
+  static bool isBaseline(const std::string& name) { return endsWith(name, kOursSuffix); }
+  /// The position of the registered name a run's name is or starts with ("name/arg" for a
+  /// benchmark with arguments); unregistered names sort last.
+  static std::size_t registrationIndex(const std::string& run_name) {
+    const std::vector<std::string>& order = registrationOrder();
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      if (run_name == order[i] || run_name.compare(0, order[i].size() + 1, order[i] + "/") == 0) return i;
+    }
+    return order.size();
+  }
   static bool endsWith(const std::string& s, const char* suffix) {
     const std::size_t n = std::strlen(suffix);
     return s.size() >= n && s.compare(s.size() - n, n, suffix) == 0;
   }
-  std::map<std::string, double> baseline_;
   std::vector<Row> rows_;
 };
 
