@@ -90,10 +90,10 @@ TEST(EllipsoidSeparation, AgreesWithExactOracleOnAnchorDistribution) {
   EXPECT_NEAR(collide / double(n), 0.374, 0.03);
 }
 
-/// True iff the solid e lies strictly on the side s * (n.x - c) < 0 of the plane n.x = c, decided
-/// exactly: the solid is { p + R^-T S y : |y| <= 1 }, so max over it of s n.x is s n.p + |S R^-1 n|,
-/// and R^-1 n = z solves R z = n (Cramer's rule in rationals).
-bool exactlyBelowPlane(const Ellipsoid& e, const Eigen::Vector3d& n, const test::Rational& c, int s) {
+/// The parts of the support of the solid e along n, exactly: the solid is { p + R^-T S y : |y| <= 1 },
+/// so max over it of n.x is n.p + |S R^-1 n|; *np = n.p and *h2 = |S R^-1 n|^2, where R^-1 n = z
+/// solves R z = n (Cramer's rule in rationals).
+void exactSupportParts(const Ellipsoid& e, const Eigen::Vector3d& n, test::Rational* np, test::Rational* h2) {
   test::Rational R[3][3], nn[3];
   for (int i = 0; i < 3; ++i) {
     nn[i] = test::Rational(n[i]);
@@ -104,18 +104,37 @@ bool exactlyBelowPlane(const Ellipsoid& e, const Eigen::Vector3d& n, const test:
            M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
   };
   const test::Rational det = det3(R);
-  test::Rational h2 = 0;  // |S z|^2
+  *h2 = 0;
   for (int k = 0; k < 3; ++k) {
     test::Rational Mk[3][3];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) Mk[i][j] = j == k ? nn[i] : R[i][j];
     const test::Rational zk = det3(Mk) / det * test::Rational(e.radii()[k]);
-    h2 += zk * zk;
+    *h2 += zk * zk;
   }
-  test::Rational np = 0;
-  for (int i = 0; i < 3; ++i) np += nn[i] * test::Rational(e.center()[i]);
+  *np = 0;
+  for (int i = 0; i < 3; ++i) *np += nn[i] * test::Rational(e.center()[i]);
+}
+
+/// True iff the solid e lies strictly on the side s * (n.x - c) < 0 of the plane n.x = c, decided
+/// exactly.
+bool exactlyBelowPlane(const Ellipsoid& e, const Eigen::Vector3d& n, const test::Rational& c, int s) {
+  test::Rational np, h2;
+  exactSupportParts(e, n, &np, &h2);
   const test::Rational gap = s > 0 ? c - np : np - c;  // distance of the centre from the plane, times |n|
   return gap > 0 && gap * gap > h2;
+}
+
+/// True iff h_a(n) < -h_b(-n) exactly, i.e. some plane with normal n has a strictly on its negative
+/// side and b strictly on its positive side: with G = n.p_b - n.p_a and H_e = |S_e R_e^-1 n|^2 the
+/// condition G > sqrt(H_a) + sqrt(H_b), squared twice.
+bool exactlySeparatedAlong(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& n) {
+  test::Rational npa, ha, npb, hb;
+  exactSupportParts(a, n, &npa, &ha);
+  exactSupportParts(b, n, &npb, &hb);
+  const test::Rational G = npb - npa;
+  const test::Rational u = G * G - ha - hb;
+  return G > 0 && u > 0 && u * u > 4 * ha * hb;
 }
 
 // The certificates of the pre-tests (precision_stage -1: the bounding balls, tests 1-5) are checked
@@ -159,6 +178,46 @@ TEST(EllipsoidSeparation, PreTestCertificatesHoldExactly) {
   EXPECT_GT(checked, 7000);
   EXPECT_GT(overlapping, 2000);
   EXPECT_GT(separated, 2000);
+}
+
+// The certificates of the pencil stages (precision_stage 0 and 1), checked exactly as the
+// pre-tests' above: an Overlapping witness is strictly inside both solids, and a Separated normal
+// n satisfies h_a(n) < -h_b(-n) (SeparationCertificate::normal's contract; docs/algorithms.md §1:
+// the gradient of q_A at the pencil's witness separates when psi > 0, up to the witness's
+// residual). The pairs are the ones the pre-tests leave open: about 2% of the ANCHORS pairs, more
+// of the issue's aspect ratios to 1:1000.
+TEST(EllipsoidSeparation, PencilStageCertificatesHoldExactly) {
+  std::mt19937_64 anchors(43), issue(12);
+  int checked = 0, wrong = 0, overlapping = 0, separated = 0;
+  for (int i = 0; i < 60000; ++i) {
+    const bool from_anchors = i % 2 == 0;
+    Ellipsoid a = Ellipsoid::sphere(1.0, Eigen::Vector3d::Zero()), b = a;
+    if (from_anchors) {
+      a = test::anchorEllipsoid(anchors);
+      b = test::anchorEllipsoid(anchors);
+    } else {
+      std::tie(a, b) = randomPair(issue);
+    }
+    const SeparationCertificate c = classifyEllipsoids(a, b);
+    if (c.precision_stage < 0 || c.precision_stage > 1) continue;
+    ++checked;
+    bool ok = false;
+    if (c.status == Separation::Overlapping) {
+      ++overlapping;
+      ok = test::exactImplicit(a, c.witness) < 0 && test::exactImplicit(b, c.witness) < 0;
+    } else if (c.status == Separation::Separated) {
+      ++separated;
+      ok = exactlySeparatedAlong(a, b, c.normal);
+    }
+    if (!ok && ++wrong <= 5)
+      ADD_FAILURE() << "pair " << i << " (" << (from_anchors ? "anchors" : "issue") << "): stage "
+                    << c.precision_stage << " " << toString(c.status) << " certificate does not hold; witness "
+                    << c.witness.transpose() << ", normal " << c.normal.transpose();
+  }
+  EXPECT_EQ(wrong, 0);
+  std::printf("%d pencil-stage certificates checked: %d overlapping, %d separated\n", checked, overlapping, separated);
+  EXPECT_GT(overlapping, 300);
+  EXPECT_GT(separated, 300);
 }
 
 /// Near-tangent pairs: put b's centre at c_a + s d and find by bisection on s, with the exact
