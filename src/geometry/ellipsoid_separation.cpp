@@ -269,7 +269,7 @@ bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d
       // (concave and homogeneous; positive exactly for the directions that separate) from m:
       // grad f(m) = d - (o_a + o_b), with o the support points' offsets along m of test 5, and
       // w = m / |m| + (5/8) grad f(m) / |d|. Then tests 3 and 5 along w. On the ANCHORS pairs this
-      // decides 56% of the pairs that would go to the pencil (1,325 of 2,371; the step 5/8 decided
+      // decides 56% of the pairs that would go to the pencil (1,333 of 2,371; the step 5/8 decided
       // the most among 0.1 ... 4, session 22). w is scaled to max |w_i| = 1, which keeps every
       // product of the tests in range whatever the sizes (the scaled path, |d| outside
       // [1e-50, 1e50], skips this test). Swapping a and b negates m, d and the sum of the offsets
