@@ -137,15 +137,20 @@ bool exactlySeparatedAlong(const Ellipsoid& a, const Ellipsoid& b, const Eigen::
   return G > 0 && u > 0 && u * u > 4 * ha * hb;
 }
 
-// The certificates of the pre-tests (precision_stage -1: the bounding balls, tests 1-5) are checked
-// exactly, not only their status: an Overlapping witness is strictly inside both solids, and a
-// Separated pair is separated by the plane through the witness with the certificate's normal (the
-// mid-plane of the gap along the tested direction). Both distributions: the ANCHORS pairs, where
-// tests 3-5 decide about 8% of the pairs, and the foundation issue's aspect ratios to 1:1000.
-TEST(EllipsoidSeparation, PreTestCertificatesHoldExactly) {
-  std::mt19937_64 anchors(42), issue(11);
+/// Certificates of classifyEllipsoids() checked exactly on `pairs` pairs drawn alternately from the
+/// ANCHORS generator and the foundation issue's (aspect ratios to 1:1000): only those whose
+/// precision_stage is in [min_stage, max_stage]. An Overlapping witness must be strictly inside
+/// both solids; a Separated certificate must pass `separated_ok(a, b, c)`. Reports the first five
+/// failures.
+struct CertificateCounts {
   int checked = 0, wrong = 0, overlapping = 0, separated = 0;
-  for (int i = 0; i < 10000; ++i) {
+};
+template <class SeparatedOk>
+CertificateCounts checkCertificates(std::uint64_t anchor_seed, std::uint64_t issue_seed, int pairs, int min_stage,
+                                    int max_stage, SeparatedOk separated_ok) {
+  std::mt19937_64 anchors(anchor_seed), issue(issue_seed);
+  CertificateCounts n;
+  for (int i = 0; i < pairs; ++i) {
     const bool from_anchors = i % 2 == 0;
     Ellipsoid a = Ellipsoid::sphere(1.0, Eigen::Vector3d::Zero()), b = a;
     if (from_anchors) {
@@ -155,69 +160,60 @@ TEST(EllipsoidSeparation, PreTestCertificatesHoldExactly) {
       std::tie(a, b) = randomPair(issue);
     }
     const SeparationCertificate c = classifyEllipsoids(a, b);
-    if (c.precision_stage != -1) continue;
-    ++checked;
+    if (c.precision_stage < min_stage || c.precision_stage > max_stage) continue;
+    ++n.checked;
     bool ok = false;
     if (c.status == Separation::Overlapping) {
-      ++overlapping;
+      ++n.overlapping;
       ok = test::exactImplicit(a, c.witness) < 0 && test::exactImplicit(b, c.witness) < 0;
     } else if (c.status == Separation::Separated) {
-      ++separated;
-      test::Rational plane_offset = 0;
-      for (int k = 0; k < 3; ++k) plane_offset += test::Rational(c.normal[k]) * test::Rational(c.witness[k]);
-      ok = exactlyBelowPlane(a, c.normal, plane_offset, +1) && exactlyBelowPlane(b, c.normal, plane_offset, -1);
+      ++n.separated;
+      ok = separated_ok(a, b, c);
     }
-    if (!ok && ++wrong <= 5)
-      ADD_FAILURE() << "pair " << i << " (" << (from_anchors ? "anchors" : "issue") << "): "
-                    << toString(c.status) << " certificate does not hold; witness " << c.witness.transpose()
-                    << ", normal " << c.normal.transpose();
+    if (!ok && ++n.wrong <= 5)
+      ADD_FAILURE() << "pair " << i << " (" << (from_anchors ? "anchors" : "issue") << "): stage "
+                    << c.precision_stage << " " << toString(c.status) << " certificate does not hold; witness "
+                    << c.witness.transpose() << ", normal " << c.normal.transpose();
   }
-  EXPECT_EQ(wrong, 0);
+  return n;
+}
+
+// The certificates of the pre-tests (precision_stage -1: the bounding balls, tests 1-6) are checked
+// exactly, not only their status: an Overlapping witness is strictly inside both solids, and a
+// Separated pair is separated by the plane through the witness with the certificate's normal (the
+// mid-plane of the gap along the tested direction). Both distributions: the ANCHORS pairs, where
+// tests 3-6 decide about 8% of the pairs, and the foundation issue's aspect ratios to 1:1000.
+TEST(EllipsoidSeparation, PreTestCertificatesHoldExactly) {
+  const CertificateCounts n =
+      checkCertificates(42, 11, 10000, -1, -1, [](const Ellipsoid& a, const Ellipsoid& b, const SeparationCertificate& c) {
+        test::Rational plane_offset = 0;
+        for (int k = 0; k < 3; ++k) plane_offset += test::Rational(c.normal[k]) * test::Rational(c.witness[k]);
+        return exactlyBelowPlane(a, c.normal, plane_offset, +1) && exactlyBelowPlane(b, c.normal, plane_offset, -1);
+      });
+  EXPECT_EQ(n.wrong, 0);
   // Most pairs are decided by the pre-tests, and both kinds of certificate are common.
-  std::printf("%d pre-test certificates checked: %d overlapping, %d separated\n", checked, overlapping, separated);
-  EXPECT_GT(checked, 7000);
-  EXPECT_GT(overlapping, 2000);
-  EXPECT_GT(separated, 2000);
+  std::printf("%d pre-test certificates checked: %d overlapping, %d separated\n", n.checked, n.overlapping, n.separated);
+  EXPECT_GT(n.checked, 7000);
+  EXPECT_GT(n.overlapping, 2000);
+  EXPECT_GT(n.separated, 2000);
 }
 
 // The certificates of the pencil stages (precision_stage 0 and 1), checked exactly as the
 // pre-tests' above: an Overlapping witness is strictly inside both solids, and a Separated normal
 // n satisfies h_a(n) < -h_b(-n) (SeparationCertificate::normal's contract; docs/algorithms.md §1:
 // the gradient of q_A at the pencil's witness separates when psi > 0, up to the witness's
-// residual). The pairs are the ones the pre-tests leave open: about 2% of the ANCHORS pairs, more
+// residual). The pairs are the ones the pre-tests leave open: about 1% of the ANCHORS pairs, more
 // of the issue's aspect ratios to 1:1000.
 TEST(EllipsoidSeparation, PencilStageCertificatesHoldExactly) {
-  std::mt19937_64 anchors(43), issue(12);
-  int checked = 0, wrong = 0, overlapping = 0, separated = 0;
-  for (int i = 0; i < 60000; ++i) {
-    const bool from_anchors = i % 2 == 0;
-    Ellipsoid a = Ellipsoid::sphere(1.0, Eigen::Vector3d::Zero()), b = a;
-    if (from_anchors) {
-      a = test::anchorEllipsoid(anchors);
-      b = test::anchorEllipsoid(anchors);
-    } else {
-      std::tie(a, b) = randomPair(issue);
-    }
-    const SeparationCertificate c = classifyEllipsoids(a, b);
-    if (c.precision_stage < 0 || c.precision_stage > 1) continue;
-    ++checked;
-    bool ok = false;
-    if (c.status == Separation::Overlapping) {
-      ++overlapping;
-      ok = test::exactImplicit(a, c.witness) < 0 && test::exactImplicit(b, c.witness) < 0;
-    } else if (c.status == Separation::Separated) {
-      ++separated;
-      ok = exactlySeparatedAlong(a, b, c.normal);
-    }
-    if (!ok && ++wrong <= 5)
-      ADD_FAILURE() << "pair " << i << " (" << (from_anchors ? "anchors" : "issue") << "): stage "
-                    << c.precision_stage << " " << toString(c.status) << " certificate does not hold; witness "
-                    << c.witness.transpose() << ", normal " << c.normal.transpose();
-  }
-  EXPECT_EQ(wrong, 0);
-  std::printf("%d pencil-stage certificates checked: %d overlapping, %d separated\n", checked, overlapping, separated);
-  EXPECT_GT(overlapping, 300);
-  EXPECT_GT(separated, 300);
+  const CertificateCounts n =
+      checkCertificates(43, 12, 60000, 0, 1, [](const Ellipsoid& a, const Ellipsoid& b, const SeparationCertificate& c) {
+        return exactlySeparatedAlong(a, b, c.normal);
+      });
+  EXPECT_EQ(n.wrong, 0);
+  std::printf("%d pencil-stage certificates checked: %d overlapping, %d separated\n", n.checked, n.overlapping,
+              n.separated);
+  EXPECT_GT(n.overlapping, 300);
+  EXPECT_GT(n.separated, 300);
 }
 
 /// Near-tangent pairs: put b's centre at c_a + s d and find by bisection on s, with the exact
