@@ -144,12 +144,6 @@ inline void supportMidpoint(const Ellipsoid& a, const Ellipsoid& b, const Eigen:
   supportMidpoint(a, b, u, r, x, offset);
 }
 
-inline void supportMidpoint(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& w, const Lanes2 r[3],
-                            Eigen::Vector3d* x) {
-  Lanes2 offset[3];
-  supportMidpoint(a, b, w, r, x, offset);
-}
-
 /// What the centre-line tests compute on v for both ellipsoids at once (lane 0: a, lane 1: b):
 /// u = R^T v, the radii r and their reciprocals q = 1 / r.
 struct LineLanes {
@@ -225,6 +219,10 @@ __attribute__((always_inline)) inline Separation lineTests(const Ellipsoid& a, c
   return static_cast<Separation>((1 + int(overlapping)) * int(!separated));
 }
 
+/// The most gradient steps of test 6 (followUpTests()): a fourth step decided 78 more of the 425
+/// ANCHORS pairs that three leave to the pencil, for the cost of the step on all 425.
+constexpr int kSupportGapSteps = 3;
+
 /// Tests 3 to 6 of centreLineTest(), for the pairs tests 1 and 2 leave open (~11% of the
 /// random pairs of the benchmarks), on the lanes L that lineTests() computed on v (d itself when
 /// unscaled, else d / s; D2 = |d|^2).
@@ -265,25 +263,31 @@ bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d
     supportMidpoint(a, b, m, L.r, &x, offset);
     inside = strictlyInsideBoth(a, b, L.q, x, tau);
     if (!inside && unscaled) {
-      // 6. One step of gradient ascent on the support gap f(w) = w.d - |S_a R_a^T w| - |S_b R_b^T w|
-      // (concave and homogeneous; positive exactly for the directions that separate) from m:
-      // grad f(m) = d - (o_a + o_b), with o the support points' offsets along m of test 5, and
-      // w = m / |m| + (5/8) grad f(m) / |d|. Then tests 3 and 5 along w. On the ANCHORS pairs this
-      // decides 56% of the pairs that would go to the pencil (1,333 of 2,371; the step 5/8 decided
-      // the most among 0.1 ... 4, session 22). w is scaled to max |w_i| = 1, which keeps every
-      // product of the tests in range whatever the sizes (the scaled path, |d| outside
-      // [1e-50, 1e50], skips this test). Swapping a and b negates m, d and the sum of the offsets
-      // exactly, hence w: symmetric bit for bit like the other tests.
-      const double km = 1.0 / std::sqrt(std::max(m.squaredNorm(), DBL_MIN)), kd = 0.625 / std::sqrt(D2);
-      Eigen::Vector3d w;
-      for (int i = 0; i < 3; ++i) w[i] = m[i] * km + (d[i] - (offset[i][0] + offset[i][1])) * kd;
-      w *= 1.0 / std::max(w.cwiseAbs().maxCoeff(), DBL_MIN);
-      separated = separatedAlong(w, d, a, b, L.r, tau, &hm);
-      if (separated) {
-        m = w;
-      } else {
-        supportMidpoint(a, b, w, L.r, &x);
+      // 6. Gradient ascent on the support gap f(w) = w.d - |S_a R_a^T w| - |S_b R_b^T w| (concave
+      // and homogeneous; positive exactly for the directions that separate), at most
+      // kSupportGapSteps steps from m: grad f(w) = d - (o_a + o_b), with o the support points'
+      // offsets along w (test 5's for w = m), and w' = w / |w| + (5/8) grad f(w) / |d|. After each
+      // step, tests 3 and 5 along w'. On the ANCHORS pairs the three steps decide 82% of the pairs
+      // that would go to the pencil (1,946 of 2,371; one step decided 1,333, two 1,720, five
+      // 2,068; the step 5/8 decided the most among 0.1 ... 4 for one step, session 22). Each w' is
+      // scaled to max |w'_i| = 1, which keeps every product of the tests in range whatever the
+      // sizes (the scaled path, |d| outside [1e-50, 1e50], skips this test). Swapping a and b
+      // negates m, d and the sum of the offsets exactly, hence every w': symmetric bit for bit
+      // like the other tests.
+      const double kd = 0.625 / std::sqrt(D2);
+      Eigen::Vector3d w = m;
+      for (int step = 0; step < kSupportGapSteps; ++step) {
+        const double kw = 1.0 / std::sqrt(std::max(w.squaredNorm(), DBL_MIN));
+        for (int i = 0; i < 3; ++i) w[i] = w[i] * kw + (d[i] - (offset[i][0] + offset[i][1])) * kd;
+        w *= 1.0 / std::max(w.cwiseAbs().maxCoeff(), DBL_MIN);
+        separated = separatedAlong(w, d, a, b, L.r, tau, &hm);
+        if (separated) {
+          m = w;
+          break;
+        }
+        supportMidpoint(a, b, w, L.r, &x, offset);
         inside = strictlyInsideBoth(a, b, L.q, x, tau);
+        if (inside) break;
       }
     }
   }
@@ -374,7 +378,7 @@ bool scaledCentreLineTest(const Ellipsoid& a, const Ellipsoid& b, const Eigen::V
 }
 
 /// The pre-tests along the centre line n = (p_b - p_a)/|p_b - p_a| (docs/algorithms.md §1,
-/// "Pre-tests"), after the bounding-ball test 0:
+/// "Pre-tests"):
 ///  1. Separated if the supports along n are disjoint: h_a(n) + h_b(-n) < n.(p_b - p_a), with
 ///     h = n.p + |S R^T n|. It implies every bounding-ball separation.
 ///  2. Overlapping if the segment between the centres is covered: rho_a + rho_b > |p_b - p_a|,
@@ -386,8 +390,8 @@ bool scaledCentreLineTest(const Ellipsoid& a, const Ellipsoid& b, const Eigen::V
 ///  4. Overlapping if the midpoint of the support points of a along n and of b along -n is
 ///     strictly inside both (strictlyInsideBoth()).
 ///  5. (when 3 and 4 fail) As 4, with the support points along m.
-///  6. (when 3, 4 and 5 fail) Tests 3 and 5 along w, one gradient-ascent step of the support gap
-///     from m (followUpTests()).
+///  6. (when 3, 4 and 5 fail) Tests 3 and 5 along w, after each of up to three gradient-ascent
+///     steps of the support gap from m (followUpTests()).
 /// Every test is certified (a relative margin of 2^-40 over the absolute evaluation) and
 /// symmetric in (a, b) bit for bit: swapping negates d, v, n and m exactly and swaps the lanes,
 /// which leaves every sum and product of the two lanes, every norm, decision and witness (written
@@ -396,19 +400,9 @@ template <class Out>
 __attribute__((always_inline)) inline bool centreLineTest(const Ellipsoid& a, const Ellipsoid& b, Out* out) {
   const Eigen::Vector3d d = b.center() - a.center();
   const double D2 = d.squaredNorm();
-  // 0. Bounding balls disjoint (implied by test 1, but a few instructions instead of a hundred, and
-  // a predictable branch for far pairs in coherent sequences; on random pairs it cost nothing
-  // measurable, docs/algorithms.md §1). Certified with the relative margin 2^-40 on the squares.
-  const double outer = a.maxRadius() + b.maxRadius();
-  if (D2 > outer * outer * (1.0 + tolerance::kCertificateRelativeBoundDouble)) {
-    out->status = Separation::Separated;
-    if constexpr (kWantsWitness<Out>) {
-      out->normal = d * (1.0 / std::sqrt(D2));
-      out->witness = 0.5 * (a.center() + b.center()) + (0.5 * (a.maxRadius() - b.maxRadius())) * out->normal;
-      out->precision_stage = -1;
-    }
-    return true;
-  }
+  // No bounding-ball test in front (session 23): test 1 implies it, and on random pairs its branch
+  // mispredicts for about a third of them, which cost more than the line tests it skips
+  // (docs/algorithms.md §1, "Pre-tests").
   if (!(D2 > 1e-100 && D2 < 1e100)) return scaledCentreLineTest(a, b, d, D2, out);
   LineValues w;
   LineLanes L;

@@ -178,7 +178,7 @@ CertificateCounts checkCertificates(std::uint64_t anchor_seed, std::uint64_t iss
   return n;
 }
 
-// The certificates of the pre-tests (precision_stage -1: the bounding balls, tests 1-6) are checked
+// The certificates of the pre-tests (precision_stage -1: tests 1-6) are checked
 // exactly, not only their status: an Overlapping witness is strictly inside both solids, and a
 // Separated pair is separated by the plane through the witness with the certificate's normal (the
 // mid-plane of the gap along the tested direction). Both distributions: the ANCHORS pairs, where
