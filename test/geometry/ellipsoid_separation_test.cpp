@@ -182,7 +182,7 @@ CertificateCounts checkCertificates(std::uint64_t anchor_seed, std::uint64_t iss
 // exactly, not only their status: an Overlapping witness is strictly inside both solids, and a
 // Separated pair is separated by the plane through the witness with the certificate's normal (the
 // mid-plane of the gap along the tested direction). Both distributions: the ANCHORS pairs, where
-// tests 3-6 decide about 8% of the pairs, and the foundation issue's aspect ratios to 1:1000.
+// tests 3-6 decide about 10% of the pairs, and the foundation issue's aspect ratios to 1:1000.
 TEST(EllipsoidSeparation, PreTestCertificatesHoldExactly) {
   const CertificateCounts n =
       checkCertificates(42, 11, 10000, -1, -1, [](const Ellipsoid& a, const Ellipsoid& b, const SeparationCertificate& c) {
