@@ -116,19 +116,25 @@ double unitFrameRounding(const Ellipsoid& e, double world_l1) {
 
 }  // namespace detail
 
+// Two cache lines, the pose's rows and the shape each 32-byte aligned (the cached-plane kernel's
+// loads, separating_plane.cpp).
+static_assert(sizeof(Ellipsoid) == 128 && alignof(Ellipsoid) == 64, "Ellipsoid is two cache lines");
+
 Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, const Eigen::Vector3d& p_WE)
-    : radii_(radii), R_(R_WE), p_(p_WE) {
+    : shape_{radii[0], radii[1], radii[2], 0.0} {
   for (int i = 0; i < 3; ++i) {
     // std::isfinite before the ordered comparisons (a comparison with NaN raises FE_INVALID);
     // the message is built out of line.
     if (!(std::isfinite(radii[i]) && radii[i] >= tolerance::kMinRadius && radii[i] <= tolerance::kMaxLength))
       throwBadRadius(radii, i);
   }
-  R_ = detail::storedRotation(R_WE, "ellipsoid rotation");  // the pre-tests' supports need it
+  pose_.leftCols<3>() = detail::storedRotation(R_WE, "ellipsoid rotation");  // the pre-tests' supports need it
   detail::checkFinite(p_WE, "ellipsoid centre");
   if (!(std::fabs(p_WE[0]) <= tolerance::kMaxLength && std::fabs(p_WE[1]) <= tolerance::kMaxLength &&
         std::fabs(p_WE[2]) <= tolerance::kMaxLength))
     throwCentreOutOfRange(p_WE);
+  pose_.col(3) = p_WE;
+  shape_[3] = std::fabs(p_WE[0]) + std::fabs(p_WE[1]) + std::fabs(p_WE[2]) + radii[0] + radii[1] + radii[2];
 }
 
 Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Isometry3d& X_WE)
@@ -158,34 +164,34 @@ Ellipsoid Ellipsoid::fromAffine(const Eigen::Matrix3d& M, const Eigen::Vector3d&
   return Ellipsoid(ev.cwiseSqrt(), R, p);
 }
 
-Eigen::Matrix4d Ellipsoid::quadricMatrix() const { return quadric::posedEllipsoid(radii_, R_, p_); }
+Eigen::Matrix4d Ellipsoid::quadricMatrix() const { return quadric::posedEllipsoid(radii(), rotation(), center()); }
 
 double Ellipsoid::implicit(const Eigen::Vector3d& x) const {
-  const Eigen::Vector3d u = (R_.transpose() * (x - p_)).cwiseQuotient(radii_);
+  const Eigen::Vector3d u = (rotation().transpose() * (x - center())).cwiseQuotient(radii());
   return u.squaredNorm() - 1.0;
 }
 
 Eigen::Vector3d Ellipsoid::normalAt(const Eigen::Vector3d& x) const {
-  const Eigen::Vector3d u = (R_.transpose() * (x - p_)).cwiseQuotient(radii_.cwiseProduct(radii_));
-  return (R_ * u).normalized();
+  const Eigen::Vector3d u = (rotation().transpose() * (x - center())).cwiseQuotient(radii().cwiseProduct(radii()));
+  return (rotation() * u).normalized();
 }
 
 double Ellipsoid::support(const Eigen::Vector3d& n) const {
   // h(n) = n.p + |S R^T n|
-  return n.dot(p_) + (R_.transpose() * n).cwiseProduct(radii_).norm();
+  return n.dot(center()) + (rotation().transpose() * n).cwiseProduct(radii()).norm();
 }
 
 Eigen::Vector3d Ellipsoid::supportPoint(const Eigen::Vector3d& n) const {
   // argmax: p + R S^2 R^T n / |S R^T n|
-  Eigen::Vector3d m = (R_.transpose() * n).cwiseProduct(radii_);
+  Eigen::Vector3d m = (rotation().transpose() * n).cwiseProduct(radii());
   double norm = m.norm();
   if (norm == 0.0 || std::isinf(norm)) {  // n = 0, or |m|^2 under/overflows: rescale m first
     const double s = m.cwiseAbs().maxCoeff();
-    if (s == 0.0) return p_;  // n = 0: every point attains h(0) = 0 (was 0/0 = NaN)
+    if (s == 0.0) return center();  // n = 0: every point attains h(0) = 0 (was 0/0 = NaN)
     m /= s;
     norm = m.norm();
   }
-  return p_ + R_ * (m.cwiseProduct(radii_) / norm);
+  return center() + rotation() * (m.cwiseProduct(radii()) / norm);
 }
 
 }  // namespace fcl_quadric

@@ -58,8 +58,8 @@ inline bool bothLanes(Mask2 m) {
 /// u[j] = (R_a^T y_a)_j in lane 0 and (R_b^T y_b)_j in lane 1 for a vector per lane (y[i] holds
 /// coordinate i of y_a and y_b), each the sum R(0,j) y_0 + R(1,j) y_1 + R(2,j) y_2 in that order.
 inline void bodyFrameLanes(const Ellipsoid& a, const Ellipsoid& b, const Lanes2 y[3], Lanes2 u[3]) {
-  const Eigen::Matrix3d& Ra = a.rotation();
-  const Eigen::Matrix3d& Rb = b.rotation();
+  const Ellipsoid::Pose& Ra = a.pose();  // R(i, j) = pose(i, j) for j < 3
+  const Ellipsoid::Pose& Rb = b.pose();
   for (int j = 0; j < 3; ++j)
     u[j] = lanes(Ra(0, j), Rb(0, j)) * y[0] + lanes(Ra(1, j), Rb(1, j)) * y[1] + lanes(Ra(2, j), Rb(2, j)) * y[2];
 }
@@ -74,8 +74,8 @@ inline void bodyFrameLanes(const Ellipsoid& a, const Ellipsoid& b, const Eigen::
 /// x[i] = (R_a w_a)_i in lane 0 and (R_b w_b)_i in lane 1: body-frame vectors back in the world
 /// frame, each sum R(i,0) w_0 + R(i,1) w_1 + R(i,2) w_2 in that order.
 inline void worldFrameLanes(const Ellipsoid& a, const Ellipsoid& b, const Lanes2 w[3], Lanes2 x[3]) {
-  const Eigen::Matrix3d& Ra = a.rotation();
-  const Eigen::Matrix3d& Rb = b.rotation();
+  const Ellipsoid::Pose& Ra = a.pose();  // R(i, j) = pose(i, j) for j < 3
+  const Ellipsoid::Pose& Rb = b.pose();
   for (int i = 0; i < 3; ++i)
     x[i] = lanes(Ra(i, 0), Rb(i, 0)) * w[0] + lanes(Ra(i, 1), Rb(i, 1)) * w[1] + lanes(Ra(i, 2), Rb(i, 2)) * w[2];
 }

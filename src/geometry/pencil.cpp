@@ -272,7 +272,7 @@ bool swapForCanonicalOrder(const Ellipsoid& a, const Ellipsoid& b) {
   auto key = [](const Ellipsoid& e) {
     std::array<double, 15> k;
     for (int i = 0; i < 3; ++i) { k[i] = e.radii()[i]; k[3 + i] = e.center()[i]; }
-    for (int i = 0; i < 9; ++i) k[6 + i] = e.rotation().data()[i];
+    for (int i = 0; i < 9; ++i) k[6 + i] = e.rotation()(i % 3, i / 3);  // column-major order
     return k;
   };
   return key(b) > key(a);

@@ -8,12 +8,21 @@
 #include "geometry/lanes2.h"
 #include "geometry/pencil.h"
 
-// Runtime dispatch of the cached-plane kernel to an FMA build of it (x86-64, GCC or Clang, when
-// the whole build does not already target FMA).
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(__FMA__)
-#define FCL_QUADRIC_FMA_DISPATCH 1
-#define FCL_QUADRIC_TARGET_FMA __attribute__((target("fma")))
+// The cached-plane kernel in AVX registers with fused multiply-adds (x86-64, GCC or Clang): built
+// for the whole program when it targets AVX and FMA, otherwise as a second build of the function
+// chosen at run time (FCL_QUADRIC_FMA_DISPATCH) when the CPU has both.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define FCL_QUADRIC_AVX_KERNEL 1
+#include <immintrin.h>
+#if defined(__AVX__) && defined(__FMA__)
+#define FCL_QUADRIC_FMA_DISPATCH 0
+#define FCL_QUADRIC_TARGET_FMA
 #else
+#define FCL_QUADRIC_FMA_DISPATCH 1
+#define FCL_QUADRIC_TARGET_FMA __attribute__((target("avx,fma")))
+#endif
+#else
+#define FCL_QUADRIC_AVX_KERNEL 0
 #define FCL_QUADRIC_FMA_DISPATCH 0
 #define FCL_QUADRIC_TARGET_FMA
 #endif
@@ -104,6 +113,9 @@ struct CachedPlaneAccess {
   static bool prepare(const Plane& plane, CachedPlane* out);
   static inline __attribute__((always_inline)) bool kernel(const CachedPlane& plane, const Ellipsoid& a,
                                                            const Ellipsoid& b);
+#if FCL_QUADRIC_AVX_KERNEL
+  FCL_QUADRIC_TARGET_FMA static bool kernelFma(const CachedPlane& plane, const Ellipsoid& a, const Ellipsoid& b);
+#endif
 };
 
 // The record of `plane` in *out, or false when the plane can never be certified (fromPlane()).
@@ -150,28 +162,30 @@ Plane CachedPlane::plane() const {
 }
 
 // The certified gap of an ellipsoid e on its side of the plane { n.x = off } (a below: sgn = +1;
-// b above: sgn = -1) is g = sgn (off - n.p) - tau (|off| + sum_i |n_i p_i|), and e lies strictly
-// on that side iff g > 0 and g^2 > msq (1 + 4 tau) with msq = |S R^T n|^2, the squared support
-// half-width (compared in squares: no square root). |off| + sum_i |n_i p_i| is the absolute
-// evaluation of off - n.p, and tau = 2^-40 covers its rounding with a wide margin. The rounding
-// of R^T n is absolute (~eps |n|_1 per coordinate, tolerances.h kStoredRotationDefect), and a
-// long radius multiplies it, so g also subtracts tau |n|_1 sum(r), which bounds its effect on
-// the half-width. tau |n|_1 and tau |off| come precomputed with the plane (CachedPlane): tau is a
-// power of two, so they are the exact products unless they underflow, which fromPlane()'s scaling
+// b above: sgn = -1) is g = sgn (off - n.p) - tau (|n|_1 extent + |off|), extent = |p|_1 + sum(r)
+// (Ellipsoid::extent()), and e lies strictly on that side iff g > 0 and g^2 > msq (1 + 4 tau) with
+// msq = |S R^T n|^2, the squared support half-width (compared in squares: no square root).
+// The margin covers two roundings with a wide margin (tau = 2^-40, against errors of a few eps =
+// 2^-52):
+//   - of off - n.p: at most ~3 eps (|off| + sum_i |n_i p_i|), and sum_i |n_i p_i| <= |n|_1 |p|_1;
+//   - of R^T n, absolute (~eps |n|_1 per coordinate, tolerances.h kStoredRotationDefect), which a
+//     long radius multiplies: its effect on the half-width is below ~eps |n|_1 sum(r).
+// extent's own rounding (relative, below 6 eps) changes the margin by a negligible fraction.
+// tau |n|_1 and tau |off| come precomputed with the plane (CachedPlane): tau is a power of two,
+// so they are the exact products unless they underflow, which fromPlane()'s scaling
 // (max |n_i| >= 2^-64) rules out for tau |n|_1; an underflowing tau |off| (|off| < 2^-982) is
-// covered by the tau |n|_1 sum(r) term, at least 2^-104 kMinRadius. Both sides at once in two
-// lanes, without a branch, ending in one movmskpd: this is the whole cost of a cached-plane query
+// covered by the tau |n|_1 sum(r) part, at least 2^-104 kMinRadius. Both sides at once, without a
+// branch, ending in one movmskpd: this is the whole cost of a cached-plane query
 // (docs/benchmarks.md, target (c)).
 //
 // The bounds hold for any evaluation order and for fused multiply-adds (each sum of products is
-// then rounded fewer times, Higham, Accuracy and Stability, §3.1), so the same source is also
-// compiled with FMA enabled (cachedPlaneSeparatesFma below): which of the two runs may change
+// then rounded fewer times, Higham, Accuracy and Stability, §3.1), so there are two builds of the
+// test: the generic one below in two SSE2 lanes (a, b), and an AVX/FMA one
+// (cachedPlaneSeparatesFma) that reads each pose by rows: which of the two runs may change
 // whether a plane within ~tau of tangency is certified, never a certified answer.
 bool CachedPlaneAccess::kernel(const CachedPlane& plane, const Ellipsoid& a, const Ellipsoid& b) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   const double* n = plane.normal_;
-  const Eigen::Vector3d& ca = a.center();
-  const Eigen::Vector3d& cb = b.center();
   const Lanes2 n0 = lanes(n[0], n[0]), n1 = lanes(n[1], n[1]), n2 = lanes(n[2], n[2]);
   const Lanes2 y[3] = {n0, n1, n2};
   Lanes2 u[3], r[3];
@@ -179,13 +193,55 @@ bool CachedPlaneAccess::kernel(const CachedPlane& plane, const Ellipsoid& a, con
   detail::radiusLanes(a, b, r);
   const Lanes2 m0 = u[0] * r[0], m1 = u[1] * r[1], m2 = u[2] * r[2];  // S R^T n
   const Lanes2 msq = m0 * m0 + m1 * m1 + m2 * m2;
-  const Lanes2 p0 = n0 * lanes(ca[0], cb[0]), p1 = n1 * lanes(ca[1], cb[1]), p2 = n2 * lanes(ca[2], cb[2]);
-  const Lanes2 nc = p0 + p1 + p2;
-  const Lanes2 abs_sum = detail::absLanes(p0) + detail::absLanes(p1) + detail::absLanes(p2);
-  const Lanes2 margin = tau * abs_sum + (plane.tau_normal_l1_ * (r[0] + r[1] + r[2]) + plane.tau_abs_offset_);
+  const Ellipsoid::Pose& pa = a.pose();
+  const Ellipsoid::Pose& pb = b.pose();
+  const Lanes2 nc = n0 * lanes(pa(0, 3), pb(0, 3)) + n1 * lanes(pa(1, 3), pb(1, 3)) + n2 * lanes(pa(2, 3), pb(2, 3));
+  const Lanes2 margin = plane.tau_normal_l1_ * lanes(a.extent(), b.extent()) + plane.tau_abs_offset_;
   const Lanes2 g = detail::negateLane1(plane.offset_ - nc) - margin;
   return detail::bothLanes((g > 0.0) & (g * g > msq * (1.0 + 4.0 * tau)));
 }
+
+#if FCL_QUADRIC_AVX_KERNEL
+/// The same test in AVX registers, one ellipsoid per register: the pose rows
+/// (R(i,0), R(i,1), R(i,2), p_i) make n_0 row_0 + n_1 row_1 + n_2 row_2 = (R^T n, n.p) three fused
+/// multiply-adds with no shuffle, and four unpacks and three extracts pair a's and b's results
+/// into the lanes of the generic kernel's tail (the generic kernel needs 15 inserts for that).
+FCL_QUADRIC_TARGET_FMA bool CachedPlaneAccess::kernelFma(const CachedPlane& plane, const Ellipsoid& a,
+                                                         const Ellipsoid& b) {
+  const double tau = tolerance::kCertificateRelativeBoundDouble;
+  const __m256d n0 = _mm256_broadcast_sd(&plane.normal_[0]);
+  const __m256d n1 = _mm256_broadcast_sd(&plane.normal_[1]);
+  const __m256d n2 = _mm256_broadcast_sd(&plane.normal_[2]);
+  const double* ra = a.pose().data();
+  const double* rb = b.pose().data();
+  // (u_0, u_1, u_2, n.p) = n_0 row_0 + n_1 row_1 + n_2 row_2, u = R^T n.
+  const __m256d ua = _mm256_fmadd_pd(
+      n2, _mm256_loadu_pd(ra + 8), _mm256_fmadd_pd(n1, _mm256_loadu_pd(ra + 4), _mm256_mul_pd(n0, _mm256_loadu_pd(ra))));
+  const __m256d ub = _mm256_fmadd_pd(
+      n2, _mm256_loadu_pd(rb + 8), _mm256_fmadd_pd(n1, _mm256_loadu_pd(rb + 4), _mm256_mul_pd(n0, _mm256_loadu_pd(rb))));
+  const __m256d sa = _mm256_loadu_pd(a.shapeData());  // (r_0, r_1, r_2, extent)
+  const __m256d sb = _mm256_loadu_pd(b.shapeData());
+  const __m256d ul = _mm256_unpacklo_pd(ua, ub);  // (ua_0, ub_0, ua_2, ub_2)
+  const __m256d uh = _mm256_unpackhi_pd(ua, ub);  // (ua_1, ub_1, nc_a, nc_b)
+  const __m256d sl = _mm256_unpacklo_pd(sa, sb);  // (ra_0, rb_0, ra_2, rb_2)
+  const __m256d sh = _mm256_unpackhi_pd(sa, sb);  // (ra_1, rb_1, extent_a, extent_b)
+  const __m256d ml = _mm256_mul_pd(ul, sl);       // (ma_0, mb_0, ma_2, mb_2), m = S R^T n
+  const __m128d m0 = _mm256_castpd256_pd128(ml);
+  const __m128d m2 = _mm256_extractf128_pd(ml, 1);
+  const __m128d m1 = _mm_mul_pd(_mm256_castpd256_pd128(uh), _mm256_castpd256_pd128(sh));
+  const __m128d msq = _mm_fmadd_pd(m2, m2, _mm_fmadd_pd(m1, m1, _mm_mul_pd(m0, m0)));
+  const __m128d nc = _mm256_extractf128_pd(uh, 1);
+  const __m128d extent = _mm256_extractf128_pd(sh, 1);
+  const __m128d margin =
+      _mm_fmadd_pd(_mm_set1_pd(plane.tau_normal_l1_), extent, _mm_set1_pd(plane.tau_abs_offset_));
+  // g = (off - nc_a, nc_b - off) - margin: lane 1's sign flipped (exact).
+  const __m128d side = _mm_xor_pd(_mm_sub_pd(_mm_set1_pd(plane.offset_), nc), _mm_set_pd(-0.0, 0.0));
+  const __m128d g = _mm_sub_pd(side, margin);
+  const __m128d ok = _mm_and_pd(_mm_cmpgt_pd(g, _mm_setzero_pd()),
+                                _mm_cmpgt_pd(_mm_mul_pd(g, g), _mm_mul_pd(msq, _mm_set1_pd(1.0 + 4.0 * tau))));
+  return _mm_movemask_pd(ok) == 3;
+}
+#endif
 
 namespace {
 
@@ -198,7 +254,7 @@ const bool kCpuHasFma = [] {
   return __builtin_cpu_supports("fma") && __builtin_cpu_supports("avx");
 }();
 #else
-constexpr bool kCpuHasFma = false;  // no dispatch: one kernel, the build's own
+constexpr bool kCpuHasFma = FCL_QUADRIC_AVX_KERNEL;  // no dispatch: the build has AVX and FMA, or no x86-64
 #endif
 
 }  // namespace
@@ -207,15 +263,21 @@ bool detail::cachedPlaneSeparatesGeneric(const CachedPlane& plane, const Ellipso
   return CachedPlaneAccess::kernel(plane, a, b);
 }
 
-FCL_QUADRIC_TARGET_FMA bool detail::cachedPlaneSeparatesFma(const CachedPlane& plane, const Ellipsoid& a,
-                                                            const Ellipsoid& b) {
+bool detail::cachedPlaneSeparatesFma(const CachedPlane& plane, const Ellipsoid& a, const Ellipsoid& b) {
+#if FCL_QUADRIC_AVX_KERNEL
+  return CachedPlaneAccess::kernelFma(plane, a, b);
+#else
   return CachedPlaneAccess::kernel(plane, a, b);
+#endif
 }
 
 bool detail::cpuHasFma() { return kCpuHasFma; }
 
 bool CachedPlane::separates(const Ellipsoid& a, const Ellipsoid& b) const {
-  return kCpuHasFma ? detail::cachedPlaneSeparatesFma(*this, a, b) : CachedPlaneAccess::kernel(*this, a, b);
+#if FCL_QUADRIC_AVX_KERNEL
+  if (kCpuHasFma) return CachedPlaneAccess::kernelFma(*this, a, b);
+#endif
+  return CachedPlaneAccess::kernel(*this, a, b);
 }
 
 bool planeSeparates(const Plane& plane, const Ellipsoid& a, const Ellipsoid& b) {

@@ -35,12 +35,30 @@ class Ellipsoid {
   /// \throws std::invalid_argument if M or p is not finite or M is singular (cond > 1e12).
   static Ellipsoid fromAffine(const Eigen::Matrix3d& M, const Eigen::Vector3d& p);
 
-  const Eigen::Vector3d& radii() const { return radii_; }
+  /// The stored pose [R p] as a row-major 3x4 matrix: row i is (R(i,0), R(i,1), R(i,2), p_i).
+  using Pose = Eigen::Matrix<double, 3, 4, Eigen::RowMajor>;
+  /// rotation() and center(): read-only views of the stored pose (Eigen expressions, as
+  /// Eigen::Transform::linear() and translation() are). They convert implicitly to
+  /// Eigen::Matrix3d and Eigen::Vector3d; their storage is strided (no data() pointer to a
+  /// column-major matrix).
+  using RotationView = Eigen::Block<const Pose, 3, 3>;
+  using CenterView = Eigen::Block<const Pose, 3, 1>;
+  /// radii(): a view of the three stored radii (contiguous; data() points to them).
+  using RadiiView = Eigen::Map<const Eigen::Vector3d>;
+
+  RadiiView radii() const { return RadiiView(shape_); }
   /// 1 / radii (computed on use: three divisions cost less than streaming 24 more bytes per
   /// ellipsoid through the cache in the batch loops that dominate the static benchmarks).
-  Eigen::Vector3d inverseRadii() const { return radii_.cwiseInverse(); }
-  const Eigen::Matrix3d& rotation() const { return R_; }
-  const Eigen::Vector3d& center() const { return p_; }
+  Eigen::Vector3d inverseRadii() const { return radii().cwiseInverse(); }
+  RotationView rotation() const { return RotationView(pose_, 0, 0); }
+  CenterView center() const { return CenterView(pose_, 0, 3); }
+  /// The stored pose, rows (R(i,0), R(i,1), R(i,2), p_i).
+  const Pose& pose() const { return pose_; }
+  /// |p|_1 + r_0 + r_1 + r_2, rounded in double (relative error below 6 eps): the scale of the
+  /// rounding errors of a plane test on this ellipsoid (CachedPlane::separates()).
+  double extent() const { return shape_[3]; }
+  /// The four doubles (r_0, r_1, r_2, extent()), contiguous and 32-byte aligned.
+  const double* shapeData() const { return shape_; }
 
   /// 4x4 symmetric A with X^T A X < 0 inside: A = M^-T diag(1/a^2,1/b^2,1/c^2,-1) M^-1,
   /// M = [R p; 0 1], with M^-1 formed as [R^T, -R^T p] (rigid).
@@ -57,12 +75,15 @@ class Ellipsoid {
   /// For n = 0 every point of E attains h(0) = 0 and the centre is returned (never NaN).
   Eigen::Vector3d supportPoint(const Eigen::Vector3d& n_W) const;
   /// Largest radius (a bound on the distance from the centre to any point of E).
-  double maxRadius() const { return radii_.maxCoeff(); }
+  double maxRadius() const { return radii().maxCoeff(); }
 
  private:
-  Eigen::Vector3d radii_;
-  Eigen::Matrix3d R_;
-  Eigen::Vector3d p_;
+  // 128 bytes on a 64-byte boundary: exactly two cache lines. The pose is stored by rows, so that
+  // R^T n (a world direction in the body frame, the core of every support function) is the sum
+  // n_0 row_0 + n_1 row_1 + n_2 row_2 of three contiguous 4-vectors, whose fourth lane is n.p
+  // (the cached-plane kernel, separating_plane.cpp).
+  alignas(64) Pose pose_;
+  alignas(32) double shape_[4];  // r_0, r_1, r_2, extent()
 };
 
 namespace detail {
