@@ -112,8 +112,8 @@ long double supportLong(const Ellipsoid& e, const Eigen::Vector3d& n) {
   return nc + std::sqrt(sq);
 }
 
-// The cached-plane kernel exists twice, for the baseline instruction set and with fused
-// multiply-adds (chosen at run time). Both must be sound against an independent long double
+// The cached-plane kernel exists twice, for the baseline instruction set and in AVX registers
+// with fused multiply-adds, reading the poses by rows (chosen at run time). Both must be sound against an independent long double
 // evaluation of the supports, agree outside a band of relative width 1e-9 around touching, and
 // CachedPlane::separates() and planeSeparates() must run the one cpuHasFma() names.
 TEST(SeparatingPlane, GenericAndFmaKernelsAreSoundAndAgreeAwayFromTangency) {

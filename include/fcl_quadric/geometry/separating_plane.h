@@ -100,14 +100,15 @@ namespace detail {
 /// compiled for the baseline instruction set (SSE2 on x86-64). Any record, the empty one included;
 /// never throws.
 bool cachedPlaneSeparatesGeneric(const CachedPlane& plane, const Ellipsoid& a, const Ellipsoid& b);
-/// The same kernel compiled with fused multiply-adds. \pre cpuHasFma() (on a CPU without FMA it
-/// would stop on an illegal instruction; where the build has no FMA dispatch, it is
-/// cachedPlaneSeparatesGeneric()).
+/// The same test in AVX registers with fused multiply-adds, reading each ellipsoid's pose by rows
+/// (Ellipsoid::pose()). \pre cpuHasFma() (on a CPU without AVX and FMA it would stop on an
+/// illegal instruction; off x86-64, or without GCC or Clang, it is cachedPlaneSeparatesGeneric()).
 bool cachedPlaneSeparatesFma(const CachedPlane& plane, const Ellipsoid& a, const Ellipsoid& b);
 /// True when CachedPlane::separates() (and so planeSeparates()) runs cachedPlaneSeparatesFma():
-/// on x86-64 with GCC or Clang, when the CPU has FMA and AVX (checked once, before main()). The
-/// two kernels may differ only for a plane within the certificate's tolerance of touching, where
-/// either may decline (neither certifies a plane that does not separate).
+/// on x86-64 with GCC or Clang, when the CPU has FMA and AVX (checked once, before main(), unless
+/// the whole build targets both). The two kernels may differ only for a plane within the
+/// certificate's tolerance of touching, where either may decline (neither certifies a plane that
+/// does not separate).
 bool cpuHasFma();
 }  // namespace detail
 
