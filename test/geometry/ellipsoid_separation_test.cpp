@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <random>
 #include <stdexcept>
 #include <tuple>
+#include <vector>
 
 #include "fcl_quadric/geometry/characteristic_polynomial.h"
 #include "fcl_quadric/geometry/ellipsoid_plane.h"
@@ -453,6 +455,45 @@ TEST(EllipsoidSeparation, ThinMirrorPairsNearTangencyAgreeWithTheOracleAtEveryAs
     EXPECT_GT(exact_separated, 100) << "L " << L;
     EXPECT_GT(exact_not, 100) << "L " << L;
     EXPECT_GT(plane_certified, 50) << "L " << L;
+  }
+}
+
+// The storage the kernels read (Ellipsoid::pose(), shapeData(), extent()): the pose's rows are
+// (R(i,0), R(i,1), R(i,2), p_i) of the inputs, bit for bit, and the views give back the inputs;
+// the shape is (r_0, r_1, r_2, extent) with extent within 6 eps of |p|_1 + sum(r) (computed
+// here in long double), the bound the cached-plane margin assumes; rows and shape lie on 32-byte
+// boundaries, in containers and on the stack.
+TEST(Ellipsoid, StoresThePoseByRowsAndItsExtent) {
+  std::mt19937_64 rng(83);
+  std::uniform_real_distribution<double> lg(-3.0, 4.0), u(-1.0, 1.0);
+  std::vector<Ellipsoid> kept;
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Matrix3d R = test::randomRotation(rng);
+    const Eigen::Vector3d r(std::pow(10.0, lg(rng)), std::pow(10.0, lg(rng)), std::pow(10.0, lg(rng)));
+    const Eigen::Vector3d p = std::pow(10.0, lg(rng)) * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    const Ellipsoid e(r, R, p);
+    for (int row = 0; row < 3; ++row) {
+      for (int col = 0; col < 3; ++col) {
+        ASSERT_EQ(e.pose()(row, col), R(row, col));
+        ASSERT_EQ(e.pose().data()[4 * row + col], R(row, col));
+      }
+      ASSERT_EQ(e.pose().data()[4 * row + 3], p[row]);
+    }
+    ASSERT_EQ(Eigen::Matrix3d(e.rotation()), R);
+    ASSERT_EQ(Eigen::Vector3d(e.center()), p);
+    ASSERT_EQ(Eigen::Vector3d(e.radii()), r);
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(e.shapeData()[k], r[k]);
+    long double exact = 0.0L;
+    for (int k = 0; k < 3; ++k) exact += std::fabs(static_cast<long double>(p[k])) + static_cast<long double>(r[k]);
+    ASSERT_EQ(e.shapeData()[3], e.extent());
+    ASSERT_LE(std::fabs(static_cast<long double>(e.extent()) - exact), 6.0L * 0x1p-53L * exact) << "ellipsoid " << i;
+    ASSERT_EQ(reinterpret_cast<std::uintptr_t>(e.pose().data()) % 32, 0u);
+    ASSERT_EQ(reinterpret_cast<std::uintptr_t>(e.shapeData()) % 32, 0u);
+    kept.push_back(e);
+  }
+  for (const Ellipsoid& e : kept) {
+    ASSERT_EQ(reinterpret_cast<std::uintptr_t>(&e) % 64, 0u);
+    ASSERT_EQ(reinterpret_cast<std::uintptr_t>(e.shapeData()) % 32, 0u);
   }
 }
 
