@@ -54,7 +54,7 @@ std::size_t PairCache::collide(const fcl::CollisionObject<double>* o1, const fcl
   }
   const SeparationCertificate cert = classifyEllipsoids(ea, eb);
   if (cert.status == Separation::Separated) {
-    const std::optional<CachedPlane> plane = CachedPlane::fromPlane(planeWithNormal(cert.normal, ea, eb));
+    const std::optional<CachedPlane> plane = CachedPlane::fromPlane(certificatePlane(cert, ea, eb));
     if (plane) {
       entries_[key] = Entry{*plane, ga, gb};
     } else if (it != entries_.end()) {

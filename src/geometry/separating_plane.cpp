@@ -105,6 +105,16 @@ Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellips
   return p;
 }
 
+Plane certificatePlane(const SeparationCertificate& cert, const Ellipsoid& a, const Ellipsoid& b) {
+  // A pre-test's witness is on the mid-plane of the gap along its normal (lineDecision() and
+  // followUpTests() in ellipsoid_separation.cpp); the pencil's is its minimax point.
+  if (cert.precision_stage != -1) return planeWithNormal(cert.normal, a, b);
+  Plane p;
+  p.normal = cert.normal;
+  p.offset = cert.normal.dot(cert.witness);
+  return p;
+}
+
 using detail::Lanes2;
 using detail::lanes;
 

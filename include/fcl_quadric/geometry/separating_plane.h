@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "fcl_quadric/geometry/ellipsoid.h"
+#include "fcl_quadric/geometry/ellipsoid_separation.h"
 
 namespace fcl_quadric {
 
@@ -51,6 +52,14 @@ std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipso
 /// \pre n finite and non-zero (it is normalised). A zero n gives the degenerate plane (normal 0,
 /// offset 0), which planeSeparates() never certifies; no exception.
 Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellipsoid& b);
+
+/// The plane the coherence caches keep for a Separated certificate of (a, b) (PairCoherence,
+/// PairCache): planeWithNormal(cert.normal, a, b), except that a pre-test's certificate
+/// (precision_stage -1), whose witness already lies on that mid-plane, gives {n.x = n.witness}
+/// without evaluating the supports (equal up to rounding). Not certified here: the caches certify
+/// it on every use. \pre cert.status == Separation::Separated (for other certificates the result
+/// is meaningless, but finite for finite inputs; no exception).
+Plane certificatePlane(const SeparationCertificate& cert, const Ellipsoid& a, const Ellipsoid& b);
 
 /// Certified test that `plane` strictly separates a (negative side) from b (positive side):
 /// support(a, n) < offset < -support(b, -n), each with a relative margin covering rounding.
