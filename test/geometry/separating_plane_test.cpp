@@ -1,6 +1,8 @@
 // Separating planes (Choi 2008 Theorems 4.5/4.6) and inter-frame coherence (§4.3, Wang 2004 §4).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "fcl_quadric/geometry/pair_coherence.h"
@@ -237,6 +239,46 @@ TEST(PairCoherence, AgreesWithTheFullTestFrameByFrameAndUsesItsPlanes) {
   EXPECT_EQ(cache.queries(), 3000u);
   EXPECT_GT(separated, 1000);
   EXPECT_GT(cache.planeHits(), 0.5 * separated);  // coherence pays off at 0.1 rad/frame
+}
+
+// The plane the caches keep (certificatePlane()): for a pre-test's certificate it is
+// planeWithNormal()'s plane up to rounding, placed from the witness, and it separates the pair
+// (judged on long double supports, and certified by planeSeparates()) except within a band of
+// relative width 1e-9 around touching; for a pencil certificate it is planeWithNormal()'s plane.
+TEST(CertificatePlane, IsThePlaneWithTheCertificatesNormalPlacedMidway) {
+  std::mt19937_64 rng(89);
+  int pre_tests = 0, pencil = 0, certified = 0;
+  for (int i = 0; i < 30000; ++i) {
+    const Ellipsoid a = test::anchorEllipsoid(rng), b = test::anchorEllipsoid(rng);
+    const SeparationCertificate cert = classifyEllipsoids(a, b);
+    if (cert.status != Separation::Separated) continue;
+    const Plane p = certificatePlane(cert, a, b);
+    const Plane q = planeWithNormal(cert.normal, a, b);
+    if (cert.precision_stage != -1) {
+      ++pencil;
+      ASSERT_EQ(p.normal, q.normal);
+      ASSERT_EQ(p.offset, q.offset);
+      continue;
+    }
+    ++pre_tests;
+    const double scale = a.center().lpNorm<1>() + b.center().lpNorm<1>() + a.radii().sum() + b.radii().sum();
+    ASSERT_LE((p.normal - q.normal).lpNorm<Eigen::Infinity>(), 1e-15) << "pair " << i;
+    ASSERT_LE(std::fabs(p.offset - q.offset), 1e-12 * scale) << "pair " << i;
+    const long double lo = supportLong(a, p.normal);    // a lies in n.x <= lo
+    const long double hi = -supportLong(b, -p.normal);  // b lies in n.x >= hi
+    const long double margin = std::min(p.offset - lo, hi - p.offset);
+    const bool ok = planeSeparates(p, a, b);
+    if (ok) {
+      ASSERT_GT(margin, 0.0L) << "certified a plane that does not separate: pair " << i;
+    }
+    if (margin > 1e-9L * scale) {
+      ASSERT_TRUE(ok) << "pair " << i << " margin " << static_cast<double>(margin);
+    }
+    certified += ok;
+  }
+  EXPECT_GT(pre_tests, 15000);
+  EXPECT_GT(certified, pre_tests - pre_tests / 100);
+  RecordProperty("pencil_certificates", pencil);
 }
 
 TEST(PairCoherence, StalePlaneNeverHidesACollision) {
