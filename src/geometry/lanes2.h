@@ -34,12 +34,6 @@ inline Lanes2 sqrtLanes(Lanes2 x) {
 #endif
 }
 
-/// |x| per lane: the sign bit cleared (one andpd).
-inline Lanes2 absLanes(Lanes2 x) {
-  const Mask2 mask = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
-  return Lanes2(Mask2(x) & mask);
-}
-
 /// (x[0], -x[1]): lane 1's sign bit flipped (one xorpd; exact).
 inline Lanes2 negateLane1(Lanes2 x) {
   const Mask2 sign = {0, static_cast<long long>(0x8000000000000000ULL)};

@@ -215,7 +215,7 @@ bool CachedPlaneAccess::kernel(const CachedPlane& plane, const Ellipsoid& a, con
 /// The same test in AVX registers, one ellipsoid per register: the pose rows
 /// (R(i,0), R(i,1), R(i,2), p_i) make n_0 row_0 + n_1 row_1 + n_2 row_2 = (R^T n, n.p) three fused
 /// multiply-adds with no shuffle, and four unpacks and three extracts pair a's and b's results
-/// into the lanes of the generic kernel's tail (the generic kernel needs 15 inserts for that).
+/// into the lanes of the generic kernel's tail (the generic kernel needs 16 inserts for that).
 FCL_QUADRIC_TARGET_FMA bool CachedPlaneAccess::kernelFma(const CachedPlane& plane, const Ellipsoid& a,
                                                          const Ellipsoid& b) {
   const double tau = tolerance::kCertificateRelativeBoundDouble;
