@@ -52,7 +52,8 @@ class Ellipsoid {
   Eigen::Vector3d inverseRadii() const { return radii().cwiseInverse(); }
   RotationView rotation() const { return RotationView(pose_, 0, 0); }
   CenterView center() const { return CenterView(pose_, 0, 3); }
-  /// The stored pose, rows (R(i,0), R(i,1), R(i,2), p_i).
+  /// The stored pose, rows (R(i,0), R(i,1), R(i,2), p_i). These accessors have no failure mode:
+  /// the constructor validated what they return.
   const Pose& pose() const { return pose_; }
   /// |p|_1 + r_0 + r_1 + r_2, rounded in double (relative error below 6 eps): the scale of the
   /// rounding errors of a plane test on this ellipsoid (CachedPlane::separates()).

@@ -54,7 +54,8 @@ std::optional<SeparatingPlane> separatingPlane(const Ellipsoid& a, const Ellipso
 Plane planeWithNormal(const Eigen::Vector3d& n, const Ellipsoid& a, const Ellipsoid& b);
 
 /// The plane the coherence caches keep for a Separated certificate of (a, b) (PairCoherence,
-/// PairCache): planeWithNormal(cert.normal, a, b), except that a pre-test's certificate
+/// PairCache; the candidate plane of EECD, Wang et al. 2004 §4, Choi 2008 §4.3):
+/// planeWithNormal(cert.normal, a, b), except that a pre-test's certificate
 /// (precision_stage -1), whose witness already lies on that mid-plane, gives {n.x = n.witness}
 /// without evaluating the supports (equal up to rounding). Not certified here: the caches certify
 /// it on every use. \pre cert.status == Separation::Separated (for other certificates the result
