@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <type_traits>
 
 #include "fcl_quadric/tolerances.h"
@@ -74,14 +76,14 @@ using detail::lanes;
 /// Separation along a direction m (any finite length, 0 included, which never separates):
 /// h_a(m) + h_b(-m) < m.(p_b - p_a) with h(m) = m.p + |S R^T m| the support function, both
 /// supports in one pass of lanes (r: the radii lanes; *h receives the centred supports |S R^T m|
-/// of a and b, for the witness). Every rounded quantity (m.d, |S R^T m|) is a sum or norm whose
-/// rounding is below 8 eps times its absolute evaluation: sum|m_i d_i| for m.d, and |m|_1 sum(r)
-/// for |S R^T m| (R^T m is rounded absolutely, ~eps |m|, and a long radius multiplies that;
-/// tolerances.h, kStoredRotationDefect), so the relative margin tau = 2^-40 over their sum covers
-/// it.
+/// of a and b, for the witness, and *u the body-frame directions R^T m, so that supportMidpoint()
+/// along m need not compute them again). Every rounded quantity (m.d, |S R^T m|) is a sum or norm
+/// whose rounding is below 8 eps times its absolute evaluation: sum|m_i d_i| for m.d, and
+/// |m|_1 sum(r) for |S R^T m| (R^T m is rounded absolutely, ~eps |m|, and a long radius multiplies
+/// that; tolerances.h, kStoredRotationDefect), so the relative margin tau = 2^-40 over their sum
+/// covers it.
 inline bool separatedAlong(const Eigen::Vector3d& m, const Eigen::Vector3d& d, const Ellipsoid& a, const Ellipsoid& b,
-                           const Lanes2 r[3], double tau, Lanes2* h) {
-  Lanes2 u[3];
+                           const Lanes2 r[3], double tau, Lanes2* h, Lanes2 u[3]) {
   detail::bodyFrameLanes(a, b, m, u);
   const Lanes2 s0 = u[0] * r[0], s1 = u[1] * r[1], s2 = u[2] * r[2];
   *h = detail::sqrtLanes(s0 * s0 + s1 * s1 + s2 * s2);
@@ -114,14 +116,15 @@ bool strictlyInsideBoth(const Ellipsoid& a, const Ellipsoid& b, const Lanes2 q[3
 }
 
 /// The midpoint of the support points p_a + R_a S_a (S_a u_a / h_a) of a along w and
-/// p_b - R_b S_b (S_b u_b / h_b) of b along -w, with u = R^T w in lanes and h = |S u| (scale-free
-/// in w; h = 0 only on underflow, floored at DBL_MIN instead of a division by zero).
+/// p_b - R_b S_b (S_b u_b / h_b) of b along -w, with u = R^T w in lanes and h = |S u|, both
+/// already computed by the caller's test along w (lineTests() or separatedAlong(), the same
+/// expression bit for bit). Scale-free in w; h = 0 only on underflow, floored at DBL_MIN instead
+/// of a division by zero.
 /// offset[i] receives the support points' offsets from the centres, R S (S u / h) (lane 0: a's
 /// along w, lane 1: b's along w, so b's support point along -w is p_b - offset lane 1).
 inline void supportMidpoint(const Ellipsoid& a, const Ellipsoid& b, const Lanes2 u[3], const Lanes2 r[3],
-                            Eigen::Vector3d* x, Lanes2 offset[3]) {
+                            Lanes2 h, Eigen::Vector3d* x, Lanes2 offset[3]) {
   const Lanes2 s0 = u[0] * r[0], s1 = u[1] * r[1], s2 = u[2] * r[2];
-  const Lanes2 h = detail::sqrtLanes(s0 * s0 + s1 * s1 + s2 * s2);
   const Lanes2 inv_h = 1.0 / detail::maxLanes(h, lanes(DBL_MIN, DBL_MIN));
   const Lanes2 t[3] = {s0 * r[0] * inv_h, s1 * r[1] * inv_h, s2 * r[2] * inv_h};
   detail::worldFrameLanes(a, b, t, offset);
@@ -131,23 +134,15 @@ inline void supportMidpoint(const Ellipsoid& a, const Ellipsoid& b, const Lanes2
 }
 
 inline void supportMidpoint(const Ellipsoid& a, const Ellipsoid& b, const Lanes2 u[3], const Lanes2 r[3],
-                            Eigen::Vector3d* x) {
+                            Lanes2 h, Eigen::Vector3d* x) {
   Lanes2 offset[3];
-  supportMidpoint(a, b, u, r, x, offset);
-}
-
-/// The same along a world direction w.
-inline void supportMidpoint(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& w, const Lanes2 r[3],
-                            Eigen::Vector3d* x, Lanes2 offset[3]) {
-  Lanes2 u[3];
-  detail::bodyFrameLanes(a, b, w, u);
-  supportMidpoint(a, b, u, r, x, offset);
+  supportMidpoint(a, b, u, r, h, x, offset);
 }
 
 /// What the centre-line tests compute on v for both ellipsoids at once (lane 0: a, lane 1: b):
-/// u = R^T v, the radii r and their reciprocals q = 1 / r.
+/// u = R^T v, the radii r, their reciprocals q = 1 / r and the centred supports h = |S u|.
 struct LineLanes {
-  Lanes2 u[3], r[3], q[3];
+  Lanes2 u[3], r[3], q[3], h;
 };
 
 /// 1 / r with one division per ellipsoid: k = 1 / (r0 r1 r2), then 1 / r0 = r1 r2 k, ...; each
@@ -195,6 +190,7 @@ __attribute__((always_inline)) inline Separation lineTests(const Ellipsoid& a, c
   const Lanes2 i0 = u0 * q0, i1 = u1 * q1, i2 = u2 * q2;
   const Lanes2 h = detail::sqrtLanes(s0 * s0 + s1 * s1 + s2 * s2);
   const Lanes2 l = detail::sqrtLanes(i0 * i0 + i1 * i1 + i2 * i2);
+  L.h = h;
   if (values != nullptr) {
     values->h[0] = h[0];
     values->h[1] = h[1];
@@ -232,9 +228,21 @@ bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d
   const double tau = tolerance::kCertificateRelativeBoundDouble;
   // 3. Outward normal of a at p_a + rho_a n is R_a S_a^-1 (S_a^-1 R_a^T n) = R_a (u_a ./ r_a^2) / |v|;
   // the outward normal of b at p_b - rho_b n is -R_b (u_b ./ r_b^2) / |v|, so -b's is
-  // +R_b (u_b ./ r_b^2) / |v|: one formula for both lanes. The factor 1 / |v| keeps their squared
-  // norms in range as on the unit direction.
-  const double kv = unscaled ? 1.0 / std::sqrt(D2) : 1.0;
+  // +R_b (u_b ./ r_b^2) / |v|: one formula for both lanes. A factor kv close to 1 / |v| keeps
+  // their squared norms in range as on the unit direction. On the unscaled path (v = d) it is
+  // the power of two 2^-floor(e/2) for |d|^2 = f 2^e, f in [1, 2): |d| kv is in [1, 2 sqrt(2)).
+  // A power of two scales exactly, so m below does not depend on it (up to the rounding of
+  // w), and a few integer operations on the bits of D2 replace a square root and a division
+  // that would stand first in the chain of test 3 (~30 cycles; D2 in [1e-100, 1e100] here).
+  double kv = 1.0;
+  if (unscaled) {
+    uint64_t bits;
+    std::memcpy(&bits, &D2, sizeof bits);
+    // Biased exponent B = e + 1023, so floor(e / 2) = ((B + 1) >> 1) - 512 in unsigned arithmetic
+    // and kv's biased exponent is 1023 - floor(e / 2) = 1535 - ((B + 1) >> 1), in [857, 1190].
+    const uint64_t kv_bits = (1535 - (((bits >> 52) + 1) >> 1)) << 52;
+    std::memcpy(&kv, &kv_bits, sizeof kv);
+  }
   Lanes2 w[3], normal[3];
   for (int j = 0; j < 3; ++j) w[j] = L.u[j] * L.q[j] * (L.q[j] * kv);
   detail::worldFrameLanes(a, b, w, normal);
@@ -247,20 +255,20 @@ bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d
     const Lanes2 unit = normal[i] * inv_len;
     m[i] = unit[0] + unit[1];
   }
-  Lanes2 hm;
-  bool separated = separatedAlong(m, d, a, b, L.r, tau, &hm);
+  Lanes2 hm, um[3];
+  bool separated = separatedAlong(m, d, a, b, L.r, tau, &hm, um);
   // 4. The midpoint of the support points of a along v and of b along -v, strictly inside both?
   // Computed whatever test 3 found: on random pairs its outcome is unpredictable, and the two
   // independent chains of square roots and divisions overlap.
   Eigen::Vector3d x;
-  supportMidpoint(a, b, L.u, L.r, &x);
+  supportMidpoint(a, b, L.u, L.r, L.h, &x);
   bool inside = strictlyInsideBoth(a, b, L.q, x, tau);
   if (!(separated | inside)) {
     // 5. As 4, with the support points along m (test 3's direction, closer to the common normal
     // where the solids overlap off the centre line): decides about 45% of the overlapping pairs
     // that would otherwise go to the pencil (1,060 of 2,363 among the 100,000 ANCHORS pairs).
     Lanes2 offset[3];
-    supportMidpoint(a, b, m, L.r, &x, offset);
+    supportMidpoint(a, b, um, L.r, hm, &x, offset);
     inside = strictlyInsideBoth(a, b, L.q, x, tau);
     if (!inside && unscaled) {
       // 6. Gradient ascent on the support gap f(w) = w.d - |S_a R_a^T w| - |S_b R_b^T w| (concave
@@ -280,12 +288,12 @@ bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d
         const double kw = 1.0 / std::sqrt(std::max(w.squaredNorm(), DBL_MIN));
         for (int i = 0; i < 3; ++i) w[i] = w[i] * kw + (d[i] - (offset[i][0] + offset[i][1])) * kd;
         w *= 1.0 / std::max(w.cwiseAbs().maxCoeff(), DBL_MIN);
-        separated = separatedAlong(w, d, a, b, L.r, tau, &hm);
+        separated = separatedAlong(w, d, a, b, L.r, tau, &hm, um);
         if (separated) {
           m = w;
           break;
         }
-        supportMidpoint(a, b, w, L.r, &x, offset);
+        supportMidpoint(a, b, um, L.r, hm, &x, offset);
         inside = strictlyInsideBoth(a, b, L.q, x, tau);
         if (inside) break;
       }
