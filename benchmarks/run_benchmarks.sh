@@ -10,6 +10,9 @@
 #      default 2000).
 #      PROGRAMS (default "bench_static bench_separating_planes bench_fcl_scenes bench_ccd"): the
 #      programs to build and run, e.g. PROGRAMS=bench_fcl_scenes for that program alone.
+#      WAIT_IDLE (s, default 600): first wait, up to that long, for the 1-minute load to fall to
+#      0.5 or below (the load of a test run just ended takes about two minutes to decay); 0 does
+#      not wait. A run that starts above 0.5 all the same says so in run_info.txt.
 # A new BUILD_DIR is configured without tests and CLI. An existing one keeps its options (it may be
 # someone's working build): only the benchmark targets are built, and it must be Release.
 # The programs run from a copy of the binaries, so a rebuild of BUILD_DIR during the run cannot
@@ -24,7 +27,18 @@ fi
 src=$(cd "$(dirname "$0")/.." && pwd)
 build=$1
 out=${2:-${build}/results}
+wait_idle=${WAIT_IDLE:-600}
+[[ "${wait_idle}" =~ ^[0-9]+$ ]] || {
+  echo "run_benchmarks.sh: WAIT_IDLE must be a whole number of seconds, not '${wait_idle}'" >&2
+  exit 2
+}
+waited=0
 read -r load_at_start _ </proc/loadavg
+while ((waited < wait_idle)) && awk -v l="${load_at_start}" 'BEGIN { exit !(l > 0.5) }'; do
+  sleep 10
+  waited=$((waited + 10))
+  read -r load_at_start _ </proc/loadavg
+done
 min_time=${MIN_TIME:-0.2}
 reps=${REPS:-5}
 pairs=${PAIRS:-100000}
@@ -95,7 +109,7 @@ os=$(sed -n 's/^PRETTY_NAME="\(.*\)"$/\1/p' /etc/os-release 2>/dev/null || true)
   echo "settings: MIN_TIME=${min_time} REPS=${reps} PAIRS=${pairs} TABLE1_SEEDS=${table1_seeds}" \
     "FRAMES=${frames} FRAMES_1000=${frames_1000} QUERIES=${queries} CCD_FRAMES=${ccd_frames} CCD_RANDOM=${ccd_random}"
   echo "programs: ${programs[*]}"
-  echo "load before: $(uptime | sed 's/^ *//')"
+  echo "load before: $(uptime | sed 's/^ *//') (after waiting ${waited} s for it to fall to 0.5)"
   # The timed loops assume an otherwise idle machine: a run started while something else was
   # running (a build, tests, another benchmark) says so, above its numbers. The load is the one
   # sampled when this script started, before its own build of the benchmark targets.
