@@ -362,6 +362,46 @@ TEST(EllipsoidSeparation, IsInvariantUnderACommonRigidMotionAndScaling) {
   EXPECT_LE(changed, 1);  // only a pair within ~1e-13 of tangency could flip
 }
 
+// Scaled by 2^-150 or 2^150, the random pairs keep |d|^2 inside (1e-100, 1e100), so they stay on
+// the path that runs the centre-line tests on d itself, with test 3's power-of-two factor kv
+// (about 1/|d|, read off the exponent of |d|^2) near the ends of its range. Power-of-two scaling
+// is exact and every pre-test is homogeneous in the scale, so the answer must not change, and a
+// pre-test's certificate must scale exactly: witness times k, normal unchanged, bit for bit.
+TEST(EllipsoidSeparation, ScalesNearTheEndsOfTheCentreLineRangeScaleThePreTestsExactly) {
+  std::mt19937_64 rng(47);
+  int on_path = 0, pre_test_certificates = 0, followup_separated = 0;
+  for (int i = 0; i < 4000; ++i) {
+    auto [a, b] = randomPair(rng);
+    const Separation s = separationStatus(a, b);
+    const SeparationCertificate c = classifyEllipsoids(a, b);
+    ASSERT_EQ(c.status, s) << "pair " << i;
+    for (double k : {std::ldexp(1.0, -150), std::ldexp(1.0, 150)}) {
+      const Ellipsoid a2 = transformed(a, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), k);
+      const Ellipsoid b2 = transformed(b, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), k);
+      const double D2 = (b2.center() - a2.center()).squaredNorm();
+      on_path += D2 > 1e-100 && D2 < 1e100;
+      ASSERT_EQ(separationStatus(a2, b2), s) << "pair " << i << " scaled by " << k;
+      const SeparationCertificate c2 = classifyEllipsoids(a2, b2);
+      ASSERT_EQ(c2.status, s) << "pair " << i << " scaled by " << k;
+      if (c.precision_stage == -1) {
+        ++pre_test_certificates;
+        // A separating certificate whose normal is not the centre line's comes from test 3 or 6,
+        // the tests that use kv.
+        const Eigen::Vector3d d = b.center() - a.center();
+        followup_separated += c.status == Separation::Separated && c.normal != Eigen::Vector3d(d * (1.0 / d.norm()));
+        ASSERT_EQ(c2.precision_stage, -1) << "pair " << i << " scaled by " << k;
+        ASSERT_EQ(c2.witness, Eigen::Vector3d(k * c.witness)) << "pair " << i << " scaled by " << k;
+        ASSERT_EQ(c2.normal, c.normal) << "pair " << i << " scaled by " << k;
+      }
+    }
+  }
+  EXPECT_EQ(on_path, 8000);  // every scaled pair stayed on the path under test
+  EXPECT_GT(pre_test_certificates, 4000);
+  EXPECT_GT(followup_separated, 0);
+  std::printf("pre-test certificates %d of 8000, separated by test 3 or 6: %d\n", pre_test_certificates,
+              followup_separated);
+}
+
 // The centre-line tests run on d itself while |d| is in [1e-50, 1e50] and on the unit direction
 // outside it (docs/algorithms.md §1, "How they run"); centres closer than 1e-150 overlap at once.
 // Scaling a pair by 2^-200 or 2^200 is exact and moves |d| outside that range, so the other path
