@@ -112,7 +112,8 @@ os=$(sed -n 's/^PRETTY_NAME="\(.*\)"$/\1/p' /etc/os-release 2>/dev/null || true)
   echo "load before: $(uptime | sed 's/^ *//') (after waiting ${waited} s for it to fall to 0.5)"
   # The timed loops assume an otherwise idle machine: a run started while something else was
   # running (a build, tests, another benchmark) says so, above its numbers. The load is the one
-  # sampled when this script started, before its own build of the benchmark targets.
+  # sampled when this script started (after the WAIT_IDLE wait), before its own build of the
+  # benchmark targets.
   if awk -v l="${load_at_start}" 'BEGIN { exit !(l > 0.5) }'; then
     echo "WARNING: 1-minute load ${load_at_start} > 0.5 when the run was started: the machine was not idle," \
       "numbers may be noisy"
