@@ -215,9 +215,78 @@ __attribute__((always_inline)) inline Separation lineTests(const Ellipsoid& a, c
   return static_cast<Separation>((1 + int(overlapping)) * int(!separated));
 }
 
-/// The most gradient steps of test 6 (followUpTests()): a fourth step decided 78 more of the 425
-/// ANCHORS pairs that three leave to the pencil, for the cost of the step on all 425.
+/// The most Newton steps of test 6 (followUpTests()), and the longest step (the trust region of
+/// supportGapNewtonStep(), tangent to the unit sphere). Measured in session 25 on the pairs that
+/// reach test 6, counting those left to the pencil: three steps with the cap 0.4 leave 4 of the
+/// 100,000 ANCHORS pairs (three gradient steps, test 6 until then, left 425; uncapped Newton
+/// steps 93); on 20,000 random pairs of aspect ratio up to 10 / 100 / 1000, 125 / 3,152 / 5,311
+/// (gradient steps 1,324 / 5,588 / 8,138; uncapped 922 / 5,943 / 8,941; caps 0.3 and 0.5 were
+/// each worse on one of the sets).
 constexpr int kSupportGapSteps = 3;
+constexpr double kNewtonMaxStep = 0.4;
+
+/// One Newton step of test 6 on the support gap f(w) = w.d - h_a(w) - h_b(w), from the unit
+/// direction w (the maximiser of f over directions is the common normal of Theorem 4.6's plane
+/// when the solids are disjoint). With o_e the support points' offsets along w (`offset`, lane 0
+/// for a, lane 1 for b) and h_e = |S_e R_e^T w| (`h`):
+///   grad f = d - (o_a + o_b),   Hessian of h_e = (M_e - o_e o_e^T) / h_e,  M_e = R_e S_e^2 R_e^T.
+/// h is homogeneous of degree 1, so w spans the Hessians' null space; the step solves
+/// (H + (tr H / 2) w w^T) delta = grad f - (grad f . w) w with H the sum of the two Hessians,
+/// whose solution is tangent to the sphere, and *next = w + delta. Returns false (no step) when
+/// that 3x3 system is singular or its solution not finite. The step only proposes a direction:
+/// the caller certifies any decision along it. Swapping a and b swaps the two Hessians (summed
+/// in either order to the same bits) and negates w, d and the offsets exactly, hence delta and
+/// *next: symmetric bit for bit; a power-of-two scale of the pair scales H and grad f alike and
+/// leaves delta unchanged.
+bool supportGapNewtonStep(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d& d, const Eigen::Vector3d& w,
+                          const Lanes2 offset[3], Lanes2 h, Eigen::Vector3d* next) {
+  // The six entries of the symmetric H, (0,0) (1,1) (2,2) (0,1) (0,2) (1,2), both ellipsoids at
+  // once (lane 0: a, lane 1: b): M(i, j) = sum_k (R(i, k) r_k^2) R(j, k) from the pose's rows.
+  const Ellipsoid::Pose& Pa = a.pose();
+  const Ellipsoid::Pose& Pb = b.pose();
+  Lanes2 R[3][3], T[3][3];
+  for (int k = 0; k < 3; ++k) {
+    const Lanes2 r = lanes(a.radii()[k], b.radii()[k]);
+    const Lanes2 q = r * r;
+    for (int i = 0; i < 3; ++i) {
+      R[i][k] = lanes(Pa(i, k), Pb(i, k));
+      T[i][k] = R[i][k] * q;
+    }
+  }
+  const Lanes2 inv_h = 1.0 / detail::maxLanes(h, lanes(DBL_MIN, DBL_MIN));
+  static constexpr int kRow[6] = {0, 1, 2, 0, 0, 1}, kCol[6] = {0, 1, 2, 1, 2, 2};
+  double H[6];
+  for (int n = 0; n < 6; ++n) {
+    const int i = kRow[n], j = kCol[n];
+    const Lanes2 M = T[i][0] * R[j][0] + T[i][1] * R[j][1] + T[i][2] * R[j][2];
+    const Lanes2 He = (M - offset[i] * offset[j]) * inv_h;
+    H[n] = He[0] + He[1];
+  }
+  const double c = 0.5 * ((H[0] + H[1]) + H[2]);  // tr H / 2
+  H[0] += c * (w[0] * w[0]);
+  H[1] += c * (w[1] * w[1]);
+  H[2] += c * (w[2] * w[2]);
+  H[3] += c * (w[0] * w[1]);
+  H[4] += c * (w[0] * w[2]);
+  H[5] += c * (w[1] * w[2]);
+  Eigen::Vector3d g;
+  for (int i = 0; i < 3; ++i) g[i] = d[i] - (offset[i][0] + offset[i][1]);
+  const Eigen::Vector3d gt = g - g.dot(w) * w;
+  // Cramer's rule with the cofactors of the symmetric H (no pivoting: the same bits for the same H).
+  const double c00 = H[1] * H[2] - H[5] * H[5], c01 = H[5] * H[4] - H[3] * H[2], c02 = H[3] * H[5] - H[1] * H[4];
+  const double det = H[0] * c00 + H[3] * c01 + H[4] * c02;
+  if (!(det != 0.0)) return false;  // singular (or NaN): no division
+  const double c11 = H[0] * H[2] - H[4] * H[4], c12 = H[3] * H[4] - H[0] * H[5], c22 = H[0] * H[1] - H[3] * H[3];
+  const double k = 1.0 / det;
+  const Eigen::Vector3d delta(k * (c00 * gt[0] + c01 * gt[1] + c02 * gt[2]), k * (c01 * gt[0] + c11 * gt[1] + c12 * gt[2]),
+                              k * (c02 * gt[0] + c12 * gt[1] + c22 * gt[2]));
+  if (!delta.allFinite()) return false;
+  // Trust region: a step longer than kNewtonMaxStep (an angle of ~22 degrees) is shortened to it.
+  // Far from the maximiser the quadratic model of an elongated ellipsoid's support overshoots.
+  const double length = delta.norm();
+  *next = w + (length > kNewtonMaxStep ? (kNewtonMaxStep / length) * delta : delta);
+  return true;
+}
 
 /// Tests 3 to 6 of centreLineTest(), for the pairs tests 1 and 2 leave open (~11% of the
 /// random pairs of the benchmarks), on the lanes L that lineTests() computed on v (d itself when
@@ -271,22 +340,21 @@ bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d
     supportMidpoint(a, b, um, L.r, hm, &x, offset);
     inside = strictlyInsideBoth(a, b, L.q, x, tau);
     if (!inside && unscaled) {
-      // 6. Gradient ascent on the support gap f(w) = w.d - |S_a R_a^T w| - |S_b R_b^T w| (concave
+      // 6. Newton steps on the support gap f(w) = w.d - |S_a R_a^T w| - |S_b R_b^T w| (concave
       // and homogeneous; positive exactly for the directions that separate), at most
-      // kSupportGapSteps steps from m: grad f(w) = d - (o_a + o_b), with o the support points'
-      // offsets along w (test 5's for w = m), and w' = w / |w| + (5/8) grad f(w) / |d|. After each
-      // step, tests 3 and 5 along w'. On the ANCHORS pairs the three steps decide 82% of the pairs
-      // that would go to the pencil (1,946 of 2,371; one step decided 1,333, two 1,720, five
-      // 2,068; the step 5/8 decided the most among 0.1 ... 4 for one step, session 22). Each w' is
-      // scaled to max |w'_i| = 1, which keeps every product of the tests in range whatever the
-      // sizes (the scaled path, |d| outside [1e-50, 1e50], skips this test). Swapping a and b
-      // negates m, d and the sum of the offsets exactly, hence every w': symmetric bit for bit
-      // like the other tests.
-      const double kd = 0.625 / std::sqrt(D2);
+      // kSupportGapSteps steps from m (supportGapNewtonStep(), from test 5's offsets and
+      // supports for w = m). After each step, tests 3 and 5 along the new w. On the ANCHORS
+      // pairs the three steps decide all but 4 of the 2,371 pairs that would go to the pencil.
+      // Until session 25 these were three gradient steps, w' = w / |w| + (5/8) grad f / |d|,
+      // which left 425 (kSupportGapSteps has the counts on other sets; docs/benchmarks.md,
+      // session 25, the times). Each w is scaled to max |w_i| = 1,
+      // which keeps every product of the tests in range whatever the sizes (the scaled path, |d|
+      // outside [1e-50, 1e50], skips this test). Swapping a and b negates m, d and the sum of
+      // the offsets exactly, hence every step: symmetric bit for bit like the other tests.
       Eigen::Vector3d w = m;
       for (int step = 0; step < kSupportGapSteps; ++step) {
         const double kw = 1.0 / std::sqrt(std::max(w.squaredNorm(), DBL_MIN));
-        for (int i = 0; i < 3; ++i) w[i] = w[i] * kw + (d[i] - (offset[i][0] + offset[i][1])) * kd;
+        if (!supportGapNewtonStep(a, b, d, w * kw, offset, hm * kw, &w)) break;
         w *= 1.0 / std::max(w.cwiseAbs().maxCoeff(), DBL_MIN);
         separated = separatedAlong(w, d, a, b, L.r, tau, &hm, um);
         if (separated) {
