@@ -233,8 +233,8 @@ constexpr double kNewtonMaxStep = 0.4;
 /// h is homogeneous of degree 1, so w spans the Hessians' null space; the step solves
 /// (H + (tr H / 2) w w^T) delta = grad f - (grad f . w) w with H the sum of the two Hessians,
 /// whose solution is tangent to the sphere, and *next = w + delta. Returns false (no step) when
-/// that 3x3 system is singular or its solution not finite. The step only proposes a direction:
-/// the caller certifies any decision along it. Swapping a and b swaps the two Hessians (summed
+/// that 3x3 system is singular, out of range, or its solution not finite. The step only
+/// proposes a direction: the caller certifies any decision along it. Swapping a and b swaps the two Hessians (summed
 /// in either order to the same bits) and negates w, d and the offsets exactly, hence delta and
 /// *next: symmetric bit for bit; a power-of-two scale of the pair scales H and grad f alike and
 /// leaves delta unchanged.
@@ -271,14 +271,29 @@ bool supportGapNewtonStep(const Ellipsoid& a, const Ellipsoid& b, const Eigen::V
   H[5] += c * (w[1] * w[2]);
   Eigen::Vector3d g;
   for (int i = 0; i < 3; ++i) g[i] = d[i] - (offset[i][0] + offset[i][1]);
-  const Eigen::Vector3d gt = g - g.dot(w) * w;
+  Eigen::Vector3d gt = g - g.dot(w) * w;
+  // Scale the system by the power of two sigma that brings max |H| into [1, 2): exact, so delta
+  // does not change, and the cofactors and the determinant below neither overflow (an inf - inf
+  // would be a NaN) nor underflow. |H| is at most ~1e300 for sizes in [kMinRadius, kMaxLength],
+  // |grad f| at most ~1e100 on this path; outside [1e-150, 1e150] no step is taken.
+  double h_max = 0.0;
+  for (double x : H) h_max = std::max(h_max, std::fabs(x));
+  if (!(h_max > 1e-150 && h_max < 1e150)) return false;
+  uint64_t h_bits;
+  std::memcpy(&h_bits, &h_max, sizeof h_bits);
+  const uint64_t sigma_bits = (2046 - (h_bits >> 52)) << 52;  // biased exponent 1023 - e for h_max = f 2^e
+  double sigma;
+  std::memcpy(&sigma, &sigma_bits, sizeof sigma);
+  for (double& x : H) x *= sigma;
+  gt *= sigma;
   // Cramer's rule with the cofactors of the symmetric H (no pivoting: the same bits for the same H).
   const double c00 = H[1] * H[2] - H[5] * H[5], c01 = H[5] * H[4] - H[3] * H[2], c02 = H[3] * H[5] - H[1] * H[4];
   const double det = H[0] * c00 + H[3] * c01 + H[4] * c02;
-  if (!(det != 0.0)) return false;  // singular (or NaN): no division
+  if (!(std::fabs(det) > 1e-200)) return false;  // singular to working precision (or NaN): no division
   const double c11 = H[0] * H[2] - H[4] * H[4], c12 = H[3] * H[4] - H[0] * H[5], c22 = H[0] * H[1] - H[3] * H[3];
   const double k = 1.0 / det;
-  const Eigen::Vector3d delta(k * (c00 * gt[0] + c01 * gt[1] + c02 * gt[2]), k * (c01 * gt[0] + c11 * gt[1] + c12 * gt[2]),
+  const Eigen::Vector3d delta(k * (c00 * gt[0] + c01 * gt[1] + c02 * gt[2]),
+                              k * (c01 * gt[0] + c11 * gt[1] + c12 * gt[2]),
                               k * (c02 * gt[0] + c12 * gt[1] + c22 * gt[2]));
   if (!delta.allFinite()) return false;
   // Trust region: a step longer than kNewtonMaxStep (an angle of ~22 degrees) is shortened to it.
