@@ -215,6 +215,21 @@ __attribute__((always_inline)) inline Separation lineTests(const Ellipsoid& a, c
   return static_cast<Separation>((1 + int(overlapping)) * int(!separated));
 }
 
+/// The biased exponent e + 1023 of a positive normal double x = f 2^e, f in [1, 2).
+inline uint64_t biasedExponent(double x) {
+  uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  return bits >> 52;
+}
+
+/// 2^(b - 1023), exactly, for a biased exponent b in [1, 2046].
+inline double powerOfTwo(uint64_t b) {
+  const uint64_t bits = b << 52;
+  double x;
+  std::memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
 /// The most Newton steps of test 6 (followUpTests()), and the longest step (the trust region of
 /// supportGapNewtonStep(), tangent to the unit sphere). Measured in session 25 on the pairs that
 /// reach test 6, counting those left to the pencil: three steps with the cap 0.4 leave 4 of the
@@ -279,11 +294,7 @@ bool supportGapNewtonStep(const Ellipsoid& a, const Ellipsoid& b, const Eigen::V
   double h_max = 0.0;
   for (double x : H) h_max = std::max(h_max, std::fabs(x));
   if (!(h_max > 1e-150 && h_max < 1e150)) return false;
-  uint64_t h_bits;
-  std::memcpy(&h_bits, &h_max, sizeof h_bits);
-  const uint64_t sigma_bits = (2046 - (h_bits >> 52)) << 52;  // biased exponent 1023 - e for h_max = f 2^e
-  double sigma;
-  std::memcpy(&sigma, &sigma_bits, sizeof sigma);
+  const double sigma = powerOfTwo(2046 - biasedExponent(h_max));  // 2^-e for h_max = f 2^e
   for (double& x : H) x *= sigma;
   gt *= sigma;
   // Cramer's rule with the cofactors of the symmetric H (no pivoting: the same bits for the same H).
@@ -320,12 +331,9 @@ bool followUpTests(const Ellipsoid& a, const Ellipsoid& b, const Eigen::Vector3d
   // that would stand first in the chain of test 3 (~30 cycles; D2 in [1e-100, 1e100] here).
   double kv = 1.0;
   if (unscaled) {
-    uint64_t bits;
-    std::memcpy(&bits, &D2, sizeof bits);
     // Biased exponent B = e + 1023, so floor(e / 2) = ((B + 1) >> 1) - 512 in unsigned arithmetic
     // and kv's biased exponent is 1023 - floor(e / 2) = 1535 - ((B + 1) >> 1), in [857, 1190].
-    const uint64_t kv_bits = (1535 - (((bits >> 52) + 1) >> 1)) << 52;
-    std::memcpy(&kv, &kv_bits, sizeof kv);
+    kv = powerOfTwo(1535 - ((biasedExponent(D2) + 1) >> 1));
   }
   Lanes2 w[3], normal[3];
   for (int j = 0; j < 3; ++j) w[j] = L.u[j] * L.q[j] * (L.q[j] * kv);
