@@ -117,6 +117,23 @@ Eigen::Matrix4d posedEllipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix
   return Ti.transpose() * ellipsoid(radii) * Ti;
 }
 
+Eigen::Matrix<long double, 4, 4> posedEllipsoidExtended(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R,
+                                                        const Eigen::Vector3d& p) {
+  using Matrix4ld = Eigen::Matrix<long double, 4, 4>;
+  for (int i = 0; i < 3; ++i) checkPositive("quadric::posedEllipsoidExtended", "radius", radii[i]);
+  const Eigen::Matrix<long double, 3, 3> Rt = R.transpose().cast<long double>();
+  Matrix4ld Ti = Matrix4ld::Identity();
+  Ti.topLeftCorner<3, 3>() = Rt;
+  Ti.topRightCorner<3, 1>() = -(Rt * p.cast<long double>());
+  Eigen::Matrix<long double, 4, 1> diag;
+  for (int i = 0; i < 3; ++i) {
+    const long double r = radii[i];
+    diag[i] = 1.0L / (r * r);
+  }
+  diag[3] = -1.0L;
+  return Ti.transpose() * diag.asDiagonal() * Ti;
+}
+
 Eigen::Matrix4d affineEllipsoid(const Eigen::Matrix3d& M, const Eigen::Vector3d& p) {
   return transform(Eigen::Vector4d(1.0, 1.0, 1.0, -1.0).asDiagonal(), affineTransform(M, p));
 }

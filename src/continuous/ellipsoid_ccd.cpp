@@ -12,6 +12,7 @@
 #include "fcl_quadric/algebra/bernstein_polynomial.h"
 #include "fcl_quadric/algebra/bivariate_bernstein.h"
 #include "fcl_quadric/algebra/double_double.h"
+#include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/algebra/root_isolation.h"
 #include "fcl_quadric/continuous/ccd_function.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
@@ -200,10 +201,15 @@ ScaledQuadric scaledQuadric(const Eigen::Matrix4d& Q_body, const std::vector<Eig
 }
 
 // The same in extended precision from N's extended coefficient matrices (the precision check):
-// coefficient matrices of the symmetrised (N S)^T Q (N S) / scale.
-std::vector<Matrix4ld> scaledQuadricExtended(const Eigen::Matrix4d& Q_body, const std::vector<Matrix4ld>& N,
+// coefficient matrices of the symmetrised (N S)^T Q (N S) / scale. Q is the body's quadric formed
+// in long double too: until session 26 it was body.quadricMatrix(), rounded in double, so the
+// double and extended expansions started from the same rounded matrix and their difference (the
+// error estimate) could not see its rounding, ~eps relative in entries of size 1/r^2 (finding 16's
+// audit, docs/reliability.md).
+std::vector<Matrix4ld> scaledQuadricExtended(const Ellipsoid& body, const std::vector<Matrix4ld>& N,
                                             const Eigen::Matrix4d& S, double scale) {
-  const Matrix4ld Sl = S.cast<long double>(), Ql = Q_body.cast<long double>();
+  const Matrix4ld Sl = S.cast<long double>();
+  const Matrix4ld Ql = quadric::posedEllipsoidExtended(body.radii(), body.rotation(), body.center());
   std::vector<Matrix4ld> NS(N.size()), QNS(N.size());
   for (std::size_t k = 0; k < N.size(); ++k) {
     NS[k] = N[k] * Sl;
@@ -793,8 +799,8 @@ std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const Motio
     // pairs (condition above kCcdCheckedCondition), whose answers the estimate moves further
     // toward contact.
     CheckedCcdFunction checked = ccdFunctionChecked(
-        p.A.Q, p.B.Q, scaledQuadricExtended(a.body.quadricMatrix(), ma.inverseCoefficientsExtended(), p.S, p.A.scale),
-        scaledQuadricExtended(b.body.quadricMatrix(), mb.inverseCoefficientsExtended(), p.S, p.B.scale));
+        p.A.Q, p.B.Q, scaledQuadricExtended(a.body, ma.inverseCoefficientsExtended(), p.S, p.A.scale),
+        scaledQuadricExtended(b.body, mb.inverseCoefficientsExtended(), p.S, p.B.scale));
     p.F = std::move(checked.F);
     p.E = std::move(checked.error);
     p.precision_checked = condition > tolerance::kCcdCheckedCondition;
@@ -829,7 +835,7 @@ std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const Motio
     // quadric and the interpolant are rebuilt in extended precision from the same inputs (the
     // interpolant is defined by b's end states B_k, c_k in a's frame, as computed above).
     CheckedCcdFunction checked = ccdFunctionChecked(
-        p.A.Q, p.B.Q, scaledQuadricExtended(a.body.quadricMatrix(), {Matrix4ld::Identity()}, p.S, p.A.scale),
+        p.A.Q, p.B.Q, scaledQuadricExtended(a.body, {Matrix4ld::Identity()}, p.S, p.A.scale),
         affineInterpolantExtended(Bs[0], cs[0], Bs[1], cs[1], p.S, b_scale));
     p.F = std::move(checked.F);
     p.E = std::move(checked.error);

@@ -2,7 +2,10 @@
 // and transformed matrices classify transformed points as the body-frame matrix does.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
+
+#include <gmpxx.h>
 
 #include <Eigen/Geometry>
 
@@ -66,9 +69,63 @@ TEST(QuadricMatrix, PosedAndAffineEllipsoidsAgreeWithEllipsoidQuadricMatrix) {
   }
 }
 
+// posedEllipsoidExtended against the exact rational matrix of the same double inputs: every entry
+// within 32 units of the long double's 2^-64 of its absolute evaluation sum_k |Ti(k,i)| D_k
+// |Ti(k,j)| (Ti = [R^T, -R^T p], D = diag(1/r^2, -1)), at aspect ratios up to 1e4. The double
+// posedEllipsoid() misses that bound on these inputs (checked too, so that the test tells the two
+// apart): the continuous solver's precision check needs the extended one.
+TEST(QuadricMatrix, PosedEllipsoidExtendedIsAccurateToTheExtendedRounding) {
+  std::mt19937_64 rng(86);
+  std::normal_distribution<double> nd(0.0, 1.0);
+  std::uniform_real_distribution<double> lg(-2.0, 2.0);
+  int double_misses = 0;
+  for (int i = 0; i < 300; ++i) {
+    Eigen::Quaterniond q(nd(rng), nd(rng), nd(rng), nd(rng));
+    q.normalize();
+    const Eigen::Matrix3d R = q.toRotationMatrix();
+    const Eigen::Vector3d r(std::pow(10.0, lg(rng)), std::pow(10.0, lg(rng)), std::pow(10.0, lg(rng)));
+    const Eigen::Vector3d p = 100.0 * Eigen::Vector3d(nd(rng), nd(rng), nd(rng));
+    mpq_class Ti[4][4], D[4], absTi[4][4];
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) Ti[a][b] = absTi[a][b] = (a == b && a == 3) ? 1 : 0;
+    for (int k = 0; k < 3; ++k) {
+      mpq_class c = 0, c_abs = 0;
+      for (int m = 0; m < 3; ++m) {
+        Ti[k][m] = R(m, k);
+        absTi[k][m] = std::fabs(R(m, k));
+        c -= mpq_class(R(m, k)) * mpq_class(p[m]);
+        c_abs += mpq_class(std::fabs(R(m, k))) * mpq_class(std::fabs(p[m]));
+      }
+      Ti[k][3] = c;
+      absTi[k][3] = c_abs;
+      D[k] = 1 / (mpq_class(r[k]) * mpq_class(r[k]));
+    }
+    D[3] = -1;
+    const Eigen::Matrix<long double, 4, 4> Ql = quadric::posedEllipsoidExtended(r, R, p);
+    const Eigen::Matrix4d Qd = quadric::posedEllipsoid(r, R, p);
+    for (int a = 0; a < 4; ++a) {
+      for (int b = 0; b < 4; ++b) {
+        mpq_class exact = 0, scale = 0;
+        for (int k = 0; k < 4; ++k) {
+          exact += Ti[k][a] * D[k] * Ti[k][b];
+          scale += absTi[k][a] * abs(D[k]) * absTi[k][b];
+        }
+        const mpq_class err_ld = abs(mpq_class(static_cast<double>(Ql(a, b))) +
+                                     mpq_class(static_cast<double>(Ql(a, b) - static_cast<double>(Ql(a, b)))) - exact);
+        const double bound = std::ldexp(32.0, -64) * scale.get_d();
+        ASSERT_LE(err_ld.get_d(), bound) << "ellipsoid " << i << " entry (" << a << ", " << b << ")";
+        double_misses += mpq_class(abs(mpq_class(Qd(a, b)) - exact)).get_d() > bound;
+      }
+    }
+  }
+  EXPECT_GT(double_misses, 4000);  // of the 4,800 entries (4,713 measured)
+}
+
 TEST(QuadricMatrix, RejectsBadInput) {
   EXPECT_THROW(quadric::ellipsoid({1, 0, 1}), std::invalid_argument);
   EXPECT_THROW(quadric::ellipticCone(1, 1, std::nan("")), std::invalid_argument);
+  EXPECT_THROW(quadric::posedEllipsoidExtended({1, -1, 1}, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()),
+               std::invalid_argument);
   EXPECT_THROW(quadric::planePair({1, 1, 0}, 0, 1), std::invalid_argument);  // not unit
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
   T(1, 1) = 0.0;
