@@ -521,13 +521,12 @@ class IntervalSolver {
         v_abs += std::abs(C(i, j)) * basis_[j];
       }
       c[i] = v;
-      if (i == 0) end_abs_[0] = v_abs;
-      if (i == 4) end_abs_[1] = v_abs;
+      double e = 0.0;
       if (has_error_) {
-        double e = 0.0;
         for (int j = 0; j <= n; ++j) e += E_(i, j) * basis_[j];
         error_at_t_ = std::max(error_at_t_, e);
       }
+      if (i == 0 || i == 4) end_bound_[i / 4] = tolerance::kCcdTouchingRelative * v_abs + 2.0 * e;
     }
     return c;
   }
@@ -549,15 +548,15 @@ class IntervalSolver {
     // Theorem 5.1 needs F(0, t) = det A(t) < 0 and F(1, t) = det B(t) < 0 (two ellipsoids). A
     // computed end value not clearly negative means F is rounding noise here: not separate.
     // "Clearly" is relative to the end value's own evaluation, 2^-40 sum_j |C(i, j)| B_j(t), plus
-    // twice the coefficients' error estimate, not to the state band s.band: that band is relative
-    // to the largest c_i, and the interior c_i of two thin bodies exceed the ends by up to their
-    // aspect ratios to the fourth power (det-balanced, det A ~ det B ~ -1). From aspect ~2^10 on,
-    // |det A| fell inside it and a pair far apart was reported touching at every instant (session
-    // 26: first contact at t = 0 in 26 of 60 grazing translations at aspect 1,000, 54 of 60 at
-    // 2,000, where the solver also ran to its work cap).
-    const double end_band_a = tolerance::kCcdTouchingRelative * end_abs_[0] + 2.0 * error_at_t_;
-    const double end_band_b = tolerance::kCcdTouchingRelative * end_abs_[1] + 2.0 * error_at_t_;
-    if (!(c[0] < -end_band_a && c[4] < -end_band_b)) {
+    // twice that row's error estimate E_i(t) (end_bound_), not to the state band s.band: that band
+    // is relative to the largest c_i, and the interior c_i of two thin bodies exceed the ends by
+    // up to their aspect ratios to the fourth power (det-balanced, det A ~ det B ~ -1); nor to
+    // the largest E_i, which carries the interior rows' rounding to double (4 eps of c_i ~ 1).
+    // From aspect ~2^10 on, |det A| fell inside the band and a pair far apart was reported
+    // touching at every instant (session 26, docs/reliability.md finding 21: first contact at
+    // t = 0 in 26 of 60 grazing translations at aspect 1,000, 54 of 60 at 2,000 and 37 of 39 at
+    // 5,000, most of them after running to the work cap).
+    if (!(c[0] < -end_bound_[0] && c[4] < -end_bound_[1])) {
       s.sign = 0;
       s.value = std::max(c[0], c[4]);
       s.u = c[0] >= c[4] ? 0.05 : 0.95;
@@ -729,7 +728,8 @@ class IntervalSolver {
   bool has_error_;  // E is not all zero (the precision check ran)
   EllipsoidCcdResult* result_;
   double error_at_t_ = 0.0;  // set by rowsAt: max_i error bound of c_i(t)
-  double end_abs_[2] = {0.0, 0.0};  // set by rowsAt: sum_j |C(i, j)| B_j(t) of the rows i = 0 and 4
+  // Set by rowsAt: the bounds 2^-40 sum_j |C(i, j)| B_j(t) + 2 E_i(t) of the end rows i = 0 and 4.
+  double end_bound_[2] = {0.0, 0.0};
   std::vector<double> binomial_t_;
   std::vector<double> basis_;
 };

@@ -364,6 +364,56 @@ void randomRigidMotions(int cases, int samples, std::uint64_t seed) {
 TEST(EllipsoidCcd, RandomRigidMotionsAgreeWithTheSampledStaticOracle) { randomRigidMotions(60, 400, 2024); }
 TEST(EllipsoidCcd, LongRandomRigidMotionsAgreeWithTheSampledStaticOracle) { randomRigidMotions(1000, 1000, 77); }
 
+// Thin bodies under random rigid motions (rotation and translation): needles (s, s/k, s/k) and
+// plates (s, s, s/k) of aspect ratio k from 1,000 to 5,000, where the sign precondition used to
+// swamp the solver (docs/reliability.md, finding 21). Only the safety half of checkAgainstOracle()
+// holds here: no overlap the certified static test finds at 201 sampled instants is outside the
+// reported collision intervals. The answers are still often conservative (finding 21's open part:
+// with this seed 34 of the 60 pairs reach the work cap, and 7 are reported in contact at a start
+// the static test certifies separate; before the fix 40 and 18), so the tests bound the contacts
+// at the start instead of requiring none.
+struct ThinCounts { int overlapping_samples = 0, contact_at_start = 0; };
+ThinCounts thinBodyMotions(int cases) {
+  std::mt19937_64 rng(2026);
+  std::uniform_real_distribution<double> U(-1.0, 1.0), lg(3.0, std::log10(5000.0));
+  ThinCounts c;
+  for (int k = 0; k < cases; ++k) {
+    auto thin = [&]() {
+      const double s = 2.0 + U(rng), aspect = std::pow(10.0, lg(rng));
+      return (rng() % 2 == 0) ? Eigen::Vector3d(s, s / aspect, s / aspect) : Eigen::Vector3d(s, s, s / aspect);
+    };
+    const MovingEllipsoid A{bodyEllipsoid(thin()),
+                            PiecewiseMotion(MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d(-2.5, U(rng), U(rng)),
+                                                                    test::randomRotation(rng), Eigen::Vector3d(2.5, U(rng), U(rng))))};
+    const MovingEllipsoid B{bodyEllipsoid(thin()),
+                            PiecewiseMotion(MotionMatrix::fromPoses(test::randomRotation(rng), Eigen::Vector3d(U(rng), -2.5, U(rng)),
+                                                                    test::randomRotation(rng), Eigen::Vector3d(U(rng), 2.5, U(rng))))};
+    const EllipsoidCcdResult r = continuousCollideEllipsoids(A, B);
+    for (int i = 0; i <= 200; ++i) {
+      const double t = i / 200.0;
+      if (classifyEllipsoids(ellipsoidAt(A, t), ellipsoidAt(B, t)).status != Separation::Overlapping) continue;
+      ++c.overlapping_samples;
+      EXPECT_TRUE(r.collide && insideCollision(r, t, 0.0)) << "k=" << k << " t=" << t;
+    }
+    if (r.first_contact_time && *r.first_contact_time == 0.0 &&
+        classifyEllipsoids(ellipsoidAt(A, 0.0), ellipsoidAt(B, 0.0)).status == Separation::Separated)
+      ++c.contact_at_start;
+  }
+  return c;
+}
+
+TEST(EllipsoidCcd, RandomRigidMotionsOfThinBodiesNeverMissAnOverlapOfTheSampledStaticOracle) {
+  const ThinCounts c = thinBodyMotions(20);
+  EXPECT_GT(c.overlapping_samples, 1000);  // the set does collide (1,417 overlapping instants)
+  EXPECT_LE(c.contact_at_start, 3);        // 2 (5 before the fix)
+}
+
+TEST(EllipsoidCcd, LongRandomRigidMotionsOfThinBodiesNeverMissAnOverlapOfTheSampledStaticOracle) {
+  const ThinCounts c = thinBodyMotions(60);
+  EXPECT_GT(c.overlapping_samples, 3000);
+  EXPECT_LE(c.contact_at_start, 10);  // 7 (18 before the fix)
+}
+
 // Affine motions of degree 1-3 given as explicit polynomial matrices.
 TEST(EllipsoidCcd, RandomAffineMotionsAgreeWithTheSampledStaticOracle) {
   std::mt19937_64 rng(31);
@@ -595,12 +645,15 @@ TEST(EllipsoidCcd, GrazingTranslationsOfAspectRatio100NeverMissTheOverlap) {
 // against the state band, 2^-40 of the largest Bernstein coefficient in u, and the interior
 // coefficients of two thin bodies exceed the ends by up to the aspect ratio to the fourth power.
 // From aspect ~2^10 on the ends fell inside that band: the solver reported these pairs touching
-// from t = 0, although b starts 5 L away (26 of 60 at aspect 1,000; 54 of 60 at 2,000, 43 of
-// them after running to the work cap). The ends are now judged against their own rounding.
-TEST(EllipsoidCcd, GrazingTranslationsOfAspectRatio1000And2000AreDecidedWithoutContactAtTheStart) {
-  for (double L : {1000.0, 2000.0}) {
+// from t = 0, although b starts 5 L away (with this seed 18, 44 and 39 of them at aspect 1,000,
+// 2,000 and 5,000; 0, 33 and 38 after running to the work cap). The ends are now judged against
+// their own rounding (docs/reliability.md, finding 21).
+TEST(EllipsoidCcd, GrazingTranslationsOfAspectRatio1000To5000AreDecidedWithoutContactAtTheStart) {
+  for (double L : {1000.0, 2000.0, 5000.0}) {
     const GrazeCounts c = grazingTranslations(60, 3, CcdInterpolation::Rigid, L);
-    EXPECT_GT(c.overlapping, 55) << "L " << L;
+    // The construction (bisection within 1e-6 L of the double supports' contact) yields 60, 60
+    // and 39 grazing passes.
+    EXPECT_GT(c.overlapping, L < 3000.0 ? 55 : 35) << "L " << L;
     EXPECT_EQ(c.missed, 0) << "L " << L;
     EXPECT_EQ(c.separated_inside, 0) << "L " << L;
     EXPECT_EQ(c.contact_at_start, 0) << "L " << L;
