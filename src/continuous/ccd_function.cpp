@@ -228,15 +228,20 @@ CheckedCcdFunction ccdFunctionChecked(const PolynomialMatrix4& A, const Polynomi
   // the difference, times 8 for safety, smoothed over neighbouring coefficients (a coefficient
   // where the two happen to agree must not look exact), plus the final rounding to double.
   const Eigen::MatrixXd diff = (Fd - Fl).cwiseAbs();
-  const Eigen::Index n = diff.cols();
-  Eigen::MatrixXd error(diff.rows(), n);
+  const Eigen::Index n = diff.cols(), last = diff.rows() - 1;
+  const double eps = std::numeric_limits<double>::epsilon();
+  Eigen::MatrixXd error(diff.rows(), n), end_error(2, n);
   for (Eigen::Index j = 0; j < n; ++j) {
     const Eigen::Index lo = std::max<Eigen::Index>(0, j - 2), hi = std::min<Eigen::Index>(n - 1, j + 2);
     const double local = diff.middleCols(lo, hi - lo + 1).maxCoeff();
-    for (Eigen::Index i = 0; i < diff.rows(); ++i)
-      error(i, j) = local / 256.0 + 4.0 * std::numeric_limits<double>::epsilon() * std::abs(Fl(i, j));
+    for (Eigen::Index i = 0; i < diff.rows(); ++i) error(i, j) = local / 256.0 + 4.0 * eps * std::abs(Fl(i, j));
+    // The end rows on their own (CheckedCcdFunction::end_error).
+    for (Eigen::Index k = 0; k < 2; ++k) {
+      const Eigen::Index i = k == 0 ? 0 : last;
+      end_error(k, j) = diff.row(i).segment(lo, hi - lo + 1).maxCoeff() / 256.0 + 4.0 * eps * std::abs(Fl(i, j));
+    }
   }
-  return {BivariateBernstein(std::move(Fl)), std::move(error)};
+  return {BivariateBernstein(std::move(Fl)), std::move(error), std::move(end_error)};
 }
 
 }  // namespace fcl_quadric

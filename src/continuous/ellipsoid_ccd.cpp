@@ -470,9 +470,11 @@ enum class ChainEnd { Reached, Contact, Stalled };
 class IntervalSolver {
  public:
   // E: entry-wise bound of the error of F's coefficients (every decision below widens its margin
-  // by the matching combination of E).
-  IntervalSolver(const BivariateBernstein& F, const Eigen::MatrixXd& E, EllipsoidCcdResult* result)
-      : F_(F), E_(E), has_error_(E.size() > 0 && E.maxCoeff() > 0.0), result_(result) {
+  // by the matching combination of E). E_end: the same for the end rows u = 0 and u = 1 on their
+  // own (CheckedCcdFunction::end_error), for the sign precondition only; empty when E is.
+  IntervalSolver(const BivariateBernstein& F, const Eigen::MatrixXd& E, const Eigen::MatrixXd& E_end,
+                 EllipsoidCcdResult* result)
+      : F_(F), E_(E), E_end_(E_end), has_error_(E.size() > 0 && E.maxCoeff() > 0.0), result_(result) {
     const int n = F.degreeT();
     binomial_t_.resize(n + 1);
     for (int j = 0; j <= n; ++j) binomial_t_[j] = detail::binomial(n, j);
@@ -521,12 +523,17 @@ class IntervalSolver {
         v_abs += std::abs(C(i, j)) * basis_[j];
       }
       c[i] = v;
-      double e = 0.0;
       if (has_error_) {
+        double e = 0.0;
         for (int j = 0; j <= n; ++j) e += E_(i, j) * basis_[j];
         error_at_t_ = std::max(error_at_t_, e);
       }
-      if (i == 0 || i == 4) end_bound_[i / 4] = tolerance::kCcdTouchingRelative * v_abs + 2.0 * e;
+      if (i == 0 || i == 4) {
+        double e_end = 0.0;
+        if (has_error_)
+          for (int j = 0; j <= n; ++j) e_end += E_end_(i / 4, j) * basis_[j];
+        end_bound_[i / 4] = tolerance::kCcdTouchingRelative * v_abs + 2.0 * e_end;
+      }
     }
     return c;
   }
@@ -548,10 +555,10 @@ class IntervalSolver {
     // Theorem 5.1 needs F(0, t) = det A(t) < 0 and F(1, t) = det B(t) < 0 (two ellipsoids). A
     // computed end value not clearly negative means F is rounding noise here: not separate.
     // "Clearly" is relative to the end value's own evaluation, 2^-40 sum_j |C(i, j)| B_j(t), plus
-    // twice that row's error estimate E_i(t) (end_bound_), not to the state band s.band: that band
-    // is relative to the largest c_i, and the interior c_i of two thin bodies exceed the ends by
-    // up to their aspect ratios to the fourth power (det-balanced, det A ~ det B ~ -1); nor to
-    // the largest E_i, which carries the interior rows' rounding to double (4 eps of c_i ~ 1).
+    // twice that row's own error estimate (end_bound_, from E_end_), not to the state band
+    // s.band: that band is relative to the largest c_i, and the interior c_i of two thin bodies
+    // exceed the ends by up to their aspect ratios to the fourth power (det-balanced, det A ~
+    // det B ~ -1); nor to E, whose rows all carry the interior rows' differences and rounding.
     // From aspect ~2^10 on, |det A| fell inside the band and a pair far apart was reported
     // touching at every instant (session 26, docs/reliability.md finding 21: first contact at
     // t = 0 in 26 of 60 grazing translations at aspect 1,000, 54 of 60 at 2,000 and 37 of 39 at
@@ -725,10 +732,11 @@ class IntervalSolver {
  private:
   const BivariateBernstein& F_;
   const Eigen::MatrixXd& E_;
+  const Eigen::MatrixXd& E_end_;
   bool has_error_;  // E is not all zero (the precision check ran)
   EllipsoidCcdResult* result_;
   double error_at_t_ = 0.0;  // set by rowsAt: max_i error bound of c_i(t)
-  // Set by rowsAt: the bounds 2^-40 sum_j |C(i, j)| B_j(t) + 2 E_i(t) of the end rows i = 0 and 4.
+  // Set by rowsAt: the bounds 2^-40 sum_j |C(i, j)| B_j(t) + 2 E_end(i, t) of the end rows i = 0, 4.
   double end_bound_[2] = {0.0, 0.0};
   std::vector<double> binomial_t_;
   std::vector<double> basis_;
@@ -783,6 +791,7 @@ struct SegmentPencil {
   Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
   BivariateBernstein F;
   Eigen::MatrixXd E;
+  Eigen::MatrixXd E_end;  ///< CheckedCcdFunction::end_error (the sign precondition's estimate)
   bool precision_checked = false;  ///< condition above kCcdCheckedCondition (diagnostic)
 };
 
@@ -818,6 +827,7 @@ std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const Motio
         scaledQuadricExtended(b.body, mb.inverseCoefficientsExtended(), p.S, p.B.scale));
     p.F = std::move(checked.F);
     p.E = std::move(checked.error);
+    p.E_end = std::move(checked.end_error);
     p.precision_checked = condition > tolerance::kCcdCheckedCondition;
   } else {
     // In a's body frame: a is constant, b's shape and centre are interpolated (thesis §5.2).
@@ -854,12 +864,14 @@ std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const Motio
         affineInterpolantExtended(Bs[0], cs[0], Bs[1], cs[1], p.S, b_scale));
     p.F = std::move(checked.F);
     p.E = std::move(checked.error);
+    p.E_end = std::move(checked.end_error);
     p.precision_checked = condition > tolerance::kCcdCheckedCondition;
   }
   const double m = p.F.coefficients().cwiseAbs().maxCoeff();
   if (m > 0.0 && std::isfinite(m)) {
     p.F = BivariateBernstein(p.F.coefficients() / m);
     p.E /= m;
+    p.E_end /= m;
   }
   return p;
 }
@@ -950,7 +962,7 @@ EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma
   r.precision_checked = pencil->precision_checked;
   r.degree_t = F.degreeT();
 
-  IntervalSolver solver(F, pencil->E, &r);
+  IntervalSolver solver(F, pencil->E, pencil->E_end, &r);
   const State s0 = solver.state(0.0);
   double t_contact = 0.0;
   double u_contact = s0.u;

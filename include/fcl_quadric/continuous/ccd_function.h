@@ -44,6 +44,12 @@ BivariateBernstein ccdFunction(const PolynomialMatrix4& A, const PolynomialMatri
 struct CheckedCcdFunction {
   BivariateBernstein F;
   Eigen::MatrixXd error;  // same shape as F.coefficients(), entries >= 0
+  /// The same estimate for the end rows u = 0 and u = 1 (det A(t) and det B(t); 2 rows), each
+  /// smoothed over its own neighbouring coefficients only. `error` smooths over every row, so the
+  /// interior rows' differences, up to the thin bodies' aspect ratios to the fourth power larger
+  /// than the ends, hide whether the ends are negative (Theorem 5.1's sign precondition,
+  /// docs/reliability.md finding 21). Used only for that precondition.
+  Eigen::MatrixXd end_error;
 };
 /// \throws std::invalid_argument as ccdFunction.
 CheckedCcdFunction ccdFunctionChecked(const PolynomialMatrix4& A, const PolynomialMatrix4& B,
