@@ -517,19 +517,17 @@ class IntervalSolver {
     const Eigen::MatrixXd& C = F_.coefficients();
     error_at_t_ = 0.0;
     for (int i = 0; i <= 4; ++i) {
-      double v = 0.0, v_abs = 0.0;
-      for (int j = 0; j <= n; ++j) {
-        v += C(i, j) * basis_[j];
-        v_abs += std::abs(C(i, j)) * basis_[j];
-      }
+      double v = 0.0;
+      for (int j = 0; j <= n; ++j) v += C(i, j) * basis_[j];
       c[i] = v;
       if (has_error_) {
         double e = 0.0;
         for (int j = 0; j <= n; ++j) e += E_(i, j) * basis_[j];
         error_at_t_ = std::max(error_at_t_, e);
       }
-      if (i == 0 || i == 4) {
-        double e_end = 0.0;
+      if (i == 0 || i == 4) {  // the ends' own bounds (the sign precondition in state())
+        double v_abs = 0.0, e_end = 0.0;
+        for (int j = 0; j <= n; ++j) v_abs += std::abs(C(i, j)) * basis_[j];
         if (has_error_)
           for (int j = 0; j <= n; ++j) e_end += E_end_(i / 4, j) * basis_[j];
         end_bound_[i / 4] = tolerance::kCcdTouchingRelative * v_abs + 2.0 * e_end;
