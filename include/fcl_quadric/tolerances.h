@@ -144,9 +144,14 @@ constexpr double kCcdCheckedCondition = 1e4;
 /// to an ellipsoid of aspect ratio 4, fuzz finding 8).
 constexpr double kCcdMaxCondition = 1e14;
 
-/// Depth of the u-slab subdivision of the overlap certificate (F <= 0 or F_t of one sign on each
-/// slab; docs/algorithms.md section 8).
-constexpr int kCcdMaxSlabDepth = 6;
+/// Depth limit of the u-slab subdivision of the overlap certificate (F <= 0 or F_t of one sign on
+/// each slab; docs/algorithms.md section 8). Until session 26 this was 6, a full tree of at most
+/// 127 slabs; the certificate of two thin bodies' overlap (F ~1e-8 of its coefficients) needs
+/// slabs of width ~1e-4 where F is largest, and failed (docs/reliability.md, finding 21).
+constexpr int kCcdMaxSlabDepth = 20;
+/// Slabs one overlap certificate may examine (depth first) before it gives up, uncertified: the
+/// old full tree's 127, so that the deeper limit above does not raise the cost of a certificate.
+constexpr int kCcdMaxSlabVisits = 127;
 
 }  // namespace tolerance
 }  // namespace fcl_quadric

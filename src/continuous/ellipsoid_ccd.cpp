@@ -660,11 +660,15 @@ class IntervalSolver {
       if (b < 1.0) keepLeft(G.row(i).data(), n, (b - a) / (1.0 - a));
     }
     RowMajor S(G.rows(), G.cols());
-    return slabCertified(G, &S, 0.0, 1.0, band, 0);
+    int visits = 0;
+    return slabCertified(G, &S, 0.0, 1.0, band, 0, &visits);
   }
 
-  // G on [0, 1] in u; S is scratch space of the same size.
-  bool slabCertified(const RowMajor& G, RowMajor* S, double ua, double ub, double band, int depth) {
+  // G on [0, 1] in u; S is scratch space of the same size. At most kCcdMaxSlabVisits slabs (in
+  // *visits) down to depth kCcdMaxSlabDepth: the budget goes where the slabs fail, e.g. to the u
+  // where F of two thin bodies is largest (finding 21), instead of a full tree of depth 6.
+  bool slabCertified(const RowMajor& G, RowMajor* S, double ua, double ub, double band, int depth, int* visits) {
+    if (++*visits > tolerance::kCcdMaxSlabVisits) return false;
     const int m = static_cast<int>(G.rows()) - 1;
     *S = G;
     if (ua > 0.0 || ub < 1.0) {  // restrict every column (degree 4 in u) to [ua, ub]
@@ -689,7 +693,7 @@ class IntervalSolver {
     if (increasing || decreasing) return true;
     if (depth >= tolerance::kCcdMaxSlabDepth) return false;
     const double um = 0.5 * (ua + ub);
-    return slabCertified(G, S, ua, um, band, depth + 1) && slabCertified(G, S, um, ub, band, depth + 1);
+    return slabCertified(G, S, ua, um, band, depth + 1, visits) && slabCertified(G, S, um, ub, band, depth + 1, visits);
   }
 
   void process(double t1, State s1, double t2, State s2) {
