@@ -43,10 +43,10 @@ Eigen::Matrix4d affineTransform(const Eigen::Matrix3d& M, const Eigen::Vector3d&
 Eigen::Matrix4d transform(const Eigen::Matrix4d& Q_body, const Eigen::Matrix4d& T);
 /// Ellipsoid of the given radii posed by a rigid (R, p): T^-1 = [R^T, -R^T p] without inversion.
 Eigen::Matrix4d posedEllipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R, const Eigen::Vector3d& p);
-/// posedEllipsoid() formed in long double from the same double inputs (1/r^2, R^T p and every
-/// product in the 64-bit significand): the continuous solver's precision check expands its
-/// extended function from it (docs/algorithms.md §8), so that the estimate of that function's
-/// error also covers the rounding of the quadric itself. \throws std::invalid_argument as
+/// posedEllipsoid() (the matrix A of thesis §4.1) formed in long double from the same double
+/// inputs (1/r^2, R^T p and every product in the 64-bit significand): the continuous solver's
+/// precision check (thesis ch.5; docs/algorithms.md §8) expands its extended function from it,
+/// so that the estimate of that function's error also covers the rounding of the quadric itself. \throws std::invalid_argument as
 /// posedEllipsoid (a radius not finite or not > 0).
 Eigen::Matrix<long double, 4, 4> posedEllipsoidExtended(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R,
                                                         const Eigen::Vector3d& p);
