@@ -334,6 +334,108 @@ TEST(ExactOcTree, OtFileWithGradedOccupancyKeepsFclsThresholdSemantics) {
   compareOcTree(tree, 0.7, 64, ".ot, threshold 0.7");
 }
 
+/// fcl_quadric::collide runs its own traversal for an OcTree against an ellipsoid or a sphere
+/// (src/fcl/octree_collision.cpp); FCL's OcTreeSolver with the same solver is the oracle: every
+/// request kind, both argument orders, graded occupancy with two thresholds, the shape's own
+/// occupancy (cost_density), rotations with a small accepted defect, a result that is already
+/// full. The contacts must be FCL's exactly:
+/// same count, order, objects, leaf indices, and with enable_contact the same points, normals
+/// and depths.
+TEST(ExactOcTree, OwnTraversalGivesFclsTraversalResultExactly) {
+  std::mt19937_64 rng(65);
+  auto built = std::make_shared<octomap::OcTree>(0.08);
+  fillScene(*built, rng, true);
+  const std::shared_ptr<const octomap::OcTree> tree = built;
+  const fcl::Transform3d tf_tree =
+      test::makePose(Eigen::AngleAxisd(-0.7, Eigen::Vector3d(0.3, 1, 2).normalized()).toRotationMatrix(),
+                     Eigen::Vector3d(-0.4, 0.25, 0.3));
+  std::uniform_real_distribution<double> ux(-1.3, 1.3), uz(-0.3, 1.4), r_small(0.02, 0.3), r_large(0.3, 0.9);
+  struct Request {
+    fcl::CollisionRequestd request;
+    const char* name;
+  };
+  std::vector<Request> requests = {{fcl::CollisionRequestd(), "boolean, 1 contact"},
+                                   {fcl::CollisionRequestd(5, false), "boolean, 5 contacts"},
+                                   {fcl::CollisionRequestd(1, true), "contacts, 1"},
+                                   {fcl::CollisionRequestd(100000, true), "contacts, all"}};
+  fcl::CollisionRequestd with_cost(10, false, 4, true);  // cost sources: FCL's own traversal
+  requests.push_back({with_cost, "cost sources"});
+  const QuadricSolverd solver;
+  std::size_t compared = 0, colliding = 0, contacts = 0, cost_sources = 0;
+  for (double threshold : {-1.0, 0.7}) {
+    auto fcl_tree = std::make_shared<fcl::OcTreed>(tree);
+    if (threshold > 0) fcl_tree->setOccupancyThres(threshold);
+    for (int i = 0; i < 120; ++i) {
+      const Eigen::Vector3d c = tf_tree * Eigen::Vector3d(ux(rng), ux(rng), uz(rng));
+      std::shared_ptr<fcl::CollisionGeometryd> shape;
+      if (i % 4 == 3) {
+        shape = std::make_shared<fcl::Sphered>(r_small(rng));
+      } else {
+        const bool large = i % 4 == 2;
+        std::uniform_real_distribution<double>& r = large ? r_large : r_small;
+        shape = std::make_shared<fcl::Ellipsoidd>(r(rng), r(rng), r(rng));
+      }
+      // The shape's own occupancy: occupied (FCL's default), uncertain, free.
+      shape->cost_density = i % 10 == 8 ? 0.5 : i % 10 == 9 ? 0.0 : 1.0;
+      // Every fifth pose carries a rotation defect of up to ~6e-10 (accepted: below
+      // tolerance::kRotationOrthogonality), which the pruning's padding must cover.
+      Eigen::Matrix3d R = test::randomRotation(rng);
+      if (i % 5 == 4) R += 1e-10 * Eigen::Matrix3d::NullaryExpr([&] { return ux(rng) / 1.3; });
+      const fcl::Transform3d tf_shape = test::makePose(R, c);
+      for (int order = 0; order < 2; ++order) {
+        const fcl::CollisionGeometryd* g1 = order ? shape.get() : fcl_tree.get();
+        const fcl::CollisionGeometryd* g2 = order ? fcl_tree.get() : shape.get();
+        const fcl::Transform3d& tf1 = order ? tf_shape : tf_tree;
+        const fcl::Transform3d& tf2 = order ? tf_tree : tf_shape;
+        for (const Request& q : requests) {
+          fcl::CollisionResultd ours, theirs;
+          const std::size_t n_ours = fcl_quadric::collide(g1, tf1, g2, tf2, q.request, ours);
+          const std::size_t n_theirs = fcl::collide(g1, tf1, g2, tf2, &solver, q.request, theirs);
+          ++compared;
+          const std::string where = std::string(q.name) + ", pose " + std::to_string(i) + ", order " +
+                                    std::to_string(order) + ", threshold " + std::to_string(threshold);
+          ASSERT_EQ(n_ours, n_theirs) << where;
+          ASSERT_EQ(ours.numContacts(), theirs.numContacts()) << where;
+          colliding += ours.isCollision();
+          contacts += ours.numContacts();
+          for (std::size_t k = 0; k < ours.numContacts(); ++k) {
+            const fcl::Contactd& a = ours.getContact(k);
+            const fcl::Contactd& b = theirs.getContact(k);
+            EXPECT_EQ(a.o1, b.o1) << where;
+            EXPECT_EQ(a.o2, b.o2) << where;
+            EXPECT_EQ(a.b1, b.b1) << where << ", contact " << k;
+            EXPECT_EQ(a.b2, b.b2) << where;
+            // FCL leaves a boolean contact's geometry uninitialised (Contact(o1, o2, b1, b2)).
+            if (!q.request.enable_contact) continue;
+            EXPECT_EQ(a.pos, b.pos) << where;
+            EXPECT_EQ(a.normal, b.normal) << where;
+            EXPECT_EQ(a.penetration_depth, b.penetration_depth) << where;
+          }
+          std::vector<fcl::CostSourced> cs_ours, cs_theirs;
+          ours.getCostSources(cs_ours);
+          theirs.getCostSources(cs_theirs);
+          ASSERT_EQ(cs_ours.size(), cs_theirs.size()) << where;
+          cost_sources += cs_ours.size();
+          // A result that is already full: both return at once, adding nothing.
+          if (ours.isCollision() && !q.request.enable_cost && q.request.num_max_contacts == 1) {
+            const std::size_t again = fcl_quadric::collide(g1, tf1, g2, tf2, q.request, ours);
+            EXPECT_EQ(again, 1u) << where;
+            EXPECT_EQ(ours.numContacts(), 1u) << where;
+          }
+        }
+      }
+    }
+  }
+  std::printf("[ info ] own OcTree traversal vs FCL's: %zu queries, %zu colliding, %zu contacts, %zu cost sources, "
+              "all identical\n",
+              compared, colliding, contacts, cost_sources);
+  // The comparison is not vacuous: many queries collide, with many contacts, and cost sources
+  // were produced on FCL's path.
+  EXPECT_GT(colliding, compared / 5);
+  EXPECT_GT(contacts, 5 * colliding);
+  EXPECT_GT(cost_sources, 0u);
+}
+
 #endif  // FCL_HAVE_OCTOMAP
 
 // =============================================================================================

@@ -1,0 +1,38 @@
+#pragma once
+// Private: fcl_quadric::collide's own traversal of an fcl::OcTree against an fcl::Ellipsoid or
+// fcl::Sphere (docs/fcl_integration.md §3.2, "fcl_quadric's own traversal").
+#include <cstddef>
+
+#include <fcl/common/types.h>
+#include <fcl/geometry/collision_geometry.h>
+#include <fcl/narrowphase/collision_request.h>
+#include <fcl/narrowphase/collision_result.h>
+
+#include "fcl_quadric/fcl/quadric_solver.h"
+
+namespace fcl_quadric {
+namespace detail {
+
+/// Boolean and contact collision of an OcTree with an Ellipsoid or a Sphere (either order) through
+/// `solver`, with FCL 0.7's result: the same leaves tested in the same depth-first order as
+/// FCL's OcTreeSolver::OcTreeShapeIntersectRecurse (children 0..7, occupancy and free thresholds,
+/// the shape's own thresholds), the same contacts (o1 the tree, b1 the leaf's index, b2 NONE, in
+/// either order of the arguments, as FCL writes them), the same early stop
+/// (request.isSatisfied). What differs is the pruning: each cell's box is compared, in the tree's
+/// frame, with the shape's exact bounding box there, padded by 1e-7 of the pose's scale
+/// (|p_tree| + |p_shape| + |c| + r_max, c the shape's centre in the tree frame): six comparisons
+/// per cell instead of FCL's box-to-OBB conversion and 15-axis separating test. The padding is
+/// ~25 times what the rotation defect that poses may carry (tolerance::kRotationOrthogonality,
+/// 1e-9) can move a point (4e-9 of that scale) and ~10^5 times the exact tests' touching band, so every cell it prunes is certified separate by
+/// the leaf test as well: the answer is FCL's with this solver (tested against it,
+/// ExactOcTree.OwnTraversalGivesFclsTraversalResultExactly).
+/// \return false, leaving `result` untouched, when the pair is not OcTree/Ellipsoid or
+/// OcTree/Sphere, or the request asks for cost sources (FCL's traversal handles those);
+/// otherwise true with *count = result.numContacts().
+bool collideOcTreeShape(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
+                        const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
+                        const QuadricSolver<double>& solver, const fcl::CollisionRequest<double>& request,
+                        fcl::CollisionResult<double>& result, std::size_t* count);
+
+}  // namespace detail
+}  // namespace fcl_quadric
