@@ -13,6 +13,7 @@
 #include "fcl_quadric/fcl/quadric_solver.h"
 #include "fcl/collision_pieces.h"
 #include "fcl/input_checks.h"
+#include "fcl/mesh_collision.h"
 #include "fcl/octree_collision.h"
 #include "fcl/quadric_shape_dispatch.h"
 
@@ -48,9 +49,12 @@ std::size_t collide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S
   if constexpr (std::is_same_v<S, double>) {
     if (detail::isQuadricShape(o1) || detail::isQuadricShape(o2))
       return detail::collideQuadricShapes(o1, tf1, o2, tf2, request, result);
-    // An OcTree against an ellipsoid or a sphere: FCL's answer through a cheaper traversal.
+    // An OcTree against an ellipsoid or a sphere: FCL's answer through a cheaper traversal
+    // (octree_collision.h).
     std::size_t count = 0;
     if (detail::collideOcTreeShape(o1, tf1, o2, tf2, solver, request, result, &count)) return count;
+    // A triangle mesh (OBBRSS or OBB nodes) against an ellipsoid or a sphere: likewise.
+    if (detail::collideMeshShape(o1, tf1, o2, tf2, solver, request, result, &count)) return count;
   }
   return fcl::collide(o1, tf1, o2, tf2, &solver, request, result);
 }

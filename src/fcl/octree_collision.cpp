@@ -137,7 +137,7 @@ class OcTreeShapeTraversal {
 };
 
 template <typename Shape>
-void traverse(const fcl::CollisionGeometry<double>* tree, const fcl::Transform3<double>& tf_tree,
+void traverseOcTree(const fcl::CollisionGeometry<double>* tree, const fcl::Transform3<double>& tf_tree,
               const fcl::CollisionGeometry<double>* shape, const fcl::Transform3<double>& tf_shape,
               const QuadricSolver<double>& solver, const fcl::CollisionRequest<double>& request,
               fcl::CollisionResult<double>& result) {
@@ -166,9 +166,9 @@ bool collideOcTreeShape(const fcl::CollisionGeometry<double>* o1, const fcl::Tra
     const fcl::Transform3<double>& tf_tree = tree_first ? tf1 : tf2;
     const fcl::Transform3<double>& tf_shape = tree_first ? tf2 : tf1;
     if (kind == fcl::GEOM_ELLIPSOID)
-      traverse<fcl::Ellipsoid<double>>(tree, tf_tree, shape, tf_shape, solver, request, result);
+      traverseOcTree<fcl::Ellipsoid<double>>(tree, tf_tree, shape, tf_shape, solver, request, result);
     else
-      traverse<fcl::Sphere<double>>(tree, tf_tree, shape, tf_shape, solver, request, result);
+      traverseOcTree<fcl::Sphere<double>>(tree, tf_tree, shape, tf_shape, solver, request, result);
   }
   *count = result.numContacts();
   return true;
