@@ -32,17 +32,23 @@ class MeshShapeTraversal {
                      const fcl::Transform3<double>& tf_shape, const QuadricSolver<double>& solver,
                      const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result)
       : mesh_(mesh), tf_mesh_(tf_mesh), shape_(shape), tf_shape_(tf_shape), solver_(solver), request_(request),
-        result_(result) {
-    // The shape in the mesh frame: axes R = R_m^T R_s (columns), centre p = R_m^T (p_s - p_m).
-    R_ = tf_mesh.linear().transpose() * tf_shape.linear();
-    p_ = tf_mesh.linear().transpose() * (tf_shape.translation() - tf_mesh.translation());
-    radii_ = shapeRadii(shape);
-    r2_ = radii_.cwiseProduct(radii_);
-    scale_ = tf_mesh.translation().cwiseAbs().maxCoeff() + tf_shape.translation().cwiseAbs().maxCoeff() +
-             p_.cwiseAbs().maxCoeff() + radii_.maxCoeff();
-  }
+        result_(result) {}
 
-  void run() { recurse(0); }
+  void run() {
+    // The check the leaf test makes of the shape (QuadricSolver::shapeTriangleIntersect), made
+    // once here: a bad shape throws whether or not the pruning lets a leaf be reached, and the
+    // node test below is computed from valid radii and rotation. The mesh's transform needs no
+    // more than the front door's finiteness check (triangles are points).
+    (void)asExact(shape_, tf_shape_, "shape");
+    // The shape in the mesh frame: axes R = R_m^T R_s (columns), centre p = R_m^T (p_s - p_m).
+    R_ = tf_mesh_.linear().transpose() * tf_shape_.linear();
+    p_ = tf_mesh_.linear().transpose() * (tf_shape_.translation() - tf_mesh_.translation());
+    radii_ = shapeRadii(shape_);
+    r2_ = radii_.cwiseProduct(radii_);
+    scale_ = tf_mesh_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
+             p_.cwiseAbs().maxCoeff() + radii_.maxCoeff();
+    recurse(0);
+  }
 
  private:
   /// False when the node's box and the shape are certainly apart (separating axis among the

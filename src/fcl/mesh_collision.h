@@ -26,6 +26,9 @@ namespace detail {
 /// against the shape's exact support and along the shape's three axes against the node's, with
 /// a padding of 1e-7 of the pose's scale (as the OcTree traversal, octree_collision.h): every
 /// node it prunes holds only triangles that the exact leaf test finds separate.
+/// Bad input: the shape is checked once, before the traversal, by the leaf test's own checks
+/// (std::invalid_argument naming the value), so an invalid shape throws even where no triangle
+/// would be reached.
 /// \return false, leaving `result` untouched, for other pairs, other BV types or model types,
 /// an empty model, or a request with cost sources (FCL's traversal handles those); otherwise
 /// true with *count = result.numContacts().

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -47,23 +48,31 @@ class OcTreeShapeTraversal {
                        const fcl::Transform3<double>& tf_shape, const QuadricSolver<double>& solver,
                        const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result)
       : tree_(tree), tf_tree_(tf_tree), shape_(shape), tf_shape_(tf_shape), solver_(solver), request_(request),
-        result_(result) {
+        result_(result) {}
+
+  void run() {
+    const auto* root = tree_.getRoot();
+    if (root == nullptr) return;
+    // The checks the leaf test makes (QuadricSolver::shapeIntersect(box, box_tf, shape, tf_s)),
+    // made once here: bad input throws whether or not the pruning lets a leaf be reached (an empty
+    // tree has no leaf to test and throws nothing, as through FCL), and
+    // the box computed below from the shape's radii and rotation is then meaningful.
+    const fcl::AABB<double> root_bv = tree_.getRootBV();
+    (void)asExact(fcl::Box<double>(root_bv.max_ - root_bv.min_), tf_tree_ * fcl::Translation3<double>(root_bv.center()),
+                  "o1");
+    (void)asExact(shape_, tf_shape_, "o2");
     // The shape's exact bounding box in the tree frame: centre c = R_t^T (p_s - p_t), half widths
     // |row_i(R_t^T R_s S)| (S = diag(radii)), padded.
-    const Eigen::Matrix3d R = tf_tree.linear().transpose() * tf_shape.linear();
-    const Eigen::Vector3d c = tf_tree.linear().transpose() * (tf_shape.translation() - tf_tree.translation());
-    const Eigen::Vector3d radii = shapeRadii(shape);
+    const Eigen::Matrix3d R = tf_tree_.linear().transpose() * tf_shape_.linear();
+    const Eigen::Vector3d c = tf_tree_.linear().transpose() * (tf_shape_.translation() - tf_tree_.translation());
+    const Eigen::Vector3d radii = shapeRadii(shape_);
     const Eigen::Vector3d half = (R * radii.asDiagonal()).rowwise().norm();
-    const double scale = tf_tree.translation().cwiseAbs().maxCoeff() + tf_shape.translation().cwiseAbs().maxCoeff() +
+    const double scale = tf_tree_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
                          c.cwiseAbs().maxCoeff() + radii.maxCoeff();
     const Eigen::Vector3d pad = half + Eigen::Vector3d::Constant(kBoxPadding * scale);
     lo_ = c - pad;
     hi_ = c + pad;
-  }
-
-  void run() {
-    const auto* root = tree_.getRoot();
-    if (root != nullptr) recurse(root, tree_.getRootBV());
+    recurse(root, root_bv);
   }
 
  private:

@@ -26,6 +26,9 @@ namespace detail {
 /// 1e-9) can move a point (4e-9 of that scale) and ~10^5 times the exact tests' touching band, so every cell it prunes is certified separate by
 /// the leaf test as well: the answer is FCL's with this solver (tested against it,
 /// ExactOcTree.OwnTraversalGivesFclsTraversalResultExactly).
+/// Bad input: the shape and the tree's pose are checked once, before the traversal, by the
+/// leaf test's own checks (std::invalid_argument naming the value), so an invalid shape throws even
+/// where no leaf would be reached (a non-empty tree).
 /// \return false, leaving `result` untouched, when the pair is not OcTree/Ellipsoid or
 /// OcTree/Sphere, or the request asks for cost sources (FCL's traversal handles those);
 /// otherwise true with *count = result.numContacts().

@@ -436,6 +436,51 @@ TEST(ExactOcTree, OwnTraversalGivesFclsTraversalResultExactly) {
   EXPECT_GT(cost_sources, 0u);
 }
 
+
+/// Bad input through the own OcTree traversal: an invalid ellipsoid or sphere, or a tree pose
+/// that is not a rotation, throws std::invalid_argument even where no leaf would be reached (the
+/// shape far from every occupied cell), naming the bad value as the leaf test does.
+TEST(ExactOcTree, OwnTraversalRejectsBadInputWhereNoLeafIsReached) {
+  std::mt19937_64 rng(66);
+  auto built = std::make_shared<octomap::OcTree>(0.08);
+  fillScene(*built, rng, false);
+  auto fcl_tree = std::make_shared<fcl::OcTreed>(std::shared_ptr<const octomap::OcTree>(built));
+  const fcl::Transform3d far = test::makePose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(50, 50, 50));
+  const fcl::Transform3d tree_pose = fcl::Transform3d::Identity();
+  // A valid ellipsoid there collides with nothing and throws nothing.
+  {
+    const fcl::Ellipsoidd good(0.2, 0.3, 0.4);
+    fcl::CollisionResultd r;
+    EXPECT_EQ(fcl_quadric::collide(fcl_tree.get(), tree_pose, &good, far, fcl::CollisionRequestd(), r), 0u);
+  }
+  auto expectThrowNaming = [&](const fcl::CollisionGeometryd* shape, const fcl::Transform3d& tf_shape,
+                               const fcl::Transform3d& tf_tree, const std::string& needle) {
+    for (int order = 0; order < 2; ++order) {
+      fcl::CollisionResultd r;
+      try {
+        if (order == 0) fcl_quadric::collide(fcl_tree.get(), tf_tree, shape, tf_shape, fcl::CollisionRequestd(), r);
+        else fcl_quadric::collide(shape, tf_shape, fcl_tree.get(), tf_tree, fcl::CollisionRequestd(), r);
+        ADD_FAILURE() << "no exception for " << needle << ", order " << order;
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      }
+    }
+  };
+  const fcl::Ellipsoidd negative(0.2, -0.3, 0.4);
+  expectThrowNaming(&negative, far, tree_pose, "radius");
+  const fcl::Ellipsoidd not_a_number(0.2, std::numeric_limits<double>::quiet_NaN(), 0.4);
+  expectThrowNaming(&not_a_number, far, tree_pose, "radius");
+  const fcl::Sphered bad_sphere(-1.0);
+  expectThrowNaming(&bad_sphere, far, tree_pose, "radius");
+  fcl::Transform3d scaled = far;
+  scaled.linear() *= 1.1;  // not a rotation
+  const fcl::Ellipsoidd good(0.2, 0.3, 0.4);
+  expectThrowNaming(&good, scaled, tree_pose, "rotation");
+  fcl::Transform3d tree_scaled = tree_pose;
+  tree_scaled.linear() *= 1.1;
+  expectThrowNaming(&good, far, tree_scaled, "rotation");
+}
+
 #endif  // FCL_HAVE_OCTOMAP
 
 // =============================================================================================
@@ -676,6 +721,47 @@ TEST(ExactBvhMesh, OwnTraversalGivesFclsTraversalResultExactly) {
   EXPECT_GT(colliding, compared / 5);  // not vacuous
   EXPECT_GT(contacts, 3 * colliding);
 }
+
+/// Bad input through the own mesh traversal: an invalid ellipsoid or sphere throws
+/// std::invalid_argument even where no triangle would be reached, naming the bad value.
+TEST(ExactBvhMesh, OwnTraversalRejectsBadShapesWhereNoTriangleIsReached) {
+  const Mesh mesh = icosphere(1.0, 2);
+  auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+  model->beginModel();
+  model->addSubModel(mesh.v, mesh.t);
+  model->endModel();
+  const fcl::Transform3d far = test::makePose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(50, 50, 50));
+  const fcl::Transform3d mesh_pose = fcl::Transform3d::Identity();
+  {
+    const fcl::Ellipsoidd good(0.2, 0.3, 0.4);
+    fcl::CollisionResultd r;
+    EXPECT_EQ(fcl_quadric::collide(model.get(), mesh_pose, &good, far, fcl::CollisionRequestd(), r), 0u);
+  }
+  auto expectThrowNaming = [&](const fcl::CollisionGeometryd* shape, const fcl::Transform3d& tf_shape,
+                               const std::string& needle) {
+    for (int order = 0; order < 2; ++order) {
+      fcl::CollisionResultd r;
+      try {
+        if (order == 0) fcl_quadric::collide(model.get(), mesh_pose, shape, tf_shape, fcl::CollisionRequestd(), r);
+        else fcl_quadric::collide(shape, tf_shape, model.get(), mesh_pose, fcl::CollisionRequestd(), r);
+        ADD_FAILURE() << "no exception for " << needle << ", order " << order;
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      }
+    }
+  };
+  const fcl::Ellipsoidd negative(0.2, -0.3, 0.4);
+  expectThrowNaming(&negative, far, "radius");
+  const fcl::Ellipsoidd not_a_number(0.2, std::numeric_limits<double>::quiet_NaN(), 0.4);
+  expectThrowNaming(&not_a_number, far, "radius");
+  const fcl::Sphered bad_sphere(-1.0);
+  expectThrowNaming(&bad_sphere, far, "radius");
+  fcl::Transform3d scaled = far;
+  scaled.linear() *= 1.1;
+  const fcl::Ellipsoidd good(0.2, 0.3, 0.4);
+  expectThrowNaming(&good, scaled, "rotation");
+}
+
 
 }  // namespace
 }  // namespace fcl_quadric
