@@ -60,6 +60,44 @@ struct Counts {
   std::size_t collide_any_wrong = 0, count_wrong = 0;
 };
 
+/// The results of the front door's own traversal and of FCL's traversal (same solver) are the
+/// same: contacts in the same order, with the same objects and primitive indices, and, for a
+/// contact request, the same points, normals and depths (FCL leaves a boolean contact's geometry
+/// uninitialised).
+void expectSameContacts(const fcl::CollisionResultd& ours, const fcl::CollisionResultd& theirs, bool enable_contact,
+                        const std::string& where) {
+  ASSERT_EQ(ours.numContacts(), theirs.numContacts()) << where;
+  for (std::size_t k = 0; k < ours.numContacts(); ++k) {
+    const fcl::Contactd& a = ours.getContact(k);
+    const fcl::Contactd& b = theirs.getContact(k);
+    EXPECT_EQ(a.o1, b.o1) << where;
+    EXPECT_EQ(a.o2, b.o2) << where;
+    EXPECT_EQ(a.b1, b.b1) << where << ", contact " << k;
+    EXPECT_EQ(a.b2, b.b2) << where;
+    if (!enable_contact) continue;
+    EXPECT_EQ(a.pos, b.pos) << where;
+    EXPECT_EQ(a.normal, b.normal) << where;
+    EXPECT_EQ(a.penetration_depth, b.penetration_depth) << where;
+  }
+}
+
+/// fcl_quadric::collide of `environment` (posed tf_env) and `shape` (posed tf_shape), in both
+/// argument orders, throws std::invalid_argument whose message contains `needle`.
+void expectCollideThrowsNaming(const fcl::CollisionGeometryd* environment, const fcl::Transform3d& tf_env,
+                               const fcl::CollisionGeometryd* shape, const fcl::Transform3d& tf_shape,
+                               const std::string& needle) {
+  for (int order = 0; order < 2; ++order) {
+    fcl::CollisionResultd r;
+    try {
+      if (order == 0) fcl_quadric::collide(environment, tf_env, shape, tf_shape, fcl::CollisionRequestd(), r);
+      else fcl_quadric::collide(shape, tf_shape, environment, tf_env, fcl::CollisionRequestd(), r);
+      ADD_FAILURE() << "no exception for a bad " << needle << ", order " << order;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  }
+}
+
 // =============================================================================================
 // OcTree
 // =============================================================================================
@@ -395,22 +433,9 @@ TEST(ExactOcTree, OwnTraversalGivesFclsTraversalResultExactly) {
           const std::string where = std::string(q.name) + ", pose " + std::to_string(i) + ", order " +
                                     std::to_string(order) + ", threshold " + std::to_string(threshold);
           ASSERT_EQ(n_ours, n_theirs) << where;
-          ASSERT_EQ(ours.numContacts(), theirs.numContacts()) << where;
+          expectSameContacts(ours, theirs, q.request.enable_contact, where);
           colliding += ours.isCollision();
           contacts += ours.numContacts();
-          for (std::size_t k = 0; k < ours.numContacts(); ++k) {
-            const fcl::Contactd& a = ours.getContact(k);
-            const fcl::Contactd& b = theirs.getContact(k);
-            EXPECT_EQ(a.o1, b.o1) << where;
-            EXPECT_EQ(a.o2, b.o2) << where;
-            EXPECT_EQ(a.b1, b.b1) << where << ", contact " << k;
-            EXPECT_EQ(a.b2, b.b2) << where;
-            // FCL leaves a boolean contact's geometry uninitialised (Contact(o1, o2, b1, b2)).
-            if (!q.request.enable_contact) continue;
-            EXPECT_EQ(a.pos, b.pos) << where;
-            EXPECT_EQ(a.normal, b.normal) << where;
-            EXPECT_EQ(a.penetration_depth, b.penetration_depth) << where;
-          }
           std::vector<fcl::CostSourced> cs_ours, cs_theirs;
           ours.getCostSources(cs_ours);
           theirs.getCostSources(cs_theirs);
@@ -453,32 +478,20 @@ TEST(ExactOcTree, OwnTraversalRejectsBadInputWhereNoLeafIsReached) {
     fcl::CollisionResultd r;
     EXPECT_EQ(fcl_quadric::collide(fcl_tree.get(), tree_pose, &good, far, fcl::CollisionRequestd(), r), 0u);
   }
-  auto expectThrowNaming = [&](const fcl::CollisionGeometryd* shape, const fcl::Transform3d& tf_shape,
-                               const fcl::Transform3d& tf_tree, const std::string& needle) {
-    for (int order = 0; order < 2; ++order) {
-      fcl::CollisionResultd r;
-      try {
-        if (order == 0) fcl_quadric::collide(fcl_tree.get(), tf_tree, shape, tf_shape, fcl::CollisionRequestd(), r);
-        else fcl_quadric::collide(shape, tf_shape, fcl_tree.get(), tf_tree, fcl::CollisionRequestd(), r);
-        ADD_FAILURE() << "no exception for " << needle << ", order " << order;
-      } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-      }
-    }
-  };
+
   const fcl::Ellipsoidd negative(0.2, -0.3, 0.4);
-  expectThrowNaming(&negative, far, tree_pose, "radius");
+  expectCollideThrowsNaming(fcl_tree.get(), tree_pose, &negative, far, "radius");
   const fcl::Ellipsoidd not_a_number(0.2, std::numeric_limits<double>::quiet_NaN(), 0.4);
-  expectThrowNaming(&not_a_number, far, tree_pose, "radius");
+  expectCollideThrowsNaming(fcl_tree.get(), tree_pose, &not_a_number, far, "radius");
   const fcl::Sphered bad_sphere(-1.0);
-  expectThrowNaming(&bad_sphere, far, tree_pose, "radius");
+  expectCollideThrowsNaming(fcl_tree.get(), tree_pose, &bad_sphere, far, "radius");
   fcl::Transform3d scaled = far;
   scaled.linear() *= 1.1;  // not a rotation
   const fcl::Ellipsoidd good(0.2, 0.3, 0.4);
-  expectThrowNaming(&good, scaled, tree_pose, "rotation");
+  expectCollideThrowsNaming(fcl_tree.get(), tree_pose, &good, scaled, "rotation");
   fcl::Transform3d tree_scaled = tree_pose;
   tree_scaled.linear() *= 1.1;
-  expectThrowNaming(&good, far, tree_scaled, "rotation");
+  expectCollideThrowsNaming(fcl_tree.get(), tree_scaled, &good, far, "rotation");
 }
 
 #endif  // FCL_HAVE_OCTOMAP
@@ -690,21 +703,9 @@ void compareMeshTraversal(const Mesh& mesh, unsigned seed, const char* what, std
                                   std::to_string(order) + ", max contacts " +
                                   std::to_string(request.num_max_contacts) + (request.enable_contact ? ", contacts" : "");
         ASSERT_EQ(n_ours, n_theirs) << where;
-        ASSERT_EQ(ours.numContacts(), theirs.numContacts()) << where;
+        expectSameContacts(ours, theirs, request.enable_contact, where);
         *colliding += ours.isCollision();
         *contacts += ours.numContacts();
-        for (std::size_t k = 0; k < ours.numContacts(); ++k) {
-          const fcl::Contactd& a = ours.getContact(k);
-          const fcl::Contactd& b = theirs.getContact(k);
-          EXPECT_EQ(a.o1, b.o1) << where;
-          EXPECT_EQ(a.o2, b.o2) << where;
-          EXPECT_EQ(a.b1, b.b1) << where << ", contact " << k;
-          EXPECT_EQ(a.b2, b.b2) << where;
-          if (!request.enable_contact) continue;  // FCL leaves a boolean contact's geometry unset
-          EXPECT_EQ(a.pos, b.pos) << where;
-          EXPECT_EQ(a.normal, b.normal) << where;
-          EXPECT_EQ(a.penetration_depth, b.penetration_depth) << where;
-        }
       }
     }
   }
@@ -737,29 +738,17 @@ TEST(ExactBvhMesh, OwnTraversalRejectsBadShapesWhereNoTriangleIsReached) {
     fcl::CollisionResultd r;
     EXPECT_EQ(fcl_quadric::collide(model.get(), mesh_pose, &good, far, fcl::CollisionRequestd(), r), 0u);
   }
-  auto expectThrowNaming = [&](const fcl::CollisionGeometryd* shape, const fcl::Transform3d& tf_shape,
-                               const std::string& needle) {
-    for (int order = 0; order < 2; ++order) {
-      fcl::CollisionResultd r;
-      try {
-        if (order == 0) fcl_quadric::collide(model.get(), mesh_pose, shape, tf_shape, fcl::CollisionRequestd(), r);
-        else fcl_quadric::collide(shape, tf_shape, model.get(), mesh_pose, fcl::CollisionRequestd(), r);
-        ADD_FAILURE() << "no exception for " << needle << ", order " << order;
-      } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-      }
-    }
-  };
+
   const fcl::Ellipsoidd negative(0.2, -0.3, 0.4);
-  expectThrowNaming(&negative, far, "radius");
+  expectCollideThrowsNaming(model.get(), mesh_pose, &negative, far, "radius");
   const fcl::Ellipsoidd not_a_number(0.2, std::numeric_limits<double>::quiet_NaN(), 0.4);
-  expectThrowNaming(&not_a_number, far, "radius");
+  expectCollideThrowsNaming(model.get(), mesh_pose, &not_a_number, far, "radius");
   const fcl::Sphered bad_sphere(-1.0);
-  expectThrowNaming(&bad_sphere, far, "radius");
+  expectCollideThrowsNaming(model.get(), mesh_pose, &bad_sphere, far, "radius");
   fcl::Transform3d scaled = far;
   scaled.linear() *= 1.1;
   const fcl::Ellipsoidd good(0.2, 0.3, 0.4);
-  expectThrowNaming(&good, scaled, "rotation");
+  expectCollideThrowsNaming(model.get(), mesh_pose, &good, scaled, "rotation");
 }
 
 
