@@ -11,6 +11,8 @@
 #include <fcl/math/bv/OBB.h>
 #include <fcl/math/bv/OBBRSS.h>
 
+#include "fcl_quadric/geometry/ellipsoid.h"
+
 namespace fcl_quadric {
 namespace detail {
 
@@ -37,9 +39,11 @@ class MeshShapeTraversal {
   void run() {
     // The check the leaf test makes of the shape (QuadricSolver::shapeTriangleIntersect), made
     // once here: a bad shape throws whether or not the pruning lets a leaf be reached, and the
-    // node test below is computed from valid radii and rotation. The mesh's transform needs no
-    // more than the front door's finiteness check (triangles are points).
+    // node test below is computed from valid radii and rotation. The leaf test would take any
+    // affine mesh pose (triangles are points), but the node test places the shape in the mesh
+    // frame with R_m^T, as FCL's OBB test uses R_m: the pose must be rigid.
     (void)asExact(shape_, tf_shape_, "shape");
+    checkRotation(tf_mesh_.linear(), "fcl_quadric::collide: the rotation of the mesh's pose");
     // The shape in the mesh frame: axes R = R_m^T R_s (columns), centre p = R_m^T (p_s - p_m).
     R_ = tf_mesh_.linear().transpose() * tf_shape_.linear();
     p_ = tf_mesh_.linear().transpose() * (tf_shape_.translation() - tf_mesh_.translation());

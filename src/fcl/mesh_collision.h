@@ -28,7 +28,8 @@ namespace detail {
 /// node it prunes holds only triangles that the exact leaf test finds separate.
 /// Bad input: the shape is checked once, before the traversal, by the leaf test's own checks
 /// (std::invalid_argument naming the value), so an invalid shape throws even where no triangle
-/// would be reached.
+/// would be reached; so does a mesh pose that is not rigid (the node test, like FCL's, assumes a
+/// rotation; through FCL's traversal such a pose gave unreliable pruning without an error).
 /// \return false, leaving `result` untouched, for other pairs, other BV types or model types,
 /// an empty model, or a request with cost sources (FCL's traversal handles those); otherwise
 /// true with *count = result.numContacts().

@@ -723,9 +723,10 @@ TEST(ExactBvhMesh, OwnTraversalGivesFclsTraversalResultExactly) {
   EXPECT_GT(contacts, 3 * colliding);
 }
 
-/// Bad input through the own mesh traversal: an invalid ellipsoid or sphere throws
-/// std::invalid_argument even where no triangle would be reached, naming the bad value.
-TEST(ExactBvhMesh, OwnTraversalRejectsBadShapesWhereNoTriangleIsReached) {
+/// Bad input through the own mesh traversal: an invalid ellipsoid or sphere, or a mesh pose
+/// that is not rigid, throws std::invalid_argument even where no triangle would be reached,
+/// naming the bad value.
+TEST(ExactBvhMesh, OwnTraversalRejectsBadInputWhereNoTriangleIsReached) {
   const Mesh mesh = icosphere(1.0, 2);
   auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
   model->beginModel();
@@ -749,6 +750,9 @@ TEST(ExactBvhMesh, OwnTraversalRejectsBadShapesWhereNoTriangleIsReached) {
   scaled.linear() *= 1.1;
   const fcl::Ellipsoidd good(0.2, 0.3, 0.4);
   expectCollideThrowsNaming(model.get(), mesh_pose, &good, scaled, "rotation");
+  fcl::Transform3d mesh_scaled = mesh_pose;
+  mesh_scaled.linear() *= 1.1;  // a scaled mesh pose: not rigid
+  expectCollideThrowsNaming(model.get(), mesh_scaled, &good, far, "rotation of the mesh's pose");
 }
 
 
