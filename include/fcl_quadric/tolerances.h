@@ -63,6 +63,15 @@ constexpr double kMaxLength = 1e100;
 /// floating-point exception is raised on the way (the tests run with FE_INVALID trapped).
 constexpr double kPencilMaxSizeRatio = 18446744073709551616.0;  // 2^64
 
+/// Padding of the pruning tests of fcl_quadric::collide's own OcTree and mesh traversals
+/// (src/fcl/octree_collision.cpp, mesh_collision.cpp), relative to the pose's scale (|p_env|_inf
+/// + |p_shape|_inf + |c|_inf + r_max, c the shape's centre in the environment's frame; the mesh
+/// test adds the node's |centre|_inf and largest half width). A rotation defect up to
+/// kRotationOrthogonality moves a point by at most ~4e-9 of that scale, 25 times less; the exact
+/// leaf tests' touching band (kCertificateRelativeBoundDouble of their scale) is ~10^5 times less.
+/// So a cell or node pruned with it holds only leaves the exact test finds separate. Dimensionless.
+constexpr double kTraversalPruningPadding = 1e-7;
+
 /// Scene input: |q| of a pose quaternion must be within this of 1 (relative). Dimensionless.
 constexpr double kQuaternionNorm = 1e-6;
 

@@ -12,14 +12,12 @@
 #include <fcl/math/bv/OBBRSS.h>
 
 #include "fcl_quadric/geometry/ellipsoid.h"
+#include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
 namespace detail {
 
 namespace {
-
-/// Relative padding of the node test (the header's contract).
-constexpr double kNodePadding = 1e-7;
 
 inline const fcl::OBB<double>& orientedBox(const fcl::OBB<double>& bv) { return bv; }
 inline const fcl::OBB<double>& orientedBox(const fcl::OBBRSS<double>& bv) { return bv.obb; }
@@ -60,7 +58,7 @@ class MeshShapeTraversal {
   bool meets(const BV& bv) const {
     const fcl::OBB<double>& box = orientedBox(bv);
     const Eigen::Vector3d d = box.To - p_;
-    const double pad = kNodePadding * (scale_ + box.To.cwiseAbs().maxCoeff() + box.extent.maxCoeff());
+    const double pad = tolerance::kTraversalPruningPadding * (scale_ + box.To.cwiseAbs().maxCoeff() + box.extent.maxCoeff());
     const Eigen::Matrix3d B = R_.transpose() * box.axis;  // B(j, k) = shape axis j . box axis k
     const Eigen::Vector3d d_box = box.axis.transpose() * d;
     for (int k = 0; k < 3; ++k) {

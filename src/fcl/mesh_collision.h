@@ -24,8 +24,9 @@ namespace detail {
 /// every query (an eigen-decomposition) and runs a 15-axis separating test of each node's OBB
 /// against it. Here each node's OBB, in the mesh frame, is tested along its own three axes
 /// against the shape's exact support and along the shape's three axes against the node's, with
-/// a padding of 1e-7 of the pose's scale (as the OcTree traversal, octree_collision.h): every
-/// node it prunes holds only triangles that the exact leaf test finds separate.
+/// a padding of tolerance::kTraversalPruningPadding (1e-7) of the pose's scale, as the OcTree
+/// traversal (octree_collision.h): every node it prunes holds only triangles that the exact leaf
+/// test finds separate.
 /// Bad input: the shape is checked once, before the traversal, by the leaf test's own checks
 /// (std::invalid_argument naming the value), so an invalid shape throws even where no triangle
 /// would be reached; so does a mesh pose that is not rigid (the node test, like FCL's, assumes a

@@ -17,14 +17,13 @@
 #include <fcl/geometry/shape/sphere.h>
 #endif
 
+#include "fcl_quadric/tolerances.h"
+
 namespace fcl_quadric {
 namespace detail {
 
 #if FCL_HAVE_OCTOMAP
 namespace {
-
-/// Relative padding of the shape's box (the header's contract).
-constexpr double kBoxPadding = 1e-7;
 
 /// FCL's computeChildBV (octree-inl.h), written out so that it inlines: the same arithmetic, so
 /// the leaf boxes handed to the solver are FCL's bit for bit.
@@ -69,7 +68,7 @@ class OcTreeShapeTraversal {
     const Eigen::Vector3d half = (R * radii.asDiagonal()).rowwise().norm();
     const double scale = tf_tree_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
                          c.cwiseAbs().maxCoeff() + radii.maxCoeff();
-    const Eigen::Vector3d pad = half + Eigen::Vector3d::Constant(kBoxPadding * scale);
+    const Eigen::Vector3d pad = half + Eigen::Vector3d::Constant(tolerance::kTraversalPruningPadding * scale);
     lo_ = c - pad;
     hi_ = c + pad;
     recurse(root, root_bv);

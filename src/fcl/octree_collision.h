@@ -19,7 +19,7 @@ namespace detail {
 /// the shape's own thresholds), the same contacts (o1 the tree, b1 the leaf's index, b2 NONE, in
 /// either order of the arguments, as FCL writes them), the same early stop
 /// (request.isSatisfied). What differs is the pruning: each cell's box is compared, in the tree's
-/// frame, with the shape's exact bounding box there, padded by 1e-7 of the pose's scale
+/// frame, with the shape's exact bounding box there, padded by tolerance::kTraversalPruningPadding (1e-7) of the pose's scale
 /// (|p_tree| + |p_shape| + |c| + r_max, c the shape's centre in the tree frame): six comparisons
 /// per cell instead of FCL's box-to-OBB conversion and 15-axis separating test. The padding is
 /// ~25 times what the rotation defect that poses may carry (tolerance::kRotationOrthogonality,
