@@ -17,7 +17,8 @@
 //      terrain (resolution 0.05, >= 100,000 occupied leaves), at a few hundred poses near the
 //      surface: boolean fcl_quadric::collide vs fcl::collide; t_query = CPU time per query.
 //  (c) Mesh: one ellipsoid against a torus fcl::BVHModel<OBBRSS> of 4,096 triangles, poses near
-//      its surface; the same two peers.
+//      its surface; the same two peers. MeshAABB: the same triangles and poses in a
+//      fcl::BVHModel<AABB> (FCL copies such a model on every query).
 // Issue 3's aim for (a) is judged on a paired timing run after the Google Benchmark runs: three
 // passes over the frames, every peer once per frame in an order rotated by frame and pass, each
 // timed by the thread's CPU clock. On this shared VM, runs of one peer after another see
@@ -171,7 +172,7 @@ std::size_t peerIndex(Peer peer) {
 // (b), (c) One ellipsoid against an environment
 
 struct QueryScene {
-  std::string group;     ///< "OcTree" or "Mesh"
+  std::string group;     ///< "OcTree", "Mesh" or "MeshAABB"
   std::string target;    ///< description
   std::unique_ptr<fcl::CollisionObjectd> environment;
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> queries;
@@ -240,11 +241,16 @@ QueryScene makeOcTreeScene(const Settings& cfg, std::size_t* leaves) {
 /// (c) Ellipsoids near the torus: a random point of the smooth torus, radii scale U(0.1, 0.4)
 /// with aspect up to 3, random rotation, centre moved along the surface normal by t times the
 /// ellipsoid's support extent in that direction, t ~ U(-0.5, 2).
-QueryScene makeMeshScene(const Settings& cfg, const MeshTarget& mesh) {
+/// aabb: the same torus with AABB nodes (group "MeshAABB"), the same poses.
+QueryScene makeMeshScene(const Settings& cfg, const MeshTarget& mesh, bool aabb) {
   QueryScene s;
-  s.group = "Mesh";
-  s.target = "torus R 2, r 0.6, BVHModel<OBBRSS>, " + std::to_string(mesh.triangles.size()) + " triangles";
-  s.environment = std::make_unique<fcl::CollisionObjectd>(mesh.model, fcl::Transform3d::Identity());
+  s.group = aabb ? "MeshAABB" : "Mesh";
+  s.target = std::string("torus R 2, r 0.6, ") + (aabb ? "BVHModel<AABB>, " : "BVHModel<OBBRSS>, ") +
+             std::to_string(mesh.triangles.size()) + " triangles" +
+             (aabb ? " (at the identity pose: FCL copies the model per query but does not rebuild its tree)" : "");
+  s.environment =
+      aabb ? std::make_unique<fcl::CollisionObjectd>(mesh.aabb_model, fcl::Transform3d::Identity())
+           : std::make_unique<fcl::CollisionObjectd>(mesh.model, fcl::Transform3d::Identity());
   std::mt19937_64 rng(kQuerySeed + 1);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (std::size_t i = 0; i < cfg.queries; ++i) {
@@ -423,9 +429,10 @@ int main(int argc, char** argv) {
   std::size_t leaves = 0;
   static QueryScene octree = makeOcTreeScene(cfg, &leaves);
   static const MeshTarget mesh = torusMesh(2.0, 0.6, cfg.torus_nu, cfg.torus_nv);
-  static QueryScene mesh_scene = makeMeshScene(cfg, mesh);
+  static QueryScene mesh_scene = makeMeshScene(cfg, mesh, false);
+  static QueryScene mesh_aabb_scene = makeMeshScene(cfg, mesh, true);
   if (!cfg.smoke && leaves < 100000) std::printf("WARNING: only %zu occupied leaves (< 100,000)\n", leaves);
-  const std::vector<const QueryScene*> query_scenes{&octree, &mesh_scene};
+  const std::vector<const QueryScene*> query_scenes{&octree, &mesh_scene, &mesh_aabb_scene};
 
   for (std::size_t i = 0; i < moving.size(); ++i) {
     MovingEllipsoids* s = moving[i].get();

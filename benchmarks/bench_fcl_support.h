@@ -34,6 +34,7 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/octree/octree.h>
 #include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/math/bv/AABB.h>
 #include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/collision_object.h>
 #include <octomap/OcTree.h>
@@ -409,6 +410,9 @@ struct MeshTarget {
   std::vector<fcl::Vector3d> vertices;
   std::vector<fcl::Triangle> triangles;
   std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> model;
+  /// The same triangles with AABB nodes: FCL copies such a model on every query (and rebuilds its
+  /// tree unless the pose is the identity); fcl_quadric::collide traverses it in place.
+  std::shared_ptr<fcl::BVHModel<fcl::AABBd>> aabb_model;
 
   /// Exact: does the ellipsoid touch or overlap a triangle (mesh posed at the identity)?
   bool collides(const Ellipsoid& e) const {
@@ -445,6 +449,11 @@ inline MeshTarget torusMesh(double R, double r, int nu, int nv) {
   m.model->addSubModel(m.vertices, m.triangles);
   m.model->endModel();
   m.model->computeLocalAABB();
+  m.aabb_model = std::make_shared<fcl::BVHModel<fcl::AABBd>>();
+  m.aabb_model->beginModel(static_cast<int>(m.triangles.size()), static_cast<int>(m.vertices.size()));
+  m.aabb_model->addSubModel(m.vertices, m.triangles);
+  m.aabb_model->endModel();
+  m.aabb_model->computeLocalAABB();
   return m;
 }
 

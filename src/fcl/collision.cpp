@@ -53,7 +53,7 @@ std::size_t collide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S
     // (octree_collision.h).
     std::size_t count = 0;
     if (detail::collideOcTreeShape(o1, tf1, o2, tf2, solver, request, result, &count)) return count;
-    // A triangle mesh (OBBRSS or OBB nodes) against an ellipsoid or a sphere: likewise.
+    // A triangle mesh (any BV type) against an ellipsoid or a sphere: likewise.
     if (detail::collideMeshShape(o1, tf1, o2, tf2, solver, request, result, &count)) return count;
   }
   return fcl::collide(o1, tf1, o2, tf2, &solver, request, result);

@@ -1,5 +1,6 @@
 // fcl_quadric::collide's traversal of a triangle mesh against an Ellipsoid or a Sphere: FCL 0.7's
-// collisionRecurse over an oriented mesh-shape node without cost sources, with a cheaper node test.
+// collisionRecurse over a mesh-shape node without cost sources, with a cheaper node test, and for
+// AABB and k-DOP meshes without FCL's per-query copy of the model.
 #include "fcl/mesh_collision.h"
 
 #include <algorithm>
@@ -8,8 +9,12 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/AABB.h>
 #include <fcl/math/bv/OBB.h>
 #include <fcl/math/bv/OBBRSS.h>
+#include <fcl/math/bv/RSS.h>
+#include <fcl/math/bv/kDOP.h>
+#include <fcl/math/bv/kIOS.h>
 
 #include "fcl_quadric/geometry/ellipsoid.h"
 #include "fcl_quadric/tolerances.h"
@@ -19,8 +24,64 @@ namespace detail {
 
 namespace {
 
-inline const fcl::OBB<double>& orientedBox(const fcl::OBB<double>& bv) { return bv; }
-inline const fcl::OBB<double>& orientedBox(const fcl::OBBRSS<double>& bv) { return bv.obb; }
+/// What the node test reads of a node's bounding volume. Oriented types (FCL's oriented mesh-shape
+/// nodes, which test the mesh in its own frame): a box with its own axes in the mesh frame that
+/// contains the volume. Axis-aligned types (AABB, k-DOPs: FCL's MeshShapeCollisionTraversalNode):
+/// the corners lo, hi of an axis-aligned box in the mesh frame that contains it.
+template <typename BV>
+struct NodeBox;
+
+template <>
+struct NodeBox<fcl::OBB<double>> {
+  static constexpr bool kOriented = true;
+  static const fcl::OBB<double>& box(const fcl::OBB<double>& bv) { return bv; }
+};
+
+template <>
+struct NodeBox<fcl::OBBRSS<double>> {
+  static constexpr bool kOriented = true;
+  static const fcl::OBB<double>& box(const fcl::OBBRSS<double>& bv) { return bv.obb; }
+};
+
+template <>
+struct NodeBox<fcl::kIOS<double>> {
+  static constexpr bool kOriented = true;
+  static const fcl::OBB<double>& box(const fcl::kIOS<double>& bv) { return bv.obb; }  // bounds every sphere's part
+};
+
+/// The points within r of the rectangle To + [0, l0] axis0 + [0, l1] axis1 (RSS.h): inside the box
+/// of centre RSS::center(), the same axes and half-extents (l0 / 2 + r, l1 / 2 + r, r).
+template <>
+struct NodeBox<fcl::RSS<double>> {
+  static constexpr bool kOriented = true;
+  static fcl::OBB<double> box(const fcl::RSS<double>& bv) {
+    fcl::OBB<double> b;
+    b.axis = bv.axis;
+    b.To = bv.center();
+    b.extent = Eigen::Vector3d(0.5 * bv.l[0] + bv.r, 0.5 * bv.l[1] + bv.r, bv.r);
+    return b;
+  }
+};
+
+template <>
+struct NodeBox<fcl::AABB<double>> {
+  static constexpr bool kOriented = false;
+  static void corners(const fcl::AABB<double>& bv, Eigen::Vector3d* lo, Eigen::Vector3d* hi) {
+    *lo = bv.min_;
+    *hi = bv.max_;
+  }
+};
+
+/// A k-DOP's first three directions are the coordinate axes (kDOP.h): dist(i) its minimum and
+/// dist(N / 2 + i) its maximum along axis i, for i < 3. Their slabs bound it.
+template <std::size_t N>
+struct NodeBox<fcl::KDOP<double, N>> {
+  static constexpr bool kOriented = false;
+  static void corners(const fcl::KDOP<double, N>& bv, Eigen::Vector3d* lo, Eigen::Vector3d* hi) {
+    *lo = Eigen::Vector3d(bv.dist(0), bv.dist(1), bv.dist(2));
+    *hi = Eigen::Vector3d(bv.dist(N / 2), bv.dist(N / 2 + 1), bv.dist(N / 2 + 2));
+  }
+};
 
 inline Eigen::Vector3d shapeRadii(const fcl::Ellipsoid<double>& e) { return e.radii; }
 inline Eigen::Vector3d shapeRadii(const fcl::Sphere<double>& s) { return Eigen::Vector3d::Constant(s.radius); }
@@ -28,6 +89,8 @@ inline Eigen::Vector3d shapeRadii(const fcl::Sphere<double>& s) { return Eigen::
 template <typename BV, typename Shape>
 class MeshShapeTraversal {
  public:
+  static constexpr bool kOriented = NodeBox<BV>::kOriented;
+
   MeshShapeTraversal(const fcl::BVHModel<BV>& mesh, const fcl::Transform3<double>& tf_mesh, const Shape& shape,
                      const fcl::Transform3<double>& tf_shape, const QuadricSolver<double>& solver,
                      const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result)
@@ -37,26 +100,56 @@ class MeshShapeTraversal {
   void run() {
     // The check the leaf test makes of the shape (QuadricSolver::shapeTriangleIntersect), made
     // once here: a bad shape throws whether or not the pruning lets a leaf be reached, and the
-    // node test below is computed from valid radii and rotation. The leaf test would take any
-    // affine mesh pose (triangles are points), but the node test places the shape in the mesh
-    // frame with R_m^T, as FCL's OBB test uses R_m: the pose must be rigid.
+    // node test below is computed from valid radii and rotation.
     (void)asExact(shape_, tf_shape_, "shape");
-    checkRotation(tf_mesh_.linear(), "fcl_quadric::collide: the rotation of the mesh's pose");
-    // The shape in the mesh frame: axes R = R_m^T R_s (columns), centre p = R_m^T (p_s - p_m).
-    R_ = tf_mesh_.linear().transpose() * tf_shape_.linear();
-    p_ = tf_mesh_.linear().transpose() * (tf_shape_.translation() - tf_mesh_.translation());
     radii_ = shapeRadii(shape_);
-    r2_ = radii_.cwiseProduct(radii_);
-    scale_ = tf_mesh_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
-             p_.cwiseAbs().maxCoeff() + radii_.maxCoeff();
+    if constexpr (kOriented) {
+      // The leaf test would take any affine mesh pose (triangles are points), but the node test
+      // places the shape in the mesh frame with R_m^T, as FCL's OBB test uses R_m: the pose must
+      // be rigid. The shape in the mesh frame: axes R = R_m^T R_s (columns), centre
+      // p = R_m^T (p_s - p_m).
+      checkRotation(tf_mesh_.linear(), "fcl_quadric::collide: the rotation of the mesh's pose");
+      R_ = tf_mesh_.linear().transpose() * tf_shape_.linear();
+      p_ = tf_mesh_.linear().transpose() * (tf_shape_.translation() - tf_mesh_.translation());
+      r2_ = radii_.cwiseProduct(radii_);
+      scale_ = tf_mesh_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
+               p_.cwiseAbs().maxCoeff() + radii_.maxCoeff();
+    } else {
+      // FCL maps the vertices by the mesh's pose, any affine map, and tests the triangles in the
+      // world frame: so does the leaf test below, and the node test compares world boxes. A
+      // non-finite pose would make every box comparison false and prune nothing silently wrong
+      // (FCL's rebuilt tree of NaN vertices): it throws instead.
+      detail::checkTransform(tf_mesh_, "fcl_quadric::collide: the mesh's pose");
+      // FCL's test, Eigen's isIdentity() (entries within 1e-12 of the identity's): FCL then leaves
+      // the vertices as they are. The node test maps the boxes by the pose either way; the
+      // padding covers the difference.
+      identity_ = tf_mesh_.matrix().isIdentity();
+      const Eigen::Matrix3d& L = tf_mesh_.linear();
+      abs_linear_ = L.cwiseAbs();
+      linear_norm_ = abs_linear_.rowwise().sum().maxCoeff();
+      scale_ = tf_mesh_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
+               radii_.maxCoeff();
+      // A rigid pose (the usual one) maps the shape into the mesh frame instead, where its exact
+      // box is compared with each node's own box: six comparisons, and tighter than the world box
+      // of a rotated node box. The shape's axes there are R_m^T R_s (the rotation's defect, at
+      // most kRotationOrthogonality, moves it by far less than the padding).
+      const double defect = (L.transpose() * L - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+      rigid_ = defect <= tolerance::kRotationOrthogonality && L.determinant() > 0.0;
+      const Eigen::Matrix3d axes = rigid_ ? Eigen::Matrix3d(L.transpose() * tf_shape_.linear()) : tf_shape_.linear();
+      // The shape's exact box in that frame: half-extent j = |row j of R S|.
+      shape_half_ = (axes * radii_.asDiagonal()).rowwise().norm();
+      if (rigid_) {
+        p_ = L.transpose() * (tf_shape_.translation() - tf_mesh_.translation());
+        scale_ += p_.cwiseAbs().maxCoeff();
+      }
+    }
     recurse(0);
   }
 
  private:
   /// False when the node's box and the shape are certainly apart (separating axis among the
   /// box's axes, with the shape's exact support, and the shape's axes).
-  bool meets(const BV& bv) const {
-    const fcl::OBB<double>& box = orientedBox(bv);
+  bool meetsOriented(const fcl::OBB<double>& box) const {
     const Eigen::Vector3d d = box.To - p_;
     const double pad = tolerance::kTraversalPruningPadding * (scale_ + box.To.cwiseAbs().maxCoeff() + box.extent.maxCoeff());
     const Eigen::Matrix3d B = R_.transpose() * box.axis;  // B(j, k) = shape axis j . box axis k
@@ -70,6 +163,38 @@ class MeshShapeTraversal {
     for (int j = 0; j < 3; ++j)
       if (std::fabs(d_shape[j]) > radii_[j] + box_half[j] + pad) return false;
     return true;
+  }
+
+  /// False when the node's box (corners lo, hi in the mesh frame) and the shape's exact box are
+  /// certainly apart: in the mesh frame for a rigid pose, otherwise in the world frame, where
+  /// the node's box mapped by the pose lies in the box of centre L c + t and half-extents |L| h.
+  /// The padding covers the rounding of both boxes and of the leaf test's world vertices, which
+  /// are within ~eps (|L| |v| + |t|) of the exact images.
+  bool meetsAligned(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
+    const Eigen::Vector3d c = 0.5 * (lo + hi);
+    const Eigen::Vector3d h = 0.5 * (hi - lo);
+    const double pad = tolerance::kTraversalPruningPadding *
+                       (scale_ + linear_norm_ * (c.cwiseAbs().maxCoeff() + h.maxCoeff()));
+    if (rigid_) {
+      for (int j = 0; j < 3; ++j)
+        if (std::fabs(c[j] - p_[j]) > h[j] + shape_half_[j] + pad) return false;
+      return true;
+    }
+    const Eigen::Vector3d d = tf_mesh_.linear() * c + tf_mesh_.translation() - tf_shape_.translation();
+    const Eigen::Vector3d h_world = abs_linear_ * h;
+    for (int j = 0; j < 3; ++j)
+      if (std::fabs(d[j]) > h_world[j] + shape_half_[j] + pad) return false;
+    return true;
+  }
+
+  bool meets(const BV& bv) const {
+    if constexpr (kOriented) {
+      return meetsOriented(NodeBox<BV>::box(bv));
+    } else {
+      Eigen::Vector3d lo, hi;
+      NodeBox<BV>::corners(bv, &lo, &hi);
+      return meetsAligned(lo, hi);
+    }
   }
 
   // FCL's collisionRecurse (traversal_recurse-inl.h) for a mesh-shape node: the shape is a leaf,
@@ -87,7 +212,22 @@ class MeshShapeTraversal {
     recurse(node.rightChild());
   }
 
-  // FCL's meshShapeCollisionOrientedNodeLeafTesting without cost sources.
+  /// The leaf test of FCL's node: oriented nodes pass the mesh-frame vertices and the mesh's pose
+  /// (meshShapeCollisionOrientedNodeLeafTesting); MeshShapeCollisionTraversalNode::leafTesting
+  /// passes the world vertices tf_mesh * v that FCL's initialize() computed (the raw vertices
+  /// when the pose is the identity), bit for bit the same expression.
+  bool intersects(const fcl::Vector3d& v1, const fcl::Vector3d& v2, const fcl::Vector3d& v3, fcl::Vector3d* point,
+                  double* penetration, fcl::Vector3d* normal) const {
+    if constexpr (kOriented) {
+      return solver_.shapeTriangleIntersect(shape_, tf_shape_, v1, v2, v3, tf_mesh_, point, penetration, normal);
+    } else {
+      if (identity_) return solver_.shapeTriangleIntersect(shape_, tf_shape_, v1, v2, v3, point, penetration, normal);
+      const fcl::Vector3d w1 = tf_mesh_ * v1, w2 = tf_mesh_ * v2, w3 = tf_mesh_ * v3;
+      return solver_.shapeTriangleIntersect(shape_, tf_shape_, w1, w2, w3, point, penetration, normal);
+    }
+  }
+
+  // FCL's leaf test without cost sources; the contact's normal is negated, as both FCL nodes do.
   void leaf(int primitive) {
     if (!(mesh_.isOccupied() && shape_.isOccupied())) return;
     const fcl::Triangle& t = mesh_.tri_indices[primitive];
@@ -95,14 +235,12 @@ class MeshShapeTraversal {
     const fcl::Vector3d& p2 = mesh_.vertices[t[1]];
     const fcl::Vector3d& p3 = mesh_.vertices[t[2]];
     if (!request_.enable_contact) {
-      if (solver_.shapeTriangleIntersect(shape_, tf_shape_, p1, p2, p3, tf_mesh_, nullptr, nullptr, nullptr) &&
-          request_.num_max_contacts > result_.numContacts())
+      if (intersects(p1, p2, p3, nullptr, nullptr, nullptr) && request_.num_max_contacts > result_.numContacts())
         result_.addContact(fcl::Contact<double>(&mesh_, &shape_, primitive, fcl::Contact<double>::NONE));
     } else {
       double penetration;
       fcl::Vector3d normal, point;
-      if (solver_.shapeTriangleIntersect(shape_, tf_shape_, p1, p2, p3, tf_mesh_, &point, &penetration, &normal) &&
-          request_.num_max_contacts > result_.numContacts())
+      if (intersects(p1, p2, p3, &point, &penetration, &normal) && request_.num_max_contacts > result_.numContacts())
         result_.addContact(
             fcl::Contact<double>(&mesh_, &shape_, primitive, fcl::Contact<double>::NONE, point, -normal, penetration));
     }
@@ -115,9 +253,19 @@ class MeshShapeTraversal {
   const QuadricSolver<double>& solver_;
   const fcl::CollisionRequest<double>& request_;
   fcl::CollisionResult<double>& result_;
-  Eigen::Matrix3d R_;
-  Eigen::Vector3d p_, radii_, r2_;
+  Eigen::Vector3d radii_;
   double scale_ = 0.0;
+  // Oriented nodes, and axis-aligned ones under a rigid pose: the shape's centre in the mesh frame.
+  Eigen::Vector3d p_;
+  // Oriented nodes: the shape's axes in the mesh frame and its squared radii.
+  Eigen::Matrix3d R_;
+  Eigen::Vector3d r2_;
+  // Axis-aligned nodes: the mesh's pose, and the shape's box in the mesh frame (rigid pose) or
+  // in the world frame.
+  bool identity_ = false, rigid_ = false;
+  Eigen::Matrix3d abs_linear_;
+  double linear_norm_ = 0.0;
+  Eigen::Vector3d shape_half_;
 };
 
 template <typename BV>
@@ -128,7 +276,7 @@ bool traverseMesh(const fcl::CollisionGeometry<double>* mesh, const fcl::Transfo
   const auto& model = *static_cast<const fcl::BVHModel<BV>*>(mesh);
   // FCL's setup refuses other model types; an empty model has no root node.
   if (model.getModelType() != fcl::BVH_MODEL_TRIANGLES || model.getNumBVs() <= 0) return false;
-  if (request.isSatisfied(result)) return true;  // orientedBVHShapeCollide returns at once
+  if (request.isSatisfied(result)) return true;  // FCL's colliders return at once
   if (shape->getNodeType() == fcl::GEOM_ELLIPSOID)
     MeshShapeTraversal<BV, fcl::Ellipsoid<double>>(model, tf_mesh, *static_cast<const fcl::Ellipsoid<double>*>(shape),
                                                    tf_shape, solver, request, result)
@@ -162,6 +310,24 @@ bool collideMeshShape(const fcl::CollisionGeometry<double>* o1, const fcl::Trans
       break;
     case fcl::BV_OBB:
       handled = traverseMesh<fcl::OBB<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_RSS:
+      handled = traverseMesh<fcl::RSS<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_kIOS:
+      handled = traverseMesh<fcl::kIOS<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_AABB:
+      handled = traverseMesh<fcl::AABB<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_KDOP16:
+      handled = traverseMesh<fcl::KDOP<double, 16>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_KDOP18:
+      handled = traverseMesh<fcl::KDOP<double, 18>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_KDOP24:
+      handled = traverseMesh<fcl::KDOP<double, 24>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
       break;
     default:
       break;

@@ -10,8 +10,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -23,7 +25,11 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/utility.h>
+#include <fcl/math/bv/AABB.h>
 #include <fcl/math/bv/OBBRSS.h>
+#include <fcl/math/bv/RSS.h>
+#include <fcl/math/bv/kDOP.h>
+#include <fcl/math/bv/kIOS.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 #if FCL_HAVE_OCTOMAP
@@ -717,7 +723,124 @@ TEST(ExactBvhMesh, OwnTraversalGivesFclsTraversalResultExactly) {
   compareMeshTraversal<fcl::OBBd>(icosphere(1.0, 3), 82, "icosphere, OBB", &compared, &colliding, &contacts);
   compareMeshTraversal<fcl::OBBRSSd>(boxMesh(Eigen::Vector3d(0.9, 0.6, 0.4)), 83, "box mesh, OBBRSS", &compared,
                                      &colliding, &contacts);
+  compareMeshTraversal<fcl::RSSd>(icosphere(1.0, 3), 84, "icosphere, RSS", &compared, &colliding, &contacts);
+  compareMeshTraversal<fcl::kIOSd>(icosphere(1.0, 3), 85, "icosphere, kIOS", &compared, &colliding, &contacts);
+  compareMeshTraversal<fcl::RSSd>(boxMesh(Eigen::Vector3d(0.9, 0.6, 0.4)), 86, "box mesh, RSS", &compared,
+                                  &colliding, &contacts);
   std::printf("[ info ] own mesh traversal vs FCL's: %zu queries, %zu colliding, %zu contacts, all identical\n",
+              compared, colliding, contacts);
+  EXPECT_GT(colliding, compared / 5);  // not vacuous
+  EXPECT_GT(contacts, 3 * colliding);
+}
+
+/// Axis-aligned BV types (AABB, k-DOPs). FCL copies the model on every query and rebuilds its
+/// tree from the vertices mapped by the mesh's pose; fcl_quadric::collide traverses the model's
+/// own tree (src/fcl/mesh_collision.cpp). Oracle: FCL's traversal with the same solver, once
+/// with the caller's request and once without a contact limit (the full list). For every query,
+/// in both argument orders, for boolean and contact requests, under three mesh poses (the
+/// identity, a rigid pose, an affine one that FCL accepts too):
+///  - the same number of contacts and the same collision flag;
+///  - every contact is one of the full list's triangles (no triangle twice), with o1 the caller's
+///    mesh (FCL's is its temporary copy), and for contact requests the same point, normal and
+///    depth bit for bit;
+///  - when the limit did not cut the list: the full list's triangles, all of them;
+///  - under the identity pose, where FCL's rebuilt tree is the model's: FCL's order exactly.
+template <typename BV>
+void compareAlignedMeshTraversal(const Mesh& mesh, unsigned seed, const char* what, std::size_t* compared,
+                                 std::size_t* colliding, std::size_t* contacts) {
+  auto model = std::make_shared<fcl::BVHModel<BV>>();
+  model->beginModel();
+  model->addSubModel(mesh.v, mesh.t);
+  model->endModel();
+  const fcl::Transform3d rigid =
+      test::makePose(Eigen::AngleAxisd(0.9, Eigen::Vector3d(-0.5, 1, 0.3).normalized()).toRotationMatrix(),
+                     Eigen::Vector3d(0.3, -0.6, 0.4));
+  fcl::Transform3d affine = rigid;
+  affine.linear() = affine.linear() * Eigen::Vector3d(1.3, 0.8, 1.1).asDiagonal();
+  affine.linear()(0, 1) += 0.2;  // a shear as well
+  const fcl::Transform3d mesh_poses[3] = {fcl::Transform3d::Identity(), rigid, affine};
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uc(-1.6, 1.6), r_small(0.05, 0.4), r_large(0.4, 1.2);
+  const std::vector<fcl::CollisionRequestd> requests = {fcl::CollisionRequestd(), fcl::CollisionRequestd(4, false),
+                                                        fcl::CollisionRequestd(1, true),
+                                                        fcl::CollisionRequestd(100000, true)};
+  const QuadricSolverd solver;
+  for (int pose_kind = 0; pose_kind < 3; ++pose_kind) {
+    const fcl::Transform3d& tf_mesh = mesh_poses[pose_kind];
+    for (int i = 0; i < 50; ++i) {
+      std::shared_ptr<fcl::CollisionGeometryd> shape;
+      if (i % 4 == 3) {
+        shape = std::make_shared<fcl::Sphered>(r_small(rng));
+      } else {
+        std::uniform_real_distribution<double>& r = i % 4 == 2 ? r_large : r_small;
+        const double r0 = r(rng), r1 = r(rng), r2 = r(rng);
+        shape = std::make_shared<fcl::Ellipsoidd>(r0, r1, r2);
+      }
+      shape->cost_density = i % 10 == 9 ? 0.0 : 1.0;  // a free shape collides with nothing
+      Eigen::Matrix3d R = test::randomRotation(rng);
+      if (i % 5 == 4) R += 1e-10 * Eigen::Matrix3d::NullaryExpr([&] { return uc(rng) / 1.6; });
+      const double x = uc(rng), y = uc(rng), z = uc(rng);
+      const fcl::Transform3d tf_shape = test::makePose(R, tf_mesh * Eigen::Vector3d(x, y, z));
+      for (int order = 0; order < 2; ++order) {
+        const fcl::CollisionGeometryd* g1 = order ? shape.get() : model.get();
+        const fcl::CollisionGeometryd* g2 = order ? model.get() : shape.get();
+        const fcl::Transform3d& tf1 = order ? tf_shape : tf_mesh;
+        const fcl::Transform3d& tf2 = order ? tf_mesh : tf_shape;
+        for (const fcl::CollisionRequestd& request : requests) {
+          const std::string where = std::string(what) + ", mesh pose " + std::to_string(pose_kind) + ", shape pose " +
+                                    std::to_string(i) + ", order " + std::to_string(order) + ", max contacts " +
+                                    std::to_string(request.num_max_contacts) +
+                                    (request.enable_contact ? ", contacts" : "");
+          fcl::CollisionResultd ours, theirs, full;
+          const std::size_t n_ours = fcl_quadric::collide(g1, tf1, g2, tf2, request, ours);
+          const std::size_t n_theirs = fcl::collide(g1, tf1, g2, tf2, &solver, request, theirs);
+          fcl::CollisionRequestd unlimited = request;
+          unlimited.num_max_contacts = 1000000;
+          fcl::collide(g1, tf1, g2, tf2, &solver, unlimited, full);
+          ++*compared;
+          ASSERT_EQ(n_ours, n_theirs) << where;
+          ASSERT_EQ(ours.isCollision(), theirs.isCollision()) << where;
+          std::map<int, const fcl::Contactd*> by_triangle;
+          for (std::size_t k = 0; k < full.numContacts(); ++k) by_triangle[full.getContact(k).b1] = &full.getContact(k);
+          std::set<int> seen;
+          for (std::size_t k = 0; k < ours.numContacts(); ++k) {
+            const fcl::Contactd& a = ours.getContact(k);
+            EXPECT_EQ(a.o1, model.get()) << where;
+            EXPECT_EQ(a.o2, shape.get()) << where;
+            EXPECT_EQ(a.b2, static_cast<int>(fcl::Contactd::NONE)) << where;
+            EXPECT_TRUE(seen.insert(a.b1).second) << where << ": triangle " << a.b1 << " twice";
+            const auto it = by_triangle.find(a.b1);
+            ASSERT_NE(it, by_triangle.end()) << where << ": triangle " << a.b1 << " is not in FCL's list";
+            if (request.enable_contact) {
+              EXPECT_EQ(a.pos, it->second->pos) << where;
+              EXPECT_EQ(a.normal, it->second->normal) << where;
+              EXPECT_EQ(a.penetration_depth, it->second->penetration_depth) << where;
+            }
+            if (pose_kind == 0) {
+              EXPECT_EQ(a.b1, theirs.getContact(k).b1) << where << ", contact " << k;
+            }
+          }
+          if (n_ours < request.num_max_contacts) {
+            EXPECT_EQ(seen.size(), by_triangle.size()) << where;
+          }
+          *colliding += ours.isCollision();
+          *contacts += ours.numContacts();
+        }
+      }
+    }
+  }
+}
+
+TEST(ExactBvhMesh, OwnTraversalOfAxisAlignedNodesGivesFclsContacts) {
+  std::size_t compared = 0, colliding = 0, contacts = 0;
+  const Mesh sphere = icosphere(1.0, 2);
+  compareAlignedMeshTraversal<fcl::AABBd>(sphere, 91, "icosphere, AABB", &compared, &colliding, &contacts);
+  compareAlignedMeshTraversal<fcl::KDOPd<16>>(sphere, 92, "icosphere, KDOP16", &compared, &colliding, &contacts);
+  compareAlignedMeshTraversal<fcl::KDOPd<18>>(sphere, 93, "icosphere, KDOP18", &compared, &colliding, &contacts);
+  compareAlignedMeshTraversal<fcl::KDOPd<24>>(sphere, 94, "icosphere, KDOP24", &compared, &colliding, &contacts);
+  compareAlignedMeshTraversal<fcl::AABBd>(boxMesh(Eigen::Vector3d(0.9, 0.6, 0.4)), 95, "box mesh, AABB", &compared,
+                                          &colliding, &contacts);
+  std::printf("[ info ] own axis-aligned mesh traversal vs FCL's: %zu queries, %zu colliding, %zu contacts\n",
               compared, colliding, contacts);
   EXPECT_GT(colliding, compared / 5);  // not vacuous
   EXPECT_GT(contacts, 3 * colliding);
@@ -753,6 +876,31 @@ TEST(ExactBvhMesh, OwnTraversalRejectsBadInputWhereNoTriangleIsReached) {
   fcl::Transform3d mesh_scaled = mesh_pose;
   mesh_scaled.linear() *= 1.1;  // a scaled mesh pose: not rigid
   expectCollideThrowsNaming(model.get(), mesh_scaled, &good, far, "rotation of the mesh's pose");
+  auto rss = std::make_shared<fcl::BVHModel<fcl::RSSd>>();
+  rss->beginModel();
+  rss->addSubModel(mesh.v, mesh.t);
+  rss->endModel();
+  expectCollideThrowsNaming(rss.get(), mesh_scaled, &good, far, "rotation of the mesh's pose");
+
+  // Axis-aligned nodes: any finite affine mesh pose is accepted, as FCL does (compared with FCL
+  // above); a non-finite one throws (fcl_quadric::collide checks both poses first, naming the
+  // argument), even far from the shape, and so does a bad shape.
+  auto aabb = std::make_shared<fcl::BVHModel<fcl::AABBd>>();
+  aabb->beginModel();
+  aabb->addSubModel(mesh.v, mesh.t);
+  aabb->endModel();
+  {
+    fcl::CollisionResultd r;
+    EXPECT_EQ(fcl_quadric::collide(aabb.get(), mesh_scaled, &good, far, fcl::CollisionRequestd(), r), 0u);
+  }
+  expectCollideThrowsNaming(aabb.get(), mesh_pose, &negative, far, "radius");
+  expectCollideThrowsNaming(aabb.get(), mesh_pose, &good, scaled, "rotation");
+  fcl::Transform3d mesh_nan = mesh_pose;
+  mesh_nan.translation()[1] = std::numeric_limits<double>::quiet_NaN();
+  expectCollideThrowsNaming(aabb.get(), mesh_nan, &good, far, "is not finite");
+  fcl::Transform3d mesh_inf = mesh_pose;
+  mesh_inf.linear()(2, 0) = std::numeric_limits<double>::infinity();
+  expectCollideThrowsNaming(aabb.get(), mesh_inf, &good, far, "is not finite");
 }
 
 
