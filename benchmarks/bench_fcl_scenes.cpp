@@ -18,7 +18,9 @@
 //      surface: boolean fcl_quadric::collide vs fcl::collide; t_query = CPU time per query.
 //  (c) Mesh: one ellipsoid against a torus fcl::BVHModel<OBBRSS> of 4,096 triangles, poses near
 //      its surface; the same two peers. MeshAABB: the same triangles and poses in a
-//      fcl::BVHModel<AABB> (FCL copies such a model on every query).
+//      fcl::BVHModel<AABB> (FCL copies such a model on every query). MeshDistance: the Mesh
+//      scene's poses as distance queries with nearest points (fcl_quadric::distance against
+//      fcl::distance, libccd).
 // Issue 3's aim for (a) is judged on a paired timing run after the Google Benchmark runs: three
 // passes over the frames, every peer once per frame in an order rotated by frame and pass, each
 // timed by the thread's CPU clock. On this shared VM, runs of one peer after another see
@@ -58,6 +60,7 @@ int main() {
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -74,10 +77,12 @@ int main() {
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
 
 #include "bench_fcl_support.h"
 #include "bench_support.h"
 #include "fcl_quadric/fcl/collision.h"
+#include "fcl_quadric/fcl/distance.h"
 #include "fcl_quadric/fcl/pair_cache.h"
 #include "fcl_quadric/fcl/quadric_solver.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
@@ -212,6 +217,48 @@ void benchQuery(benchmark::State& state, const QueryScene* s, bool ours) {
   state.counters["false_hits"] = static_cast<double>(s->false_hits[ours ? 0 : 1]);
 }
 
+/// (c) as a distance query (DistanceRequest with nearest points): fcl_quadric::distance (its own
+/// best-first traversal, exact leaf distances) against fcl::distance (libccd GJK leaves).
+double distanceOnce(const fcl::CollisionObjectd* q, const fcl::CollisionObjectd* env, bool ours) {
+  const fcl::DistanceRequestd request(true);
+  fcl::DistanceResultd result;
+  return ours ? fcl_quadric::distance(q, env, request, result) : fcl::distance(q, env, request, result);
+}
+
+void benchDistanceQuery(benchmark::State& state, const QueryScene* s, bool ours) {
+  const std::size_t n = s->queries.size();
+  std::size_t i = 0;
+  double sum = 0.0;
+  for (auto _ : state) {
+    sum += distanceOnce(s->queries[i].get(), s->environment.get(), ours);
+    if (++i == n) i = 0;
+  }
+  benchmark::DoNotOptimize(sum);
+  setPerItemTime(state, 1.0, "t_query");
+}
+
+/// Untimed: over the queries that both peers find separated, the largest |d_libccd - d_ours|
+/// (ours is exact: ExactBvhMesh.OwnDistanceTraversalGivesTheBruteForceMinimum), and how many
+/// queries the two peers disagree on about overlap (a distance below 0).
+struct DistanceAgreement {
+  std::size_t separated = 0, overlap_disagreements = 0;
+  double max_abs_difference = 0.0;
+};
+
+DistanceAgreement distanceAgreement(const QueryScene& s) {
+  DistanceAgreement a;
+  for (const auto& q : s.queries) {
+    const double ours = distanceOnce(q.get(), s.environment.get(), true);
+    const double stock = distanceOnce(q.get(), s.environment.get(), false);
+    if ((ours < 0.0) != (stock < 0.0)) ++a.overlap_disagreements;
+    if (ours >= 0.0 && stock >= 0.0) {
+      ++a.separated;
+      a.max_abs_difference = std::max(a.max_abs_difference, std::fabs(stock - ours));
+    }
+  }
+  return a;
+}
+
 std::unique_ptr<fcl::CollisionObjectd> ellipsoidObject(const Ellipsoid& e) {
   return std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl::Ellipsoidd>(e.radii()),
                                                  makePose(e.rotation(), e.center()));
@@ -274,7 +321,7 @@ QueryScene makeMeshScene(const Settings& cfg, const MeshTarget& mesh, bool aabb)
 
 void printResults(const SummaryReporter& r, const Settings& cfg, const std::vector<MovingReport>& moving,
                   const std::vector<std::array<double, 4>>& paired, const std::vector<const QueryScene*>& query_scenes,
-                  const std::string& load_start) {
+                  const DistanceAgreement& distance_agreement, const std::string& load_start) {
   std::printf("\n== FCL scenes: results (fcl_quadric inside FCL 0.7 vs stock FCL, libccd; same process, same inputs) ==\n");
   if (cfg.smoke) std::printf("  NOTE: smoke run (--smoke): tiny sizes, not the documented ones\n");
   std::printf("  load average (1, 5, 15 min): %s at the start, %s at the end\n", load_start.c_str(), loadAverage().c_str());
@@ -337,15 +384,23 @@ void printResults(const SummaryReporter& r, const Settings& cfg, const std::vect
   std::printf("(b, c) one ellipsoid against an environment, boolean collide; us = CPU microseconds per query; in "
               "QuadricSolver, box (OcTree leaf) vs ellipsoid: %s, ellipsoid vs triangle: %s\n",
               kExactLeaves ? "exact" : "libccd", kExactTriangles ? "exact" : "libccd");
-  std::printf("%-7s %8s %10s | %11s %10s %11s | %22s %22s\n", "scene", "queries", "colliding", "fcl_quadric",
+  std::printf("%-9s %8s %10s | %11s %10s %11s | %22s %22s\n", "scene", "queries", "colliding", "fcl_quadric",
               "fcl_libccd", "libccd/ours", "fcl_quadric miss/false", "fcl_libccd miss/false");
   for (const QueryScene* s : query_scenes) {
     const double ours = r.nsPerItem(s->group + "/fcl_quadric") / 1e3, stock = r.nsPerItem(s->group + "/fcl_libccd") / 1e3;
     char a[32], b[32];
     std::snprintf(a, sizeof a, "%zu / %zu", s->misses[0], s->false_hits[0]);
     std::snprintf(b, sizeof b, "%zu / %zu", s->misses[1], s->false_hits[1]);
-    std::printf("%-7s %8zu %10zu | %11.2f %10.2f %11.2f | %22s %22s\n", s->group.c_str(), s->queries.size(), s->colliding,
+    std::printf("%-9s %8zu %10zu | %11.2f %10.2f %11.2f | %22s %22s\n", s->group.c_str(), s->queries.size(), s->colliding,
                 ours, stock, ours > 0.0 && stock > 0.0 ? stock / ours : 0.0, a, b);
+  }
+  {
+    const double ours = r.nsPerItem("MeshDistance/fcl_quadric") / 1e3, stock = r.nsPerItem("MeshDistance/fcl_libccd") / 1e3;
+    std::printf("(c) as a distance query (nearest points), the Mesh scene: fcl_quadric %.2f us, fcl_libccd %.2f us, "
+                "libccd/ours %.2f; %zu queries separated for both, max |d_libccd - d_ours| %.2e; overlap "
+                "disagreements %zu\n",
+                ours, stock, ours > 0.0 && stock > 0.0 ? stock / ours : 0.0, distance_agreement.separated,
+                distance_agreement.max_abs_difference, distance_agreement.overlap_disagreements);
   }
   for (const QueryScene* s : query_scenes) std::printf("  %s: %s\n", s->group.c_str(), s->target.c_str());
   std::printf("  times: median CPU time of the repetitions (Summary above); disagreements counted once, untimed, "
@@ -446,6 +501,9 @@ int main(int argc, char** argv) {
     registerBenchmark((s->group + "/fcl_quadric").c_str(), benchQuery, s, true);
     registerBenchmark((s->group + "/fcl_libccd").c_str(), benchQuery, s, false);
   }
+  static const DistanceAgreement distance_agreement = distanceAgreement(mesh_scene);
+  registerBenchmark("MeshDistance/fcl_quadric", benchDistanceQuery, &mesh_scene, true);
+  registerBenchmark("MeshDistance/fcl_libccd", benchDistanceQuery, &mesh_scene, false);
 
   SummaryReporter reporter(console);
   benchmark::RunSpecifiedBenchmarks(&reporter);
@@ -454,7 +512,7 @@ int main(int argc, char** argv) {
   std::fflush(stdout);
   std::vector<std::array<double, 4>> paired;
   for (auto& s : moving) paired.push_back(pairedMovingTimes(*s));
-  printResults(reporter, cfg, moving_reports, paired, query_scenes, load_start);
+  printResults(reporter, cfg, moving_reports, paired, query_scenes, distance_agreement, load_start);
   printAim(reporter, moving_reports, paired, query_scenes);
   benchmark::Shutdown();
   return 0;

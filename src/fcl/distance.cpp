@@ -14,6 +14,7 @@
 #include <fcl/narrowphase/distance.h>
 
 #include "fcl/input_checks.h"
+#include "fcl/mesh_distance.h"
 #include "fcl/quadric_shape_dispatch.h"
 #include "fcl_quadric/fcl/quadric_solver.h"
 
@@ -141,6 +142,10 @@ S distance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1, c
   if constexpr (std::is_same_v<S, double>) {
     if (detail::isQuadricShape(o1) || detail::isQuadricShape(o2))
       return detail::distanceQuadricShapes(o1, tf1, o2, tf2, request, result);
+    // A triangle mesh (any BV type) against an ellipsoid or a sphere: FCL's distance traversal
+    // with a lower bound that needs no fitted BV (mesh_distance.h).
+    double value = 0.0;
+    if (detail::distanceMeshShape(o1, tf1, o2, tf2, solver, request, result, &value)) return value;
   }
   return fcl::distance(o1, tf1, o2, tf2, &solver, request, result);
 }

@@ -15,6 +15,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <unistd.h>
@@ -844,6 +845,198 @@ TEST(ExactBvhMesh, OwnTraversalOfAxisAlignedNodesGivesFclsContacts) {
               compared, colliding, contacts);
   EXPECT_GT(colliding, compared / 5);  // not vacuous
   EXPECT_GT(contacts, 3 * colliding);
+}
+
+/// The leaf distance of triangle t as the mesh-shape distance nodes call it: oriented BV types
+/// pass the mesh-frame vertices and the mesh's pose, the others the world vertices (the raw ones
+/// under FCL's identity test). Returns the distance, the point on the mesh and the one on the shape.
+template <typename BV>
+double leafDistance(const fcl::BVHModel<BV>& model, const fcl::Transform3d& tf_mesh, const fcl::Ellipsoidd& shape,
+                    const fcl::Transform3d& tf_shape, int t, Eigen::Vector3d* on_mesh, Eigen::Vector3d* on_shape) {
+  const QuadricSolverd solver;
+  const fcl::Triangle& tri = model.tri_indices[t];
+  const Eigen::Vector3d &v1 = model.vertices[tri[0]], &v2 = model.vertices[tri[1]], &v3 = model.vertices[tri[2]];
+  constexpr bool oriented = std::is_same_v<BV, fcl::OBBRSSd> || std::is_same_v<BV, fcl::OBBd> ||
+                            std::is_same_v<BV, fcl::RSSd> || std::is_same_v<BV, fcl::kIOSd>;
+  double d = std::numeric_limits<double>::quiet_NaN();  // the solver always writes it
+  if (oriented) {
+    solver.shapeTriangleDistance(shape, tf_shape, v1, v2, v3, tf_mesh, &d, on_shape, on_mesh);
+  } else if (tf_mesh.matrix().isIdentity()) {
+    solver.shapeTriangleDistance(shape, tf_shape, v1, v2, v3, &d, on_shape, on_mesh);
+  } else {
+    const Eigen::Vector3d w1 = tf_mesh * v1, w2 = tf_mesh * v2, w3 = tf_mesh * v3;
+    solver.shapeTriangleDistance(shape, tf_shape, w1, w2, w3, &d, on_shape, on_mesh);
+  }
+  return d;
+}
+
+/// fcl_quadric::distance runs its own best-first traversal for a triangle mesh of any BV type
+/// against an ellipsoid (src/fcl/mesh_distance.cpp). Oracle: the leaf distance of
+/// every triangle (brute force, the same solver call). For each query, in both argument orders,
+/// with and without nearest points: the minimum is the brute-force minimum bit for bit (the
+/// pruning only skips triangles that cannot lower it), attained by the reported triangle b1,
+/// whose nearest points are reported; o1 the mesh. Where FCL has a distance for the BV type
+/// (OBBRSS, RSS, kIOS), FCL's traversal with the same solver gives the same minimum, and with
+/// enable_signed_distance the same signed value after the contact fix-up. A result that already
+/// holds a smaller distance (a broad-phase search) is left as it is, as FCL leaves it.
+template <typename BV>
+void compareMeshDistance(const Mesh& mesh, unsigned seed, const char* what, std::size_t* compared,
+                         std::size_t* overlapping, std::size_t* fcl_compared) {
+  auto model = std::make_shared<fcl::BVHModel<BV>>();
+  model->beginModel();
+  model->addSubModel(mesh.v, mesh.t);
+  model->endModel();
+  constexpr bool oriented = std::is_same_v<BV, fcl::OBBRSSd> || std::is_same_v<BV, fcl::OBBd> ||
+                            std::is_same_v<BV, fcl::RSSd> || std::is_same_v<BV, fcl::kIOSd>;
+  constexpr bool fcl_has_it = std::is_same_v<BV, fcl::OBBRSSd> || std::is_same_v<BV, fcl::RSSd> ||
+                              std::is_same_v<BV, fcl::kIOSd>;
+  const fcl::Transform3d rigid =
+      test::makePose(Eigen::AngleAxisd(0.9, Eigen::Vector3d(-0.5, 1, 0.3).normalized()).toRotationMatrix(),
+                     Eigen::Vector3d(0.3, -0.6, 0.4));
+  fcl::Transform3d affine = rigid;
+  affine.linear() = affine.linear() * Eigen::Vector3d(1.3, 0.8, 1.1).asDiagonal();
+  affine.linear()(0, 1) += 0.2;
+  std::vector<fcl::Transform3d> mesh_poses = {rigid, fcl::Transform3d::Identity()};
+  if (!oriented) mesh_poses.push_back(affine);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uc(-2.2, 2.2), r_small(0.05, 0.4), r_large(0.4, 1.2);
+  const QuadricSolverd solver;
+  for (const fcl::Transform3d& tf_mesh : mesh_poses) {
+    for (int i = 0; i < 40; ++i) {
+      std::uniform_real_distribution<double>& r = i % 4 == 2 ? r_large : r_small;
+      const double r0 = r(rng), r1 = r(rng), r2 = r(rng);
+      const std::shared_ptr<fcl::Ellipsoidd> shape = std::make_shared<fcl::Ellipsoidd>(r0, r1, i % 4 == 3 ? r0 : r2);
+      const fcl::CollisionGeometryd* shape_geometry = shape.get();
+      const fcl::CollisionGeometryd* mesh_geometry = model.get();
+      const Eigen::Matrix3d R = test::randomRotation(rng);
+      const double x = uc(rng), y = uc(rng), z = uc(rng);
+      const fcl::Transform3d tf_shape = test::makePose(R, tf_mesh * Eigen::Vector3d(x, y, z));
+      // Brute force.
+      double best = std::numeric_limits<double>::max();
+      for (int t = 0; t < model->num_tris; ++t) {
+        Eigen::Vector3d pm, ps;
+        best = std::min(best, leafDistance(*model, tf_mesh, *shape, tf_shape, t, &pm, &ps));
+      }
+      *overlapping += best < 0.0;
+      for (int order = 0; order < 2; ++order) {
+        const fcl::CollisionGeometryd* g1 = order ? shape_geometry : mesh_geometry;
+        const fcl::CollisionGeometryd* g2 = order ? mesh_geometry : shape_geometry;
+        const fcl::Transform3d& tf1 = order ? tf_shape : tf_mesh;
+        const fcl::Transform3d& tf2 = order ? tf_mesh : tf_shape;
+        for (int variant = 0; variant < 3; ++variant) {
+          const fcl::DistanceRequestd request(variant >= 1, variant == 2);
+          const std::string where = std::string(what) + ", shape pose " + std::to_string(i) + ", order " +
+                                    std::to_string(order) + ", request " + std::to_string(variant);
+          fcl::DistanceResultd ours;
+          const double value = fcl_quadric::distance(g1, tf1, g2, tf2, request, ours);
+          ++*compared;
+          EXPECT_EQ(value, best) << where;
+          ASSERT_EQ(ours.o1, model.get()) << where;
+          EXPECT_EQ(ours.o2, shape.get()) << where;
+          ASSERT_GE(ours.b1, 0) << where;
+          ASSERT_LT(ours.b1, model->num_tris) << where;
+          Eigen::Vector3d pm, ps;
+          const double at_b1 = leafDistance(*model, tf_mesh, *shape, tf_shape, ours.b1, &pm, &ps);
+          EXPECT_EQ(at_b1, best) << where << ": the reported triangle does not attain the minimum";
+          if (!request.enable_signed_distance || best >= 0.0) {
+            EXPECT_EQ(ours.min_distance, best) << where;
+            if (request.enable_nearest_points) {
+              EXPECT_EQ(ours.nearest_points[0], pm) << where;
+              EXPECT_EQ(ours.nearest_points[1], ps) << where;
+            }
+          }
+          if (fcl_has_it) {
+            fcl::DistanceResultd theirs;
+            const double fcl_value = fcl::distance(g1, tf1, g2, tf2, &solver, request, theirs);
+            ++*fcl_compared;
+            EXPECT_EQ(fcl_value, value) << where;
+            EXPECT_EQ(theirs.min_distance, ours.min_distance) << where;
+            if (request.enable_signed_distance && best < 0.0 && request.enable_nearest_points) {
+              EXPECT_EQ(theirs.nearest_points[0], ours.nearest_points[0]) << where;
+            }
+          }
+          // A result already holding a smaller distance stays as it is.
+          fcl::DistanceResultd held;
+          held.update(best - 1.0, nullptr, nullptr, -7, -7);
+          fcl_quadric::distance(g1, tf1, g2, tf2, fcl::DistanceRequestd(), held);
+          EXPECT_EQ(held.min_distance, best - 1.0) << where;
+          EXPECT_EQ(held.b1, -7) << where;
+        }
+      }
+    }
+  }
+}
+
+TEST(ExactBvhMesh, OwnDistanceTraversalGivesTheBruteForceMinimum) {
+  std::size_t compared = 0, overlapping = 0, fcl_compared = 0;
+  const Mesh sphere = icosphere(1.0, 2);
+  const Mesh box = boxMesh(Eigen::Vector3d(0.9, 0.6, 0.4));
+  compareMeshDistance<fcl::OBBRSSd>(sphere, 101, "icosphere, OBBRSS", &compared, &overlapping, &fcl_compared);
+  compareMeshDistance<fcl::RSSd>(sphere, 102, "icosphere, RSS", &compared, &overlapping, &fcl_compared);
+  compareMeshDistance<fcl::kIOSd>(sphere, 103, "icosphere, kIOS", &compared, &overlapping, &fcl_compared);
+  compareMeshDistance<fcl::OBBd>(sphere, 104, "icosphere, OBB", &compared, &overlapping, &fcl_compared);
+  compareMeshDistance<fcl::AABBd>(sphere, 105, "icosphere, AABB", &compared, &overlapping, &fcl_compared);
+  compareMeshDistance<fcl::KDOPd<16>>(sphere, 106, "icosphere, KDOP16", &compared, &overlapping, &fcl_compared);
+  compareMeshDistance<fcl::KDOPd<24>>(sphere, 107, "icosphere, KDOP24", &compared, &overlapping, &fcl_compared);
+  compareMeshDistance<fcl::OBBRSSd>(box, 108, "box mesh, OBBRSS", &compared, &overlapping, &fcl_compared);
+  compareMeshDistance<fcl::AABBd>(box, 109, "box mesh, AABB", &compared, &overlapping, &fcl_compared);
+  std::printf("[ info ] own mesh distance vs brute force: %zu queries (%zu shape poses overlapping the mesh), %zu "
+              "also against FCL's traversal\n",
+              compared, overlapping, fcl_compared);
+  EXPECT_GT(overlapping, 10u);  // both regimes are exercised
+  EXPECT_GT(fcl_compared, compared / 4);
+}
+
+/// Bad input through the own mesh distance traversal, far from every triangle: an invalid
+/// ellipsoid, or a scaled pose of a mesh with oriented nodes, throws std::invalid_argument naming
+/// it; an AABB mesh takes any finite affine pose (FCL has no distance for AABB meshes at all).
+TEST(ExactBvhMesh, OwnDistanceTraversalRejectsBadInput) {
+  const Mesh mesh = icosphere(1.0, 2);
+  auto obbrss = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+  obbrss->beginModel();
+  obbrss->addSubModel(mesh.v, mesh.t);
+  obbrss->endModel();
+  auto aabb = std::make_shared<fcl::BVHModel<fcl::AABBd>>();
+  aabb->beginModel();
+  aabb->addSubModel(mesh.v, mesh.t);
+  aabb->endModel();
+  const fcl::Transform3d far = test::makePose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(50, 50, 50));
+  const fcl::Transform3d mesh_pose = fcl::Transform3d::Identity();
+  fcl::Transform3d mesh_scaled = mesh_pose;
+  mesh_scaled.linear() *= 1.1;
+  const fcl::Ellipsoidd good(0.2, 0.3, 0.4);
+  auto expectThrowsNaming = [](const fcl::CollisionGeometryd* m, const fcl::Transform3d& tf_m,
+                               const fcl::CollisionGeometryd* e, const fcl::Transform3d& tf_e, const std::string& needle) {
+    for (int order = 0; order < 2; ++order) {
+      fcl::DistanceResultd r;
+      try {
+        if (order == 0) fcl_quadric::distance(m, tf_m, e, tf_e, fcl::DistanceRequestd(), r);
+        else fcl_quadric::distance(e, tf_e, m, tf_m, fcl::DistanceRequestd(), r);
+        ADD_FAILURE() << "no exception for a bad " << needle << ", order " << order;
+      } catch (const std::invalid_argument& ex) {
+        EXPECT_NE(std::string(ex.what()).find(needle), std::string::npos) << ex.what();
+      }
+    }
+  };
+  const fcl::Ellipsoidd negative(0.2, -0.3, 0.4);
+  const fcl::Ellipsoidd not_a_number(0.2, std::numeric_limits<double>::quiet_NaN(), 0.4);
+  for (const fcl::CollisionGeometryd* m : {static_cast<const fcl::CollisionGeometryd*>(obbrss.get()),
+                                           static_cast<const fcl::CollisionGeometryd*>(aabb.get())}) {
+    expectThrowsNaming(m, mesh_pose, &negative, far, "radius");
+    expectThrowsNaming(m, mesh_pose, &not_a_number, far, "radius");
+    fcl::Transform3d shape_scaled = far;
+    shape_scaled.linear() *= 1.1;
+    expectThrowsNaming(m, mesh_pose, &good, shape_scaled, "rotation");
+  }
+  expectThrowsNaming(obbrss.get(), mesh_scaled, &good, far, "rotation of the mesh's pose");
+  // The AABB mesh under the scaled pose: the distance to the scaled icosphere (radius 1.1 about
+  // the origin, up to its facets) from the far ellipsoid, within its extent.
+  fcl::DistanceResultd r;
+  const double d = fcl_quadric::distance(aabb.get(), mesh_scaled, &good, far, fcl::DistanceRequestd(true), r);
+  const double centre_distance = far.translation().norm();
+  EXPECT_GT(d, centre_distance - 1.1 - 0.4);
+  EXPECT_LT(d, centre_distance - 1.0 - 0.2);
+  EXPECT_EQ(r.o1, aabb.get());
 }
 
 /// Bad input through the own mesh traversal: an invalid ellipsoid or sphere, or a mesh pose

@@ -1,0 +1,319 @@
+// fcl_quadric::distance's traversal of a triangle mesh against an Ellipsoid or a Sphere: FCL 0.7's
+// distanceRecurse over a mesh-shape distance node, with a lower bound that needs no fitted BV, and
+// for every BV type (FCL's distance has only RSS, kIOS and OBBRSS meshes).
+#include "fcl/mesh_distance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+
+#include "fcl/mesh_node_box.h"
+#include "fcl_quadric/fcl/collision.h"
+#include "fcl_quadric/geometry/ellipsoid.h"
+#include "fcl_quadric/tolerances.h"
+
+namespace fcl_quadric {
+namespace detail {
+
+namespace {
+
+template <typename BV, typename Shape>
+class MeshShapeDistance {
+ public:
+  static constexpr bool kOriented = NodeBox<BV>::kOriented;
+
+  MeshShapeDistance(const fcl::BVHModel<BV>& mesh, const fcl::Transform3<double>& tf_mesh, const Shape& shape,
+                    const fcl::Transform3<double>& tf_shape, const QuadricSolver<double>& solver,
+                    const fcl::DistanceRequest<double>& request, fcl::DistanceResult<double>& result)
+      : mesh_(mesh), tf_mesh_(tf_mesh), shape_(shape), tf_shape_(tf_shape), solver_(solver), request_(request),
+        result_(result) {}
+
+  void run() {
+    // The leaf test's check of the shape, once, before the descent (mesh_collision.cpp).
+    (void)asExact(shape_, tf_shape_, "shape");
+    radii_ = shapeRadii(shape_);
+    const Eigen::Matrix3d& L = tf_mesh_.linear();
+    if constexpr (kOriented) {
+      checkRotation(L, "fcl_quadric::distance: the rotation of the mesh's pose");
+      rigid_ = true;
+    } else {
+      detail::checkTransform(tf_mesh_, "fcl_quadric::distance: the mesh's pose");
+      identity_ = tf_mesh_.matrix().isIdentity();  // FCL's test (mesh_collision.cpp)
+      const double defect = (L.transpose() * L - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+      rigid_ = defect <= tolerance::kRotationOrthogonality && L.determinant() > 0.0;
+    }
+    abs_linear_ = L.cwiseAbs();
+    linear_norm_ = abs_linear_.rowwise().sum().maxCoeff();
+    // The frame of the lower bounds: the mesh frame under a rigid pose (the shape placed there
+    // with R_m^T), else the world frame (axis-aligned types only: node boxes mapped by the pose).
+    if (rigid_) {
+      R_ = L.transpose() * tf_shape_.linear();
+      p_ = L.transpose() * (tf_shape_.translation() - tf_mesh_.translation());
+    } else {
+      R_ = tf_shape_.linear();
+      p_ = tf_shape_.translation();
+    }
+    r2_ = radii_.cwiseProduct(radii_);
+    scale_ = tf_mesh_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
+             p_.cwiseAbs().maxCoeff() + radii_.maxCoeff();
+    search();
+  }
+
+ private:
+  /// A lower bound of the distance from the shape to the box of centre c, axes A (columns) and
+  /// half-extents e, all in the bounds' frame: the largest of the gaps
+  /// |a.(c - p)| - sum_k e_k |a.A_k| - |S R^T a| along the box's axes, the shape's axes and the
+  /// line of the centres, lowered by the padding; 0 when none is positive.
+  double boxBound(const Eigen::Matrix3d& A, const Eigen::Vector3d& c, const Eigen::Vector3d& e) const {
+    const Eigen::Vector3d d = c - p_;
+    const Eigen::Matrix3d B = R_.transpose() * A;  // B(j, k) = shape axis j . box axis k
+    double gap = -std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d d_box = A.transpose() * d;
+    for (int k = 0; k < 3; ++k)
+      gap = std::max(gap, std::fabs(d_box[k]) - e[k] - std::sqrt(r2_.dot(B.col(k).cwiseProduct(B.col(k)))));
+    const Eigen::Vector3d d_shape = R_.transpose() * d;
+    const Eigen::Vector3d box_half = B.cwiseAbs() * e;
+    for (int j = 0; j < 3; ++j) gap = std::max(gap, std::fabs(d_shape[j]) - box_half[j] - radii_[j]);
+    const double D = d.norm();
+    if (D > 0.0) {
+      // Along u = d / |d|: box part sum_k e_k |u.A_k| = (|A^T d| . e) / |d|; shape part
+      // |S R^T u| = |S R^T d| / |d|.
+      const double box_part = d_box.cwiseAbs().dot(e) / D;
+      const double shape_part = d_shape.cwiseProduct(radii_).norm() / D;
+      gap = std::max(gap, D - box_part - shape_part);
+    }
+    const double pad = tolerance::kTraversalPruningPadding *
+                       (scale_ + linear_norm_ * (c.cwiseAbs().maxCoeff() + e.maxCoeff()));
+    return std::max(0.0, gap - pad);
+  }
+
+  double bound(const BV& bv) const {
+    if constexpr (kOriented) {
+      const auto& box = NodeBox<BV>::box(bv);
+      return boxBound(box.axis, box.To, box.extent);
+    } else {
+      Eigen::Vector3d lo, hi;
+      NodeBox<BV>::corners(bv, &lo, &hi);
+      const Eigen::Vector3d c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
+      if (rigid_) return boxBound(Eigen::Matrix3d::Identity(), c, h);
+      return boxBound(Eigen::Matrix3d::Identity(), tf_mesh_.linear() * c + tf_mesh_.translation(), abs_linear_ * h);
+    }
+  }
+
+  /// MeshShapeDistanceTraversalNode*::canStop.
+  bool canStop(double c) const {
+    return c >= result_.min_distance - request_.abs_err && c * (1 + request_.rel_err) >= result_.min_distance;
+  }
+
+  // Best first: the nodes in the order of their lower bounds (a binary heap), until the smallest
+  // bound left lets the search stop (canStop), or none is left.
+  void search() {
+    struct Entry {
+      double bound;
+      int node;
+      bool operator<(const Entry& o) const { return bound > o.bound || (bound == o.bound && node > o.node); }
+    };
+    std::vector<Entry> heap;
+    heap.push_back({0.0, 0});
+    while (!heap.empty()) {
+      std::pop_heap(heap.begin(), heap.end());
+      const Entry e = heap.back();
+      heap.pop_back();
+      if (canStop(e.bound)) break;
+      const fcl::BVNode<BV>& node = mesh_.getBV(e.node);
+      if (node.isLeaf()) {
+        const int primitive = node.primitiveId();
+        leaf(mesh_.tri_indices[primitive], primitive);
+        continue;
+      }
+      for (int child : {node.leftChild(), node.rightChild()}) {
+        const double b = bound(mesh_.getBV(child).bv);
+        if (canStop(b)) continue;
+        heap.push_back({b, child});
+        std::push_heap(heap.begin(), heap.end());
+      }
+    }
+  }
+
+  /// A lower bound of the distance from the shape to the triangle v1 v2 v3 (mesh frame under a
+  /// rigid pose, else mapped to the world frame): the larger of the gaps between them along the
+  /// triangle's normal and along the line from the shape's centre to the triangle's point nearest
+  /// to it, lowered by the padding; 0 when neither is positive.
+  double triangleBound(fcl::Vector3d v1, fcl::Vector3d v2, fcl::Vector3d v3) const {
+    if (!rigid_) {
+      v1 = tf_mesh_ * v1;
+      v2 = tf_mesh_ * v2;
+      v3 = tf_mesh_ * v3;
+    }
+    double gap = 0.0;
+    auto along = [&](const Eigen::Vector3d& a) {  // a of any length > 0
+      const double n = a.norm();
+      if (!(n > 0.0)) return;
+      const double s1 = a.dot(v1), s2 = a.dot(v2), s3 = a.dot(v3), sp = a.dot(p_);
+      const double h = (R_.transpose() * a).cwiseProduct(radii_).norm();
+      const double lo = std::min({s1, s2, s3}), hi = std::max({s1, s2, s3});
+      gap = std::max(gap, std::max(lo - (sp + h), (sp - h) - hi) / n);
+    };
+    along((v2 - v1).cross(v3 - v1));
+    along(closestOnTriangle(p_, v1, v2, v3) - p_);
+    const double size = std::max({v1.cwiseAbs().maxCoeff(), v2.cwiseAbs().maxCoeff(), v3.cwiseAbs().maxCoeff()});
+    return std::max(0.0, gap - tolerance::kTraversalPruningPadding * (scale_ + size));
+  }
+
+  /// The point of the triangle a b c nearest to x (Ericson, Real-Time Collision Detection §5.1.5).
+  static Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                           const Eigen::Vector3d& c) {
+    const Eigen::Vector3d ab = b - a, ac = c - a, ax = x - a;
+    const double d1 = ab.dot(ax), d2 = ac.dot(ax);
+    if (d1 <= 0.0 && d2 <= 0.0) return a;
+    const Eigen::Vector3d bx = x - b;
+    const double d3 = ab.dot(bx), d4 = ac.dot(bx);
+    if (d3 >= 0.0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+    const Eigen::Vector3d cx = x - c;
+    const double d5 = ab.dot(cx), d6 = ac.dot(cx);
+    if (d6 >= 0.0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+    const double denom = va + vb + vc;
+    if (!(std::fabs(denom) > 0.0)) return a;  // degenerate triangle: any of its points
+    return a + (vb / denom) * ab + (vc / denom) * ac;
+  }
+
+  /// meshShapeDistanceOrientedNodeLeafTesting, and for AABB / k-DOP meshes the same on the world
+  /// vertices (MeshShapeDistanceTraversalNode::leafTesting). A triangle whose own lower bound
+  /// already lets the traversal stop (canStop) is skipped: it cannot lower the minimum.
+  void leaf(const fcl::Triangle& t, int primitive) {
+    if (canStop(triangleBound(mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]]))) return;
+    const fcl::Vector3d& v1 = mesh_.vertices[t[0]];
+    const fcl::Vector3d& v2 = mesh_.vertices[t[1]];
+    const fcl::Vector3d& v3 = mesh_.vertices[t[2]];
+    double d = 0.0;  // always written by the exact ellipsoid-triangle distance
+    fcl::Vector3d p_mesh, p_shape;
+    if constexpr (kOriented) {
+      solver_.shapeTriangleDistance(shape_, tf_shape_, v1, v2, v3, tf_mesh_, &d, &p_shape, &p_mesh);
+    } else if (identity_) {
+      solver_.shapeTriangleDistance(shape_, tf_shape_, v1, v2, v3, &d, &p_shape, &p_mesh);
+    } else {
+      const fcl::Vector3d w1 = tf_mesh_ * v1, w2 = tf_mesh_ * v2, w3 = tf_mesh_ * v3;
+      solver_.shapeTriangleDistance(shape_, tf_shape_, w1, w2, w3, &d, &p_shape, &p_mesh);
+    }
+    result_.update(d, &mesh_, &shape_, primitive, fcl::DistanceResult<double>::NONE, p_mesh, p_shape);
+  }
+
+  const fcl::BVHModel<BV>& mesh_;
+  const fcl::Transform3<double>& tf_mesh_;
+  const Shape& shape_;
+  const fcl::Transform3<double>& tf_shape_;
+  const QuadricSolver<double>& solver_;
+  const fcl::DistanceRequest<double>& request_;
+  fcl::DistanceResult<double>& result_;
+  bool identity_ = false, rigid_ = false;
+  Eigen::Matrix3d R_, abs_linear_;
+  Eigen::Vector3d p_, radii_, r2_;
+  double scale_ = 0.0, linear_norm_ = 0.0;
+};
+
+template <typename BV>
+bool traverseMeshDistance(const fcl::CollisionGeometry<double>* mesh, const fcl::Transform3<double>& tf_mesh,
+                          const fcl::CollisionGeometry<double>* shape, const fcl::Transform3<double>& tf_shape,
+                          const QuadricSolver<double>& solver, const fcl::DistanceRequest<double>& request,
+                          fcl::DistanceResult<double>& result) {
+  const auto& model = *static_cast<const fcl::BVHModel<BV>*>(mesh);
+  // FCL's setup refuses other model types; an empty model has no root node.
+  if (model.getModelType() != fcl::BVH_MODEL_TRIANGLES || model.getNumBVs() <= 0 || model.num_tris <= 0)
+    return false;
+  MeshShapeDistance<BV, fcl::Ellipsoid<double>>(model, tf_mesh, *static_cast<const fcl::Ellipsoid<double>*>(shape),
+                                                tf_shape, solver, request, result)
+      .run();
+  return true;
+}
+
+}  // namespace
+
+bool distanceMeshShape(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
+                       const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
+                       const QuadricSolver<double>& solver, const fcl::DistanceRequest<double>& request,
+                       fcl::DistanceResult<double>& result, double* value) {
+  const bool mesh_first = o1->getObjectType() == fcl::OT_BVH;
+  const fcl::CollisionGeometry<double>* mesh = mesh_first ? o1 : o2;
+  const fcl::CollisionGeometry<double>* shape = mesh_first ? o2 : o1;
+  if (mesh->getObjectType() != fcl::OT_BVH) return false;
+  const fcl::NODE_TYPE kind = shape->getNodeType();
+  // Ellipsoids only: QuadricSolver hands sphere-triangle distances to FCL's closed form, which
+  // leaves the distance unwritten when they overlap (FCL's traversal then reads an uninitialised
+  // value) and returns points in the shapes' local frames; spheres keep FCL's traversal.
+  if (kind != fcl::GEOM_ELLIPSOID) return false;
+  const fcl::Transform3<double>& tf_mesh = mesh_first ? tf1 : tf2;
+  const fcl::Transform3<double>& tf_shape = mesh_first ? tf2 : tf1;
+  bool handled = false;
+  switch (mesh->getNodeType()) {
+    case fcl::BV_OBBRSS:
+      handled = traverseMeshDistance<fcl::OBBRSS<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_OBB:
+      handled = traverseMeshDistance<fcl::OBB<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_RSS:
+      handled = traverseMeshDistance<fcl::RSS<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_kIOS:
+      handled = traverseMeshDistance<fcl::kIOS<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_AABB:
+      handled = traverseMeshDistance<fcl::AABB<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_KDOP16:
+      handled = traverseMeshDistance<fcl::KDOP<double, 16>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_KDOP18:
+      handled = traverseMeshDistance<fcl::KDOP<double, 18>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    case fcl::BV_KDOP24:
+      handled = traverseMeshDistance<fcl::KDOP<double, 24>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
+      break;
+    default:
+      break;
+  }
+  if (!handled) return false;
+  // FCL's distance() (distance-inl.h, and its QuadricSolver copy in distance.cpp): a negative
+  // minimum with enable_signed_distance is replaced by minus the deepest penetration of a contact
+  // collide (one contact, FCL's default request), the nearest points by that contact's position;
+  // the value returned is the minimum before. FCL starts the deepest penetration at DBL_MIN and
+  // reads contact number -1 when no contact is deeper (a touching contact, depth 0): the minimum
+  // is then -DBL_MIN as in FCL, and the points are those of the first contact.
+  const double res = result.min_distance;
+  if (res < 0.0 && request.enable_signed_distance) {
+    fcl::CollisionRequest<double> collision_request;
+    collision_request.enable_contact = true;
+    fcl::CollisionResult<double> collision_result;
+    fcl_quadric::collide(o1, tf1, o2, tf2, collision_request, collision_result);
+    std::size_t index = 0;
+    double max_depth = std::numeric_limits<double>::min();
+    for (std::size_t i = 0; i < collision_result.numContacts(); ++i) {
+      const double depth = collision_result.getContact(i).penetration_depth;
+      if (max_depth < depth) {
+        max_depth = depth;
+        index = i;
+      }
+    }
+    result.min_distance = -max_depth;
+    if (request.enable_nearest_points && collision_result.numContacts() > 0) {
+      const fcl::Vector3d& pos = collision_result.getContact(index).pos;
+      result.nearest_points[0] = pos;
+      result.nearest_points[1] = pos;
+    }
+  }
+  *value = res;
+  return true;
+}
+
+}  // namespace detail
+}  // namespace fcl_quadric
