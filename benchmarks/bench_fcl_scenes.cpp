@@ -18,9 +18,9 @@
 //      surface: boolean fcl_quadric::collide vs fcl::collide; t_query = CPU time per query.
 //  (c) Mesh: one ellipsoid against a torus fcl::BVHModel<OBBRSS> of 4,096 triangles, poses near
 //      its surface; the same two peers. MeshAABB: the same triangles and poses in a
-//      fcl::BVHModel<AABB> (FCL copies such a model on every query). MeshDistance: the Mesh
-//      scene's poses as distance queries with nearest points (fcl_quadric::distance against
-//      fcl::distance, libccd).
+//      fcl::BVHModel<AABB> (FCL copies such a model on every query).
+//  OcTreeDistance, MeshDistance: the poses of (b) and (c) as distance queries with nearest points
+//      (fcl_quadric::distance against fcl::distance, libccd).
 // Issue 3's aim for (a) is judged on a paired timing run after the Google Benchmark runs: three
 // passes over the frames, every peer once per frame in an order rotated by frame and pass, each
 // timed by the thread's CPU clock. On this shared VM, runs of one peer after another see
@@ -217,8 +217,8 @@ void benchQuery(benchmark::State& state, const QueryScene* s, bool ours) {
   state.counters["false_hits"] = static_cast<double>(s->false_hits[ours ? 0 : 1]);
 }
 
-/// (c) as a distance query (DistanceRequest with nearest points): fcl_quadric::distance (its own
-/// best-first traversal, exact leaf distances) against fcl::distance (libccd GJK leaves).
+/// (b), (c) as distance queries (DistanceRequest with nearest points): fcl_quadric::distance (its
+/// own best-first traversals, exact leaf distances) against fcl::distance (libccd GJK leaves).
 double distanceOnce(const fcl::CollisionObjectd* q, const fcl::CollisionObjectd* env, bool ours) {
   const fcl::DistanceRequestd request(true);
   fcl::DistanceResultd result;
@@ -321,7 +321,7 @@ QueryScene makeMeshScene(const Settings& cfg, const MeshTarget& mesh, bool aabb)
 
 void printResults(const SummaryReporter& r, const Settings& cfg, const std::vector<MovingReport>& moving,
                   const std::vector<std::array<double, 4>>& paired, const std::vector<const QueryScene*>& query_scenes,
-                  const DistanceAgreement& distance_agreement, const std::string& load_start) {
+                  const DistanceAgreement* distance_agreement, const std::string& load_start) {
   std::printf("\n== FCL scenes: results (fcl_quadric inside FCL 0.7 vs stock FCL, libccd; same process, same inputs) ==\n");
   if (cfg.smoke) std::printf("  NOTE: smoke run (--smoke): tiny sizes, not the documented ones\n");
   std::printf("  load average (1, 5, 15 min): %s at the start, %s at the end\n", load_start.c_str(), loadAverage().c_str());
@@ -394,13 +394,16 @@ void printResults(const SummaryReporter& r, const Settings& cfg, const std::vect
     std::printf("%-9s %8zu %10zu | %11.2f %10.2f %11.2f | %22s %22s\n", s->group.c_str(), s->queries.size(), s->colliding,
                 ours, stock, ours > 0.0 && stock > 0.0 ? stock / ours : 0.0, a, b);
   }
-  {
-    const double ours = r.nsPerItem("MeshDistance/fcl_quadric") / 1e3, stock = r.nsPerItem("MeshDistance/fcl_libccd") / 1e3;
-    std::printf("(c) as a distance query (nearest points), the Mesh scene: fcl_quadric %.2f us, fcl_libccd %.2f us, "
+  for (int k = 0; k < 2; ++k) {
+    const std::string g = k == 0 ? "OcTreeDistance" : "MeshDistance";
+    const DistanceAgreement& a = distance_agreement[k];
+    const double ours = r.nsPerItem(g + "/fcl_quadric") / 1e3, stock = r.nsPerItem(g + "/fcl_libccd") / 1e3;
+    std::printf("(%s) as a distance query (nearest points), the %s scene: fcl_quadric %.2f us, fcl_libccd %.2f us, "
                 "libccd/ours %.2f; %zu queries separated for both, max |d_libccd - d_ours| %.2e; overlap "
                 "disagreements %zu\n",
-                ours, stock, ours > 0.0 && stock > 0.0 ? stock / ours : 0.0, distance_agreement.separated,
-                distance_agreement.max_abs_difference, distance_agreement.overlap_disagreements);
+                k == 0 ? "b" : "c", k == 0 ? "OcTree" : "Mesh", ours, stock,
+                ours > 0.0 && stock > 0.0 ? stock / ours : 0.0, a.separated, a.max_abs_difference,
+                a.overlap_disagreements);
   }
   for (const QueryScene* s : query_scenes) std::printf("  %s: %s\n", s->group.c_str(), s->target.c_str());
   std::printf("  times: median CPU time of the repetitions (Summary above); disagreements counted once, untimed, "
@@ -501,7 +504,9 @@ int main(int argc, char** argv) {
     registerBenchmark((s->group + "/fcl_quadric").c_str(), benchQuery, s, true);
     registerBenchmark((s->group + "/fcl_libccd").c_str(), benchQuery, s, false);
   }
-  static const DistanceAgreement distance_agreement = distanceAgreement(mesh_scene);
+  static const DistanceAgreement distance_agreement[2] = {distanceAgreement(octree), distanceAgreement(mesh_scene)};
+  registerBenchmark("OcTreeDistance/fcl_quadric", benchDistanceQuery, &octree, true);
+  registerBenchmark("OcTreeDistance/fcl_libccd", benchDistanceQuery, &octree, false);
   registerBenchmark("MeshDistance/fcl_quadric", benchDistanceQuery, &mesh_scene, true);
   registerBenchmark("MeshDistance/fcl_libccd", benchDistanceQuery, &mesh_scene, false);
 

@@ -13,9 +13,12 @@
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/narrowphase/distance.h>
 
+#include "fcl/distance_fix_up.h"
 #include "fcl/input_checks.h"
 #include "fcl/mesh_distance.h"
+#include "fcl/octree_distance.h"
 #include "fcl/quadric_shape_dispatch.h"
+#include "fcl_quadric/fcl/collision.h"
 #include "fcl_quadric/fcl/quadric_solver.h"
 
 // --- FCL templates for QuadricSolver<double> (declared in quadric_solver.h) -------------------
@@ -131,6 +134,37 @@ template double distance<fcl_quadric::QuadricSolver<double>>(const CollisionObje
 
 namespace fcl_quadric {
 
+namespace detail {
+
+void signedDistanceFixUp(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
+                         const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
+                         const fcl::DistanceRequest<double>& request, fcl::DistanceResult<double>& result) {
+  // FCL's code above (the QuadricSolver copy of distance()), with fcl_quadric::collide, and no
+  // read of contact number -1 when no contact is deeper than DBL_MIN (FCL asserts, then reads it).
+  if (!(result.min_distance < 0.0 && request.enable_signed_distance)) return;
+  fcl::CollisionRequest<double> collision_request;
+  collision_request.enable_contact = true;
+  fcl::CollisionResult<double> collision_result;
+  fcl_quadric::collide(o1, tf1, o2, tf2, collision_request, collision_result);
+  std::size_t index = 0;
+  double max_depth = std::numeric_limits<double>::min();
+  for (std::size_t i = 0; i < collision_result.numContacts(); ++i) {
+    const double depth = collision_result.getContact(i).penetration_depth;
+    if (max_depth < depth) {
+      max_depth = depth;
+      index = i;
+    }
+  }
+  result.min_distance = -max_depth;
+  if (request.enable_nearest_points && collision_result.numContacts() > 0) {
+    const fcl::Vector3d& pos = collision_result.getContact(index).pos;
+    result.nearest_points[0] = pos;
+    result.nearest_points[1] = pos;
+  }
+}
+
+}  // namespace detail
+
 template <typename S>
 S distance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1, const fcl::CollisionGeometry<S>* o2,
            const fcl::Transform3<S>& tf2, const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
@@ -146,6 +180,8 @@ S distance(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S>& tf1, c
     // with a lower bound that needs no fitted BV (mesh_distance.h).
     double value = 0.0;
     if (detail::distanceMeshShape(o1, tf1, o2, tf2, solver, request, result, &value)) return value;
+    // An OcTree against an ellipsoid: likewise, best first (octree_distance.h).
+    if (detail::distanceOcTreeShape(o1, tf1, o2, tf2, solver, request, result, &value)) return value;
   }
   return fcl::distance(o1, tf1, o2, tf2, &solver, request, result);
 }

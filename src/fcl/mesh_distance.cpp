@@ -12,7 +12,8 @@
 #include <fcl/geometry/shape/ellipsoid.h>
 
 #include "fcl/mesh_node_box.h"
-#include "fcl_quadric/fcl/collision.h"
+#include "fcl/distance_fix_up.h"
+#include "fcl/traversal_bound.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
 #include "fcl_quadric/tolerances.h"
 
@@ -57,38 +58,15 @@ class MeshShapeDistance {
       R_ = tf_shape_.linear();
       p_ = tf_shape_.translation();
     }
-    r2_ = radii_.cwiseProduct(radii_);
     scale_ = tf_mesh_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
              p_.cwiseAbs().maxCoeff() + radii_.maxCoeff();
+    placed_ = PlacedEllipsoid{R_, p_, radii_, scale_};
     search();
   }
 
  private:
-  /// A lower bound of the distance from the shape to the box of centre c, axes A (columns) and
-  /// half-extents e, all in the bounds' frame: the largest of the gaps
-  /// |a.(c - p)| - sum_k e_k |a.A_k| - |S R^T a| along the box's axes, the shape's axes and the
-  /// line of the centres, lowered by the padding; 0 when none is positive.
   double boxBound(const Eigen::Matrix3d& A, const Eigen::Vector3d& c, const Eigen::Vector3d& e) const {
-    const Eigen::Vector3d d = c - p_;
-    const Eigen::Matrix3d B = R_.transpose() * A;  // B(j, k) = shape axis j . box axis k
-    double gap = -std::numeric_limits<double>::infinity();
-    const Eigen::Vector3d d_box = A.transpose() * d;
-    for (int k = 0; k < 3; ++k)
-      gap = std::max(gap, std::fabs(d_box[k]) - e[k] - std::sqrt(r2_.dot(B.col(k).cwiseProduct(B.col(k)))));
-    const Eigen::Vector3d d_shape = R_.transpose() * d;
-    const Eigen::Vector3d box_half = B.cwiseAbs() * e;
-    for (int j = 0; j < 3; ++j) gap = std::max(gap, std::fabs(d_shape[j]) - box_half[j] - radii_[j]);
-    const double D = d.norm();
-    if (D > 0.0) {
-      // Along u = d / |d|: box part sum_k e_k |u.A_k| = (|A^T d| . e) / |d|; shape part
-      // |S R^T u| = |S R^T d| / |d|.
-      const double box_part = d_box.cwiseAbs().dot(e) / D;
-      const double shape_part = d_shape.cwiseProduct(radii_).norm() / D;
-      gap = std::max(gap, D - box_part - shape_part);
-    }
-    const double pad = tolerance::kTraversalPruningPadding *
-                       (scale_ + linear_norm_ * (c.cwiseAbs().maxCoeff() + e.maxCoeff()));
-    return std::max(0.0, gap - pad);
+    return placed_.boxBound(A, c, e, linear_norm_ * (c.cwiseAbs().maxCoeff() + e.maxCoeff()));
   }
 
   double bound(const BV& bv) const {
@@ -217,8 +195,9 @@ class MeshShapeDistance {
   fcl::DistanceResult<double>& result_;
   bool identity_ = false, rigid_ = false;
   Eigen::Matrix3d R_, abs_linear_;
-  Eigen::Vector3d p_, radii_, r2_;
+  Eigen::Vector3d p_, radii_;
   double scale_ = 0.0, linear_norm_ = 0.0;
+  PlacedEllipsoid placed_;
 };
 
 template <typename BV>
@@ -283,34 +262,8 @@ bool distanceMeshShape(const fcl::CollisionGeometry<double>* o1, const fcl::Tran
       break;
   }
   if (!handled) return false;
-  // FCL's distance() (distance-inl.h, and its QuadricSolver copy in distance.cpp): a negative
-  // minimum with enable_signed_distance is replaced by minus the deepest penetration of a contact
-  // collide (one contact, FCL's default request), the nearest points by that contact's position;
-  // the value returned is the minimum before. FCL starts the deepest penetration at DBL_MIN and
-  // reads contact number -1 when no contact is deeper (a touching contact, depth 0): the minimum
-  // is then -DBL_MIN as in FCL, and the points are those of the first contact.
   const double res = result.min_distance;
-  if (res < 0.0 && request.enable_signed_distance) {
-    fcl::CollisionRequest<double> collision_request;
-    collision_request.enable_contact = true;
-    fcl::CollisionResult<double> collision_result;
-    fcl_quadric::collide(o1, tf1, o2, tf2, collision_request, collision_result);
-    std::size_t index = 0;
-    double max_depth = std::numeric_limits<double>::min();
-    for (std::size_t i = 0; i < collision_result.numContacts(); ++i) {
-      const double depth = collision_result.getContact(i).penetration_depth;
-      if (max_depth < depth) {
-        max_depth = depth;
-        index = i;
-      }
-    }
-    result.min_distance = -max_depth;
-    if (request.enable_nearest_points && collision_result.numContacts() > 0) {
-      const fcl::Vector3d& pos = collision_result.getContact(index).pos;
-      result.nearest_points[0] = pos;
-      result.nearest_points[1] = pos;
-    }
-  }
+  signedDistanceFixUp(o1, tf1, o2, tf2, request, result);
   *value = res;
   return true;
 }

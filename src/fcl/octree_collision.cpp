@@ -25,21 +25,6 @@ namespace detail {
 #if FCL_HAVE_OCTOMAP
 namespace {
 
-/// FCL's computeChildBV (octree-inl.h), written out so that it inlines: the same arithmetic, so
-/// the leaf boxes handed to the solver are FCL's bit for bit.
-inline void childBox(const fcl::AABB<double>& bv, unsigned i, fcl::AABB<double>* child) {
-  for (int k = 0; k < 3; ++k) {
-    const double mid = (bv.min_[k] + bv.max_[k]) * 0.5;
-    if (i >> k & 1u) {
-      child->min_[k] = mid;
-      child->max_[k] = bv.max_[k];
-    } else {
-      child->min_[k] = bv.min_[k];
-      child->max_[k] = mid;
-    }
-  }
-}
-
 template <typename Shape>
 class OcTreeShapeTraversal {
  public:
@@ -97,7 +82,7 @@ class OcTreeShapeTraversal {
     for (unsigned i = 0; i < 8; ++i) {
       if (!tree_.nodeChildExists(node, i)) continue;
       fcl::AABB<double> child_bv;
-      childBox(bv, i, &child_bv);
+      octreeChildBox(bv, i, &child_bv);
       if (recurse(tree_.getNodeChild(node, i), child_bv)) return true;
     }
     return false;

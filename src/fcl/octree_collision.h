@@ -5,6 +5,7 @@
 
 #include <fcl/common/types.h>
 #include <fcl/geometry/collision_geometry.h>
+#include <fcl/math/bv/AABB.h>
 #include <fcl/narrowphase/collision_request.h>
 #include <fcl/narrowphase/collision_result.h>
 
@@ -12,6 +13,21 @@
 
 namespace fcl_quadric {
 namespace detail {
+
+/// FCL's computeChildBV (octree-inl.h), written out so that it inlines: the same arithmetic, so
+/// the leaf boxes handed to the solver are FCL's bit for bit (both own OcTree traversals).
+inline void octreeChildBox(const fcl::AABB<double>& bv, unsigned i, fcl::AABB<double>* child) {
+  for (int k = 0; k < 3; ++k) {
+    const double mid = (bv.min_[k] + bv.max_[k]) * 0.5;
+    if (i >> k & 1u) {
+      child->min_[k] = mid;
+      child->max_[k] = bv.max_[k];
+    } else {
+      child->min_[k] = bv.min_[k];
+      child->max_[k] = mid;
+    }
+  }
+}
 
 /// Boolean and contact collision of an OcTree with an Ellipsoid or a Sphere (either order) through
 /// `solver`, with FCL 0.7's result: the same leaves tested in the same depth-first order as

@@ -469,6 +469,123 @@ TEST(ExactOcTree, OwnTraversalGivesFclsTraversalResultExactly) {
 }
 
 
+/// fcl_quadric::distance runs its own best-first traversal for an OcTree against an ellipsoid
+/// (src/fcl/octree_distance.cpp). Oracle: the exact leaf distance to every occupied leaf box,
+/// built as FCL builds it (occupiedLeafBoxes), and on a subset FCL's own traversal with the same
+/// solver. For each query, in both argument orders, plain, nearest-point and signed requests:
+///  - the minimum is the brute-force minimum bit for bit, and so is the value returned;
+///  - FCL's traversal gives the same value and the same min_distance (the signed fix-up
+///    included);
+///  - o1 the tree, o2 the ellipsoid; the nearest points are that far apart (separated queries).
+TEST(ExactOcTree, OwnDistanceTraversalGivesTheBruteForceMinimum) {
+  std::mt19937_64 rng(67);
+  auto built = std::make_shared<octomap::OcTree>(0.08);
+  fillScene(*built, rng, true);
+  const std::shared_ptr<const octomap::OcTree> tree = built;
+  const fcl::Transform3d tf_tree =
+      test::makePose(Eigen::AngleAxisd(-0.7, Eigen::Vector3d(0.3, 1, 2).normalized()).toRotationMatrix(),
+                     Eigen::Vector3d(-0.4, 0.25, 0.3));
+  std::uniform_real_distribution<double> ux(-1.6, 1.6), uz(-0.6, 1.8), r_small(0.02, 0.3), r_large(0.3, 0.9);
+  const QuadricSolverd solver;
+  std::size_t compared = 0, fcl_compared = 0, overlapping = 0;
+  for (double threshold : {-1.0, 0.7}) {
+    auto fcl_tree = std::make_shared<fcl::OcTreed>(tree);
+    if (threshold > 0) fcl_tree->setOccupancyThres(threshold);
+    const std::vector<LeafBox> boxes = occupiedLeafBoxes(*fcl_tree, *tree, tf_tree);
+    for (int i = 0; i < 40; ++i) {
+      const double x = ux(rng), y = ux(rng), z = uz(rng);
+      std::uniform_real_distribution<double>& r = i % 4 == 2 ? r_large : r_small;
+      const double r0 = r(rng), r1 = r(rng), r2 = r(rng);
+      const auto shape = std::make_shared<fcl::Ellipsoidd>(r0, r1, r2);
+      const fcl::Transform3d tf_shape = test::makePose(test::randomRotation(rng), tf_tree * Eigen::Vector3d(x, y, z));
+      double best = std::numeric_limits<double>::max();
+      for (const LeafBox& b : boxes) {
+        double d = std::numeric_limits<double>::quiet_NaN();
+        solver.shapeDistance(fcl::Boxd(2.0 * b.half), test::makePose(b.R, b.p), *shape, tf_shape, &d,
+                             static_cast<Eigen::Vector3d*>(nullptr), static_cast<Eigen::Vector3d*>(nullptr));
+        best = std::min(best, d);
+      }
+      overlapping += best < 0.0;
+      const fcl::CollisionGeometryd* tree_geometry = fcl_tree.get();
+      const fcl::CollisionGeometryd* shape_geometry = shape.get();
+      for (int order = 0; order < 2; ++order) {
+        const fcl::CollisionGeometryd* g1 = order ? shape_geometry : tree_geometry;
+        const fcl::CollisionGeometryd* g2 = order ? tree_geometry : shape_geometry;
+        const fcl::Transform3d& tf1 = order ? tf_shape : tf_tree;
+        const fcl::Transform3d& tf2 = order ? tf_tree : tf_shape;
+        for (int variant = 0; variant < 3; ++variant) {
+          const fcl::DistanceRequestd request(variant >= 1, variant == 2);
+          const std::string where = "threshold " + std::to_string(threshold) + ", pose " + std::to_string(i) +
+                                    ", order " + std::to_string(order) + ", request " + std::to_string(variant);
+          fcl::DistanceResultd ours;
+          const double value = fcl_quadric::distance(g1, tf1, g2, tf2, request, ours);
+          ++compared;
+          EXPECT_EQ(value, best) << where;
+          EXPECT_EQ(ours.o1, tree_geometry) << where;
+          EXPECT_EQ(ours.o2, shape_geometry) << where;
+          if (!request.enable_signed_distance || best >= 0.0) {
+            EXPECT_EQ(ours.min_distance, best) << where;
+            if (request.enable_nearest_points && best > 0.0) {
+              EXPECT_NEAR((ours.nearest_points[0] - ours.nearest_points[1]).norm(), best, 1e-12 * (1.0 + best))
+                  << where;
+            }
+          }
+          if (i % 8 == 0) {
+            fcl::DistanceResultd theirs;
+            const double fcl_value = fcl::distance(g1, tf1, g2, tf2, &solver, request, theirs);
+            ++fcl_compared;
+            EXPECT_EQ(fcl_value, value) << where;
+            EXPECT_EQ(theirs.min_distance, ours.min_distance) << where;
+          }
+        }
+      }
+    }
+  }
+  std::printf("[ info ] own OcTree distance vs brute force: %zu queries (%zu shape poses overlapping), %zu also "
+              "against FCL's traversal\n",
+              compared, overlapping, fcl_compared);
+  EXPECT_GT(overlapping, 5u);  // both regimes
+  EXPECT_LT(overlapping, 70u);
+  EXPECT_GT(fcl_compared, 50u);
+}
+
+/// Bad input through the own OcTree distance traversal, far from every cell: an invalid
+/// ellipsoid, or a scaled tree pose, throws std::invalid_argument naming it.
+TEST(ExactOcTree, OwnDistanceTraversalRejectsBadInput) {
+  std::mt19937_64 rng(68);
+  auto built = std::make_shared<octomap::OcTree>(0.08);
+  fillScene(*built, rng, false);
+  auto fcl_tree = std::make_shared<fcl::OcTreed>(std::shared_ptr<const octomap::OcTree>(built));
+  const fcl::Transform3d far = test::makePose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(50, 50, 50));
+  const fcl::Transform3d tree_pose = fcl::Transform3d::Identity();
+  auto expectThrowsNaming = [&](const fcl::Transform3d& tf_t, const fcl::Ellipsoidd& e, const fcl::Transform3d& tf_e,
+                                const std::string& needle) {
+    for (int order = 0; order < 2; ++order) {
+      fcl::DistanceResultd r;
+      try {
+        if (order == 0) fcl_quadric::distance(fcl_tree.get(), tf_t, &e, tf_e, fcl::DistanceRequestd(), r);
+        else fcl_quadric::distance(&e, tf_e, fcl_tree.get(), tf_t, fcl::DistanceRequestd(), r);
+        ADD_FAILURE() << "no exception for a bad " << needle << ", order " << order;
+      } catch (const std::invalid_argument& ex) {
+        EXPECT_NE(std::string(ex.what()).find(needle), std::string::npos) << ex.what();
+      }
+    }
+  };
+  const fcl::Ellipsoidd good(0.2, 0.3, 0.4);
+  {
+    fcl::DistanceResultd r;
+    EXPECT_GT(fcl_quadric::distance(fcl_tree.get(), tree_pose, &good, far, fcl::DistanceRequestd(), r), 40.0);
+  }
+  expectThrowsNaming(tree_pose, fcl::Ellipsoidd(0.2, -0.3, 0.4), far, "radius");
+  expectThrowsNaming(tree_pose, fcl::Ellipsoidd(0.2, std::numeric_limits<double>::quiet_NaN(), 0.4), far, "radius");
+  fcl::Transform3d scaled = far;
+  scaled.linear() *= 1.1;
+  expectThrowsNaming(tree_pose, good, scaled, "rotation");
+  fcl::Transform3d tree_scaled = tree_pose;
+  tree_scaled.linear() *= 1.1;
+  expectThrowsNaming(tree_scaled, good, far, "rotation");
+}
+
 /// Bad input through the own OcTree traversal: an invalid ellipsoid or sphere, or a tree pose
 /// that is not a rotation, throws std::invalid_argument even where no leaf would be reached (the
 /// shape far from every occupied cell), naming the bad value as the leaf test does.
