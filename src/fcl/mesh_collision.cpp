@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/ellipsoid.h>
@@ -201,26 +202,6 @@ class MeshShapeTraversal {
   Eigen::Vector3d shape_half_;
 };
 
-template <typename BV>
-bool traverseMesh(const fcl::CollisionGeometry<double>* mesh, const fcl::Transform3<double>& tf_mesh,
-              const fcl::CollisionGeometry<double>* shape, const fcl::Transform3<double>& tf_shape,
-              const QuadricSolver<double>& solver, const fcl::CollisionRequest<double>& request,
-              fcl::CollisionResult<double>& result) {
-  const auto& model = *static_cast<const fcl::BVHModel<BV>*>(mesh);
-  // FCL's setup refuses other model types; an empty model has no root node.
-  if (model.getModelType() != fcl::BVH_MODEL_TRIANGLES || model.getNumBVs() <= 0) return false;
-  if (request.isSatisfied(result)) return true;  // FCL's colliders return at once
-  if (shape->getNodeType() == fcl::GEOM_ELLIPSOID)
-    MeshShapeTraversal<BV, fcl::Ellipsoid<double>>(model, tf_mesh, *static_cast<const fcl::Ellipsoid<double>*>(shape),
-                                                   tf_shape, solver, request, result)
-        .run();
-  else
-    MeshShapeTraversal<BV, fcl::Sphere<double>>(model, tf_mesh, *static_cast<const fcl::Sphere<double>*>(shape),
-                                                tf_shape, solver, request, result)
-        .run();
-  return true;
-}
-
 }  // namespace
 
 bool collideMeshShape(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
@@ -236,35 +217,19 @@ bool collideMeshShape(const fcl::CollisionGeometry<double>* o1, const fcl::Trans
   if (kind != fcl::GEOM_ELLIPSOID && kind != fcl::GEOM_SPHERE) return false;
   const fcl::Transform3<double>& tf_mesh = mesh_first ? tf1 : tf2;
   const fcl::Transform3<double>& tf_shape = mesh_first ? tf2 : tf1;
-  bool handled = false;
-  switch (mesh->getNodeType()) {
-    case fcl::BV_OBBRSS:
-      handled = traverseMesh<fcl::OBBRSS<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_OBB:
-      handled = traverseMesh<fcl::OBB<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_RSS:
-      handled = traverseMesh<fcl::RSS<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_kIOS:
-      handled = traverseMesh<fcl::kIOS<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_AABB:
-      handled = traverseMesh<fcl::AABB<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_KDOP16:
-      handled = traverseMesh<fcl::KDOP<double, 16>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_KDOP18:
-      handled = traverseMesh<fcl::KDOP<double, 18>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_KDOP24:
-      handled = traverseMesh<fcl::KDOP<double, 24>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    default:
-      break;
-  }
+  const bool handled = withTriangleModel(mesh, [&](const auto& model) {
+    using BV = typename BVOf<std::decay_t<decltype(model)>>::type;
+    if (request.isSatisfied(result)) return true;  // FCL's colliders return at once
+    if (shape->getNodeType() == fcl::GEOM_ELLIPSOID)
+      MeshShapeTraversal<BV, fcl::Ellipsoid<double>>(model, tf_mesh, *static_cast<const fcl::Ellipsoid<double>*>(shape),
+                                                     tf_shape, solver, request, result)
+          .run();
+    else
+      MeshShapeTraversal<BV, fcl::Sphere<double>>(model, tf_mesh, *static_cast<const fcl::Sphere<double>*>(shape),
+                                                  tf_shape, solver, request, result)
+          .run();
+    return true;
+  });
   if (handled) *count = result.numContacts();
   return handled;
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include <fcl/geometry/bvh/BVH_model.h>
@@ -200,21 +201,6 @@ class MeshShapeDistance {
   PlacedEllipsoid placed_;
 };
 
-template <typename BV>
-bool traverseMeshDistance(const fcl::CollisionGeometry<double>* mesh, const fcl::Transform3<double>& tf_mesh,
-                          const fcl::CollisionGeometry<double>* shape, const fcl::Transform3<double>& tf_shape,
-                          const QuadricSolver<double>& solver, const fcl::DistanceRequest<double>& request,
-                          fcl::DistanceResult<double>& result) {
-  const auto& model = *static_cast<const fcl::BVHModel<BV>*>(mesh);
-  // FCL's setup refuses other model types; an empty model has no root node.
-  if (model.getModelType() != fcl::BVH_MODEL_TRIANGLES || model.getNumBVs() <= 0 || model.num_tris <= 0)
-    return false;
-  MeshShapeDistance<BV, fcl::Ellipsoid<double>>(model, tf_mesh, *static_cast<const fcl::Ellipsoid<double>*>(shape),
-                                                tf_shape, solver, request, result)
-      .run();
-  return true;
-}
-
 }  // namespace
 
 bool distanceMeshShape(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
@@ -232,35 +218,13 @@ bool distanceMeshShape(const fcl::CollisionGeometry<double>* o1, const fcl::Tran
   if (kind != fcl::GEOM_ELLIPSOID) return false;
   const fcl::Transform3<double>& tf_mesh = mesh_first ? tf1 : tf2;
   const fcl::Transform3<double>& tf_shape = mesh_first ? tf2 : tf1;
-  bool handled = false;
-  switch (mesh->getNodeType()) {
-    case fcl::BV_OBBRSS:
-      handled = traverseMeshDistance<fcl::OBBRSS<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_OBB:
-      handled = traverseMeshDistance<fcl::OBB<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_RSS:
-      handled = traverseMeshDistance<fcl::RSS<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_kIOS:
-      handled = traverseMeshDistance<fcl::kIOS<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_AABB:
-      handled = traverseMeshDistance<fcl::AABB<double>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_KDOP16:
-      handled = traverseMeshDistance<fcl::KDOP<double, 16>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_KDOP18:
-      handled = traverseMeshDistance<fcl::KDOP<double, 18>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    case fcl::BV_KDOP24:
-      handled = traverseMeshDistance<fcl::KDOP<double, 24>>(mesh, tf_mesh, shape, tf_shape, solver, request, result);
-      break;
-    default:
-      break;
-  }
+  const bool handled = withTriangleModel(mesh, [&](const auto& model) {
+    using BV = typename BVOf<std::decay_t<decltype(model)>>::type;
+    MeshShapeDistance<BV, fcl::Ellipsoid<double>>(model, tf_mesh, *static_cast<const fcl::Ellipsoid<double>*>(shape),
+                                                  tf_shape, solver, request, result)
+        .run();
+    return true;
+  });
   if (!handled) return false;
   const double res = result.min_distance;
   signedDistanceFixUp(o1, tf1, o2, tf2, request, result);

@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include <Eigen/Core>
+#include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/math/bv/AABB.h>
@@ -74,6 +75,38 @@ struct NodeBox<fcl::KDOP<double, N>> {
     *hi = Eigen::Vector3d(bv.dist(N / 2), bv.dist(N / 2 + 1), bv.dist(N / 2 + 2));
   }
 };
+
+/// The BV type of a BVHModel type: BVOf<fcl::BVHModel<BV>>::type is BV.
+template <typename Model>
+struct BVOf;
+template <typename BV>
+struct BVOf<fcl::BVHModel<BV>> {
+  using type = BV;
+};
+
+/// Calls f(model) with `mesh` as the BVHModel of its BV type (any of FCL 0.7's: OBBRSS, OBB, RSS,
+/// kIOS, AABB, KDOP16/18/24) when it is a triangle model with a tree, and returns what f returns;
+/// false for anything else (other node types, point clouds, an empty model: FCL's traversals
+/// handle or refuse those).
+template <typename F>
+bool withTriangleModel(const fcl::CollisionGeometry<double>* mesh, F&& f) {
+  auto call = [&](const auto* model) {
+    if (model->getModelType() != fcl::BVH_MODEL_TRIANGLES || model->getNumBVs() <= 0 || model->num_tris <= 0)
+      return false;
+    return static_cast<bool>(f(*model));
+  };
+  switch (mesh->getNodeType()) {
+    case fcl::BV_OBBRSS: return call(static_cast<const fcl::BVHModel<fcl::OBBRSS<double>>*>(mesh));
+    case fcl::BV_OBB: return call(static_cast<const fcl::BVHModel<fcl::OBB<double>>*>(mesh));
+    case fcl::BV_RSS: return call(static_cast<const fcl::BVHModel<fcl::RSS<double>>*>(mesh));
+    case fcl::BV_kIOS: return call(static_cast<const fcl::BVHModel<fcl::kIOS<double>>*>(mesh));
+    case fcl::BV_AABB: return call(static_cast<const fcl::BVHModel<fcl::AABB<double>>*>(mesh));
+    case fcl::BV_KDOP16: return call(static_cast<const fcl::BVHModel<fcl::KDOP<double, 16>>*>(mesh));
+    case fcl::BV_KDOP18: return call(static_cast<const fcl::BVHModel<fcl::KDOP<double, 18>>*>(mesh));
+    case fcl::BV_KDOP24: return call(static_cast<const fcl::BVHModel<fcl::KDOP<double, 24>>*>(mesh));
+    default: return false;
+  }
+}
 
 inline Eigen::Vector3d shapeRadii(const fcl::Ellipsoid<double>& e) { return e.radii; }
 inline Eigen::Vector3d shapeRadii(const fcl::Sphere<double>& s) { return Eigen::Vector3d::Constant(s.radius); }

@@ -667,11 +667,18 @@ Mesh boxMesh(const Eigen::Vector3d& h) {
   return m;
 }
 
-void compareMesh(const Mesh& mesh, unsigned seed, const char* what) {
-  auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+/// The mesh as a BVHModel with `BV` nodes (FCL's default build).
+template <typename BV>
+std::shared_ptr<fcl::BVHModel<BV>> buildModel(const Mesh& mesh) {
+  auto model = std::make_shared<fcl::BVHModel<BV>>();
   model->beginModel();
   model->addSubModel(mesh.v, mesh.t);
   model->endModel();
+  return model;
+}
+
+void compareMesh(const Mesh& mesh, unsigned seed, const char* what) {
+  const auto model = buildModel<fcl::OBBRSSd>(mesh);
   const fcl::Transform3d tf_mesh =
       test::makePose(Eigen::AngleAxisd(-0.7, Eigen::Vector3d(0.3, 1, 0.2).normalized()).toRotationMatrix(),
                      Eigen::Vector3d(-0.4, 0.5, 0.2));
@@ -788,10 +795,7 @@ TEST(ExactBvhMesh, BoxMeshMatchesBruteForceOverTriangles) {
 template <typename BV>
 void compareMeshTraversal(const Mesh& mesh, unsigned seed, const char* what, std::size_t* compared,
                           std::size_t* colliding, std::size_t* contacts) {
-  auto model = std::make_shared<fcl::BVHModel<BV>>();
-  model->beginModel();
-  model->addSubModel(mesh.v, mesh.t);
-  model->endModel();
+  const auto model = buildModel<BV>(mesh);
   const fcl::Transform3d tf_mesh =
       test::makePose(Eigen::AngleAxisd(0.9, Eigen::Vector3d(-0.5, 1, 0.3).normalized()).toRotationMatrix(),
                      Eigen::Vector3d(0.3, -0.6, 0.4));
@@ -866,10 +870,7 @@ TEST(ExactBvhMesh, OwnTraversalGivesFclsTraversalResultExactly) {
 template <typename BV>
 void compareAlignedMeshTraversal(const Mesh& mesh, unsigned seed, const char* what, std::size_t* compared,
                                  std::size_t* colliding, std::size_t* contacts) {
-  auto model = std::make_shared<fcl::BVHModel<BV>>();
-  model->beginModel();
-  model->addSubModel(mesh.v, mesh.t);
-  model->endModel();
+  const auto model = buildModel<BV>(mesh);
   const fcl::Transform3d rigid =
       test::makePose(Eigen::AngleAxisd(0.9, Eigen::Vector3d(-0.5, 1, 0.3).normalized()).toRotationMatrix(),
                      Eigen::Vector3d(0.3, -0.6, 0.4));
@@ -999,10 +1000,7 @@ double leafDistance(const fcl::BVHModel<BV>& model, const fcl::Transform3d& tf_m
 template <typename BV>
 void compareMeshDistance(const Mesh& mesh, unsigned seed, const char* what, std::size_t* compared,
                          std::size_t* overlapping, std::size_t* fcl_compared) {
-  auto model = std::make_shared<fcl::BVHModel<BV>>();
-  model->beginModel();
-  model->addSubModel(mesh.v, mesh.t);
-  model->endModel();
+  const auto model = buildModel<BV>(mesh);
   constexpr bool oriented = std::is_same_v<BV, fcl::OBBRSSd> || std::is_same_v<BV, fcl::OBBd> ||
                             std::is_same_v<BV, fcl::RSSd> || std::is_same_v<BV, fcl::kIOSd>;
   constexpr bool fcl_has_it = std::is_same_v<BV, fcl::OBBRSSd> || std::is_same_v<BV, fcl::RSSd> ||
@@ -1109,14 +1107,8 @@ TEST(ExactBvhMesh, OwnDistanceTraversalGivesTheBruteForceMinimum) {
 /// it; an AABB mesh takes any finite affine pose (FCL has no distance for AABB meshes at all).
 TEST(ExactBvhMesh, OwnDistanceTraversalRejectsBadInput) {
   const Mesh mesh = icosphere(1.0, 2);
-  auto obbrss = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-  obbrss->beginModel();
-  obbrss->addSubModel(mesh.v, mesh.t);
-  obbrss->endModel();
-  auto aabb = std::make_shared<fcl::BVHModel<fcl::AABBd>>();
-  aabb->beginModel();
-  aabb->addSubModel(mesh.v, mesh.t);
-  aabb->endModel();
+  const auto obbrss = buildModel<fcl::OBBRSSd>(mesh);
+  const auto aabb = buildModel<fcl::AABBd>(mesh);
   const fcl::Transform3d far = test::makePose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(50, 50, 50));
   const fcl::Transform3d mesh_pose = fcl::Transform3d::Identity();
   fcl::Transform3d mesh_scaled = mesh_pose;
@@ -1161,10 +1153,7 @@ TEST(ExactBvhMesh, OwnDistanceTraversalRejectsBadInput) {
 /// naming the bad value.
 TEST(ExactBvhMesh, OwnTraversalRejectsBadInputWhereNoTriangleIsReached) {
   const Mesh mesh = icosphere(1.0, 2);
-  auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
-  model->beginModel();
-  model->addSubModel(mesh.v, mesh.t);
-  model->endModel();
+  const auto model = buildModel<fcl::OBBRSSd>(mesh);
   const fcl::Transform3d far = test::makePose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(50, 50, 50));
   const fcl::Transform3d mesh_pose = fcl::Transform3d::Identity();
   {
@@ -1186,19 +1175,13 @@ TEST(ExactBvhMesh, OwnTraversalRejectsBadInputWhereNoTriangleIsReached) {
   fcl::Transform3d mesh_scaled = mesh_pose;
   mesh_scaled.linear() *= 1.1;  // a scaled mesh pose: not rigid
   expectCollideThrowsNaming(model.get(), mesh_scaled, &good, far, "rotation of the mesh's pose");
-  auto rss = std::make_shared<fcl::BVHModel<fcl::RSSd>>();
-  rss->beginModel();
-  rss->addSubModel(mesh.v, mesh.t);
-  rss->endModel();
+  const auto rss = buildModel<fcl::RSSd>(mesh);
   expectCollideThrowsNaming(rss.get(), mesh_scaled, &good, far, "rotation of the mesh's pose");
 
   // Axis-aligned nodes: any finite affine mesh pose is accepted, as FCL does (compared with FCL
   // above); a non-finite one throws (fcl_quadric::collide checks both poses first, naming the
   // argument), even far from the shape, and so does a bad shape.
-  auto aabb = std::make_shared<fcl::BVHModel<fcl::AABBd>>();
-  aabb->beginModel();
-  aabb->addSubModel(mesh.v, mesh.t);
-  aabb->endModel();
+  const auto aabb = buildModel<fcl::AABBd>(mesh);
   {
     fcl::CollisionResultd r;
     EXPECT_EQ(fcl_quadric::collide(aabb.get(), mesh_scaled, &good, far, fcl::CollisionRequestd(), r), 0u);
