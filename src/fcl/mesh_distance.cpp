@@ -1,6 +1,6 @@
-// fcl_quadric::distance's traversal of a triangle mesh against an Ellipsoid or a Sphere: FCL 0.7's
-// distanceRecurse over a mesh-shape distance node, with a lower bound that needs no fitted BV, and
-// for every BV type (FCL's distance has only RSS, kIOS and OBBRSS meshes).
+// fcl_quadric::distance's traversal of a triangle mesh against an Ellipsoid: FCL 0.7's mesh-shape
+// distance node (leaf call, result, canStop) searched best first with lower bounds that need no
+// fitted BV, for every BV type (FCL's distance has only RSS, kIOS and OBBRSS meshes).
 #include "fcl/mesh_distance.h"
 
 #include <algorithm>
@@ -143,7 +143,10 @@ class MeshShapeDistance {
     return std::max(0.0, gap - tolerance::kTraversalPruningPadding * (scale_ + size));
   }
 
-  /// The point of the triangle a b c nearest to x (Ericson, Real-Time Collision Detection §5.1.5).
+  /// The point of the triangle a b c nearest to x (Ericson, Real-Time Collision Detection §5.1.5),
+  /// up to rounding. It only picks a direction for triangleBound(), whose gap is a lower bound
+  /// along any direction: a degenerate triangle (a repeated vertex) returns one of its vertices
+  /// where a division would be 0 / 0.
   static Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                            const Eigen::Vector3d& c) {
     const Eigen::Vector3d ab = b - a, ac = c - a, ax = x - a;
@@ -153,16 +156,19 @@ class MeshShapeDistance {
     const double d3 = ab.dot(bx), d4 = ac.dot(bx);
     if (d3 >= 0.0 && d4 <= d3) return b;
     const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return d1 - d3 > 0.0 ? Eigen::Vector3d(a + (d1 / (d1 - d3)) * ab) : a;
     const Eigen::Vector3d cx = x - c;
     const double d5 = ab.dot(cx), d6 = ac.dot(cx);
     if (d6 >= 0.0 && d5 <= d6) return c;
     const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return d2 - d6 > 0.0 ? Eigen::Vector3d(a + (d2 / (d2 - d6)) * ac) : a;
     const double va = d3 * d6 - d5 * d4;
-    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+      const double den = (d4 - d3) + (d5 - d6);
+      return den > 0.0 ? Eigen::Vector3d(b + ((d4 - d3) / den) * (c - b)) : b;
+    }
     const double denom = va + vb + vc;
-    if (!(std::fabs(denom) > 0.0)) return a;  // degenerate triangle: any of its points
+    if (!(denom > 0.0)) return a;
     return a + (vb / denom) * ab + (vc / denom) * ac;
   }
 

@@ -1095,6 +1095,14 @@ TEST(ExactBvhMesh, OwnDistanceTraversalGivesTheBruteForceMinimum) {
   compareMeshDistance<fcl::KDOPd<24>>(sphere, 107, "icosphere, KDOP24", &compared, &overlapping, &fcl_compared);
   compareMeshDistance<fcl::OBBRSSd>(box, 108, "box mesh, OBBRSS", &compared, &overlapping, &fcl_compared);
   compareMeshDistance<fcl::AABBd>(box, 109, "box mesh, AABB", &compared, &overlapping, &fcl_compared);
+  // Degenerate triangles (a repeated vertex: a segment; all three: a point), as meshes carry them.
+  Mesh degenerate = box;
+  degenerate.t.emplace_back(0, 0, 1);
+  degenerate.t.emplace_back(2, 2, 2);
+  compareMeshDistance<fcl::OBBRSSd>(degenerate, 110, "box mesh with degenerate triangles, OBBRSS", &compared,
+                                    &overlapping, &fcl_compared);
+  compareMeshDistance<fcl::AABBd>(degenerate, 111, "box mesh with degenerate triangles, AABB", &compared,
+                                  &overlapping, &fcl_compared);
   std::printf("[ info ] own mesh distance vs brute force: %zu queries (%zu shape poses overlapping the mesh), %zu "
               "also against FCL's traversal\n",
               compared, overlapping, fcl_compared);
