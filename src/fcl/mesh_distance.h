@@ -37,7 +37,8 @@ namespace detail {
 /// triangle in the node; the gap is lowered by tolerance::kTraversalPruningPadding of the scale,
 /// which covers its rounding and that of the leaf's world vertices. A node is therefore skipped
 /// only when none of its triangles can give a smaller distance than the one held, and the minimum
-/// is that of the leaf test over every triangle, bit for bit. Which triangle attains it on a tie
+/// is that of the leaf test over every triangle, bit for bit (with rel_err = abs_err = 0, the
+/// default; otherwise within FCL's canStop tolerance, as FCL's is). Which triangle attains it on a tie
 /// (two triangles sharing the nearest edge) follows the visiting order, which differs from FCL's.
 /// Spheres are not taken: QuadricSolver hands sphere-triangle distances to FCL's closed form, as
 /// FCL's traversal does.
