@@ -1,6 +1,6 @@
-// fcl_quadric::distance's traversal of a triangle mesh against an Ellipsoid: FCL 0.7's mesh-shape
-// distance node (leaf call, result, canStop) searched best first with lower bounds that need no
-// fitted BV, for every BV type (FCL's distance has only RSS, kIOS and OBBRSS meshes).
+// fcl_quadric::distance's traversal of a triangle mesh against an Ellipsoid or a Sphere: FCL 0.7's
+// mesh-shape distance node (leaf call, result, canStop) searched best first with lower bounds that
+// need no fitted BV, for every BV type (FCL's distance has only RSS, kIOS and OBBRSS meshes).
 #include "fcl/mesh_distance.h"
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/sphere.h>
 
 #include "fcl/mesh_node_box.h"
 #include "fcl/distance_fix_up.h"
@@ -180,7 +181,7 @@ class MeshShapeDistance {
     const fcl::Vector3d& v1 = mesh_.vertices[t[0]];
     const fcl::Vector3d& v2 = mesh_.vertices[t[1]];
     const fcl::Vector3d& v3 = mesh_.vertices[t[2]];
-    double d = 0.0;  // always written by the exact ellipsoid-triangle distance
+    double d = 0.0;  // always written by the exact ellipsoid-triangle distance (spheres included)
     fcl::Vector3d p_mesh, p_shape;
     if constexpr (kOriented) {
       solver_.shapeTriangleDistance(shape_, tf_shape_, v1, v2, v3, tf_mesh_, &d, &p_shape, &p_mesh);
@@ -218,17 +219,19 @@ bool distanceMeshShape(const fcl::CollisionGeometry<double>* o1, const fcl::Tran
   const fcl::CollisionGeometry<double>* shape = mesh_first ? o2 : o1;
   if (mesh->getObjectType() != fcl::OT_BVH) return false;
   const fcl::NODE_TYPE kind = shape->getNodeType();
-  // Ellipsoids only: QuadricSolver hands sphere-triangle distances to FCL's closed form, which
-  // leaves the distance unwritten when they overlap (FCL's traversal then reads an uninitialised
-  // value) and returns points in the shapes' local frames; spheres keep FCL's traversal.
-  if (kind != fcl::GEOM_ELLIPSOID) return false;
+  if (kind != fcl::GEOM_ELLIPSOID && kind != fcl::GEOM_SPHERE) return false;
   const fcl::Transform3<double>& tf_mesh = mesh_first ? tf1 : tf2;
   const fcl::Transform3<double>& tf_shape = mesh_first ? tf2 : tf1;
   const bool handled = withTriangleModel(mesh, [&](const auto& model) {
     using BV = typename BVOf<std::decay_t<decltype(model)>>::type;
-    MeshShapeDistance<BV, fcl::Ellipsoid<double>>(model, tf_mesh, *static_cast<const fcl::Ellipsoid<double>*>(shape),
-                                                  tf_shape, solver, request, result)
-        .run();
+    if (kind == fcl::GEOM_ELLIPSOID)
+      MeshShapeDistance<BV, fcl::Ellipsoid<double>>(model, tf_mesh, *static_cast<const fcl::Ellipsoid<double>*>(shape),
+                                                    tf_shape, solver, request, result)
+          .run();
+    else
+      MeshShapeDistance<BV, fcl::Sphere<double>>(model, tf_mesh, *static_cast<const fcl::Sphere<double>*>(shape),
+                                                 tf_shape, solver, request, result)
+          .run();
     return true;
   });
   if (!handled) return false;

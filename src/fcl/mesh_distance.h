@@ -1,6 +1,6 @@
 #pragma once
 // Private: fcl_quadric::distance's own traversal of a triangle BVHModel (any of FCL 0.7's BV types)
-// against an fcl::Ellipsoid (docs/fcl_integration.md §3.3, "Distance").
+// against an fcl::Ellipsoid or fcl::Sphere (docs/fcl_integration.md §3.3, "Distance").
 #include <fcl/common/types.h>
 #include <fcl/geometry/collision_geometry.h>
 #include <fcl/narrowphase/distance_request.h>
@@ -12,8 +12,9 @@ namespace fcl_quadric {
 namespace detail {
 
 /// Distance between a triangle mesh (BVHModel of any BV type, model type BVH_MODEL_TRIANGLES) and
-/// an Ellipsoid (either order) through `solver`, as FCL 0.7's mesh-shape distance nodes compute it
-/// (MeshShapeDistanceTraversalNodeOBBRSS and its RSS / kIOS siblings), with these differences:
+/// an Ellipsoid or a Sphere (either order) through `solver`, as FCL 0.7's mesh-shape distance
+/// nodes compute it (MeshShapeDistanceTraversalNodeOBBRSS and its RSS / kIOS siblings), with these
+/// differences:
 ///  - the search is best first: the nodes in the order of their lower bounds (a binary heap),
 ///    where FCL's distanceRecurse goes depth first, the nearer child first, after the leaf test of
 ///    triangle 0; it stops when canStop(the smallest bound left) holds, FCL's test:
@@ -40,10 +41,8 @@ namespace detail {
 /// is that of the leaf test over every triangle, bit for bit (with rel_err = abs_err = 0, the
 /// default; otherwise within FCL's canStop tolerance, as FCL's is). Which triangle attains it on a tie
 /// (two triangles sharing the nearest edge) follows the visiting order, which differs from FCL's.
-/// Spheres are not taken: QuadricSolver hands sphere-triangle distances to FCL's closed form, as
-/// FCL's traversal does.
 /// FCL 0.7 has no distance for OBB, AABB or k-DOP meshes against shapes (it prints "not
-/// supported" and leaves the result untouched); this traversal gives them for ellipsoids.
+/// supported" and leaves the result untouched); this traversal gives them.
 /// Bad input: as the collision traversal (mesh_collision.h): the shape is checked once before the
 /// descent; oriented BV types need a rigid mesh pose.
 /// \return false, leaving `result` untouched, for other pairs or model types and empty models;

@@ -968,8 +968,8 @@ TEST(ExactBvhMesh, OwnTraversalOfAxisAlignedNodesGivesFclsContacts) {
 /// The leaf distance of triangle t as the mesh-shape distance nodes call it: oriented BV types
 /// pass the mesh-frame vertices and the mesh's pose, the others the world vertices (the raw ones
 /// under FCL's identity test). Returns the distance, the point on the mesh and the one on the shape.
-template <typename BV>
-double leafDistance(const fcl::BVHModel<BV>& model, const fcl::Transform3d& tf_mesh, const fcl::Ellipsoidd& shape,
+template <typename BV, typename Shape>
+double leafDistance(const fcl::BVHModel<BV>& model, const fcl::Transform3d& tf_mesh, const Shape& shape,
                     const fcl::Transform3d& tf_shape, int t, Eigen::Vector3d* on_mesh, Eigen::Vector3d* on_shape) {
   const QuadricSolverd solver;
   const fcl::Triangle& tri = model.tri_indices[t];
@@ -989,7 +989,7 @@ double leafDistance(const fcl::BVHModel<BV>& model, const fcl::Transform3d& tf_m
 }
 
 /// fcl_quadric::distance runs its own best-first traversal for a triangle mesh of any BV type
-/// against an ellipsoid (src/fcl/mesh_distance.cpp). Oracle: the leaf distance of
+/// against an ellipsoid or a sphere (src/fcl/mesh_distance.cpp). Oracle: the leaf distance of
 /// every triangle (brute force, the same solver call). For each query, in both argument orders,
 /// with and without nearest points: the minimum is the brute-force minimum bit for bit (the
 /// pruning only skips triangles that cannot lower it), attained by the reported triangle b1,
@@ -1020,17 +1020,24 @@ void compareMeshDistance(const Mesh& mesh, unsigned seed, const char* what, std:
     for (int i = 0; i < 40; ++i) {
       std::uniform_real_distribution<double>& r = i % 4 == 2 ? r_large : r_small;
       const double r0 = r(rng), r1 = r(rng), r2 = r(rng);
-      const std::shared_ptr<fcl::Ellipsoidd> shape = std::make_shared<fcl::Ellipsoidd>(r0, r1, i % 4 == 3 ? r0 : r2);
+      // Every fourth shape a sphere (QuadricSolver: the ellipsoid of equal radii).
+      std::shared_ptr<fcl::CollisionGeometryd> shape;
+      if (i % 4 == 3) shape = std::make_shared<fcl::Sphered>(r0);
+      else shape = std::make_shared<fcl::Ellipsoidd>(r0, r1, r2);
       const fcl::CollisionGeometryd* shape_geometry = shape.get();
       const fcl::CollisionGeometryd* mesh_geometry = model.get();
       const Eigen::Matrix3d R = test::randomRotation(rng);
       const double x = uc(rng), y = uc(rng), z = uc(rng);
       const fcl::Transform3d tf_shape = test::makePose(R, tf_mesh * Eigen::Vector3d(x, y, z));
+      auto leaf = [&](int t, Eigen::Vector3d* pm, Eigen::Vector3d* ps) {
+        if (i % 4 == 3) return leafDistance(*model, tf_mesh, static_cast<const fcl::Sphered&>(*shape), tf_shape, t, pm, ps);
+        return leafDistance(*model, tf_mesh, static_cast<const fcl::Ellipsoidd&>(*shape), tf_shape, t, pm, ps);
+      };
       // Brute force.
       double best = std::numeric_limits<double>::max();
       for (int t = 0; t < model->num_tris; ++t) {
         Eigen::Vector3d pm, ps;
-        best = std::min(best, leafDistance(*model, tf_mesh, *shape, tf_shape, t, &pm, &ps));
+        best = std::min(best, leaf(t, &pm, &ps));
       }
       *overlapping += best < 0.0;
       for (int order = 0; order < 2; ++order) {
@@ -1051,13 +1058,19 @@ void compareMeshDistance(const Mesh& mesh, unsigned seed, const char* what, std:
           ASSERT_GE(ours.b1, 0) << where;
           ASSERT_LT(ours.b1, model->num_tris) << where;
           Eigen::Vector3d pm, ps;
-          const double at_b1 = leafDistance(*model, tf_mesh, *shape, tf_shape, ours.b1, &pm, &ps);
+          const double at_b1 = leaf(ours.b1, &pm, &ps);
           EXPECT_EQ(at_b1, best) << where << ": the reported triangle does not attain the minimum";
           if (!request.enable_signed_distance || best >= 0.0) {
             EXPECT_EQ(ours.min_distance, best) << where;
             if (request.enable_nearest_points) {
               EXPECT_EQ(ours.nearest_points[0], pm) << where;
               EXPECT_EQ(ours.nearest_points[1], ps) << where;
+              // World-frame points, as far apart as the distance (FCL's own sphere-triangle
+              // distance returned them in the shapes' local frames).
+              if (best > 0.0) {
+                EXPECT_NEAR((ours.nearest_points[0] - ours.nearest_points[1]).norm(), best, 1e-12 * (1.0 + best))
+                    << where;
+              }
             }
           }
           if (fcl_has_it) {

@@ -85,8 +85,8 @@ enum class QuadricPairKind {
   /// signedDistanceEllipsoidCone (ellipsoid_cylinder.h: certified status, exact signed distance).
   kEllipsoidCylinder,
   kEllipsoidCone,
-  /// fcl::Ellipsoid x triangle (QuadricTriangle, BVH meshes): classifyEllipsoidTriangle /
-  /// signedDistanceEllipsoidTriangle.
+  /// fcl::Ellipsoid or fcl::Sphere x triangle (QuadricTriangle, BVH meshes):
+  /// classifyEllipsoidTriangle / signedDistanceEllipsoidTriangle.
   kEllipsoidTriangle,
   /// fcl::Sphere / Box / Capsule / Cylinder / Cone / Convex x fcl::Plane / fcl::Halfspace (both
   /// orders), distance and signed distance only: FCL 0.7 has no closed form for them and its GJK
@@ -176,6 +176,14 @@ struct QuadricTriangle {
 };
 template <typename S>
 struct QuadricTriangle<fcl::Ellipsoid<S>> {
+  static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidTriangle;
+};
+/// A sphere is the ellipsoid of equal radii (asExact). FCL's own sphere-triangle distance
+/// (sphere_triangle-inl.h, which libccd's solver calls) leaves the distance unwritten when they
+/// overlap, so FCL's mesh distance nodes read an uninitialised value, and returns its points in the
+/// sphere's and the mesh's local frames (docs/fcl_integration.md §3.3).
+template <typename S>
+struct QuadricTriangle<fcl::Sphere<S>> {
   static constexpr QuadricPairKind kind = QuadricPairKind::kEllipsoidTriangle;
 };
 
@@ -525,8 +533,8 @@ void appendContact(const ExactContact& c, std::vector<fcl::ContactPoint<S>>* con
 ///  - fcl::Ellipsoid-fcl::Box (OcTree leaves): classifyEllipsoidBox, signedDistanceEllipsoidBox;
 ///  - fcl::Ellipsoid-fcl::Capsule / fcl::Cylinder / fcl::Cone: signedDistanceEllipsoidCapsule /
 ///    signedDistanceEllipsoidCylinder / signedDistanceEllipsoidCone;
-///  - fcl::Ellipsoid-triangle (shapeTriangleIntersect / shapeTriangleDistance, BVH meshes):
-///    classifyEllipsoidTriangle, signedDistanceEllipsoidTriangle;
+///  - fcl::Ellipsoid-triangle and fcl::Sphere-triangle (shapeTriangleIntersect /
+///    shapeTriangleDistance, BVH meshes): classifyEllipsoidTriangle, signedDistanceEllipsoidTriangle;
 ///  - an fcl_quadric quadric shape (EllipticCylinder, Quadric, QuadricCSG; S = double) against
 ///    anything, triangles included: the front doors' certified region engine
 ///    (detail::quadricShapeIntersect / quadricShapeDistance). So FCL's traversal node templates
