@@ -12,6 +12,7 @@
 #include <fcl/geometry/shape/sphere.h>
 
 #include "fcl/mesh_node_box.h"
+#include "fcl/traversal_bound.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
 #include "fcl_quadric/tolerances.h"
 
@@ -43,11 +44,11 @@ class MeshShapeTraversal {
       // be rigid. The shape in the mesh frame: axes R = R_m^T R_s (columns), centre
       // p = R_m^T (p_s - p_m).
       checkRotation(tf_mesh_.linear(), "fcl_quadric::collide: the rotation of the mesh's pose");
-      R_ = tf_mesh_.linear().transpose() * tf_shape_.linear();
-      p_ = tf_mesh_.linear().transpose() * (tf_shape_.translation() - tf_mesh_.translation());
+      const PlacedEllipsoid placed = placeInFrame(tf_mesh_, tf_shape_, radii_);
+      R_ = placed.R;
+      p_ = placed.p;
+      scale_ = placed.scale;
       r2_ = radii_.cwiseProduct(radii_);
-      scale_ = tf_mesh_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
-               p_.cwiseAbs().maxCoeff() + radii_.maxCoeff();
     } else {
       // FCL maps the vertices by the mesh's pose, any affine map, and tests the triangles in the
       // world frame: so does the leaf test below, and the node test compares world boxes. A
@@ -58,24 +59,24 @@ class MeshShapeTraversal {
       // the vertices as they are. The node test maps the boxes by the pose either way; the
       // padding covers the difference.
       identity_ = tf_mesh_.matrix().isIdentity();
-      const Eigen::Matrix3d& L = tf_mesh_.linear();
-      abs_linear_ = L.cwiseAbs();
+      abs_linear_ = tf_mesh_.linear().cwiseAbs();
       linear_norm_ = abs_linear_.rowwise().sum().maxCoeff();
-      scale_ = tf_mesh_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
-               radii_.maxCoeff();
       // A rigid pose (the usual one) maps the shape into the mesh frame instead, where its exact
       // box is compared with each node's own box: six comparisons, and tighter than the world box
-      // of a rotated node box. The shape's axes there are R_m^T R_s (the rotation's defect, at
-      // most kRotationOrthogonality, moves it by far less than the padding).
-      const double defect = (L.transpose() * L - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-      rigid_ = defect <= tolerance::kRotationOrthogonality && L.determinant() > 0.0;
-      const Eigen::Matrix3d axes = rigid_ ? Eigen::Matrix3d(L.transpose() * tf_shape_.linear()) : tf_shape_.linear();
+      // of a rotated node box.
+      rigid_ = isRotation(tf_mesh_.linear());
+      Eigen::Matrix3d axes = tf_shape_.linear();
+      if (rigid_) {
+        const PlacedEllipsoid placed = placeInFrame(tf_mesh_, tf_shape_, radii_);
+        axes = placed.R;
+        p_ = placed.p;
+        scale_ = placed.scale;
+      } else {
+        scale_ = tf_mesh_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
+                 radii_.maxCoeff();
+      }
       // The shape's exact box in that frame: half-extent j = |row j of R S|.
       shape_half_ = (axes * radii_.asDiagonal()).rowwise().norm();
-      if (rigid_) {
-        p_ = L.transpose() * (tf_shape_.translation() - tf_mesh_.translation());
-        scale_ += p_.cwiseAbs().maxCoeff();
-      }
     }
     recurse(0);
   }

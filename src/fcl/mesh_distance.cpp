@@ -39,30 +39,27 @@ class MeshShapeDistance {
     // The leaf test's check of the shape, once, before the descent (mesh_collision.cpp).
     (void)asExact(shape_, tf_shape_, "shape");
     radii_ = shapeRadii(shape_);
-    const Eigen::Matrix3d& L = tf_mesh_.linear();
     if constexpr (kOriented) {
-      checkRotation(L, "fcl_quadric::distance: the rotation of the mesh's pose");
+      checkRotation(tf_mesh_.linear(), "fcl_quadric::distance: the rotation of the mesh's pose");
       rigid_ = true;
     } else {
       detail::checkTransform(tf_mesh_, "fcl_quadric::distance: the mesh's pose");
       identity_ = tf_mesh_.matrix().isIdentity();  // FCL's test (mesh_collision.cpp)
-      const double defect = (L.transpose() * L - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-      rigid_ = defect <= tolerance::kRotationOrthogonality && L.determinant() > 0.0;
+      rigid_ = isRotation(tf_mesh_.linear());
     }
-    abs_linear_ = L.cwiseAbs();
+    abs_linear_ = tf_mesh_.linear().cwiseAbs();
     linear_norm_ = abs_linear_.rowwise().sum().maxCoeff();
     // The frame of the lower bounds: the mesh frame under a rigid pose (the shape placed there
     // with R_m^T), else the world frame (axis-aligned types only: node boxes mapped by the pose).
     if (rigid_) {
-      R_ = L.transpose() * tf_shape_.linear();
-      p_ = L.transpose() * (tf_shape_.translation() - tf_mesh_.translation());
+      placed_ = placeInFrame(tf_mesh_, tf_shape_, radii_);
     } else {
-      R_ = tf_shape_.linear();
-      p_ = tf_shape_.translation();
+      placed_.R = tf_shape_.linear();
+      placed_.p = tf_shape_.translation();
+      placed_.radii = radii_;
+      placed_.scale = tf_mesh_.translation().cwiseAbs().maxCoeff() + 2.0 * tf_shape_.translation().cwiseAbs().maxCoeff() +
+                      radii_.maxCoeff();
     }
-    scale_ = tf_mesh_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
-             p_.cwiseAbs().maxCoeff() + radii_.maxCoeff();
-    placed_ = PlacedEllipsoid{R_, p_, radii_, scale_};
     search();
   }
 
@@ -133,15 +130,15 @@ class MeshShapeDistance {
     auto along = [&](const Eigen::Vector3d& a) {  // a of any length > 0
       const double n = a.norm();
       if (!(n > 0.0)) return;
-      const double s1 = a.dot(v1), s2 = a.dot(v2), s3 = a.dot(v3), sp = a.dot(p_);
-      const double h = (R_.transpose() * a).cwiseProduct(radii_).norm();
+      const double s1 = a.dot(v1), s2 = a.dot(v2), s3 = a.dot(v3), sp = a.dot(placed_.p);
+      const double h = (placed_.R.transpose() * a).cwiseProduct(radii_).norm();
       const double lo = std::min({s1, s2, s3}), hi = std::max({s1, s2, s3});
       gap = std::max(gap, std::max(lo - (sp + h), (sp - h) - hi) / n);
     };
     along((v2 - v1).cross(v3 - v1));
-    along(closestOnTriangle(p_, v1, v2, v3) - p_);
+    along(closestOnTriangle(placed_.p, v1, v2, v3) - placed_.p);
     const double size = std::max({v1.cwiseAbs().maxCoeff(), v2.cwiseAbs().maxCoeff(), v3.cwiseAbs().maxCoeff()});
-    return std::max(0.0, gap - tolerance::kTraversalPruningPadding * (scale_ + size));
+    return std::max(0.0, gap - tolerance::kTraversalPruningPadding * (placed_.scale + size));
   }
 
   /// The point of the triangle a b c nearest to x (Ericson, Real-Time Collision Detection §5.1.5),
@@ -202,10 +199,10 @@ class MeshShapeDistance {
   const fcl::DistanceRequest<double>& request_;
   fcl::DistanceResult<double>& result_;
   bool identity_ = false, rigid_ = false;
-  Eigen::Matrix3d R_, abs_linear_;
-  Eigen::Vector3d p_, radii_;
-  double scale_ = 0.0, linear_norm_ = 0.0;
-  PlacedEllipsoid placed_;
+  Eigen::Matrix3d abs_linear_;
+  Eigen::Vector3d radii_;
+  double linear_norm_ = 0.0;
+  PlacedEllipsoid placed_;  ///< the shape in the frame of the bounds
 };
 
 }  // namespace

@@ -5,8 +5,6 @@
 
 #include <Eigen/Core>
 #include <fcl/geometry/bvh/BVH_model.h>
-#include <fcl/geometry/shape/ellipsoid.h>
-#include <fcl/geometry/shape/sphere.h>
 #include <fcl/math/bv/AABB.h>
 #include <fcl/math/bv/OBB.h>
 #include <fcl/math/bv/OBBRSS.h>
@@ -107,9 +105,6 @@ bool withTriangleModel(const fcl::CollisionGeometry<double>* mesh, F&& f) {
     default: return false;
   }
 }
-
-inline Eigen::Vector3d shapeRadii(const fcl::Ellipsoid<double>& e) { return e.radii; }
-inline Eigen::Vector3d shapeRadii(const fcl::Sphere<double>& s) { return Eigen::Vector3d::Constant(s.radius); }
 
 }  // namespace detail
 }  // namespace fcl_quadric

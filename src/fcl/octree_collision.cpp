@@ -17,6 +17,7 @@
 #include <fcl/geometry/shape/sphere.h>
 #endif
 
+#include "fcl/traversal_bound.h"
 #include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
@@ -42,27 +43,18 @@ class OcTreeShapeTraversal {
     // tree has no leaf to test and throws nothing, as through FCL), and
     // the box computed below from the shape's radii and rotation is then meaningful.
     const fcl::AABB<double> root_bv = tree_.getRootBV();
-    (void)asExact(fcl::Box<double>(root_bv.max_ - root_bv.min_), tf_tree_ * fcl::Translation3<double>(root_bv.center()),
-                  "o1");
-    (void)asExact(shape_, tf_shape_, "o2");
+    checkOcTreeQuery(root_bv, tf_tree_, shape_, tf_shape_);
     // The shape's exact bounding box in the tree frame: centre c = R_t^T (p_s - p_t), half widths
     // |row_i(R_t^T R_s S)| (S = diag(radii)), padded.
-    const Eigen::Matrix3d R = tf_tree_.linear().transpose() * tf_shape_.linear();
-    const Eigen::Vector3d c = tf_tree_.linear().transpose() * (tf_shape_.translation() - tf_tree_.translation());
-    const Eigen::Vector3d radii = shapeRadii(shape_);
-    const Eigen::Vector3d half = (R * radii.asDiagonal()).rowwise().norm();
-    const double scale = tf_tree_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
-                         c.cwiseAbs().maxCoeff() + radii.maxCoeff();
-    const Eigen::Vector3d pad = half + Eigen::Vector3d::Constant(tolerance::kTraversalPruningPadding * scale);
-    lo_ = c - pad;
-    hi_ = c + pad;
+    const PlacedEllipsoid placed = placeInFrame(tf_tree_, tf_shape_, shapeRadii(shape_));
+    const Eigen::Vector3d half = (placed.R * placed.radii.asDiagonal()).rowwise().norm();
+    const Eigen::Vector3d pad = half + Eigen::Vector3d::Constant(tolerance::kTraversalPruningPadding * placed.scale);
+    lo_ = placed.p - pad;
+    hi_ = placed.p + pad;
     recurse(root, root_bv);
   }
 
  private:
-  static Eigen::Vector3d shapeRadii(const fcl::Ellipsoid<double>& e) { return e.radii; }
-  static Eigen::Vector3d shapeRadii(const fcl::Sphere<double>& s) { return Eigen::Vector3d::Constant(s.radius); }
-
   bool meets(const fcl::AABB<double>& bv) const {
     return bv.min_[0] <= hi_[0] && bv.min_[1] <= hi_[1] && bv.min_[2] <= hi_[2] && bv.max_[0] >= lo_[0] &&
            bv.max_[1] >= lo_[1] && bv.max_[2] >= lo_[2];

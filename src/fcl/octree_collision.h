@@ -5,6 +5,7 @@
 
 #include <fcl/common/types.h>
 #include <fcl/geometry/collision_geometry.h>
+#include <fcl/geometry/shape/box.h>
 #include <fcl/math/bv/AABB.h>
 #include <fcl/narrowphase/collision_request.h>
 #include <fcl/narrowphase/collision_result.h>
@@ -13,6 +14,19 @@
 
 namespace fcl_quadric {
 namespace detail {
+
+/// The checks the leaf test makes (QuadricSolver's box of a cell posed tf_tree, against the shape
+/// posed tf_shape), made once before a traversal of the tree whose root box is `root_bv`: bad
+/// input (a tree pose that is not a rotation, a shape's bad radius or rotation) throws
+/// std::invalid_argument naming "o1" or "o2", whether or not a leaf is reached; the placement the
+/// traversal computes from the poses is then meaningful.
+template <typename Shape>
+void checkOcTreeQuery(const fcl::AABB<double>& root_bv, const fcl::Transform3<double>& tf_tree, const Shape& shape,
+                      const fcl::Transform3<double>& tf_shape) {
+  (void)asExact(fcl::Box<double>(root_bv.max_ - root_bv.min_), tf_tree * fcl::Translation3<double>(root_bv.center()),
+                "o1");
+  (void)asExact(shape, tf_shape, "o2");
+}
 
 /// FCL's computeChildBV (octree-inl.h), written out so that it inlines: the same arithmetic, so
 /// the leaf boxes handed to the solver are FCL's bit for bit (both own OcTree traversals).

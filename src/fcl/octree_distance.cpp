@@ -39,16 +39,9 @@ class OcTreeEllipsoidDistance {
     // The leaf test's checks (QuadricSolver::shapeDistance(box, box_tf, ellipsoid, tf_e)), once:
     // bad input throws whether or not a leaf is reached, and the placement below is meaningful.
     const fcl::AABB<double> root_bv = tree_.getRootBV();
-    (void)asExact(fcl::Box<double>(root_bv.max_ - root_bv.min_), tf_tree_ * fcl::Translation3<double>(root_bv.center()),
-                  "o1");
-    (void)asExact(shape_, tf_shape_, "o2");
+    checkOcTreeQuery(root_bv, tf_tree_, shape_, tf_shape_);
     // The ellipsoid in the tree frame (the tree's pose is a rotation, checked just above).
-    const Eigen::Matrix3d& L = tf_tree_.linear();
-    placed_.R = L.transpose() * tf_shape_.linear();
-    placed_.p = L.transpose() * (tf_shape_.translation() - tf_tree_.translation());
-    placed_.radii = shape_.radii;
-    placed_.scale = tf_tree_.translation().cwiseAbs().maxCoeff() + tf_shape_.translation().cwiseAbs().maxCoeff() +
-                    placed_.p.cwiseAbs().maxCoeff() + shape_.radii.maxCoeff();
+    placed_ = placeInFrame(tf_tree_, tf_shape_, shape_.radii);
     search(root, root_bv);
   }
 

@@ -1,11 +1,16 @@
 #pragma once
-// Private: the lower bound of the distance between an ellipsoid and a box that fcl_quadric's own
-// distance traversals (mesh_distance.cpp, octree_distance.cpp) use to order and prune nodes.
+// Private: what fcl_quadric's own traversals (mesh_collision.cpp, mesh_distance.cpp,
+// octree_collision.cpp, octree_distance.cpp) compute of the shape: its radii, its placement in the
+// frame of the mesh or tree, and the lower bound of its distance to a box that the distance
+// traversals use to order and prune nodes.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include <Eigen/Core>
+#include <fcl/common/types.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/sphere.h>
 
 #include "fcl_quadric/tolerances.h"
 
@@ -48,6 +53,24 @@ struct PlacedEllipsoid {
     return std::max(0.0, gap - tolerance::kTraversalPruningPadding * (scale + box_scale));
   }
 };
+
+inline Eigen::Vector3d shapeRadii(const fcl::Ellipsoid<double>& e) { return e.radii; }
+inline Eigen::Vector3d shapeRadii(const fcl::Sphere<double>& s) { return Eigen::Vector3d::Constant(s.radius); }
+
+/// The ellipsoid of `radii` posed tf_shape, placed in the frame tf_frame, whose linear part is a
+/// rotation R_f (within tolerance::kRotationOrthogonality: the defect moves the placement by far
+/// less than the padding): axes R_f^T R_s, centre R_f^T (p_s - p_f), and scale
+/// |p_f|_max + |p_s|_max + |centre|_max + max radius.
+inline PlacedEllipsoid placeInFrame(const fcl::Transform3<double>& tf_frame, const fcl::Transform3<double>& tf_shape,
+                                    const Eigen::Vector3d& radii) {
+  PlacedEllipsoid e;
+  e.R = tf_frame.linear().transpose() * tf_shape.linear();
+  e.p = tf_frame.linear().transpose() * (tf_shape.translation() - tf_frame.translation());
+  e.radii = radii;
+  e.scale = tf_frame.translation().cwiseAbs().maxCoeff() + tf_shape.translation().cwiseAbs().maxCoeff() +
+            e.p.cwiseAbs().maxCoeff() + radii.maxCoeff();
+  return e;
+}
 
 }  // namespace detail
 }  // namespace fcl_quadric

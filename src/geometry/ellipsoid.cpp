@@ -64,31 +64,52 @@ void checkFinite(const Eigen::Vector3d& v, const char* what) {
   if (!(std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]))) throwNonFinite(v, what);
 }
 
-double checkRotation(const Eigen::Matrix3d& R, const char* what) {
-  // Hand-written: this runs for every posed shape of every query. Columns c0 = r[0..2],
-  // c1 = r[3..5], c2 = r[6..8]: the six entries of R^T R - I and det R = c0 . (c1 x c2).
+namespace {
+
+/// checkRotation()'s test without the throw: whether R's entries are finite, bounded by 2 (a
+/// rotation's lie in [-1, 1]) and R a proper rotation within tolerance::kRotationOrthogonality,
+/// with its defect max|R^T R - I| when so.
+struct RotationTest {
+  bool finite = true, bounded = false, rotation = false;
+  double defect = 0.0;
+};
+
+__attribute__((always_inline)) inline RotationTest testRotation(const Eigen::Matrix3d& R) {
+  // Hand-written and always inlined: this runs for every posed shape of every query. Columns
+  // c0 = r[0..2], c1 = r[3..5], c2 = r[6..8]: the six entries of R^T R - I and
+  // det R = c0 . (c1 x c2).
   // std::isfinite raises no FP exception. The identity passes exactly (defect 0, det 1).
   // Entries are bounded first (a rotation's lie in [-1, 1]), so that nothing below overflows:
   // inf - inf would raise FE_INVALID, which the tests trap. Comparisons only on finite values.
+  RotationTest t;
   const double* r = R.data();
-  bool finite = true;
-  for (int i = 0; i < 9; ++i) finite &= std::isfinite(r[i]);
-  bool bounded = finite;
-  for (int i = 0; i < 9 && bounded; ++i) bounded = std::fabs(r[i]) <= 2.0;
-  if (bounded) {
+  for (int i = 0; i < 9; ++i) t.finite &= std::isfinite(r[i]);
+  t.bounded = t.finite;
+  for (int i = 0; i < 9 && t.bounded; ++i) t.bounded = std::fabs(r[i]) <= 2.0;
+  if (t.bounded) {
     const double n0 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] - 1.0;
     const double n1 = r[3] * r[3] + r[4] * r[4] + r[5] * r[5] - 1.0;
     const double n2 = r[6] * r[6] + r[7] * r[7] + r[8] * r[8] - 1.0;
     const double d01 = r[0] * r[3] + r[1] * r[4] + r[2] * r[5];
     const double d02 = r[0] * r[6] + r[1] * r[7] + r[2] * r[8];
     const double d12 = r[3] * r[6] + r[4] * r[7] + r[5] * r[8];
-    const double defect = std::max(std::max(std::max(std::fabs(n0), std::fabs(n1)), std::max(std::fabs(n2), std::fabs(d01))),
-                                   std::max(std::fabs(d02), std::fabs(d12)));
+    t.defect = std::max(std::max(std::max(std::fabs(n0), std::fabs(n1)), std::max(std::fabs(n2), std::fabs(d01))),
+                        std::max(std::fabs(d02), std::fabs(d12)));
     const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) + r[1] * (r[5] * r[6] - r[3] * r[8]) +
                        r[2] * (r[3] * r[7] - r[4] * r[6]);
-    if (defect <= tolerance::kRotationOrthogonality && det > 0.0) return defect;  // all finite: no FE_INVALID
+    t.rotation = t.defect <= tolerance::kRotationOrthogonality && det > 0.0;  // all finite: no FE_INVALID
   }
-  throwNotRotation(R, what, finite, bounded);
+  return t;
+}
+
+}  // namespace
+
+bool isRotation(const Eigen::Matrix3d& R) { return testRotation(R).rotation; }
+
+double checkRotation(const Eigen::Matrix3d& R, const char* what) {
+  const RotationTest t = testRotation(R);
+  if (t.rotation) return t.defect;
+  throwNotRotation(R, what, t.finite, t.bounded);
 }
 
 Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& R) {

@@ -105,6 +105,23 @@ void expectCollideThrowsNaming(const fcl::CollisionGeometryd* environment, const
   }
 }
 
+/// fcl_quadric::distance of `environment` and `shape`, in both argument orders, throws
+/// std::invalid_argument whose message contains `needle`.
+void expectDistanceThrowsNaming(const fcl::CollisionGeometryd* environment, const fcl::Transform3d& tf_env,
+                                const fcl::CollisionGeometryd* shape, const fcl::Transform3d& tf_shape,
+                                const std::string& needle) {
+  for (int order = 0; order < 2; ++order) {
+    fcl::DistanceResultd r;
+    try {
+      if (order == 0) fcl_quadric::distance(environment, tf_env, shape, tf_shape, fcl::DistanceRequestd(), r);
+      else fcl_quadric::distance(shape, tf_shape, environment, tf_env, fcl::DistanceRequestd(), r);
+      ADD_FAILURE() << "no exception for a bad " << needle << ", order " << order;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  }
+}
+
 // =============================================================================================
 // OcTree
 // =============================================================================================
@@ -558,32 +575,21 @@ TEST(ExactOcTree, OwnDistanceTraversalRejectsBadInput) {
   auto fcl_tree = std::make_shared<fcl::OcTreed>(std::shared_ptr<const octomap::OcTree>(built));
   const fcl::Transform3d far = test::makePose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(50, 50, 50));
   const fcl::Transform3d tree_pose = fcl::Transform3d::Identity();
-  auto expectThrowsNaming = [&](const fcl::Transform3d& tf_t, const fcl::Ellipsoidd& e, const fcl::Transform3d& tf_e,
-                                const std::string& needle) {
-    for (int order = 0; order < 2; ++order) {
-      fcl::DistanceResultd r;
-      try {
-        if (order == 0) fcl_quadric::distance(fcl_tree.get(), tf_t, &e, tf_e, fcl::DistanceRequestd(), r);
-        else fcl_quadric::distance(&e, tf_e, fcl_tree.get(), tf_t, fcl::DistanceRequestd(), r);
-        ADD_FAILURE() << "no exception for a bad " << needle << ", order " << order;
-      } catch (const std::invalid_argument& ex) {
-        EXPECT_NE(std::string(ex.what()).find(needle), std::string::npos) << ex.what();
-      }
-    }
-  };
   const fcl::Ellipsoidd good(0.2, 0.3, 0.4);
   {
     fcl::DistanceResultd r;
     EXPECT_GT(fcl_quadric::distance(fcl_tree.get(), tree_pose, &good, far, fcl::DistanceRequestd(), r), 40.0);
   }
-  expectThrowsNaming(tree_pose, fcl::Ellipsoidd(0.2, -0.3, 0.4), far, "radius");
-  expectThrowsNaming(tree_pose, fcl::Ellipsoidd(0.2, std::numeric_limits<double>::quiet_NaN(), 0.4), far, "radius");
+  const fcl::Ellipsoidd negative(0.2, -0.3, 0.4);
+  expectDistanceThrowsNaming(fcl_tree.get(), tree_pose, &negative, far, "radius");
+  const fcl::Ellipsoidd not_a_number(0.2, std::numeric_limits<double>::quiet_NaN(), 0.4);
+  expectDistanceThrowsNaming(fcl_tree.get(), tree_pose, &not_a_number, far, "radius");
   fcl::Transform3d scaled = far;
   scaled.linear() *= 1.1;
-  expectThrowsNaming(tree_pose, good, scaled, "rotation");
+  expectDistanceThrowsNaming(fcl_tree.get(), tree_pose, &good, scaled, "rotation");
   fcl::Transform3d tree_scaled = tree_pose;
   tree_scaled.linear() *= 1.1;
-  expectThrowsNaming(tree_scaled, good, far, "rotation");
+  expectDistanceThrowsNaming(fcl_tree.get(), tree_scaled, &good, far, "rotation");
 }
 
 /// Bad input through the own OcTree traversal: an invalid ellipsoid or sphere, or a tree pose
@@ -1135,30 +1141,17 @@ TEST(ExactBvhMesh, OwnDistanceTraversalRejectsBadInput) {
   fcl::Transform3d mesh_scaled = mesh_pose;
   mesh_scaled.linear() *= 1.1;
   const fcl::Ellipsoidd good(0.2, 0.3, 0.4);
-  auto expectThrowsNaming = [](const fcl::CollisionGeometryd* m, const fcl::Transform3d& tf_m,
-                               const fcl::CollisionGeometryd* e, const fcl::Transform3d& tf_e, const std::string& needle) {
-    for (int order = 0; order < 2; ++order) {
-      fcl::DistanceResultd r;
-      try {
-        if (order == 0) fcl_quadric::distance(m, tf_m, e, tf_e, fcl::DistanceRequestd(), r);
-        else fcl_quadric::distance(e, tf_e, m, tf_m, fcl::DistanceRequestd(), r);
-        ADD_FAILURE() << "no exception for a bad " << needle << ", order " << order;
-      } catch (const std::invalid_argument& ex) {
-        EXPECT_NE(std::string(ex.what()).find(needle), std::string::npos) << ex.what();
-      }
-    }
-  };
   const fcl::Ellipsoidd negative(0.2, -0.3, 0.4);
   const fcl::Ellipsoidd not_a_number(0.2, std::numeric_limits<double>::quiet_NaN(), 0.4);
   for (const fcl::CollisionGeometryd* m : {static_cast<const fcl::CollisionGeometryd*>(obbrss.get()),
                                            static_cast<const fcl::CollisionGeometryd*>(aabb.get())}) {
-    expectThrowsNaming(m, mesh_pose, &negative, far, "radius");
-    expectThrowsNaming(m, mesh_pose, &not_a_number, far, "radius");
+    expectDistanceThrowsNaming(m, mesh_pose, &negative, far, "radius");
+    expectDistanceThrowsNaming(m, mesh_pose, &not_a_number, far, "radius");
     fcl::Transform3d shape_scaled = far;
     shape_scaled.linear() *= 1.1;
-    expectThrowsNaming(m, mesh_pose, &good, shape_scaled, "rotation");
+    expectDistanceThrowsNaming(m, mesh_pose, &good, shape_scaled, "rotation");
   }
-  expectThrowsNaming(obbrss.get(), mesh_scaled, &good, far, "rotation of the mesh's pose");
+  expectDistanceThrowsNaming(obbrss.get(), mesh_scaled, &good, far, "rotation of the mesh's pose");
   // The AABB mesh under the scaled pose: the distance to the scaled icosphere (radius 1.1 about
   // the origin, up to its facets) from the far ellipsoid, within its extent.
   fcl::DistanceResultd r;

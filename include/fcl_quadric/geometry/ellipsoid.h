@@ -92,6 +92,10 @@ namespace detail {
 /// tolerance::kRotationOrthogonality. `what` names the value in the message. Returns the
 /// orthogonality defect max|R^T R - I| (as computed in double).
 double checkRotation(const Eigen::Matrix3d& R, const char* what);
+/// checkRotation's test without the throw: true iff R is a finite proper rotation within
+/// tolerance::kRotationOrthogonality. Any input (no floating-point exception on huge or
+/// non-finite entries).
+bool isRotation(const Eigen::Matrix3d& R);
 /// The nearest rotation to R (the orthogonal polar factor) by Newton-Schulz steps
 /// R <- R (3 I - R^T R) / 2, each of which squares the defect; at most 4 steps, until
 /// max|R^T R - I| <= tolerance::kStoredRotationDefect. \pre checkRotation(R) passed (defect <= 1e-9:
