@@ -8,6 +8,7 @@
 #include <map>
 #include <utility>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -19,6 +20,23 @@ namespace {
 /// A point w = a - b of the Minkowski difference with its two support points (world frame).
 struct Vertex {
   Eigen::Vector3d w, a, b;
+};
+
+/// GJK's simplex: at most four vertices, stored in place (GJK runs per triangle in the mesh
+/// traversals, and a heap allocation per step cost as much as the step's arithmetic).
+class Simplex {
+ public:
+  Simplex() = default;
+  explicit Simplex(const Vertex& v) { push_back(v); }
+  std::size_t size() const { return n_; }
+  const Vertex& operator[](std::size_t i) const { return v_[i]; }
+  void push_back(const Vertex& v) { v_[n_++] = v; }  // callers keep n_ <= 4
+  const Vertex* begin() const { return v_.data(); }
+  const Vertex* end() const { return v_.data() + n_; }
+
+ private:
+  std::array<Vertex, 4> v_;
+  std::size_t n_ = 0;
 };
 
 struct Minkowski {
@@ -43,7 +61,7 @@ struct Minkowski {
 /// Fixed-size arithmetic (no allocation: this runs 15 times per GJK step). False for an affinely
 /// degenerate subset or a coordinate <= 0.
 template <int K>
-bool affineProjectionK(const std::vector<Vertex>& W, const int* idx, std::array<double, 4>* l, Eigen::Vector3d* p) {
+bool affineProjectionK(const Simplex& W, const int* idx, std::array<double, 4>* l, Eigen::Vector3d* p) {
   const Eigen::Vector3d& w0 = W[idx[0]].w;
   Eigen::Matrix<double, 3, K> E;
   for (int i = 0; i < K; ++i) E.col(i) = W[idx[i + 1]].w - w0;
@@ -84,7 +102,7 @@ bool affineProjectionK(const std::vector<Vertex>& W, const int* idx, std::array<
   return true;
 }
 
-bool affineProjection(const std::vector<Vertex>& W, const int* idx, int s, std::array<double, 4>* l,
+bool affineProjection(const Simplex& W, const int* idx, int s, std::array<double, 4>* l,
                       Eigen::Vector3d* p) {
   switch (s) {
     case 2: return affineProjectionK<1>(W, idx, l, p);
@@ -99,7 +117,7 @@ bool affineProjection(const std::vector<Vertex>& W, const int* idx, int s, std::
 /// one of them, so the minimum is exact up to rounding (affinely degenerate subsets are skipped).
 /// On return W is reduced to the subset and lambda holds its coordinates. False if no subset
 /// qualifies (only possible for a fully degenerate W).
-bool closestPoint(std::vector<Vertex>* W, std::vector<double>* lambda, Eigen::Vector3d* v) {
+bool closestPoint(Simplex* W, std::array<double, 4>* lambda, Eigen::Vector3d* v) {
   const int k = static_cast<int>(W->size());
   double best = std::numeric_limits<double>::infinity();
   int best_mask = 0;
@@ -129,20 +147,20 @@ bool closestPoint(std::vector<Vertex>* W, std::vector<double>* lambda, Eigen::Ve
     }
   }
   if (best_mask == 0) return false;
-  std::vector<Vertex> reduced;
-  lambda->clear();
+  Simplex reduced;
   int s = 0;
   for (int i = 0; i < k; ++i)
     if (best_mask & (1 << i)) {
       reduced.push_back((*W)[i]);
-      lambda->push_back(best_l[s++]);
+      (*lambda)[s] = best_l[s];
+      ++s;
     }
   *W = reduced;
   return true;
 }
 
 /// Distance of p from the affine hull of W (1..3 points).
-double distanceToHull(const std::vector<Vertex>& W, const Eigen::Vector3d& p) {
+double distanceToHull(const Simplex& W, const Eigen::Vector3d& p) {
   const Eigen::Vector3d d = p - W[0].w;
   if (W.size() == 1) return d.norm();
   if (W.size() == 2) {
@@ -162,11 +180,16 @@ struct Face {
 
 }  // namespace
 
-SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::Matrix3d& R_a, const Eigen::Vector3d& p_a,
-                                          const ConvexSupport& b, const Eigen::Matrix3d& R_b, const Eigen::Vector3d& p_b,
-                                          bool want_depth, double* lower_bound) {
+namespace {
+
+/// convexSignedDistance() with one more way for GJK to stop: as soon as its lower bound exceeds
+/// `stop_above` (screenConvexPair(); +infinity: never), with converged = false and distance the
+/// upper bound |v| at that step.
+SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, const Eigen::Vector3d& p_a,
+                            const ConvexSupport& b, const Eigen::Matrix3d& R_b, const Eigen::Vector3d& p_b,
+                            bool want_depth, double* lower_bound, double stop_above, const char* where) {
   if (!R_a.allFinite() || !p_a.allFinite() || !R_b.allFinite() || !p_b.allFinite())
-    throw std::invalid_argument("convexSignedDistance: a pose is not finite");
+    throw std::invalid_argument(std::string(where) + ": a pose is not finite");
   using namespace tolerance_convex;
   const Minkowski D{a, R_a, p_a, b, R_b, p_b};
   const Eigen::Vector3d ca = R_a * a.center() + p_a, cb = R_b * b.center() + p_b;
@@ -179,8 +202,8 @@ SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::M
   // --- GJK ---------------------------------------------------------------------------------------
   Eigen::Vector3d dir = ca - cb;
   if (!(dir.norm() > tiny)) dir = Eigen::Vector3d::UnitX();
-  std::vector<Vertex> W{D.support(-dir)};
-  std::vector<double> lambda{1.0};
+  Simplex W(D.support(-dir));
+  std::array<double, 4> lambda{1.0, 0.0, 0.0, 0.0};
   Eigen::Vector3d v = W[0].w;
   double lower = 0.0;
   bool origin_in_hull = false;
@@ -193,6 +216,7 @@ SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::M
     }
     const Vertex w = D.support(-v);
     lower = std::max(lower, v.dot(w.w) / vn);
+    if (lower > stop_above) break;  // the screening's certificate (not converged)
     if (vn - lower <= kConvexDistanceRelative * vn + tiny) {
       out.converged = true;
       break;
@@ -313,7 +337,7 @@ SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::M
   }
 
   // --- EPA ---------------------------------------------------------------------------------------
-  std::vector<Vertex> verts = W;
+  std::vector<Vertex> verts(W.begin(), W.end());
   std::vector<Face> faces;
   std::map<std::pair<int, int>, int> edge_face;  // directed edge (i, j) -> the face that has it
   auto addFace = [&](int i, int j, int k) {
@@ -402,6 +426,32 @@ SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::M
     out.status = Separation::Touching;
     out.distance = 0.0;
   }
+  return out;
+}
+
+}  // namespace
+
+SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::Matrix3d& R_a, const Eigen::Vector3d& p_a,
+                                          const ConvexSupport& b, const Eigen::Matrix3d& R_b, const Eigen::Vector3d& p_b,
+                                          bool want_depth, double* lower_bound) {
+  return gjkEpa(a, R_a, p_a, b, R_b, p_b, want_depth, lower_bound, std::numeric_limits<double>::infinity(),
+                "convexSignedDistance");
+}
+
+ConvexScreening screenConvexPair(const ConvexSupport& a, const Eigen::Matrix3d& R_a, const Eigen::Vector3d& p_a,
+                                 const ConvexSupport& b, const Eigen::Matrix3d& R_b, const Eigen::Vector3d& p_b,
+                                 double gap) {
+  if (std::isnan(gap) || gap < 0.0) throw std::invalid_argument("screenConvexPair: gap must be >= 0, got " + std::to_string(gap));
+  double lower = 0.0;
+  const SignedDistanceResult d = gjkEpa(a, R_a, p_a, b, R_b, p_b, false, &lower, gap, "screenConvexPair");
+  ConvexScreening out;
+  if (d.status == Separation::Separated && lower > gap) {
+    out.verdict = ConvexScreening::Verdict::Far;
+  } else if (d.status == Separation::Overlapping) {
+    out.verdict = ConvexScreening::Verdict::Overlapping;
+    out.common_point = d.point_a;
+  }
+  out.iterations = d.iterations;
   return out;
 }
 

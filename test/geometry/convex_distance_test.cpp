@@ -169,6 +169,12 @@ TEST(ConvexSupport, BadInputThrowsNamingTheValue) {
   bad(0, 1) = NAN;
   expectInvalid([&] { convexSignedDistance(e, bad, Eigen::Vector3d::Zero(), e, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()); },
                 "pose is not finite");
+  expectInvalid([&] { screenConvexPair(e, bad, Eigen::Vector3d::Zero(), e, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), 0.0); },
+                "screenConvexPair: a pose is not finite");
+  expectInvalid([&] { screenConvexPair(e, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), e, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), NAN); },
+                "gap must be >= 0, got nan");
+  expectInvalid([&] { screenConvexPair(e, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), e, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(), -1.0); },
+                "gap must be >= 0, got -1");
 }
 
 /// Checks one convex result against a reference signed distance (exact routine of the library).
@@ -222,6 +228,80 @@ TEST(ConvexDistance, AgreesWithTheEllipsoidCylinderConeAndBoxDistances) {
                  signedDistanceEllipsoidBox(e, half, R, p), scale, &compared);
   }
   EXPECT_GT(compared, 1600);
+}
+
+/// screenConvexPair() against the library's closed-form distances (independent of GJK) of an
+/// ellipsoid and a cylinder, cone, box or triangle, at four gaps: Far only when the true distance
+/// exceeds the gap; Overlapping only when the pair overlaps, with a common point in both; and a
+/// pair clearly beyond the gap (or clearly overlapping) decided as such. Far stops GJK early: never
+/// more steps than the converged distance takes, and fewer on most far pairs.
+TEST(ConvexDistance, ScreeningCertifiesTheGapAndTheOverlapOfTheExactDistance) {
+  std::mt19937_64 rng(15);
+  std::uniform_real_distribution<double> u(0.3, 1.5), c(-2.5, 2.5);
+  int far = 0, overlapping = 0, undecided = 0, undecided_in_band = 0, fewer_steps = 0;
+  for (int i = 0; i < 500; ++i) {
+    const Ellipsoid e = test::anchorEllipsoid(rng);
+    const double r = u(rng), h = u(rng);
+    const Eigen::Vector3d half(u(rng), u(rng), u(rng));
+    const Eigen::Matrix3d R = randomRotation(rng);
+    const Eigen::Vector3d p(c(rng), c(rng), c(rng));
+    const Eigen::Vector3d t0 = p + Eigen::Vector3d(u(rng), 0, 0), t1 = p + Eigen::Vector3d(0, u(rng), 0),
+                          t2 = p + Eigen::Vector3d(0, 0, u(rng));
+    const double scale = e.maxRadius() + 2 * r + 2 * h + half.norm() + (e.center() - p).norm();
+    const ConvexSupport es = ConvexSupport::ellipsoid(e.radii());
+    struct Partner {
+      ConvexSupport support;
+      Eigen::Matrix3d R;
+      Eigen::Vector3d p;
+      SignedDistanceResult exact;
+    };
+    const Partner partners[] = {
+        {ConvexSupport::ellipticCylinder(r, r, h), R, p, signedDistanceEllipsoidCylinder(e, r, 2 * h, R, p)},
+        {ConvexSupport::cone(r, h), R, p, signedDistanceEllipsoidCone(e, r, 2 * h, R, p)},
+        {ConvexSupport::box(half), R, p, signedDistanceEllipsoidBox(e, half, R, p)},
+        {ConvexSupport::points({t0, t1, t2}), Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(),
+         signedDistanceEllipsoidTriangle(e, t0, t1, t2)},
+    };
+    for (const Partner& q : partners) {
+      const SignedDistanceResult full = convexSignedDistance(es, e.rotation(), e.center(), q.support, q.R, q.p, false);
+      for (const double gap : {0.0, 1e-8 * scale, 0.05 * scale, 0.3 * scale}) {
+        const ConvexScreening s = screenConvexPair(es, e.rotation(), e.center(), q.support, q.R, q.p, gap);
+        const double d = q.exact.distance;
+        switch (s.verdict) {
+          case ConvexScreening::Verdict::Far:
+            ++far;
+            EXPECT_GT(d, gap - 1e-9 * scale) << i << " gap " << gap;
+            EXPECT_LE(s.iterations, full.iterations) << i;
+            fewer_steps += s.iterations < full.iterations;
+            break;
+          case ConvexScreening::Verdict::Overlapping:
+            ++overlapping;
+            EXPECT_LT(d, 1e-9 * scale) << i;
+            EXPECT_LE(e.implicit(s.common_point), 1e-9) << i;
+            // The common point is in the partner: its support along any direction bounds it.
+            for (const Eigen::Vector3d& n : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0),
+                                             Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(-1, -1, -1)}) {
+              const Eigen::Vector3d m = q.R.transpose() * n;
+              EXPECT_LE(n.dot(s.common_point), n.dot(q.R * q.support.support(m) + q.p) + 1e-9 * scale) << i;
+            }
+            break;
+          case ConvexScreening::Verdict::Undecided:
+            ++undecided;
+            undecided_in_band += d >= -1e-6 * scale && d <= gap + 1e-6 * scale;
+            EXPECT_FALSE(d > gap + 1e-6 * scale) << i << ": clearly beyond the gap, d = " << d;
+            EXPECT_FALSE(d < -1e-3 * scale) << i << ": clearly overlapping, d = " << d;
+            break;
+        }
+      }
+    }
+  }
+  EXPECT_GT(far, 3000);
+  EXPECT_GT(overlapping, 1500);
+  EXPECT_GT(fewer_steps, far / 2);
+  // Undecided: the pairs between contact and the gap, and a few overlapping ones (clearly
+  // overlapping ones are all decided, as checked above).
+  EXPECT_GT(undecided_in_band, 1000);
+  EXPECT_LT(undecided - undecided_in_band, 50);
 }
 
 TEST(ConvexDistance, RegionPairsAgreeWithTheCertifiedStaticEngineAlongTheNormal) {

@@ -57,4 +57,30 @@ SignedDistanceResult convexSignedDistance(const ConvexSupport& a, const Eigen::M
                                           const ConvexSupport& b, const Eigen::Matrix3d& R_b, const Eigen::Vector3d& p_b,
                                           bool want_depth = true, double* lower_bound = nullptr);
 
+/// What screenConvexPair() certifies about a pair.
+struct ConvexScreening {
+  enum class Verdict {
+    Far,          ///< the distance exceeds the gap (GJK's lower bound v.w / |v| does)
+    Overlapping,  ///< the solids overlap (GJK's tetrahedron holds the origin with margin)
+    Undecided,    ///< neither: within the gap or near tangency, a stall, or the iteration cap
+  };
+  Verdict verdict = Verdict::Undecided;
+  /// Overlapping: a common point of a and b (world frame), as convexSignedDistance() gives with
+  /// want_depth = false. Otherwise unset (zero).
+  Eigen::Vector3d common_point = Eigen::Vector3d::Zero();
+  int iterations = 0;  ///< GJK (and EPA) steps taken
+};
+
+/// The screening query of the mesh and OcTree traversals (docs/algorithms.md section 12): is the
+/// pair certainly farther apart than `gap`, certainly overlapping, or neither? GJK as in
+/// convexSignedDistance(), stopped as soon as its lower bound exceeds `gap` (a certificate at any
+/// step: it need not converge) or its simplex certifies the overlap; EPA never runs when the
+/// tetrahedron has a margin (otherwise it runs as in convexSignedDistance and its status counts).
+/// Far is as certain as convexSignedDistance's Separated (exact up to the support points'
+/// tolerance; pass a gap well above 1e-11 of the pair's scale to cover it).
+/// 	hrows std::invalid_argument if a pose is not finite or gap is not >= 0 (NaN included).
+ConvexScreening screenConvexPair(const ConvexSupport& a, const Eigen::Matrix3d& R_a, const Eigen::Vector3d& p_a,
+                                 const ConvexSupport& b, const Eigen::Matrix3d& R_b, const Eigen::Vector3d& p_b,
+                                 double gap);
+
 }  // namespace fcl_quadric
