@@ -200,7 +200,7 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
       collidePair(pieces_first ? p : shape, tf1, pieces_first ? shape : p, tf2, o1, o2, request, result);
       return result.numContacts() > before || result.numContacts() >= request.num_max_contacts;
     };
-    // A convex shape (docs/algorithms.md section 12): a piece that GJK certifies farther than 1e-8
+    // A convex shape (docs/algorithms.md section 12): a piece that GJK certifies farther than 2e-8
     // of the pair's scale (well outside the region engine's touching band, so no contact the engine
     // would report is lost) is skipped without the engine.
     const fcl::CollisionGeometry<double>* gs = pieces_first ? o2 : o1;
@@ -212,12 +212,14 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
     enum class Gjk { Far, Overlap, Engine };
     auto gjk = [&](const ConvexSupport& p, const Eigen::Vector3d& p_W, Eigen::Vector3d* common) {
       if (!convex) return Gjk::Engine;
-      const SignedDistanceResult d =
-          convexSignedDistance(*convex, tfs.linear(), tfs.translation(), p, tfp.linear(), p_W, false);
+      // GJK stops at the first step whose lower bound certifies the gap (screenConvexPair): a
+      // far piece needs no converged distance.
       const double scale = convex->size() + p.size() + (tfs.translation() - p_W).norm();
-      if (d.status == Separation::Separated && d.converged && d.distance > 2e-8 * scale) return Gjk::Far;
-      if (d.status == Separation::Overlapping) {
-        *common = d.point_a;
+      const ConvexScreening d = screenConvexPair(*convex, tfs.linear(), tfs.translation(), p, tfp.linear(), p_W,
+                                                 2e-8 * scale);
+      if (d.verdict == ConvexScreening::Verdict::Far) return Gjk::Far;
+      if (d.verdict == ConvexScreening::Verdict::Overlapping) {
+        *common = d.common_point;
         return Gjk::Overlap;
       }
       return Gjk::Engine;
@@ -229,11 +231,11 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
       addRegionContact(wa, x, o1, o2, request, result);
       return true;
     };
-    // The shape's local box as an oriented box in the pieces' frame (tighter than `query`).
-    std::optional<fcl::OBB<double>> obb;
-    if (shape.box) obb = fcl::OBB<double>(X.linear(), X * shape.box->center(), shape.box->halfWidth());
+    // The shape's local box posed in the pieces' frame (tighter than `query`).
+    std::optional<PosedBox> posed;
+    if (shape.box) posed = PosedBox{X.linear(), X * shape.box->center(), shape.box->halfWidth()};
     if (!withMesh(gp, [&](const auto& m) {
-          visitMeshTriangles(m, query, obb ? &*obb : nullptr, [&](int, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
+          visitMeshTriangles(m, query, posed ? &*posed : nullptr, [&](int, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
                                            const Eigen::Vector3d& p2) {
             Eigen::Vector3d x;
             const Gjk g = gjk(ConvexSupport::points({p0, p1, p2}), tfp.translation(), &x);
@@ -867,6 +869,19 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
       report(value, d.point_a, d.point_b, piece.index);
       return value;
     };
+    // A piece GJK certifies farther than the best distance so far (screenConvexPair, which stops
+    // as soon as its lower bound exceeds it) cannot change the result: solve() would report at
+    // least its upper bound, and result.update() keeps the smaller. Only while the best is beyond
+    // solve()'s near-contact band (1e-8 of the scale, where the static collide could lower a value
+    // to 0); not for regions (no convex support).
+    auto fartherThanBest = [&](const PosedConvex& piece) {
+      if (shape.model || piece.model) return false;
+      const double best = result.min_distance;
+      const double scale = shape.size() + piece.size() + (shape.p - piece.p).norm();
+      if (!(best > 1e-8 * scale) || best >= std::numeric_limits<double>::max()) return false;  // (no best yet)
+      return screenConvexPair(shape.support, shape.R, shape.p, piece.support, piece.R, piece.p, best).verdict ==
+             ConvexScreening::Verdict::Far;
+    };
     // Once an unsigned query has found an overlap (FCL's -1) nothing more is to be learnt; signed
     // queries visit every overlapping piece and report the deepest.
     auto done = [&](double best) { return best < 0.0 && !request.enable_signed_distance; };
@@ -881,8 +896,9 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
       nearestMeshTriangles(
           m, shapeBoxIn(tfp),
           [&](int t, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
-            return solve(PosedConvex{ConvexSupport::points({p0, p1, p2}), tfp.linear(), tfp.translation(), t,
-                                     PosedConvex::Triangle, {p0, p1, p2}});
+            PosedConvex piece{ConvexSupport::points({p0, p1, p2}), tfp.linear(), tfp.translation(), t,
+                              PosedConvex::Triangle, {p0, p1, p2}};
+            return fartherThanBest(piece) ? std::numeric_limits<double>::infinity() : solve(piece);
           },
           done, result.min_distance);  // (earlier pieces' best prunes this one's search)
     });

@@ -3,6 +3,7 @@
 // for collide and distance, distance_lower_bound.cpp for the certified bounds): FCL primitives and
 // triangles as quadric regions, the convex support of a geometry, and the traversals of a BVH
 // mesh's hierarchy and an OcTree's cells. docs/fcl_integration.md section 9.
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -22,8 +23,10 @@
 #include <fcl/narrowphase/collision_request.h>
 #include <fcl/narrowphase/collision_result.h>
 
+#include "fcl/mesh_node_box.h"
 #include "fcl_quadric/geometry/convex_support.h"
 #include "fcl_quadric/geometry/quadric_region.h"
+#include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
 namespace detail {
@@ -38,34 +41,48 @@ struct LocalSolid {
   std::optional<Eigen::Vector3d> ellipsoid_radii = std::nullopt;
 };
 
-/// A box (local frame) that contains a BVH node's bounding volume: exact for AABB, from the OBB
-/// for OBB / OBBRSS / kIOS, otherwise the cube about the BV's centre with its half-diagonal (FCL's
-/// own conversion to AABB). Culling needs only a superset.
-template <typename BV>
-Box3 nodeBox(const BV& bv) {
-  const Eigen::Vector3d c = bv.center();
-  const Eigen::Vector3d r = Eigen::Vector3d::Constant(0.5 * Eigen::Vector3d(bv.width(), bv.height(), bv.depth()).norm());
-  return Box3{c - r, c + r};
-}
+/// An axis-aligned box (mesh frame) that contains a BVH node's bounding volume: exact for AABB and
+/// a k-DOP's axis slabs, the axis-aligned box of the node's oriented box (mesh_node_box.h) for
+/// OBB, OBBRSS, kIOS and RSS. Culling needs only a superset.
 inline Box3 obbBox(const fcl::OBB<double>& o) {
   const Eigen::Vector3d h = o.axis.cwiseAbs() * o.extent;
   return Box3{o.To - h, o.To + h};
 }
-template <>
-inline Box3 nodeBox(const fcl::AABB<double>& bv) {
-  return Box3{bv.min_, bv.max_};
+template <typename BV>
+Box3 nodeBox(const BV& bv) {
+  if constexpr (NodeBox<BV>::kOriented) {
+    return obbBox(NodeBox<BV>::box(bv));
+  } else {
+    Box3 b;
+    NodeBox<BV>::corners(bv, &b.lo, &b.hi);
+    return b;
+  }
 }
-template <>
-inline Box3 nodeBox(const fcl::OBB<double>& bv) {
-  return obbBox(bv);
-}
-template <>
-inline Box3 nodeBox(const fcl::OBBRSS<double>& bv) {
-  return obbBox(bv.obb);
-}
-template <>
-inline Box3 nodeBox(const fcl::kIOS<double>& bv) {
-  return obbBox(bv.obb);
+
+/// The shape's local bounding box posed in the mesh frame: the columns of `axes` are its axes.
+struct PosedBox {
+  Eigen::Matrix3d axes;
+  Eigen::Vector3d center, half;
+};
+
+/// False when the box of axes A (columns, orthonormal), centre c and half-extents e is certainly
+/// apart from the posed box s: a separating axis among the six face normals (FCL's OBB test
+/// also tries the nine edge directions; without them the test prunes a little less, never
+/// wrongly). Padded by tolerance::kTraversalPruningPadding of the coordinates' scale, which covers
+/// the rounding of the projections.
+inline bool boxesMayMeet(const Eigen::Matrix3d& A, const Eigen::Vector3d& c, const Eigen::Vector3d& e,
+                         const PosedBox& s) {
+  const Eigen::Vector3d d = c - s.center;
+  const double pad = tolerance::kTraversalPruningPadding *
+                     (s.center.cwiseAbs().maxCoeff() + s.half.maxCoeff() + c.cwiseAbs().maxCoeff() + e.maxCoeff());
+  const Eigen::Matrix3d B = (s.axes.transpose() * A).cwiseAbs();  // |shape axis j . node axis k|
+  const Eigen::Vector3d d_node = A.transpose() * d, shape_on_node = B.transpose() * s.half;
+  for (int k = 0; k < 3; ++k)
+    if (std::fabs(d_node[k]) > e[k] + shape_on_node[k] + pad) return false;
+  const Eigen::Vector3d d_shape = s.axes.transpose() * d, node_on_shape = B * e;
+  for (int j = 0; j < 3; ++j)
+    if (std::fabs(d_shape[j]) > s.half[j] + node_on_shape[j] + pad) return false;
+  return true;
 }
 
 inline bool boxesOverlap(const Box3& a, const Box3& b) {
@@ -98,30 +115,27 @@ inline bool isMeshOrOcTree(const fcl::CollisionGeometry<double>* g) {
   return g->getObjectType() == fcl::OT_BVH || g->getObjectType() == fcl::OT_OCTREE;
 }
 
-/// Does the node's BV meet the query: its box against `query`, then, for oriented BVs (OBB, OBBRSS,
-/// kIOS) and a given `obb`, FCL's separating-axis test of the node's OBB against it.
+/// Does the node's BV meet the query: with the shape's posed box `shape`, the separating-axis test
+/// of the node's box (oriented or axis-aligned, mesh_node_box.h) against it; otherwise the node's
+/// axis-aligned box against `query` (a swept box, say).
 template <typename BV>
-bool nodeMeets(const BV& bv, const Box3& query, const fcl::OBB<double>*) {
-  return boxesOverlap(nodeBox(bv), query);
-}
-template <>
-inline bool nodeMeets(const fcl::OBB<double>& bv, const Box3& query, const fcl::OBB<double>* obb) {
-  return boxesOverlap(nodeBox(bv), query) && (obb == nullptr || bv.overlap(*obb));
-}
-template <>
-inline bool nodeMeets(const fcl::OBBRSS<double>& bv, const Box3& query, const fcl::OBB<double>* obb) {
-  return boxesOverlap(nodeBox(bv), query) && (obb == nullptr || bv.obb.overlap(*obb));
-}
-template <>
-inline bool nodeMeets(const fcl::kIOS<double>& bv, const Box3& query, const fcl::OBB<double>* obb) {
-  return boxesOverlap(nodeBox(bv), query) && (obb == nullptr || bv.obb.overlap(*obb));
+bool nodeMeets(const BV& bv, const Box3& query, const PosedBox* shape) {
+  if (shape == nullptr) return boxesOverlap(nodeBox(bv), query);
+  if constexpr (NodeBox<BV>::kOriented) {
+    const auto& box = NodeBox<BV>::box(bv);
+    return boxesMayMeet(box.axis, box.To, box.extent, *shape);
+  } else {
+    Eigen::Vector3d lo, hi;
+    NodeBox<BV>::corners(bv, &lo, &hi);
+    return boxesMayMeet(Eigen::Matrix3d::Identity(), 0.5 * (lo + hi), 0.5 * (hi - lo), *shape);
+  }
 }
 
 /// Depth-first over the BVH: visit(triangle index, p0, p1, p2) for each triangle whose leaf BV
-/// meets `query` (mesh frame; and `obb`, the shape's oriented box in the mesh frame, if given),
+/// meets `query` (mesh frame), or, if given, `shape` (the shape's box posed in the mesh frame),
 /// until visit returns true. A model without a hierarchy (no BVs) is walked triangle by triangle.
 template <typename BV, typename Visit>
-void visitMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, const fcl::OBB<double>* obb, Visit&& visit) {
+void visitMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, const PosedBox* shape, Visit&& visit) {
   auto tri = [&](int t) {
     const fcl::Triangle& f = m.tri_indices[t];
     return visit(t, m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]);
@@ -136,7 +150,7 @@ void visitMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, const fcl
     const int id = stack.back();
     stack.pop_back();
     const fcl::BVNode<BV>& node = m.getBV(id);
-    if (!nodeMeets(node.bv, query, obb)) continue;
+    if (!nodeMeets(node.bv, query, shape)) continue;
     if (node.isLeaf()) {
       if (tri(node.primitiveId())) return;
     } else {
