@@ -84,12 +84,25 @@ bool affineProjectionK(const Simplex& W, const int* idx, std::array<double, 4>* 
     *p = Eigen::Vector3d::Zero();  // the origin is inside
     return true;
   }
+  // The segment and the triangle: the Gram system G mu = -E^T w0 solved by G's pivoted LDL^T
+  // (larger diagonal entry first; Cramer's rule lost GJK its 1e-10 lower bound on a face
+  // parallel to a large triangle), in closed form. Degenerate unless every pivot exceeds 1e-13
+  // of the largest diagonal entry.
   const Eigen::Matrix<double, K, K> G = E.transpose() * E;
   const Eigen::Matrix<double, K, 1> rhs = -(E.transpose() * w0);
-  const Eigen::LDLT<Eigen::Matrix<double, K, K>> ldlt(G);
-  const double gscale = G.diagonal().maxCoeff();
-  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().cwiseAbs().minCoeff() > 1e-13 * gscale)) return false;
-  const Eigen::Matrix<double, K, 1> mu = ldlt.solve(rhs);
+  Eigen::Matrix<double, K, 1> mu;
+  if constexpr (K == 1) {
+    if (!(G(0, 0) > 0.0)) return false;
+    mu[0] = rhs[0] / G(0, 0);
+  } else {
+    const int i = G(0, 0) >= G(1, 1) ? 0 : 1, j = 1 - i;  // pivot i first
+    if (!(G(i, i) > 0.0)) return false;
+    const double f = G(j, i) / G(i, i);
+    const double d2 = G(j, j) - f * G(j, i);
+    if (!(d2 > 1e-13 * G(i, i))) return false;
+    mu[j] = (rhs[j] - f * rhs[i]) / d2;
+    mu[i] = (rhs[i] - G(i, j) * mu[j]) / G(i, i);
+  }
   double sum = 0.0;
   for (int i = 0; i < K; ++i) {
     if (!(mu[i] > 0.0)) return false;

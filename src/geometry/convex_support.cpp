@@ -250,6 +250,16 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
   return s;
 }
 
+namespace {
+/// sqrt(x^2 + y^2), with std::hypot's protection only where the squares leave the normal range
+/// (GJK calls the supports in its inner loop, and hypot costs several times the square root).
+inline double planarLength(double x, double y) {
+  const double q = x * x + y * y;
+  if (q > 1e-300 && q < 1e300) return std::sqrt(q);
+  return std::hypot(x, y);
+}
+}  // namespace
+
 Eigen::Vector3d ConvexSupport::support(const Eigen::Vector3d& n) const {
   switch (kind_) {
     case Kind::Ellipsoid: {
@@ -263,7 +273,7 @@ Eigen::Vector3d ConvexSupport::support(const Eigen::Vector3d& n) const {
                              n.z() >= 0 ? dims_.z() : -dims_.z());
     case Kind::EllipticCylinder: {
       const double ax = dims_.x() * n.x(), by = dims_.y() * n.y();
-      const double len = std::hypot(ax, by);
+      const double len = planarLength(ax, by);
       Eigen::Vector3d p(0, 0, n.z() >= 0 ? dims_.z() : -dims_.z());
       if (len > 0.0) {
         p.x() = dims_.x() * ax / len;
@@ -273,7 +283,7 @@ Eigen::Vector3d ConvexSupport::support(const Eigen::Vector3d& n) const {
     }
     case Kind::Cone: {
       const double r = dims_.x(), h = dims_.z();
-      const double nxy = std::hypot(n.x(), n.y());
+      const double nxy = planarLength(n.x(), n.y());
       const Eigen::Vector3d apex(0, 0, h);
       Eigen::Vector3d rim(0, 0, -h);
       if (nxy > 0.0) {
