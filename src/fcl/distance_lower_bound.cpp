@@ -233,7 +233,7 @@ std::optional<double> distanceLowerBound(const fcl::CollisionGeometry<double>* o
   double best = cap;
   const bool is_mesh = detail::withMesh(gb, [&](const auto& m) {
     detail::nearestMeshTriangles(
-        m, query,
+        m, query, nullptr,
         [&](int, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
           const double reach = std::max({p0.norm(), p1.norm(), p2.norm()});
           best = std::min(best, pieceBound(a, ConvexSupport::points({p0, p1, p2}), Eigen::Vector3d::Zero(),

@@ -892,9 +892,18 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
                             frame.linear().transpose() * (shape.p - frame.translation()));
       return supportBoxIn(shape.support, shape.R, shape.p, frame.linear(), frame.translation());
     };
+    // A convex piece's exact local box (six support points) posed in the mesh frame: the node
+    // gaps along the six face normals of it and of the node's box (nodeGap).
+    std::optional<PosedBox> posed;
+    if (!shape.model) {
+      const Box3 local = supportBoxIn(shape.support, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(),
+                                      Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero());
+      const Eigen::Matrix3d Rt = tfp.linear().transpose();
+      posed = PosedBox{Rt * shape.R, Rt * (shape.R * local.center() + shape.p - tfp.translation()), local.halfWidth()};
+    }
     const bool is_mesh = withMesh(gp, [&](const auto& m) {
       nearestMeshTriangles(
-          m, shapeBoxIn(tfp),
+          m, shapeBoxIn(tfp), posed ? &*posed : nullptr,
           [&](int t, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
             PosedConvex piece{ConvexSupport::points({p0, p1, p2}), tfp.linear(), tfp.translation(), t,
                               PosedConvex::Triangle, {p0, p1, p2}};

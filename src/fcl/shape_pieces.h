@@ -115,20 +115,55 @@ inline bool isMeshOrOcTree(const fcl::CollisionGeometry<double>* g) {
   return g->getObjectType() == fcl::OT_BVH || g->getObjectType() == fcl::OT_OCTREE;
 }
 
+/// A lower bound of the distance between the box of axes A, centre c and half-extents e and the
+/// posed box s: the largest gap along the six face normals (each a unit axis: a projection does
+/// not increase distances), less tolerance::kTraversalPruningPadding of the coordinates' scale
+/// for the rounding; 0 when none is positive.
+inline double boxesGap(const Eigen::Matrix3d& A, const Eigen::Vector3d& c, const Eigen::Vector3d& e,
+                       const PosedBox& s) {
+  const Eigen::Vector3d d = c - s.center;
+  const double pad = tolerance::kTraversalPruningPadding *
+                     (s.center.cwiseAbs().maxCoeff() + s.half.maxCoeff() + c.cwiseAbs().maxCoeff() + e.maxCoeff());
+  const Eigen::Matrix3d B = (s.axes.transpose() * A).cwiseAbs();  // |shape axis j . node axis k|
+  const Eigen::Vector3d gap_node = (A.transpose() * d).cwiseAbs() - e - B.transpose() * s.half;
+  const Eigen::Vector3d gap_shape = (s.axes.transpose() * d).cwiseAbs() - s.half - B * e;
+  return std::max(0.0, std::max(gap_node.maxCoeff(), gap_shape.maxCoeff()) - pad);
+}
+
+/// The node's box as axes, centre and half-extents: its own box for oriented BVs, its axis-aligned
+/// box (identity axes) otherwise; f(A, c, e) receives them.
+template <typename BV, typename F>
+auto withNodeBox(const BV& bv, F&& f) {
+  if constexpr (NodeBox<BV>::kOriented) {
+    const auto& box = NodeBox<BV>::box(bv);
+    return f(box.axis, box.To, box.extent);
+  } else {
+    Eigen::Vector3d lo, hi;
+    NodeBox<BV>::corners(bv, &lo, &hi);
+    return f(Eigen::Matrix3d::Identity(), 0.5 * (lo + hi), 0.5 * (hi - lo));
+  }
+}
+
 /// Does the node's BV meet the query: with the shape's posed box `shape`, the separating-axis test
 /// of the node's box (oriented or axis-aligned, mesh_node_box.h) against it; otherwise the node's
 /// axis-aligned box against `query` (a swept box, say).
 template <typename BV>
 bool nodeMeets(const BV& bv, const Box3& query, const PosedBox* shape) {
   if (shape == nullptr) return boxesOverlap(nodeBox(bv), query);
-  if constexpr (NodeBox<BV>::kOriented) {
-    const auto& box = NodeBox<BV>::box(bv);
-    return boxesMayMeet(box.axis, box.To, box.extent, *shape);
-  } else {
-    Eigen::Vector3d lo, hi;
-    NodeBox<BV>::corners(bv, &lo, &hi);
-    return boxesMayMeet(Eigen::Matrix3d::Identity(), 0.5 * (lo + hi), 0.5 * (hi - lo), *shape);
-  }
+  return withNodeBox(bv, [&](const Eigen::Matrix3d& A, const Eigen::Vector3d& c, const Eigen::Vector3d& e) {
+    return boxesMayMeet(A, c, e, *shape);
+  });
+}
+
+/// A lower bound of the distance from the shape to the node's BV: the gap between the node's
+/// axis-aligned box and `query` (the shape's box in the mesh frame), and with the shape's posed
+/// box `shape`, the larger of that and the six-axis gap boxesGap().
+template <typename BV>
+double nodeGap(const BV& bv, const Box3& query, const PosedBox* shape) {
+  const double aligned = boxGap(nodeBox(bv), query);
+  if (shape == nullptr) return aligned;
+  return std::max(aligned, withNodeBox(bv, [&](const Eigen::Matrix3d& A, const Eigen::Vector3d& c,
+                                              const Eigen::Vector3d& e) { return boxesGap(A, c, e, *shape); }));
 }
 
 /// Depth-first over the BVH: visit(triangle index, p0, p1, p2) for each triangle whose leaf BV
@@ -165,8 +200,8 @@ void visitMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, const Pos
 /// distance so far (nodes whose boxes meet it are all visited: they may hold a deeper overlap).
 /// stop(best) ends it early. `best` starts at `cap` (nodes not closer than cap are skipped).
 template <typename BV, typename Visit, typename Stop>
-void nearestMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, Visit&& visit, Stop&& stop,
-                          double cap = std::numeric_limits<double>::infinity()) {
+void nearestMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, const PosedBox* shape, Visit&& visit,
+                          Stop&& stop, double cap = std::numeric_limits<double>::infinity()) {
   double best = cap;
   auto tri = [&](int t) {
     const fcl::Triangle& f = m.tri_indices[t];
@@ -180,7 +215,7 @@ void nearestMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, Visit&&
   }
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  queue.emplace(boxGap(nodeBox(m.getBV(0).bv), query), 0);
+  queue.emplace(nodeGap(m.getBV(0).bv, query, shape), 0);
   while (!queue.empty()) {
     const auto [gap, id] = queue.top();
     queue.pop();
@@ -190,7 +225,7 @@ void nearestMeshTriangles(const fcl::BVHModel<BV>& m, const Box3& query, Visit&&
       if (tri(node.primitiveId())) return;
     } else {
       for (int child : {node.leftChild(), node.rightChild()})
-        queue.emplace(boxGap(nodeBox(m.getBV(child).bv), query), child);
+        queue.emplace(nodeGap(m.getBV(child).bv, query, shape), child);
     }
   }
 }
