@@ -244,15 +244,14 @@ std::optional<double> distanceLowerBound(const fcl::CollisionGeometry<double>* o
   });
   if (is_mesh) return best;
   if (gb->getObjectType() == fcl::OT_OCTREE) {
-    const Box3 everything{Eigen::Vector3d::Constant(-std::numeric_limits<double>::max()),
-                          Eigen::Vector3d::Constant(std::numeric_limits<double>::max())};
-    detail::visitOcTreeLeaves(*static_cast<const fcl::OcTree<double>*>(gb), everything,
-                              [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
-                                if (detail::boxGap(query, Box3{c - h, c + h}) >= best) return false;
-                                best = std::min(best, pieceBound(a, ConvexSupport::box(h), c, boxOffsetSuperset(c, h),
-                                                                 (c.cwiseAbs() + h).norm(), Rb, pb, best));
-                                return best <= 0.0;
-                              });
+    detail::nearestOcTreeLeaves(
+        *static_cast<const fcl::OcTree<double>*>(gb), query, nullptr,
+        [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
+          best = std::min(best, pieceBound(a, ConvexSupport::box(h), c, boxOffsetSuperset(c, h),
+                                           (c.cwiseAbs() + h).norm(), Rb, pb, best));
+          return best;
+        },
+        [](double d) { return d <= 0.0; }, cap);
     return best;
   }
   // A quadric shape against anything else: the front door's own message.

@@ -246,7 +246,7 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
           });
         }) &&
         gp->getObjectType() == fcl::OT_OCTREE) {
-      visitOcTreeLeaves(*static_cast<const fcl::OcTree<double>*>(gp), query,
+      visitOcTreeLeaves(*static_cast<const fcl::OcTree<double>*>(gp), query, posed ? &*posed : nullptr,
                         [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
                           Eigen::Vector3d x;
                           const Gjk g = gjk(ConvexSupport::box(h), tfp.linear() * c + tfp.translation(), &x);
@@ -590,7 +590,7 @@ RegionCcdResult continuousCollideShapePieces(const fcl::CollisionGeometry<double
                              return tri && piece(std::move(*tri), "T" + std::to_string(t));  // (zero-area: skipped)
                            });
       })) {
-    visitOcTreeLeaves(*static_cast<const fcl::OcTree<double>*>(gp), query,
+    visitOcTreeLeaves(*static_cast<const fcl::OcTree<double>*>(gp), query, nullptr,
                       [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
                         return piece(LocalSolid{boxRegion(c, h), Box3{c - h, c + h}, false}, "leaf");
                       });
@@ -913,19 +913,14 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
     });
     if (is_mesh) return;
     if (gp->getObjectType() == fcl::OT_OCTREE) {
-      const auto* tree = static_cast<const fcl::OcTree<double>*>(gp);
-      const Box3 query = shapeBoxIn(tfp);
-      double best = result.min_distance;
-      const Box3 everything{Eigen::Vector3d::Constant(-std::numeric_limits<double>::max()),
-                            Eigen::Vector3d::Constant(std::numeric_limits<double>::max())};
-      visitOcTreeLeaves(*tree, everything, [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
-        const double gap = boxGap(query, Box3{c - h, c + h});
-        if (gap > 0.0 && gap >= best) return false;
-        best = std::min(best, solve(PosedConvex{ConvexSupport::box(h), tfp.linear(), tfp.linear() * c + tfp.translation(),
-                                                fcl::DistanceResult<double>::NONE, PosedConvex::Leaf,
-                                                {c, h, Eigen::Vector3d::Zero()}}));
-        return done(best);
-      });
+      nearestOcTreeLeaves(
+          *static_cast<const fcl::OcTree<double>*>(gp), shapeBoxIn(tfp), posed ? &*posed : nullptr,
+          [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
+            PosedConvex leaf{ConvexSupport::box(h), tfp.linear(), tfp.linear() * c + tfp.translation(),
+                             fcl::DistanceResult<double>::NONE, PosedConvex::Leaf, {c, h, Eigen::Vector3d::Zero()}};
+            return fartherThanBest(leaf) ? std::numeric_limits<double>::infinity() : solve(leaf);
+          },
+          done, result.min_distance);
       return;
     }
     if (gp->getNodeType() == fcl::GEOM_HALFSPACE) {

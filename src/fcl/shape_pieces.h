@@ -242,10 +242,11 @@ inline Box3 octreeChildBox(const Box3& b, unsigned i) {
 }
 
 /// The occupied leaves of an OcTree as (centre, half width) pairs, in the order of a traversal
-/// that skips cells whose box misses `query` (tree frame); visit returns true to stop. Leaves and
-/// occupancy as fcl::OcTree::toBoxes (occupied = fcl::OcTree::isNodeOccupied).
+/// that skips cells whose box misses `query` (tree frame) or, if given, `shape` (the shape's posed
+/// box, boxesMayMeet()); visit returns true to stop. Leaves and occupancy as
+/// fcl::OcTree::toBoxes (occupied = fcl::OcTree::isNodeOccupied).
 template <typename Visit>
-void visitOcTreeLeaves(const fcl::OcTree<double>& tree, const Box3& query, Visit&& visit) {
+void visitOcTreeLeaves(const fcl::OcTree<double>& tree, const Box3& query, const PosedBox* shape, Visit&& visit) {
   const fcl::OcTree<double>::OcTreeNode* root = tree.getRoot();
   if (root == nullptr) return;
   const fcl::AABB<double> rb = tree.getRootBV();
@@ -254,6 +255,7 @@ void visitOcTreeLeaves(const fcl::OcTree<double>& tree, const Box3& query, Visit
     const auto [node, box] = stack.back();
     stack.pop_back();
     if (!boxesOverlap(box, query)) continue;
+    if (shape && !boxesMayMeet(Eigen::Matrix3d::Identity(), box.center(), box.halfWidth(), *shape)) continue;
     bool leaf = true;
     for (unsigned i = 0; i < 8; ++i) {
       if (!tree.nodeChildExists(node, i)) continue;
@@ -261,6 +263,51 @@ void visitOcTreeLeaves(const fcl::OcTree<double>& tree, const Box3& query, Visit
       stack.emplace_back(tree.getNodeChild(node, i), octreeChildBox(box, i));
     }
     if (leaf && tree.isNodeOccupied(node) && visit(box.center(), box.halfWidth())) return;
+  }
+}
+
+/// Best first over an OcTree's cells, as nearestMeshTriangles over a BVH: visit(c, h) returns the
+/// distance to the occupied leaf of centre c and half widths h (tree frame) and is called for the
+/// same leaves as visitOcTreeLeaves() visits with an unbounded query, nearest bound first. A cell's
+/// bound is the gap between its box and `query` (the shape's box in the tree frame), and with the
+/// shape's posed box `shape`, the larger of that and boxesGap(); the search ends at the first cell
+/// whose bound is positive and not below the best distance so far, or when stop(best) holds.
+template <typename Visit, typename Stop>
+void nearestOcTreeLeaves(const fcl::OcTree<double>& tree, const Box3& query, const PosedBox* shape, Visit&& visit,
+                         Stop&& stop, double cap = std::numeric_limits<double>::infinity()) {
+  const fcl::OcTree<double>::OcTreeNode* root = tree.getRoot();
+  if (root == nullptr) return;
+  auto gap = [&](const Box3& b) {
+    const double aligned = boxGap(b, query);
+    return shape ? std::max(aligned, boxesGap(Eigen::Matrix3d::Identity(), b.center(), b.halfWidth(), *shape))
+                 : aligned;
+  };
+  struct Cell {
+    double bound;
+    const fcl::OcTree<double>::OcTreeNode* node;
+    Box3 box;
+    bool operator>(const Cell& o) const { return bound > o.bound; }
+  };
+  std::priority_queue<Cell, std::vector<Cell>, std::greater<Cell>> queue;
+  const fcl::AABB<double> rb = tree.getRootBV();
+  const Box3 root_box{rb.min_, rb.max_};
+  queue.push({gap(root_box), root, root_box});
+  double best = cap;
+  while (!queue.empty()) {
+    const Cell cell = queue.top();
+    queue.pop();
+    if (cell.bound > 0.0 && cell.bound >= best) break;  // (cells that meet may hold a deeper overlap)
+    bool leaf = true;
+    for (unsigned i = 0; i < 8; ++i) {
+      if (!tree.nodeChildExists(cell.node, i)) continue;
+      leaf = false;
+      const Box3 child = octreeChildBox(cell.box, i);
+      queue.push({gap(child), tree.getNodeChild(cell.node, i), child});
+    }
+    if (leaf && tree.isNodeOccupied(cell.node)) {
+      best = std::min(best, visit(cell.box.center(), cell.box.halfWidth()));
+      if (stop(best)) return;
+    }
   }
 }
 
