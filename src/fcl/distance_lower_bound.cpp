@@ -96,11 +96,18 @@ double gjkLowerBound(const ConvexSupport& a, const Eigen::Matrix3d& Ra, const Ei
   return std::max(0.0, lower - 1e-11 * scale);
 }
 
-/// min over a's pieces of GJK's bound against one piece b (stops at 0).
+/// min over a's pieces of GJK's bound against one piece b (stops at 0). A piece whose GJK lower
+/// bound exceeds the best so far by the 1e-11 taken off is skipped as soon as GJK certifies that
+/// (screenConvexPair): the converged run repeats those steps and keeps the largest bound, so its
+/// gjkLowerBound() could not have lowered the minimum.
 double coverBound(const Covered& a, const ConvexSupport& b, const Eigen::Matrix3d& Rb, const Eigen::Vector3d& pb,
                   double cap) {
   double best = cap;
   for (const ConvexSupport& piece : a.cover.pieces) {
+    const double scale = piece.size() + b.size() + (a.R * piece.center() + a.p - Rb * b.center() - pb).norm();
+    if (std::isfinite(best) &&
+        screenConvexPair(piece, a.R, a.p, b, Rb, pb, best + 1e-11 * scale).verdict == ConvexScreening::Verdict::Far)
+      continue;
     best = std::min(best, gjkLowerBound(piece, a.R, a.p, b, Rb, pb));
     if (best <= 0.0) return 0.0;
   }
