@@ -31,6 +31,12 @@
 // (our traversal of the mesh's BVH, exact per triangle) against fcl::collide / fcl::distance on
 // fcl::Cylinder (FCL's traversal nodes, libccd per triangle); afterwards their disagreements.
 //
+// OcTree terrain: the same cylinder at 50 random poses over an fcl::OcTree of a height field
+// (resolution 0.05, 82,686 occupied leaves): fcl_quadric::collide / distance / distanceLowerBound
+// on the EllipticCylinder (best-first search of the cells, GJK per leaf box) against
+// fcl::collide / fcl::distance on fcl::Cylinder (FCL's OcTree traversal, libccd per leaf);
+// afterwards their disagreements and the lower bound against the distance.
+//
 // Non-convex distance (geometry/region_distance.h): a CSG ring against a ball at 64 separated
 // poses, fcl_quadric::distance against fcl::distance on the ring tessellated (6,144 triangles);
 // afterwards the certified bracket of ours and the mesh's error against it.
@@ -42,7 +48,9 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <octomap/OcTree.h>
 #include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/octree/octree.h>
 #include <fcl/math/bv/OBBRSS.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
@@ -440,6 +448,78 @@ void BM_TerrainLowerBound(benchmark::State& state) {
 BENCHMARK(BM_TerrainLowerBound<false>)->Name("QuadricShapes/TerrainLowerBound/fcl_Cylinder")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TerrainLowerBound<true>)->Name("QuadricShapes/TerrainLowerBound/EllipticCylinder")->Unit(benchmark::kMicrosecond);
 
+struct OcTreeTerrainScene {
+  std::shared_ptr<fcl::OcTree<double>> tree;
+  std::shared_ptr<fcl_quadric::EllipticCylinder<double>> ours;
+  std::shared_ptr<fcl::Cylinderd> theirs;
+  std::vector<fcl::Transform3d> poses;
+};
+OcTreeTerrainScene& octreeTerrain() {
+  static OcTreeTerrainScene t;
+  return t;
+}
+OcTreeTerrainScene makeOcTreeTerrain() {
+  OcTreeTerrainScene t;
+  auto octo = std::make_shared<octomap::OcTree>(0.05);
+  for (int i = 0; i < 400; ++i)
+    for (int j = 0; j < 400; ++j) {
+      const double x = -10 + 0.05 * i, y = -10 + 0.05 * j, z = 0.3 * std::sin(0.5 * x) * std::cos(0.7 * y);
+      octo->updateNode(octomap::point3d(float(x), float(y), float(z)), true);
+    }
+  t.tree = std::make_shared<fcl::OcTree<double>>(octo);
+  t.ours = std::make_shared<fcl_quadric::EllipticCylinder<double>>(0.3, 0.3, 1.0);
+  t.theirs = std::make_shared<fcl::Cylinderd>(0.3, 1.0);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-8, 8), h(-0.2, 1.0);
+  for (int k = 0; k < 50; ++k) {
+    fcl::Transform3d tf = fcl::Transform3d::Identity();
+    tf.linear() = fcl_quadric::bench::quadricSceneRotation(rng);
+    const double x = u(rng), y = u(rng), z = h(rng);
+    tf.translation() = Eigen::Vector3d(x, y, z);
+    t.poses.push_back(tf);
+  }
+  return t;
+}
+template <bool Ours, bool Distance>
+double octreeTerrainQuery(const fcl::Transform3d& tf) {
+  const OcTreeTerrainScene& t = octreeTerrain();
+  const fcl::CollisionGeometryd* g = Ours ? static_cast<const fcl::CollisionGeometryd*>(t.ours.get()) : t.theirs.get();
+  if constexpr (Distance) {
+    fcl::DistanceRequestd req;
+    fcl::DistanceResultd res;
+    return Ours ? fcl_quadric::distance(g, tf, t.tree.get(), fcl::Transform3d::Identity(), req, res)
+                : fcl::distance(g, tf, t.tree.get(), fcl::Transform3d::Identity(), req, res);
+  } else {
+    fcl::CollisionRequestd req;
+    fcl::CollisionResultd res;
+    return static_cast<double>(Ours ? fcl_quadric::collide(g, tf, t.tree.get(), fcl::Transform3d::Identity(), req, res)
+                                    : fcl::collide(g, tf, t.tree.get(), fcl::Transform3d::Identity(), req, res));
+  }
+}
+template <bool Ours, bool Distance>
+void BM_OcTreeTerrain(benchmark::State& state) {
+  const auto& poses = octreeTerrain().poses;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(octreeTerrainQuery<Ours, Distance>(poses[i]));
+    i = (i + 1) % poses.size();
+  }
+}
+BENCHMARK(BM_OcTreeTerrain<true, false>)->Name("QuadricShapes/OcTreeCollide/fcl_quadric")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_OcTreeTerrain<false, false>)->Name("QuadricShapes/OcTreeCollide/FclGjkLibccd")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_OcTreeTerrain<true, true>)->Name("QuadricShapes/OcTreeDistance/fcl_quadric")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_OcTreeTerrain<false, true>)->Name("QuadricShapes/OcTreeDistance/FclGjkLibccd")->Unit(benchmark::kMicrosecond);
+void BM_OcTreeTerrainLowerBound(benchmark::State& state) {
+  const OcTreeTerrainScene& t = octreeTerrain();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        fcl_quadric::distanceLowerBound(t.ours.get(), t.poses[i], t.tree.get(), fcl::Transform3d::Identity(), 1e3));
+    i = (i + 1) % t.poses.size();
+  }
+}
+BENCHMARK(BM_OcTreeTerrainLowerBound)->Name("QuadricShapes/OcTreeLowerBound/EllipticCylinder")->Unit(benchmark::kMicrosecond);
+
 struct RingPoleScene {
   std::shared_ptr<fcl_quadric::QuadricCSG<double>> ring;
   std::shared_ptr<fcl::BVHModel<fcl::OBBRSS<double>>> pole;
@@ -679,6 +759,7 @@ int main(int argc, char** argv) {
   smallEllipsoidPairs() = makeSmallEllipsoidPairs(n);
   distancePairs() = makeDistancePairs(cylinderPairs());
   terrain() = makeTerrain();
+  octreeTerrain() = makeOcTreeTerrain();
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   {
@@ -731,6 +812,29 @@ int main(int argc, char** argv) {
                 "FCL's traversal node with QuadricSolver differs from the front door on %d; "
                 "largest relative distance difference on pairs both call separated %.3g\n",
                 terrain().poses.size(), hits, flags_differ, node_differs, worst);
+  }
+  {
+    // OcTree terrain: collide flags and distances of the two libraries; our lower bound against
+    // our distance.
+    const OcTreeTerrainScene& t = octreeTerrain();
+    int hits = 0, flags_differ = 0, bound_above = 0;
+    double worst = 0.0, worst_bound = 0.0;
+    for (const fcl::Transform3d& tf : t.poses) {
+      const bool ours = octreeTerrainQuery<true, false>(tf) > 0, theirs = octreeTerrainQuery<false, false>(tf) > 0;
+      hits += ours;
+      flags_differ += ours != theirs;
+      const double d1 = octreeTerrainQuery<true, true>(tf), d2 = octreeTerrainQuery<false, true>(tf);
+      if (d1 > 0 && d2 > 0) worst = std::max(worst, std::fabs(d1 - d2) / d1);
+      const double b = *fcl_quadric::distanceLowerBound(t.ours.get(), tf, t.tree.get(), fcl::Transform3d::Identity(), 1e3);
+      if (d1 > 0) {
+        bound_above += b > d1;
+        worst_bound = std::max(worst_bound, (d1 - b) / d1);
+      }
+    }
+    std::printf("OcTree terrain, %zu poses over %zu leaves: %d colliding (ours); FCL's collide flag differs on %d; "
+                "largest relative distance difference on poses both call separated %.3g; lower bound above the "
+                "distance on %d, largest (distance - bound) / distance %.3g\n",
+                t.poses.size(), t.tree->toBoxes().size(), hits, flags_differ, worst, bound_above, worst_bound);
   }
   {
     // Lower bounds: the terrain bound against our exact distance (both cylinders), the ring's
