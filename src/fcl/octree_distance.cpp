@@ -1,4 +1,4 @@
-// fcl_quadric::distance's traversal of an OcTree against an Ellipsoid: FCL 0.7's
+// fcl_quadric::distance's traversal of an OcTree against an Ellipsoid or a Sphere: FCL 0.7's
 // OcTreeShapeDistanceRecurse with its leaf test, best first with padded lower bounds.
 #include "fcl/octree_distance.h"
 
@@ -12,6 +12,7 @@
 #include <fcl/geometry/octree/octree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/sphere.h>
 #endif
 
 #include "fcl/distance_fix_up.h"
@@ -24,24 +25,27 @@ namespace detail {
 #if FCL_HAVE_OCTOMAP
 namespace {
 
-class OcTreeEllipsoidDistance {
+/// Shape: fcl::Ellipsoid or fcl::Sphere (the leaf call is then FCL's box-sphere closed form, which
+/// QuadricSolver hands to FCL).
+template <typename Shape>
+class OcTreeShapeDistance {
  public:
   using Node = fcl::OcTree<double>::OcTreeNode;
 
-  OcTreeEllipsoidDistance(const fcl::OcTree<double>& tree, const fcl::Transform3<double>& tf_tree,
-                          const fcl::Ellipsoid<double>& shape, const fcl::Transform3<double>& tf_shape,
-                          const QuadricSolver<double>& solver, fcl::DistanceResult<double>& result)
+  OcTreeShapeDistance(const fcl::OcTree<double>& tree, const fcl::Transform3<double>& tf_tree, const Shape& shape,
+                      const fcl::Transform3<double>& tf_shape, const QuadricSolver<double>& solver,
+                      fcl::DistanceResult<double>& result)
       : tree_(tree), tf_tree_(tf_tree), shape_(shape), tf_shape_(tf_shape), solver_(solver), result_(result) {}
 
   void run() {
     const Node* root = tree_.getRoot();
     if (root == nullptr) return;
-    // The leaf test's checks (QuadricSolver::shapeDistance(box, box_tf, ellipsoid, tf_e)), once:
+    // The leaf test's checks (QuadricSolver::shapeDistance(box, box_tf, shape, tf_shape)), once:
     // bad input throws whether or not a leaf is reached, and the placement below is meaningful.
     const fcl::AABB<double> root_bv = tree_.getRootBV();
     checkOcTreeQuery(root_bv, tf_tree_, shape_, tf_shape_);
-    // The ellipsoid in the tree frame (the tree's pose is a rotation, checked just above).
-    placed_ = placeInFrame(tf_tree_, tf_shape_, shape_.radii);
+    // The shape in the tree frame (the tree's pose is a rotation, checked just above).
+    placed_ = placeInFrame(tf_tree_, tf_shape_, shapeRadii(shape_));
     search(root, root_bv);
   }
 
@@ -90,7 +94,7 @@ class OcTreeEllipsoidDistance {
   void leaf(const Node* node, const fcl::AABB<double>& bv) {
     const fcl::Box<double> box(bv.max_ - bv.min_);
     const fcl::Transform3<double> box_tf = tf_tree_ * fcl::Translation3<double>(bv.center());
-    double d = 0.0;  // always written by the exact ellipsoid-box distance
+    double d = 0.0;  // written by the exact ellipsoid-box distance; FCL's sphere-box one writes it too
     fcl::Vector3d p_tree = fcl::Vector3d::Zero(), p_shape = fcl::Vector3d::Zero();
     solver_.shapeDistance(box, box_tf, shape_, tf_shape_, &d, &p_tree, &p_shape);
     const std::intptr_t index = node - tree_.getRoot();
@@ -99,7 +103,7 @@ class OcTreeEllipsoidDistance {
 
   const fcl::OcTree<double>& tree_;
   const fcl::Transform3<double>& tf_tree_;
-  const fcl::Ellipsoid<double>& shape_;
+  const Shape& shape_;
   const fcl::Transform3<double>& tf_shape_;
   const QuadricSolver<double>& solver_;
   fcl::DistanceResult<double>& result_;
@@ -117,12 +121,23 @@ bool distanceOcTreeShape(const fcl::CollisionGeometry<double>* o1, const fcl::Tr
   const bool tree_first = o1->getNodeType() == fcl::GEOM_OCTREE;
   const fcl::CollisionGeometry<double>* tree = tree_first ? o1 : o2;
   const fcl::CollisionGeometry<double>* shape = tree_first ? o2 : o1;
-  if (tree->getNodeType() != fcl::GEOM_OCTREE || shape->getNodeType() != fcl::GEOM_ELLIPSOID) return false;
+  if (tree->getNodeType() != fcl::GEOM_OCTREE) return false;
+  const bool ellipsoid = shape->getNodeType() == fcl::GEOM_ELLIPSOID;
+  if (!ellipsoid && shape->getNodeType() != fcl::GEOM_SPHERE) return false;
   // FCL's OcTreeShapeDistance / ShapeOcTreeDistance return at once when the result is satisfied.
   if (!request.isSatisfied(result)) {
-    OcTreeEllipsoidDistance(*static_cast<const fcl::OcTree<double>*>(tree), tree_first ? tf1 : tf2,
-                            *static_cast<const fcl::Ellipsoid<double>*>(shape), tree_first ? tf2 : tf1, solver, result)
-        .run();
+    const auto& t = *static_cast<const fcl::OcTree<double>*>(tree);
+    const fcl::Transform3<double>& tf_tree = tree_first ? tf1 : tf2;
+    const fcl::Transform3<double>& tf_shape = tree_first ? tf2 : tf1;
+    if (ellipsoid) {
+      OcTreeShapeDistance<fcl::Ellipsoid<double>>(t, tf_tree, *static_cast<const fcl::Ellipsoid<double>*>(shape),
+                                                  tf_shape, solver, result)
+          .run();
+    } else {
+      OcTreeShapeDistance<fcl::Sphere<double>>(t, tf_tree, *static_cast<const fcl::Sphere<double>*>(shape), tf_shape,
+                                               solver, result)
+          .run();
+    }
   }
   *value = result.min_distance;
   signedDistanceFixUp(o1, tf1, o2, tf2, request, result);

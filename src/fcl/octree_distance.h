@@ -1,6 +1,6 @@
 #pragma once
-// Private: fcl_quadric::distance's own traversal of an fcl::OcTree against an fcl::Ellipsoid
-// (docs/fcl_integration.md §3.2, "Distance").
+// Private: fcl_quadric::distance's own traversal of an fcl::OcTree against an fcl::Ellipsoid or an
+// fcl::Sphere (docs/fcl_integration.md §3.2, "Distance").
 #include <fcl/common/types.h>
 #include <fcl/geometry/collision_geometry.h>
 #include <fcl/narrowphase/distance_request.h>
@@ -11,7 +11,7 @@
 namespace fcl_quadric {
 namespace detail {
 
-/// Distance between an OcTree and an Ellipsoid (either order) through `solver`, as FCL 0.7's
+/// Distance between an OcTree and an Ellipsoid or a Sphere (either order) through `solver`, as FCL 0.7's
 /// OcTreeSolver::OcTreeShapeDistanceRecurse computes it, with its leaf call and result:
 ///  - nothing is done when the result already holds a distance <= 0 (request.isSatisfied);
 ///  - an inner cell that is not occupied is skipped; an occupied leaf cell gets the leaf test
@@ -31,7 +31,9 @@ namespace detail {
 /// FCL's AABB distance is loose for a rotated ellipsoid and its order ignores distance: on a
 /// terrain of ~10^5 leaves it runs the exact leaf test on many cells (docs/benchmarks.md,
 /// session 28).
-/// Spheres are not taken (QuadricSolver hands box-sphere distances to FCL's closed form).
+/// A sphere is searched the same way (as the ellipsoid of equal radii); its leaf test is the one
+/// QuadricSolver makes, FCL's box-sphere closed form (-1 on overlap, as libccd), so the value is
+/// FCL's too.
 /// Bad input: the ellipsoid and the tree's pose are checked once, before the traversal, by the
 /// leaf test's own checks (std::invalid_argument naming the value).
 /// \return false, leaving `result` untouched, for other pairs; otherwise true with *value = the

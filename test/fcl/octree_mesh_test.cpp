@@ -486,8 +486,8 @@ TEST(ExactOcTree, OwnTraversalGivesFclsTraversalResultExactly) {
 }
 
 
-/// fcl_quadric::distance runs its own best-first traversal for an OcTree against an ellipsoid
-/// (src/fcl/octree_distance.cpp). Oracle: the exact leaf distance to every occupied leaf box,
+/// fcl_quadric::distance runs its own best-first traversal for an OcTree against an ellipsoid or a
+/// sphere (src/fcl/octree_distance.cpp). Oracle: the exact leaf distance to every occupied leaf box,
 /// built as FCL builds it (occupiedLeafBoxes), and on a subset FCL's own traversal with the same
 /// solver. For each query, in both argument orders, plain, nearest-point and signed requests:
 ///  - the minimum is the brute-force minimum bit for bit, and so is the value returned;
@@ -504,7 +504,7 @@ TEST(ExactOcTree, OwnDistanceTraversalGivesTheBruteForceMinimum) {
                      Eigen::Vector3d(-0.4, 0.25, 0.3));
   std::uniform_real_distribution<double> ux(-1.6, 1.6), uz(-0.6, 1.8), r_small(0.02, 0.3), r_large(0.3, 0.9);
   const QuadricSolverd solver;
-  std::size_t compared = 0, fcl_compared = 0, overlapping = 0;
+  std::size_t compared = 0, fcl_compared = 0, overlapping = 0, spheres = 0;
   for (double threshold : {-1.0, 0.7}) {
     auto fcl_tree = std::make_shared<fcl::OcTreed>(tree);
     if (threshold > 0) fcl_tree->setOccupancyThres(threshold);
@@ -513,18 +513,29 @@ TEST(ExactOcTree, OwnDistanceTraversalGivesTheBruteForceMinimum) {
       const double x = ux(rng), y = ux(rng), z = uz(rng);
       std::uniform_real_distribution<double>& r = i % 4 == 2 ? r_large : r_small;
       const double r0 = r(rng), r1 = r(rng), r2 = r(rng);
-      const auto shape = std::make_shared<fcl::Ellipsoidd>(r0, r1, r2);
+      // Every fourth shape a sphere (its leaf test is FCL's box-sphere closed form).
+      const auto ellipsoid = std::make_shared<fcl::Ellipsoidd>(r0, r1, r2);
+      const auto sphere = std::make_shared<fcl::Sphered>(r0);
+      const bool is_sphere = i % 4 == 3;
+      spheres += is_sphere;
       const fcl::Transform3d tf_shape = test::makePose(test::randomRotation(rng), tf_tree * Eigen::Vector3d(x, y, z));
       double best = std::numeric_limits<double>::max();
       for (const LeafBox& b : boxes) {
         double d = std::numeric_limits<double>::quiet_NaN();
-        solver.shapeDistance(fcl::Boxd(2.0 * b.half), test::makePose(b.R, b.p), *shape, tf_shape, &d,
-                             static_cast<Eigen::Vector3d*>(nullptr), static_cast<Eigen::Vector3d*>(nullptr));
+        const fcl::Boxd box(2.0 * b.half);
+        const fcl::Transform3d tf_box = test::makePose(b.R, b.p);
+        if (is_sphere)
+          solver.shapeDistance(box, tf_box, *sphere, tf_shape, &d, static_cast<Eigen::Vector3d*>(nullptr),
+                               static_cast<Eigen::Vector3d*>(nullptr));
+        else
+          solver.shapeDistance(box, tf_box, *ellipsoid, tf_shape, &d, static_cast<Eigen::Vector3d*>(nullptr),
+                               static_cast<Eigen::Vector3d*>(nullptr));
         best = std::min(best, d);
       }
       overlapping += best < 0.0;
       const fcl::CollisionGeometryd* tree_geometry = fcl_tree.get();
-      const fcl::CollisionGeometryd* shape_geometry = shape.get();
+      const fcl::CollisionGeometryd* shape_geometry =
+          is_sphere ? static_cast<const fcl::CollisionGeometryd*>(sphere.get()) : ellipsoid.get();
       for (int order = 0; order < 2; ++order) {
         const fcl::CollisionGeometryd* g1 = order ? shape_geometry : tree_geometry;
         const fcl::CollisionGeometryd* g2 = order ? tree_geometry : shape_geometry;
@@ -564,10 +575,11 @@ TEST(ExactOcTree, OwnDistanceTraversalGivesTheBruteForceMinimum) {
   EXPECT_GT(overlapping, 5u);  // both regimes
   EXPECT_LT(overlapping, 70u);
   EXPECT_GT(fcl_compared, 50u);
+  EXPECT_EQ(spheres, 20u);
 }
 
 /// Bad input through the own OcTree distance traversal, far from every cell: an invalid
-/// ellipsoid, or a scaled tree pose, throws std::invalid_argument naming it.
+/// ellipsoid or sphere, or a scaled tree pose, throws std::invalid_argument naming it.
 TEST(ExactOcTree, OwnDistanceTraversalRejectsBadInput) {
   std::mt19937_64 rng(68);
   auto built = std::make_shared<octomap::OcTree>(0.08);
@@ -584,6 +596,8 @@ TEST(ExactOcTree, OwnDistanceTraversalRejectsBadInput) {
   expectDistanceThrowsNaming(fcl_tree.get(), tree_pose, &negative, far, "radius");
   const fcl::Ellipsoidd not_a_number(0.2, std::numeric_limits<double>::quiet_NaN(), 0.4);
   expectDistanceThrowsNaming(fcl_tree.get(), tree_pose, &not_a_number, far, "radius");
+  const fcl::Sphered negative_sphere(-0.2);
+  expectDistanceThrowsNaming(fcl_tree.get(), tree_pose, &negative_sphere, far, "radius");
   fcl::Transform3d scaled = far;
   scaled.linear() *= 1.1;
   expectDistanceThrowsNaming(fcl_tree.get(), tree_pose, &good, scaled, "rotation");
