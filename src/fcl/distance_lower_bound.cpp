@@ -237,10 +237,14 @@ std::optional<double> distanceLowerBound(const fcl::CollisionGeometry<double>* o
   }
 
   const Box3 query = coverBoxIn(a, Rb, pb);  // a's box in the partner's frame
+  // The cover's local box (its own frame) posed in the partner's frame: the six-axis node gaps.
+  const Box3 local = coverBoxIn(a, a.R, a.p);
+  const detail::PosedBox posed{Rb.transpose() * a.R, Rb.transpose() * (a.R * local.center() + a.p - pb),
+                               local.halfWidth()};
   double best = cap;
   const bool is_mesh = detail::withMesh(gb, [&](const auto& m) {
     detail::nearestMeshTriangles(
-        m, query, nullptr,
+        m, query, &posed,
         [&](int, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
           const double reach = std::max({p0.norm(), p1.norm(), p2.norm()});
           best = std::min(best, pieceBound(a, ConvexSupport::points({p0, p1, p2}), Eigen::Vector3d::Zero(),
@@ -252,7 +256,7 @@ std::optional<double> distanceLowerBound(const fcl::CollisionGeometry<double>* o
   if (is_mesh) return best;
   if (gb->getObjectType() == fcl::OT_OCTREE) {
     detail::nearestOcTreeLeaves(
-        *static_cast<const fcl::OcTree<double>*>(gb), query, nullptr,
+        *static_cast<const fcl::OcTree<double>*>(gb), query, &posed,
         [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
           best = std::min(best, pieceBound(a, ConvexSupport::box(h), c, boxOffsetSuperset(c, h),
                                            (c.cwiseAbs() + h).norm(), Rb, pb, best));
