@@ -191,10 +191,6 @@ struct Face {
   bool alive;
 };
 
-}  // namespace
-
-namespace {
-
 /// convexSignedDistance() with one more way for GJK to stop: as soon as its lower bound exceeds
 /// `stop_above` (screenConvexPair(); +infinity: never), with converged = false and distance the
 /// upper bound |v| at that step.

@@ -78,7 +78,7 @@ struct ConvexScreening {
 /// tetrahedron has a margin (otherwise it runs as in convexSignedDistance and its status counts).
 /// Far is as certain as convexSignedDistance's Separated (exact up to the support points'
 /// tolerance; pass a gap well above 1e-11 of the pair's scale to cover it).
-/// 	hrows std::invalid_argument if a pose is not finite or gap is not >= 0 (NaN included).
+/// \throws std::invalid_argument if a pose is not finite or gap is not >= 0 (NaN included).
 ConvexScreening screenConvexPair(const ConvexSupport& a, const Eigen::Matrix3d& R_a, const Eigen::Vector3d& p_a,
                                  const ConvexSupport& b, const Eigen::Matrix3d& R_b, const Eigen::Vector3d& p_b,
                                  double gap);
