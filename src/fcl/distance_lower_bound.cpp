@@ -82,33 +82,23 @@ std::optional<Covered> coverOf(const fcl::CollisionGeometry<double>* g, const fc
   return Covered{std::move(c), tf.linear(), tf.translation(), g};
 }
 
-/// GJK's certified lower bound v.w / |v| of the distance of two posed convex pieces (0 when GJK
-/// does not certify them separate), converged or not (a stall between a large flat face and a
-/// near one leaves the relative gap above 1e-10, the bound stays valid). The support points may
-/// lie 1e-12 of the size outside the solids (ConvexSupport's tolerance) and carry rounding:
-/// 1e-11 of the pair's scale is taken off.
-double gjkLowerBound(const ConvexSupport& a, const Eigen::Matrix3d& Ra, const Eigen::Vector3d& pa,
-                     const ConvexSupport& b, const Eigen::Matrix3d& Rb, const Eigen::Vector3d& pb) {
-  double lower = 0.0;
-  const SignedDistanceResult d = convexSignedDistance(a, Ra, pa, b, Rb, pb, false, &lower);
-  if (d.status != Separation::Separated) return 0.0;
-  const double scale = a.size() + b.size() + (Ra * a.center() + pa - Rb * b.center() - pb).norm();
-  return std::max(0.0, lower - 1e-11 * scale);
-}
-
-/// min over a's pieces of GJK's bound against one piece b (stops at 0). A piece whose GJK lower
-/// bound exceeds the best so far by the 1e-11 taken off is skipped as soon as GJK certifies that
-/// (screenConvexPair): the converged run repeats those steps and keeps the largest bound, so its
-/// gjkLowerBound() could not have lowered the minimum.
+/// min over a's pieces of GJK's certified lower bound v.w / |v| against one piece b (stops at 0).
+/// Each bound holds whether or not GJK converged (a stall between a large flat face and a near one
+/// leaves the relative gap above 1e-10); the support points may lie 1e-12 of the size outside the
+/// solids (ConvexSupport's tolerance) and carry rounding, so 1e-11 of the pair's scale is taken
+/// off, and a pair GJK does not certify separate gives 0. One GJK run per piece
+/// (screenConvexPair): it stops as soon as the piece is certified beyond the best so far plus that
+/// 1e-11 (the converged run would repeat those steps and keep a bound at least as large, so the
+/// piece could not lower the minimum); otherwise it is the converged run and gives the bound.
 double coverBound(const Covered& a, const ConvexSupport& b, const Eigen::Matrix3d& Rb, const Eigen::Vector3d& pb,
                   double cap) {
   double best = cap;
   for (const ConvexSupport& piece : a.cover.pieces) {
     const double scale = piece.size() + b.size() + (a.R * piece.center() + a.p - Rb * b.center() - pb).norm();
-    if (std::isfinite(best) &&
-        screenConvexPair(piece, a.R, a.p, b, Rb, pb, best + 1e-11 * scale).verdict == ConvexScreening::Verdict::Far)
-      continue;
-    best = std::min(best, gjkLowerBound(piece, a.R, a.p, b, Rb, pb));
+    const double skip_above = std::isfinite(best) ? best + 1e-11 * scale : kInf;
+    const ConvexScreening s = screenConvexPair(piece, a.R, a.p, b, Rb, pb, skip_above);
+    if (s.verdict == ConvexScreening::Verdict::Far) continue;
+    best = std::min(best, std::max(0.0, s.lower_bound - 1e-11 * scale));
     if (best <= 0.0) return 0.0;
   }
   return best;

@@ -460,6 +460,7 @@ ConvexScreening screenConvexPair(const ConvexSupport& a, const Eigen::Matrix3d& 
     out.verdict = ConvexScreening::Verdict::Overlapping;
     out.common_point = d.point_a;
   }
+  out.lower_bound = lower;  // (0 unless Separated)
   out.iterations = d.iterations;
   return out;
 }

@@ -68,6 +68,10 @@ struct ConvexScreening {
   /// Overlapping: a common point of a and b (world frame), as convexSignedDistance() gives with
   /// want_depth = false. Otherwise unset (zero).
   Eigen::Vector3d common_point = Eigen::Vector3d::Zero();
+  /// GJK's lower bound v.w / |v| when it certified the pair separate (Far, or Undecided within the
+  /// gap), else 0. Short of Far, GJK did not stop early, so this is exactly the lower_bound of
+  /// convexSignedDistance(..., want_depth = false, &lower_bound).
+  double lower_bound = 0.0;
   int iterations = 0;  ///< GJK (and EPA) steps taken
 };
 
