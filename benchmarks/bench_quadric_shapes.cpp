@@ -340,6 +340,38 @@ void BM_CylindersDistanceFcl(benchmark::State& state) {
 BENCHMARK(BM_CylindersDistanceOurs)->Name("QuadricShapes/CylindersDistance/fcl_quadric")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CylindersDistanceFcl)->Name("QuadricShapes/CylindersDistance/FclGjkLibccd")->Unit(benchmark::kMicrosecond);
 
+/// One query of the cylinder posed tf against an environment (mesh or octree) at the identity:
+/// fcl_quadric on `ours` or FCL on `theirs`; the distance, or the number of contacts.
+template <bool Ours, bool Distance>
+double cylinderQuery(const fcl_quadric::EllipticCylinder<double>& ours, const fcl::Cylinderd& theirs,
+                     const fcl::CollisionGeometryd* environment, const fcl::Transform3d& tf) {
+  const fcl::CollisionGeometryd* g = Ours ? static_cast<const fcl::CollisionGeometryd*>(&ours) : &theirs;
+  const fcl::Transform3d I = fcl::Transform3d::Identity();
+  if constexpr (Distance) {
+    fcl::DistanceRequestd req;
+    fcl::DistanceResultd res;
+    return Ours ? fcl_quadric::distance(g, tf, environment, I, req, res) : fcl::distance(g, tf, environment, I, req, res);
+  } else {
+    fcl::CollisionRequestd req;
+    fcl::CollisionResultd res;
+    return static_cast<double>(Ours ? fcl_quadric::collide(g, tf, environment, I, req, res)
+                                    : fcl::collide(g, tf, environment, I, req, res));
+  }
+}
+/// n cylinder poses: a random rotation and a centre drawn from (ux, uy, uz), in that order.
+std::vector<fcl::Transform3d> cylinderPoses(std::mt19937_64& rng, int n, std::uniform_real_distribution<double>& ux,
+                                            std::uniform_real_distribution<double>& uy,
+                                            std::uniform_real_distribution<double>& uz) {
+  std::vector<fcl::Transform3d> poses;
+  for (int q = 0; q < n; ++q) {
+    fcl::Transform3d tf = fcl::Transform3d::Identity();
+    tf.linear() = fcl_quadric::bench::quadricSceneRotation(rng);
+    const double x = ux(rng), y = uy(rng), z = uz(rng);
+    tf.translation() = Eigen::Vector3d(x, y, z);
+    poses.push_back(tf);
+  }
+  return poses;
+}
 struct TerrainScene {
   std::shared_ptr<fcl::BVHModel<fcl::OBBRSS<double>>> mesh;
   std::shared_ptr<fcl_quadric::EllipticCylinder<double>> ours;
@@ -367,30 +399,13 @@ TerrainScene makeTerrain() {
   t.theirs = std::make_shared<fcl::Cylinderd>(0.3, 1.0);
   std::mt19937_64 rng(23);
   std::uniform_real_distribution<double> ux(1, 19), uy(1, 9), uz(-0.2, 1.0);
-  for (int q = 0; q < 200; ++q) {
-    fcl::Transform3d tf = fcl::Transform3d::Identity();
-    tf.linear() = fcl_quadric::bench::quadricSceneRotation(rng);
-    const double x = ux(rng), y = uy(rng), z = uz(rng);
-    tf.translation() = Eigen::Vector3d(x, y, z);
-    t.poses.push_back(tf);
-  }
+  t.poses = cylinderPoses(rng, 200, ux, uy, uz);
   return t;
 }
 template <bool Ours, bool Distance>
 double terrainQuery(const fcl::Transform3d& tf) {
   const TerrainScene& t = terrain();
-  const fcl::CollisionGeometryd* g = Ours ? static_cast<const fcl::CollisionGeometryd*>(t.ours.get()) : t.theirs.get();
-  if constexpr (Distance) {
-    fcl::DistanceRequestd req;
-    fcl::DistanceResultd res;
-    return Ours ? fcl_quadric::distance(g, tf, t.mesh.get(), fcl::Transform3d::Identity(), req, res)
-                : fcl::distance(g, tf, t.mesh.get(), fcl::Transform3d::Identity(), req, res);
-  } else {
-    fcl::CollisionRequestd req;
-    fcl::CollisionResultd res;
-    return static_cast<double>(Ours ? fcl_quadric::collide(g, tf, t.mesh.get(), fcl::Transform3d::Identity(), req, res)
-                                    : fcl::collide(g, tf, t.mesh.get(), fcl::Transform3d::Identity(), req, res));
-  }
+  return cylinderQuery<Ours, Distance>(*t.ours, *t.theirs, t.mesh.get(), tf);
 }
 // The same query through FCL's own traversal node template instantiated with the quadric shape
 // and QuadricSolver (what a user assembling FCL's nodes gets): FCL's OBBRSS tests, then one
@@ -471,30 +486,13 @@ OcTreeTerrainScene makeOcTreeTerrain() {
   t.theirs = std::make_shared<fcl::Cylinderd>(0.3, 1.0);
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-8, 8), h(-0.2, 1.0);
-  for (int k = 0; k < 50; ++k) {
-    fcl::Transform3d tf = fcl::Transform3d::Identity();
-    tf.linear() = fcl_quadric::bench::quadricSceneRotation(rng);
-    const double x = u(rng), y = u(rng), z = h(rng);
-    tf.translation() = Eigen::Vector3d(x, y, z);
-    t.poses.push_back(tf);
-  }
+  t.poses = cylinderPoses(rng, 50, u, u, h);
   return t;
 }
 template <bool Ours, bool Distance>
 double octreeTerrainQuery(const fcl::Transform3d& tf) {
   const OcTreeTerrainScene& t = octreeTerrain();
-  const fcl::CollisionGeometryd* g = Ours ? static_cast<const fcl::CollisionGeometryd*>(t.ours.get()) : t.theirs.get();
-  if constexpr (Distance) {
-    fcl::DistanceRequestd req;
-    fcl::DistanceResultd res;
-    return Ours ? fcl_quadric::distance(g, tf, t.tree.get(), fcl::Transform3d::Identity(), req, res)
-                : fcl::distance(g, tf, t.tree.get(), fcl::Transform3d::Identity(), req, res);
-  } else {
-    fcl::CollisionRequestd req;
-    fcl::CollisionResultd res;
-    return static_cast<double>(Ours ? fcl_quadric::collide(g, tf, t.tree.get(), fcl::Transform3d::Identity(), req, res)
-                                    : fcl::collide(g, tf, t.tree.get(), fcl::Transform3d::Identity(), req, res));
-  }
+  return cylinderQuery<Ours, Distance>(*t.ours, *t.theirs, t.tree.get(), tf);
 }
 template <bool Ours, bool Distance>
 void BM_OcTreeTerrain(benchmark::State& state) {

@@ -88,16 +88,13 @@ void expectSameContacts(const fcl::CollisionResultd& ours, const fcl::CollisionR
   }
 }
 
-/// fcl_quadric::collide of `environment` (posed tf_env) and `shape` (posed tf_shape), in both
-/// argument orders, throws std::invalid_argument whose message contains `needle`.
-void expectCollideThrowsNaming(const fcl::CollisionGeometryd* environment, const fcl::Transform3d& tf_env,
-                               const fcl::CollisionGeometryd* shape, const fcl::Transform3d& tf_shape,
-                               const std::string& needle) {
+/// query(order) (order 0: environment first, 1: shape first) throws std::invalid_argument whose
+/// message contains `needle`, in both orders.
+template <typename Query>
+void expectThrowsNamingInBothOrders(Query&& query, const std::string& needle) {
   for (int order = 0; order < 2; ++order) {
-    fcl::CollisionResultd r;
     try {
-      if (order == 0) fcl_quadric::collide(environment, tf_env, shape, tf_shape, fcl::CollisionRequestd(), r);
-      else fcl_quadric::collide(shape, tf_shape, environment, tf_env, fcl::CollisionRequestd(), r);
+      query(order);
       ADD_FAILURE() << "no exception for a bad " << needle << ", order " << order;
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
@@ -105,21 +102,32 @@ void expectCollideThrowsNaming(const fcl::CollisionGeometryd* environment, const
   }
 }
 
+/// fcl_quadric::collide of `environment` (posed tf_env) and `shape` (posed tf_shape), in both
+/// argument orders, throws std::invalid_argument whose message contains `needle`.
+void expectCollideThrowsNaming(const fcl::CollisionGeometryd* environment, const fcl::Transform3d& tf_env,
+                               const fcl::CollisionGeometryd* shape, const fcl::Transform3d& tf_shape,
+                               const std::string& needle) {
+  expectThrowsNamingInBothOrders(
+      [&](int order) {
+        fcl::CollisionResultd r;
+        if (order == 0) fcl_quadric::collide(environment, tf_env, shape, tf_shape, fcl::CollisionRequestd(), r);
+        else fcl_quadric::collide(shape, tf_shape, environment, tf_env, fcl::CollisionRequestd(), r);
+      },
+      needle);
+}
+
 /// fcl_quadric::distance of `environment` and `shape`, in both argument orders, throws
 /// std::invalid_argument whose message contains `needle`.
 void expectDistanceThrowsNaming(const fcl::CollisionGeometryd* environment, const fcl::Transform3d& tf_env,
                                 const fcl::CollisionGeometryd* shape, const fcl::Transform3d& tf_shape,
                                 const std::string& needle) {
-  for (int order = 0; order < 2; ++order) {
-    fcl::DistanceResultd r;
-    try {
-      if (order == 0) fcl_quadric::distance(environment, tf_env, shape, tf_shape, fcl::DistanceRequestd(), r);
-      else fcl_quadric::distance(shape, tf_shape, environment, tf_env, fcl::DistanceRequestd(), r);
-      ADD_FAILURE() << "no exception for a bad " << needle << ", order " << order;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    }
-  }
+  expectThrowsNamingInBothOrders(
+      [&](int order) {
+        fcl::DistanceResultd r;
+        if (order == 0) fcl_quadric::distance(environment, tf_env, shape, tf_shape, fcl::DistanceRequestd(), r);
+        else fcl_quadric::distance(shape, tf_shape, environment, tf_env, fcl::DistanceRequestd(), r);
+      },
+      needle);
 }
 
 // =============================================================================================
