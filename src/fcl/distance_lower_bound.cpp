@@ -67,8 +67,8 @@ std::optional<Covered> coverOf(const fcl::CollisionGeometry<double>* g, const fc
     if (!q.bounded())
       throw std::invalid_argument(std::string("fcl_quadric::distanceLowerBound: ") + which +
                                   " is an unbounded quadric shape (a CSG operand only)");
-    if (dynamic_cast<const EllipticCylinder<double>*>(g) != nullptr) {
-      c.pieces.push_back(*detail::convexSupportOf(g, which));
+    if (q.convexSupport()) {  // (convexCover's one exact piece, made once with the shape)
+      c.pieces.push_back(*q.convexSupport());
       c.exact = true;
     } else {
       c = convexCover(q.region(), q.localBox());

@@ -60,6 +60,7 @@ QuadricShape<S>::QuadricShape(QuadricRegion region, const std::optional<Box3>& b
     this->aabb_local.max_ = box_.hi.template cast<S>();
     this->aabb_center = this->aabb_local.center();
     this->aabb_radius = (this->aabb_local.min_ - this->aabb_center).norm();
+    convex_ = ConvexSupport::fromRegion(region_, box_);
   }
 }
 
@@ -169,7 +170,9 @@ EllipticCylinder<S>::EllipticCylinder(S a, S b, S lz)
                       ellipticCylinderMass(a, b, lz), false),
       a_(a),
       b_(b),
-      lz_(lz) {}
+      lz_(lz) {
+  this->setConvexSupport(ConvexSupport::ellipticCylinder(a, b, 0.5 * lz));
+}
 
 // --- Quadric ----------------------------------------------------------------------------------------
 

@@ -12,6 +12,7 @@
 #include <memory>
 #include <random>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -21,6 +22,7 @@
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/octree/octree.h>
+#include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/plane.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
@@ -116,6 +118,132 @@ TEST(EllipticCylinderShape, AnalyticSphereContactsAlongEachAxis) {
           << d.transpose() << " gap " << gap;
       EXPECT_TRUE(collides(cyl, tc, sphere, pose(Eigen::Matrix3d::Identity(), tc * (d + (rs - gap) * n))))
           << d.transpose() << " penetration " << gap;
+    }
+  }
+}
+
+/// A bounded convex operand of the front door with its solid as a quadric region (local frame)
+/// and a bounding box: the region engine's view of it, the oracle of the tests below.
+struct ConvexOperand {
+  std::string name;
+  std::shared_ptr<fcl::CollisionGeometry<double>> geometry;
+  QuadricRegion region;
+  Box3 box;
+};
+
+QuadricRegion boxSolid(const Eigen::Vector3d& h) {
+  std::vector<QuadricRegion> planes;
+  for (int i = 0; i < 3; ++i)
+    for (double sign : {1.0, -1.0}) planes.push_back(QuadricRegion::halfspace(sign * Eigen::Vector3d::Unit(i), h[i]));
+  return QuadricRegion::combine(Op::Intersection, planes);
+}
+
+ConvexOperand quadricOperand(const std::string& name, std::shared_ptr<QuadricShape<double>> q) {
+  return {name, q, q->region(), q->localBox()};
+}
+
+std::vector<ConvexOperand> convexOperands() {
+  using Q = Quadric<double>;
+  const Eigen::Vector3d hb(0.5, 0.3, 0.7);
+  const double rc = 0.5, hc = 0.6, rs = 0.45;
+  return {
+      quadricOperand("EllipticCylinder", std::make_shared<EllipticCylinder<double>>(0.6, 0.35, 1.4)),
+      quadricOperand("clipped paraboloid",
+                     std::make_shared<Q>(Q::ellipticParaboloid(0.8, 0.5, {{Eigen::Vector3d::UnitZ(), 1.5}}))),
+      quadricOperand("clipped ellipsoid",
+                     std::make_shared<Q>(Q::ellipsoid(0.9, 0.5, 0.7, {{Eigen::Vector3d(1, 1, 0), 0.3}}))),
+      {"fcl::Box", std::make_shared<fcl::Box<double>>(2.0 * hb), boxSolid(hb), Box3{-hb, hb}},
+      {"fcl::Cylinder", std::make_shared<fcl::Cylinder<double>>(rc, 2.0 * hc),
+       QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticCylinder(rc, rc)),
+                                                 boxSolid(Eigen::Vector3d(10, 10, hc))}),
+       Box3{Eigen::Vector3d(-rc, -rc, -hc), Eigen::Vector3d(rc, rc, hc)}},
+      {"fcl::Sphere", std::make_shared<fcl::Sphere<double>>(rs),
+       QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(rs))),
+       Box3{Eigen::Vector3d::Constant(-rs), Eigen::Vector3d::Constant(rs)}},
+  };
+}
+
+// Two bounded convex solids go to GJK's screening before the region engine (session 30): far and
+// clearly overlapping pairs are decided by GJK's certificates, the rest by the engine. Oracle: the
+// region engine itself on the same solids (collideRegions, no GJK), on random poses, in both
+// argument orders; a reported contact point lies in both solids.
+TEST(QuadricShapeDispatch, ConvexPairsScreenedByGjkAgreeWithTheRegionEngine) {
+  const std::vector<ConvexOperand> ops = convexOperands();
+  std::mt19937_64 rng(2030);
+  std::uniform_real_distribution<double> u(-1.6, 1.6);
+  int colliding = 0, separated = 0;
+  for (int i = 0; i < 360; ++i) {
+    const ConvexOperand& a = ops[i % ops.size()];
+    const ConvexOperand& b = ops[(i / ops.size()) % ops.size()];
+    Transform ta = Transform::Identity(), tb = Transform::Identity();
+    ta.linear() = test::randomRotation(rng);
+    ta.translation() = Eigen::Vector3d(u(rng), u(rng), u(rng)) * 0.2;
+    tb.linear() = test::randomRotation(rng);
+    tb.translation() = ta.translation() + Eigen::Vector3d(u(rng), u(rng), u(rng));
+    const Transform X = ta.inverse() * tb;
+    const RegionRelation truth = collideRegions(a.region, a.box, b.region, b.box, X.linear(), X.translation()).relation;
+    if (truth == RegionRelation::Touching) continue;
+    for (bool swap : {false, true}) {
+      fcl::CollisionRequest<double> req(1, true);
+      fcl::CollisionResult<double> res;
+      const std::size_t n = swap ? fcl_quadric::collide(b.geometry.get(), tb, a.geometry.get(), ta, req, res)
+                                 : fcl_quadric::collide(a.geometry.get(), ta, b.geometry.get(), tb, req, res);
+      const std::string what = "pair " + std::to_string(i) + ": " + a.name + " and " + b.name + (swap ? " (swapped)" : "");
+      ASSERT_EQ(n > 0, truth == RegionRelation::Overlapping) << what;
+      if (n == 0) continue;
+      const fcl::Contact<double>& c = res.getContact(0);
+      EXPECT_GE(a.region.classifyPoint(ta.inverse() * c.pos), 0) << what;
+      EXPECT_GE(b.region.classifyPoint(tb.inverse() * c.pos), 0) << what;
+      EXPECT_NEAR(c.normal.norm(), 1.0, 1e-12) << what;
+    }
+    (truth == RegionRelation::Overlapping ? colliding : separated)++;
+  }
+  EXPECT_GT(colliding, 80);
+  EXPECT_GT(separated, 80);
+}
+
+// Near tangency, on both sides of the screening's band (2e-8 of the pair's scale, here about 5e-8):
+// analytic touching positions of two parallel capped cylinders side by side (a line contact), cap
+// to cap (a face contact), and a box face against a cylinder's side. Moved apart by 1e-7 or more
+// they must not collide (GJK certifies it); moved together by any gap down to 1e-10 they must.
+// Inside the band the region engine decides, and may err toward contact: before GJK screened
+// these pairs, the front door reported the side-by-side pair colliding at a gap of 1e-7.
+TEST(QuadricShapeDispatch, ConvexPairsNearTangencyAreDecidedOnBothSidesOfTheScreeningBand) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 2).normalized()).toRotationMatrix();
+  const Eigen::Vector3d p0(0.4, -0.7, 1.1);
+  const Transform ta = pose(R, p0);
+  auto a = std::make_shared<EllipticCylinder<double>>(0.5, 0.5, 2.0);
+  auto side = std::make_shared<EllipticCylinder<double>>(0.3, 0.3, 1.0);
+  auto box = std::make_shared<fcl::Box<double>>(1.0, 1.0, 1.0);
+  struct Case {
+    const char* name;
+    const fcl::CollisionGeometry<double>* b;
+    Eigen::Vector3d direction, lateral;  // in a's frame
+    double touching;                     // the centre offset along `direction` at contact
+  };
+  const std::vector<Case> cases = {
+      {"side by side", side.get(), Eigen::Vector3d::UnitX(), Eigen::Vector3d(0, 0, 0.2), 0.8},
+      {"cap to cap", side.get(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d(0.1, -0.05, 0), 1.5},
+      {"box face on the side", box.get(), Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 0, 0.3), 1.0},
+  };
+  for (const Case& c : cases) {
+    for (double gap : {1e-3, 1e-6, 1e-7, 1e-8, 1e-10}) {
+      for (double sign : {1.0, -1.0}) {
+        const Transform tb = pose(R, p0 + R * ((c.touching + sign * gap) * c.direction + c.lateral));
+        for (bool swap : {false, true}) {
+          fcl::CollisionRequest<double> req;
+          fcl::CollisionResult<double> res;
+          const bool hit = (swap ? fcl_quadric::collide(c.b, tb, a.get(), ta, req, res)
+                                 : fcl_quadric::collide(a.get(), ta, c.b, tb, req, res)) > 0;
+          std::ostringstream what;
+          what << c.name << ", relative gap " << sign * gap << (swap ? " (swapped)" : "");
+          if (sign < 0) {
+            EXPECT_TRUE(hit) << what.str();
+          } else if (gap >= 1e-7) {
+            EXPECT_FALSE(hit) << what.str();
+          }
+        }
+      }
     }
   }
 }

@@ -24,6 +24,7 @@
 #include <fcl/common/types.h>
 #include <fcl/geometry/shape/shape_base.h>
 
+#include "fcl_quadric/geometry/convex_support.h"
 #include "fcl_quadric/geometry/quadric_region.h"
 
 namespace fcl_quadric {
@@ -50,6 +51,11 @@ class QuadricShape : public fcl::ShapeBase<S> {
   std::shared_ptr<const BoundaryElements> sharedBoundaryElements() const;
   /// Mass properties with the volume's error estimate. \throws std::invalid_argument if unbounded.
   const MassProperties& massProperties() const;
+  /// The solid as a support mapping (local frame), made once at construction: the closed form
+  /// for an EllipticCylinder, ConvexSupport::fromRegion for another convex region (half-spaces and
+  /// at most one convex curved atom); none for an unbounded or a non-convex shape. The front
+  /// doors' GJK (screening, distance) runs on it. No failure mode.
+  const std::optional<ConvexSupport>& convexSupport() const { return convex_; }
 
   /// fcl::BV_UNKNOWN: see the file comment.
   fcl::NODE_TYPE getNodeType() const override { return fcl::BV_UNKNOWN; }
@@ -70,6 +76,8 @@ class QuadricShape : public fcl::ShapeBase<S> {
   /// allow_unbounded; an empty one always throws.
   QuadricShape(QuadricRegion region, const std::optional<Box3>& box, const std::optional<Box3>& hint,
                const std::optional<MassProperties>& mass, bool allow_unbounded);
+  /// A closed-form support mapping in place of the one fromRegion made (EllipticCylinder).
+  void setConvexSupport(ConvexSupport support) { convex_ = std::move(support); }
 
  private:
   void requireBounded(const char* what) const;
@@ -81,6 +89,7 @@ class QuadricShape : public fcl::ShapeBase<S> {
   bool bounded_ = true;
   Box3 box_;
   MassProperties mass_;
+  std::optional<ConvexSupport> convex_;
 };
 
 /// Capped elliptic cylinder { x^2/a^2 + y^2/b^2 <= 1, |z| <= lz/2 }.
