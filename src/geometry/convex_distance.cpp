@@ -226,6 +226,31 @@ struct Face {
   bool alive;
 };
 
+/// A common point of the two solids from EPA's polytope (whose vertices are points of D = A - B)
+/// when it holds the origin: the tetrahedra from vertex 0 to the faces without it tile the convex
+/// polytope; in the one that holds the origin (barycentric coordinates >= -1e-12, for rounding on
+/// a shared face), those coordinates applied to the support points of a and of b give the point
+/// (the same point up to rounding). False if no tetrahedron qualifies (a degenerate polytope).
+bool originInStar(const std::vector<Vertex>& verts, const std::vector<Face>& faces, Eigen::Vector3d* point_a,
+                  Eigen::Vector3d* point_b) {
+  const Vertex& v0 = verts[0];
+  for (const Face& g : faces) {
+    if (!g.alive || g.v[0] == 0 || g.v[1] == 0 || g.v[2] == 0) continue;
+    const Vertex &v1 = verts[g.v[0]], &v2 = verts[g.v[1]], &v3 = verts[g.v[2]];
+    Eigen::Matrix3d E;
+    E << v1.w - v0.w, v2.w - v0.w, v3.w - v0.w;
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(E);
+    if (!lu.isInvertible()) continue;
+    const Eigen::Vector3d mu = lu.solve(-v0.w);
+    const double l0 = 1.0 - mu.sum();
+    if (!(mu.minCoeff() >= -1e-12 && l0 >= -1e-12)) continue;
+    *point_a = l0 * v0.a + mu[0] * v1.a + mu[1] * v2.a + mu[2] * v3.a;
+    *point_b = l0 * v0.b + mu[0] * v1.b + mu[1] * v2.b + mu[2] * v3.b;
+    return true;
+  }
+  return false;
+}
+
 /// convexSignedDistance() with one more way for GJK to stop: as soon as its lower bound exceeds
 /// `stop_above` (screenConvexPair(); +infinity: never), with converged = false and distance the
 /// upper bound |v| at that step.
@@ -414,6 +439,18 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
     if (fi < 0) break;
     face_at_stop = fi;
     const Face f = faces[fi];
+    if (!want_depth && f.d > margin && originInStar(verts, faces, &out.point_a, &out.point_b)) {
+      // Only the sign is wanted, and every face is farther from the origin than the margin: the
+      // polytope (points of D) holds the ball of that radius about it, the certificate the
+      // tetrahedron's margin gives above. GJK leaves the origin on a face of its tetrahedron
+      // (within rounding) for many overlapping pairs with a sphere, which converged EPA took
+      // ~50 steps to decide; one or two expansions push that face off.
+      out.status = Separation::Overlapping;
+      out.distance = 0.0;
+      out.converged = true;
+      out.iterations += eit;
+      return out;
+    }
     const Vertex w = D.support(f.n);
     const double up = f.n.dot(w.w);
     best_up = std::min(best_up, up);

@@ -304,6 +304,53 @@ TEST(ConvexDistance, ScreeningCertifiesTheGapAndTheOverlapOfTheExactDistance) {
   EXPECT_LT(undecided - undecided_in_band, 50);
 }
 
+// With want_depth = false an overlap needs only a certificate, not the depth. For a sphere against
+// a capped cylinder or a box, GJK often ends with the origin on a face of its tetrahedron (within
+// rounding): no margin there, so EPA runs, and until session 30 it ran to the converged depth
+// (about 50 steps). It now stops as soon as every face of its polytope is beyond the margin.
+// Oracle: the closed-form distances (ellipsoid_cylinder.h, ellipsoid_polytope.h); the common point
+// must lie in both solids; and the sign-only query must take fewer steps than the one that
+// computes the depth (it shares GJK's steps, then stops early).
+TEST(ConvexDistance, SignOnlyOverlapOfASphereIsCertifiedWithoutTheConvergedDepth) {
+  std::mt19937_64 rng(30);
+  std::uniform_real_distribution<double> c(-1.5, 1.5);
+  const double r = 0.4, cyl_r = 0.5, cyl_h = 0.6;
+  const Eigen::Vector3d half(0.4, 0.3, 0.5);
+  const ConvexSupport sphere = ConvexSupport::ellipsoid(Eigen::Vector3d::Constant(r));
+  const ConvexSupport cylinder = ConvexSupport::ellipticCylinder(cyl_r, cyl_r, cyl_h), box = ConvexSupport::box(half);
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d O = Eigen::Vector3d::Zero();
+  int overlapping = 0, fewer = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const Eigen::Vector3d p(c(rng), c(rng), c(rng));
+    const Ellipsoid e = Ellipsoid::sphere(r, p);
+    for (bool with_box : {false, true}) {
+      const ConvexSupport& partner = with_box ? box : cylinder;
+      const SignedDistanceResult exact =
+          with_box ? signedDistanceEllipsoidBox(e, half, I, O) : signedDistanceEllipsoidCylinder(e, cyl_r, 2 * cyl_h, I, O);
+      if (!(exact.distance < -1e-6)) continue;  // clearly overlapping pairs only
+      ++overlapping;
+      const SignedDistanceResult sign_only = convexSignedDistance(partner, I, O, sphere, I, p, false);
+      const SignedDistanceResult depth = convexSignedDistance(partner, I, O, sphere, I, p, true);
+      ASSERT_EQ(sign_only.status, Separation::Overlapping) << i << (with_box ? " box" : " cylinder");
+      EXPECT_EQ(sign_only.distance, 0.0) << i;
+      EXPECT_LE((sign_only.point_a - sign_only.point_b).norm(), 1e-12) << i;
+      const Eigen::Vector3d x = sign_only.point_a;
+      EXPECT_LE((x - p).norm(), r * (1 + 1e-12)) << i;
+      if (with_box) {
+        EXPECT_TRUE((x.cwiseAbs() - half).maxCoeff() <= 1e-12) << i;
+      } else {
+        EXPECT_LE(std::hypot(x.x(), x.y()), cyl_r * (1 + 1e-12)) << i;
+        EXPECT_LE(std::abs(x.z()), cyl_h * (1 + 1e-12)) << i;
+      }
+      EXPECT_LE(sign_only.iterations, depth.iterations) << i;
+      fewer += sign_only.iterations < depth.iterations;
+    }
+  }
+  EXPECT_GT(overlapping, 200);
+  EXPECT_EQ(fewer, overlapping);
+}
+
 TEST(ConvexDistance, RegionPairsAgreeWithTheCertifiedStaticEngineAlongTheNormal) {
   // Translating b by -distance * normal makes the pair touch: 1e-5 of the distance short of that
   // the engine must not find an overlap, 1e-5 beyond it it must not certify separation. For

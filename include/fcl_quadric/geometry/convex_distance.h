@@ -46,9 +46,12 @@ constexpr std::size_t kMaxEpaFaces = 8192;
 /// conventions as signedDistance(Ellipsoid, Ellipsoid): distance > 0 separated, < 0 minus the
 /// penetration depth, 0 touching; point_a on a, point_b on b (world frame); normal from a to b
 /// (translating b by -distance * normal makes them touch). `iterations` counts GJK plus EPA steps.
-/// With want_depth = false an overlapping pair whose GJK tetrahedron certifies the overlap is not
-/// expanded: distance = 0 is returned with status Overlapping, and point_a, point_b are one common
-/// point of a and b (equal up to rounding; the caller only needs the sign and a witness).
+/// With want_depth = false an overlap is certified without its depth: by GJK's tetrahedron when
+/// the origin lies inside it with margin, otherwise by EPA's polytope as soon as every face of it
+/// clears that margin (one or two expansions when GJK left the origin on a face, as it often does
+/// for a sphere). Then distance = 0 is returned with status Overlapping, and point_a, point_b are
+/// one common point of a and b (equal up to rounding; the caller only needs the sign and a
+/// witness). If EPA reaches neither, it runs on as with want_depth = true.
 /// If `lower_bound` is non-null it receives, for a Separated result, GJK's lower bound v.w / |v|
 /// (converged or not: a stall or the iteration cap leaves |v| an upper and this a lower bound of
 /// the distance, exact up to the support points' rounding and tolerance), else 0.
@@ -75,11 +78,12 @@ struct ConvexScreening {
   int iterations = 0;  ///< GJK (and EPA) steps taken
 };
 
-/// The screening query of the mesh and OcTree traversals (docs/algorithms.md section 12): is the
-/// pair certainly farther apart than `gap`, certainly overlapping, or neither? GJK as in
-/// convexSignedDistance(), stopped as soon as its lower bound exceeds `gap` (a certificate at any
-/// step: it need not converge) or its simplex certifies the overlap; EPA never runs when the
-/// tetrahedron has a margin (otherwise it runs as in convexSignedDistance and its status counts).
+/// The screening query of the mesh and OcTree traversals and of the collide of two convex solids
+/// (docs/algorithms.md section 12): is the pair certainly farther apart than `gap`, certainly
+/// overlapping, or neither? GJK as in convexSignedDistance(), stopped as soon as its lower bound
+/// exceeds `gap` (a certificate at any step: it need not converge) or its simplex certifies the
+/// overlap; EPA never runs when the tetrahedron has a margin (otherwise it runs as in
+/// convexSignedDistance with want_depth = false, and its status counts).
 /// Far is as certain as convexSignedDistance's Separated (exact up to the support points'
 /// tolerance; pass a gap well above 1e-11 of the pair's scale to cover it).
 /// \throws std::invalid_argument if a pose is not finite or gap is not >= 0 (NaN included).
