@@ -48,6 +48,7 @@
 #include <cstdio>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -55,7 +56,12 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/geometry/octree/octree.h>
 #include <fcl/math/bv/OBBRSS.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
 #include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/math/motion/translation_motion.h>
 #include <fcl/narrowphase/collision.h>
@@ -761,6 +767,86 @@ BENCHMARK(BM_SmallEllipsoidEngine)->Name("QuadricShapes/SmallEllipsoid/RegionEng
 
 }  // namespace
 
+// Shape pairs (session 30): fcl_quadric::collide with a quadric shape first, against each FCL
+// partner FCL 0.7 has (libccd on an fcl::Cylinder of the same size in place of the
+// EllipticCylinder), and against shapes FCL does not have (a clipped paraboloid, a union of two
+// balls, a ring): 1,000 poses of the partner (random rotation, centre in [-1.5, 1.5]^3), the
+// quadric shape at the identity. One iteration = one pose, walked cyclically.
+struct ShapePairScene {
+  std::string name;
+  std::shared_ptr<fcl::CollisionGeometryd> ours, partner;
+  std::shared_ptr<fcl::CollisionGeometryd> theirs;  // FCL's stand-in for `ours`, or null
+};
+const std::vector<fcl::Transform3d>& shapePairPoses() {
+  static const std::vector<fcl::Transform3d> poses = [] {
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(-1.5, 1.5);
+    return cylinderPoses(rng, 1000, u, u, u);
+  }();
+  return poses;
+}
+std::vector<ShapePairScene> makeShapePairScenes() {
+  using Q = fcl_quadric::Quadric<double>;
+  using Csg = fcl_quadric::QuadricCSG<double>;
+  const fcl::Transform3d I = fcl::Transform3d::Identity();
+  fcl::Transform3d up = I, down = I;
+  up.translation() = Eigen::Vector3d(0, 0, 0.6);
+  down.translation() = Eigen::Vector3d(0, 0, -0.6);
+  auto cylinder = std::make_shared<fcl_quadric::EllipticCylinder<double>>(0.5, 0.5, 1.2);
+  auto fcl_cylinder = std::make_shared<fcl::Cylinderd>(0.5, 1.2);
+  auto ball = std::make_shared<Q>(Q::ellipsoid(0.5, 0.5, 0.5));
+  auto balls = std::make_shared<Csg>(fcl_quadric::QuadricRegion::Op::Union, std::vector<Csg::Child>{{ball, up}, {ball, down}});
+  auto ring = std::make_shared<Csg>(fcl_quadric::QuadricRegion::Op::Difference,
+                                    std::vector<Csg::Child>{{std::make_shared<Q>(Q::ellipsoid(1.2, 1.2, 0.6)), I},
+                                                            {std::make_shared<Q>(Q::ellipticCylinder(0.6, 0.6)), I}});
+  auto paraboloid = std::make_shared<Q>(Q::ellipticParaboloid(0.8, 0.5, {{Eigen::Vector3d::UnitZ(), 1.5}}));
+  auto box = std::make_shared<fcl::Boxd>(0.8, 0.6, 1.0);
+  auto sphere = std::make_shared<fcl::Sphered>(0.4);
+  return {
+      {"CylinderSphere", cylinder, sphere, fcl_cylinder},
+      {"CylinderBox", cylinder, box, fcl_cylinder},
+      {"CylinderCone", cylinder, std::make_shared<fcl::Coned>(0.5, 1.0), fcl_cylinder},
+      {"CylinderCapsule", cylinder, std::make_shared<fcl::Capsuled>(0.3, 1.0), fcl_cylinder},
+      {"CylinderEllipsoid", cylinder, std::make_shared<fcl::Ellipsoidd>(0.3, 0.5, 0.7), fcl_cylinder},
+      {"CylinderHalfspace", cylinder,
+       std::make_shared<fcl::Halfspaced>(Eigen::Vector3d(0.3, 0.2, 1.0).normalized(), 0.1), fcl_cylinder},
+      {"ParaboloidBox", paraboloid, box, nullptr},
+      {"TwoBallsBox", balls, box, nullptr},
+      {"RingSphere", ring, sphere, nullptr},
+  };
+}
+std::vector<ShapePairScene>& shapePairScenes() {
+  static std::vector<ShapePairScene> scenes;
+  return scenes;
+}
+bool shapePairCollide(const fcl::CollisionGeometryd* a, const fcl::CollisionGeometryd* b, const fcl::Transform3d& tb,
+                      bool ours) {
+  fcl::CollisionRequestd req;
+  fcl::CollisionResultd res;
+  const fcl::Transform3d I = fcl::Transform3d::Identity();
+  return (ours ? fcl_quadric::collide(a, I, b, tb, req, res) : fcl::collide(a, I, b, tb, req, res)) > 0;
+}
+void registerShapePairBenchmarks() {
+  for (std::size_t k = 0; k < shapePairScenes().size(); ++k) {
+    const ShapePairScene& s = shapePairScenes()[k];
+    for (const bool ours : {true, false}) {
+      if (!ours && !s.theirs) continue;
+      benchmark::RegisterBenchmark(("QuadricShapes/Pairs/" + s.name + (ours ? "/fcl_quadric" : "/FclGjkLibccd")).c_str(),
+                                   [k, ours](benchmark::State& state) {
+                                     const ShapePairScene& c = shapePairScenes()[k];
+                                     const auto& poses = shapePairPoses();
+                                     std::size_t i = 0;
+                                     for (auto _ : state) {
+                                       benchmark::DoNotOptimize(shapePairCollide(ours ? c.ours.get() : c.theirs.get(),
+                                                                                 c.partner.get(), poses[i], ours));
+                                       i = (i + 1) % poses.size();
+                                     }
+                                   })
+          ->Unit(benchmark::kMicrosecond);
+    }
+  }
+}
+
 int main(int argc, char** argv) {
   const std::size_t n = fcl_quadric::bench::takeSizeOption(&argc, argv, "pairs", "FCL_QUADRIC_BENCH_PAIRS", 2000);
   const std::size_t nm = fcl_quadric::bench::takeSizeOption(&argc, argv, "motions", "FCL_QUADRIC_BENCH_MOTIONS", 32);
@@ -777,6 +863,8 @@ int main(int argc, char** argv) {
   distancePairs() = makeDistancePairs(cylinderPairs());
   terrain() = makeTerrain();
   octreeTerrain() = makeOcTreeTerrain();
+  shapePairScenes() = makeShapePairScenes();
+  registerShapePairBenchmarks();
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   {
@@ -911,6 +999,23 @@ int main(int argc, char** argv) {
                 "max %.3g\n",
                 ringBall().poses.size(), gaps[gaps.size() / 2], gaps.back(), outside_bracket,
                 ringBall().mesh->num_tris, mesh_err[mesh_err.size() / 2], mesh_err.back());
+  }
+  {
+    // Shape pairs: the colliding poses of each, and where FCL has the pair, the poses where its
+    // flag differs from ours.
+    std::printf("Shape pairs, %zu poses each (colliding; FCL differs):", shapePairPoses().size());
+    for (const ShapePairScene& c : shapePairScenes()) {
+      int hits = 0, differs = 0;
+      for (const fcl::Transform3d& tb : shapePairPoses()) {
+        const bool ours = shapePairCollide(c.ours.get(), c.partner.get(), tb, true);
+        hits += ours;
+        if (c.theirs) differs += shapePairCollide(c.theirs.get(), c.partner.get(), tb, false) != ours;
+      }
+      std::printf(" %s %d", c.name.c_str(), hits);
+      if (c.theirs) std::printf(" (%d)", differs);
+      std::printf(";");
+    }
+    std::printf("\n");
   }
   // Agreement (outside the timed loops).
   int touching = 0, disagree = 0, fcl_misses = 0, fcl_false = 0, hits = 0, front_door_differs = 0;

@@ -67,12 +67,7 @@ std::optional<Covered> coverOf(const fcl::CollisionGeometry<double>* g, const fc
     if (!q.bounded())
       throw std::invalid_argument(std::string("fcl_quadric::distanceLowerBound: ") + which +
                                   " is an unbounded quadric shape (a CSG operand only)");
-    if (q.convexSupport()) {  // (convexCover's one exact piece, made once with the shape)
-      c.pieces.push_back(*q.convexSupport());
-      c.exact = true;
-    } else {
-      c = convexCover(q.region(), q.localBox());
-    }
+    c = *q.sharedConvexCover();  // (made once per shape, not per query)
   } else if (std::optional<ConvexSupport> s = detail::convexSupportOf(g, which)) {
     c.pieces.push_back(std::move(*s));
     c.exact = true;

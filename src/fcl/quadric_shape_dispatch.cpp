@@ -260,41 +260,89 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
     }
     return result.numContacts();
   }
-  // Two bounded convex solids (a convex quadric shape, an FCL primitive): GJK's screening first, as
-  // for a mesh's triangles (docs/algorithms.md section 12). A pair it certifies farther apart than
-  // 2e-8 of the pair's scale has no contact; a pair it certifies overlapping has one at GJK's
-  // common point. Only the pairs in between (within that band of contact, or a stall) go to the
-  // region engine, which decides them exactly. Before session 30 every pair went to the engine:
-  // 30 us for two capped cylinders, where the screening takes well under a microsecond.
-  // A quadric shape lends the support it made at construction (no copy); an FCL primitive's is
-  // made in `storage`.
-  // (isQuadricShape costs a dynamic_cast, ~15 ns: asked once per operand.)
-  const bool quadric1 = isQuadricShape(o1);
-  auto boundedConvex = [](const fcl::CollisionGeometry<double>* g, bool quadric,
-                          std::optional<ConvexSupport>* storage) -> const ConvexSupport* {
+  // GJK's screening before the region engine, as for a mesh's triangles (docs/algorithms.md
+  // section 12): a bounded quadric shape S as the convex pieces of its cover (one piece when S is
+  // convex), against a convex partner (a convex quadric shape, an FCL Sphere, Ellipsoid, Box,
+  // Cylinder, Cone or Capsule) or a half-space (closed form: the piece's support point towards the
+  // half-space). Every piece certified farther than 2e-8 of the pair's scale: no contact (the
+  // pieces contain S). A piece of an exact cover (S a union of convex solids) certified
+  // overlapping: a contact at the common point. Anything else (near contact, a stall, an overlap of
+  // an inexact cover's piece, two non-convex shapes) goes to the region engine, which decides it
+  // exactly. Before session 30 every pair went to the engine: 30 us for two capped cylinders,
+  // where the screening takes well under a microsecond.
+  const bool quadric1 = isQuadricShape(o1), quadric2 = isQuadricShape(o2);  // (a dynamic_cast each)
+  std::optional<ConvexSupport> storage;
+  // The partner's support mapping (a quadric shape lends the one it made at construction).
+  auto convexOf = [&storage](const fcl::CollisionGeometry<double>* g, bool quadric) -> const ConvexSupport* {
     if (quadric) {
       const auto& q = static_cast<const QuadricShape<double>&>(*g);
       return q.bounded() && q.convexSupport() ? &*q.convexSupport() : nullptr;
     }
-    *storage = convexSupportOf(g, "");
-    return *storage ? &**storage : nullptr;
+    storage = convexSupportOf(g, "");
+    return storage ? &*storage : nullptr;
   };
-  std::optional<ConvexSupport> storage1, storage2;
-  const ConvexSupport* c1 = boundedConvex(o1, quadric1, &storage1);
-  const ConvexSupport* c2 = c1 ? boundedConvex(o2, isQuadricShape(o2), &storage2) : nullptr;
-  if (c1 && c2) {
-    const Eigen::Vector3d w1 = tf1.linear() * c1->center() + tf1.translation();
-    const Eigen::Vector3d w2 = tf2.linear() * c2->center() + tf2.translation();
-    const double scale = c1->size() + c2->size() + (w1 - w2).norm();
-    const ConvexScreening d = screenConvexPair(*c1, tf1.linear(), tf1.translation(), *c2, tf2.linear(),
-                                               tf2.translation(), 2e-8 * scale);
-    if (d.verdict == ConvexScreening::Verdict::Far) return result.numContacts();
-    if (d.verdict == ConvexScreening::Verdict::Overlapping) {
+  auto boundedShape = [](const fcl::CollisionGeometry<double>* g, bool quadric) {
+    return quadric && static_cast<const QuadricShape<double>&>(*g).bounded();
+  };
+  const fcl::CollisionGeometry<double>* shape_g = nullptr;
+  const fcl::CollisionGeometry<double>* partner_g = nullptr;
+  const ConvexSupport* partner = nullptr;
+  for (const bool first : {true, false}) {
+    const fcl::CollisionGeometry<double>* g = first ? o1 : o2;
+    const fcl::CollisionGeometry<double>* other = first ? o2 : o1;
+    if (!boundedShape(g, first ? quadric1 : quadric2)) continue;
+    partner = other->getNodeType() == fcl::GEOM_HALFSPACE ? nullptr : convexOf(other, first ? quadric2 : quadric1);
+    if (partner != nullptr || other->getNodeType() == fcl::GEOM_HALFSPACE) {
+      shape_g = g;
+      partner_g = other;
+      break;
+    }
+  }
+  if (shape_g != nullptr) {
+    const fcl::Transform3<double>& tfs = shape_g == o1 ? tf1 : tf2;
+    const fcl::Transform3<double>& tfp = shape_g == o1 ? tf2 : tf1;
+    const std::shared_ptr<const ConvexCover> cover =
+        static_cast<const QuadricShape<double>&>(*shape_g).sharedConvexCover();
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    double off = 0.0;
+    if (partner == nullptr) {  // the half-space n.x <= off (world frame)
+      const auto* hs = static_cast<const fcl::Halfspace<double>*>(partner_g);
+      n = tfp.linear() * hs->n.normalized();
+      off = hs->d / hs->n.norm() + n.dot(tfp.translation());
+    }
+    bool all_far = true;
+    std::optional<Eigen::Vector3d> common;
+    for (const ConvexSupport& piece : cover->pieces) {
+      const Eigen::Vector3d centre = tfs.linear() * piece.center() + tfs.translation();
+      ConvexScreening::Verdict verdict;
+      Eigen::Vector3d point;
+      if (partner == nullptr) {
+        point = tfs.linear() * piece.support(-(tfs.linear().transpose() * n)) + tfs.translation();
+        const double depth = n.dot(point) - off, band = 2e-8 * (piece.size() + centre.norm() + std::abs(off));
+        verdict = depth > band    ? ConvexScreening::Verdict::Far
+                  : depth < -band ? ConvexScreening::Verdict::Overlapping
+                                  : ConvexScreening::Verdict::Undecided;
+      } else {
+        const double scale = piece.size() + partner->size() +
+                             (centre - (tfp.linear() * partner->center() + tfp.translation())).norm();
+        const ConvexScreening d = screenConvexPair(piece, tfs.linear(), tfs.translation(), *partner, tfp.linear(),
+                                                   tfp.translation(), 2e-8 * scale);
+        verdict = d.verdict;
+        point = d.common_point;
+      }
+      all_far = all_far && verdict == ConvexScreening::Verdict::Far;
+      if (verdict == ConvexScreening::Verdict::Overlapping && cover->exact) {
+        common = point;
+        break;
+      }
+    }
+    if (all_far) return result.numContacts();
+    if (common) {
       if (quadric1) {
-        addRegionContact(static_cast<const QuadricShape<double>&>(*o1).region(), tf1, d.common_point, o1, o2, request,
+        addRegionContact(static_cast<const QuadricShape<double>&>(*o1).region(), tf1, *common, o1, o2, request,
                          result);
       } else {
-        addRegionContact(localSolid(o1, "o1").region, tf1, d.common_point, o1, o2, request, result);
+        addRegionContact(localSolid(o1, "o1").region, tf1, *common, o1, o2, request, result);
       }
       return result.numContacts();
     }

@@ -38,6 +38,8 @@ template <typename S>
 struct QuadricShape<S>::ElementsCache {
   std::once_flag once;
   std::shared_ptr<const BoundaryElements> elements;
+  std::once_flag cover_once;
+  std::shared_ptr<const ConvexCover> cover;
 };
 
 template <typename S>
@@ -90,6 +92,22 @@ std::shared_ptr<const BoundaryElements> QuadricShape<S>::sharedBoundaryElements(
     elements_->elements = std::make_shared<const BoundaryElements>(fcl_quadric::boundaryElements(region_, box_));
   });
   return elements_->elements;
+}
+
+template <typename S>
+std::shared_ptr<const ConvexCover> QuadricShape<S>::sharedConvexCover() const {
+  requireBounded("QuadricShape::sharedConvexCover");
+  std::call_once(elements_->cover_once, [this] {
+    if (convex_) {
+      auto cover = std::make_shared<ConvexCover>();
+      cover->pieces.push_back(*convex_);
+      cover->exact = true;
+      elements_->cover = std::move(cover);
+    } else {
+      elements_->cover = std::make_shared<const ConvexCover>(convexCover(region_, box_));
+    }
+  });
+  return elements_->cover;
 }
 
 template <typename S>

@@ -24,6 +24,7 @@
 #include <fcl/common/types.h>
 #include <fcl/geometry/shape/shape_base.h>
 
+#include "fcl_quadric/geometry/convex_cover.h"
 #include "fcl_quadric/geometry/convex_support.h"
 #include "fcl_quadric/geometry/quadric_region.h"
 
@@ -56,6 +57,11 @@ class QuadricShape : public fcl::ShapeBase<S> {
   /// at most one convex curved atom); none for an unbounded or a non-convex shape. The front
   /// doors' GJK (screening, distance) runs on it. No failure mode.
   const std::optional<ConvexSupport>& convexSupport() const { return convex_; }
+  /// Convex pieces whose union contains the solid (convexCover(); exact for a union of convex
+  /// solids, one piece for a convex shape), made once on first use (thread-safe; copies of the
+  /// shape share it): the collide's GJK screening and the distance lower bound use it.
+  /// \throws std::invalid_argument if unbounded.
+  std::shared_ptr<const ConvexCover> sharedConvexCover() const;
 
   /// fcl::BV_UNKNOWN: see the file comment.
   fcl::NODE_TYPE getNodeType() const override { return fcl::BV_UNKNOWN; }
