@@ -769,9 +769,9 @@ BENCHMARK(BM_SmallEllipsoidEngine)->Name("QuadricShapes/SmallEllipsoid/RegionEng
 
 // Shape pairs (session 30): fcl_quadric::collide with a quadric shape first, against each FCL
 // partner FCL 0.7 has (libccd on an fcl::Cylinder of the same size in place of the
-// EllipticCylinder), and against shapes FCL does not have (a clipped paraboloid, a union of two
-// balls, a ring): 1,000 poses of the partner (random rotation, centre in [-1.5, 1.5]^3), the
-// quadric shape at the identity. One iteration = one pose, walked cyclically.
+// EllipticCylinder), and shapes FCL does not have (a clipped paraboloid, a union of two balls, a
+// ring, the ring against the two balls): 1,000 poses of the partner (random rotation, centre in
+// [-1.5, 1.5]^3), the quadric shape at the identity. One iteration = one pose, walked cyclically.
 struct ShapePairScene {
   std::string name;
   std::shared_ptr<fcl::CollisionGeometryd> ours, partner;
@@ -813,6 +813,7 @@ std::vector<ShapePairScene> makeShapePairScenes() {
       {"ParaboloidBox", paraboloid, box, nullptr},
       {"TwoBallsBox", balls, box, nullptr},
       {"RingSphere", ring, sphere, nullptr},
+      {"RingTwoBalls", ring, balls, nullptr},
   };
 }
 std::vector<ShapePairScene>& shapePairScenes() {

@@ -261,79 +261,97 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
     return result.numContacts();
   }
   // GJK's screening before the region engine, as for a mesh's triangles (docs/algorithms.md
-  // section 12): a bounded quadric shape S as the convex pieces of its cover (one piece when S is
-  // convex), against a convex partner (a convex quadric shape, an FCL Sphere, Ellipsoid, Box,
-  // Cylinder, Cone or Capsule) or a half-space (closed form: the piece's support point towards the
-  // half-space). Every piece certified farther than 2e-8 of the pair's scale: no contact (the
-  // pieces contain S). A piece of an exact cover (S a union of convex solids) certified
-  // overlapping: a contact at the common point. Anything else (near contact, a stall, an overlap of
-  // an inexact cover's piece, two non-convex shapes) goes to the region engine, which decides it
-  // exactly. Before session 30 every pair went to the engine: 30 us for two capped cylinders,
-  // where the screening takes well under a microsecond.
-  const bool quadric1 = isQuadricShape(o1), quadric2 = isQuadricShape(o2);  // (a dynamic_cast each)
-  std::optional<ConvexSupport> storage;
-  // The partner's support mapping (a quadric shape lends the one it made at construction).
-  auto convexOf = [&storage](const fcl::CollisionGeometry<double>* g, bool quadric) -> const ConvexSupport* {
+  // section 12). Each operand as convex pieces whose union contains it: a bounded quadric shape as
+  // the pieces of its cover (one piece when convex; exact for a union of convex solids), an FCL
+  // Sphere, Ellipsoid, Box, Cylinder, Cone or Capsule as itself; a half-space by closed form (a
+  // piece's support point towards it). Every pair of pieces certified farther apart than 2e-8 of
+  // its scale: no contact (the pieces contain the solids). A pair of pieces of exact covers
+  // certified overlapping: a contact at its common point. Anything else (near contact, a stall,
+  // an overlap of an inexact cover's piece, an unbounded quadric shape) goes to the region engine,
+  // which decides it exactly. Before session 30 every pair went to the engine: 18-30 us for two
+  // capped cylinders, where the screening takes well under a microsecond (docs/benchmarks.md).
+  struct Operand {
+    std::shared_ptr<const ConvexCover> cover;  // a bounded quadric shape's (made once per shape)
+    std::optional<ConvexSupport> own;          // an FCL convex primitive's
+    bool halfspace = false;
+    bool screened() const { return cover || own || halfspace; }
+    bool exact() const { return own || (cover && cover->exact); }
+    std::vector<const ConvexSupport*> pieces() const {
+      std::vector<const ConvexSupport*> out;
+      if (own) out.push_back(&*own);
+      if (cover)
+        for (const ConvexSupport& p : cover->pieces) out.push_back(&p);
+      return out;
+    }
+  };
+  const bool quadric1 = isQuadricShape(o1);  // (a dynamic_cast: asked once)
+  auto operandOf = [](const fcl::CollisionGeometry<double>* g, bool quadric) {
+    Operand op;
     if (quadric) {
       const auto& q = static_cast<const QuadricShape<double>&>(*g);
-      return q.bounded() && q.convexSupport() ? &*q.convexSupport() : nullptr;
+      if (q.bounded()) op.cover = q.sharedConvexCover();
+    } else if (g->getNodeType() == fcl::GEOM_HALFSPACE) {
+      op.halfspace = true;
+    } else {
+      op.own = convexSupportOf(g, "");
     }
-    storage = convexSupportOf(g, "");
-    return storage ? &*storage : nullptr;
+    return op;
   };
-  auto boundedShape = [](const fcl::CollisionGeometry<double>* g, bool quadric) {
-    return quadric && static_cast<const QuadricShape<double>&>(*g).bounded();
-  };
-  const fcl::CollisionGeometry<double>* shape_g = nullptr;
-  const fcl::CollisionGeometry<double>* partner_g = nullptr;
-  const ConvexSupport* partner = nullptr;
-  for (const bool first : {true, false}) {
-    const fcl::CollisionGeometry<double>* g = first ? o1 : o2;
-    const fcl::CollisionGeometry<double>* other = first ? o2 : o1;
-    if (!boundedShape(g, first ? quadric1 : quadric2)) continue;
-    partner = other->getNodeType() == fcl::GEOM_HALFSPACE ? nullptr : convexOf(other, first ? quadric2 : quadric1);
-    if (partner != nullptr || other->getNodeType() == fcl::GEOM_HALFSPACE) {
-      shape_g = g;
-      partner_g = other;
-      break;
-    }
-  }
-  if (shape_g != nullptr) {
-    const fcl::Transform3<double>& tfs = shape_g == o1 ? tf1 : tf2;
-    const fcl::Transform3<double>& tfp = shape_g == o1 ? tf2 : tf1;
-    const std::shared_ptr<const ConvexCover> cover =
-        static_cast<const QuadricShape<double>&>(*shape_g).sharedConvexCover();
+  const Operand op1 = operandOf(o1, quadric1), op2 = operandOf(o2, isQuadricShape(o2));
+  if (op1.screened() && op2.screened() && !(op1.halfspace && op2.halfspace)) {
+    // The half-space, if any, as n.x <= off in the world frame; the other operand's pieces against it.
+    const bool plane = op1.halfspace || op2.halfspace;
+    const fcl::CollisionGeometry<double>* plane_g = op1.halfspace ? o1 : o2;
+    const fcl::Transform3<double>& plane_tf = op1.halfspace ? tf1 : tf2;
     Eigen::Vector3d n = Eigen::Vector3d::Zero();
     double off = 0.0;
-    if (partner == nullptr) {  // the half-space n.x <= off (world frame)
-      const auto* hs = static_cast<const fcl::Halfspace<double>*>(partner_g);
-      n = tfp.linear() * hs->n.normalized();
-      off = hs->d / hs->n.norm() + n.dot(tfp.translation());
+    if (plane) {
+      const auto* hs = static_cast<const fcl::Halfspace<double>*>(plane_g);
+      n = plane_tf.linear() * hs->n.normalized();
+      off = hs->d / hs->n.norm() + n.dot(plane_tf.translation());
     }
-    bool all_far = true;
-    std::optional<Eigen::Vector3d> common;
-    for (const ConvexSupport& piece : cover->pieces) {
-      const Eigen::Vector3d centre = tfs.linear() * piece.center() + tfs.translation();
-      ConvexScreening::Verdict verdict;
-      Eigen::Vector3d point;
-      if (partner == nullptr) {
-        point = tfs.linear() * piece.support(-(tfs.linear().transpose() * n)) + tfs.translation();
-        const double depth = n.dot(point) - off, band = 2e-8 * (piece.size() + centre.norm() + std::abs(off));
-        verdict = depth > band    ? ConvexScreening::Verdict::Far
-                  : depth < -band ? ConvexScreening::Verdict::Overlapping
-                                  : ConvexScreening::Verdict::Undecided;
-      } else {
-        const double scale = piece.size() + partner->size() +
-                             (centre - (tfp.linear() * partner->center() + tfp.translation())).norm();
-        const ConvexScreening d = screenConvexPair(piece, tfs.linear(), tfs.translation(), *partner, tfp.linear(),
-                                                   tfp.translation(), 2e-8 * scale);
-        verdict = d.verdict;
-        point = d.common_point;
+    // One pair of pieces (b null: piece a against the half-space): its verdict, and the common
+    // point when overlapping.
+    auto screen = [&](const ConvexSupport& a, const fcl::Transform3<double>& ta, const ConvexSupport* b,
+                      const fcl::Transform3<double>& tb, Eigen::Vector3d* point) {
+      const Eigen::Vector3d ca = ta.linear() * a.center() + ta.translation();
+      if (b == nullptr) {
+        *point = ta.linear() * a.support(-(ta.linear().transpose() * n)) + ta.translation();
+        // The piece's signed gap to the plane (its support value towards it, less the offset).
+        const double gap = n.dot(*point) - off, band = 2e-8 * (a.size() + ca.norm() + std::abs(off));
+        return gap > band    ? ConvexScreening::Verdict::Far
+               : gap < -band ? ConvexScreening::Verdict::Overlapping
+                             : ConvexScreening::Verdict::Undecided;
       }
-      all_far = all_far && verdict == ConvexScreening::Verdict::Far;
-      if (verdict == ConvexScreening::Verdict::Overlapping && cover->exact) {
-        common = point;
-        break;
+      const double scale = a.size() + b->size() + (ca - (tb.linear() * b->center() + tb.translation())).norm();
+      const ConvexScreening d =
+          screenConvexPair(a, ta.linear(), ta.translation(), *b, tb.linear(), tb.translation(), 2e-8 * scale);
+      *point = d.common_point;
+      return d.verdict;
+    };
+    const Operand& solid = op1.halfspace ? op2 : op1;  // (with a half-space: the other operand)
+    const fcl::Transform3<double>& solid_tf = op1.halfspace ? tf2 : tf1;
+    const std::vector<const ConvexSupport*> pieces_a = solid.pieces();
+    const std::vector<const ConvexSupport*> pieces_b =
+        plane ? std::vector<const ConvexSupport*>{nullptr} : op2.pieces();
+    const bool exact = solid.exact() && (plane || op2.exact());
+    // At most kMaxScreenedPiecePairs GJK runs (two covers of up to 64 pieces each would be 4,096);
+    // beyond, the engine alone, as before the screening.
+    constexpr std::size_t kMaxScreenedPiecePairs = 64;
+    bool all_far = false;
+    std::optional<Eigen::Vector3d> common;
+    if (pieces_a.size() * pieces_b.size() <= kMaxScreenedPiecePairs) {
+      all_far = true;
+      for (std::size_t i = 0; i < pieces_a.size() && !common; ++i) {
+        for (const ConvexSupport* b : pieces_b) {
+          Eigen::Vector3d point;
+          const ConvexScreening::Verdict verdict = screen(*pieces_a[i], solid_tf, b, tf2, &point);
+          all_far = all_far && verdict == ConvexScreening::Verdict::Far;
+          if (verdict == ConvexScreening::Verdict::Overlapping && exact) {
+            common = point;
+            break;
+          }
+        }
       }
     }
     if (all_far) return result.numContacts();
@@ -430,10 +448,9 @@ Eigen::Vector3d transversalWitness(const LocalSolid& e, const Eigen::Matrix3d& R
   return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
 }
 
-/// Adds the contact at `point` (world) if request.num_max_contacts allows: normal = o1's atom (of
-/// `wa`, o1's world region) with the smallest |f| / |grad f| there, outward (as used).
 /// The unit normal at x of the boundary atom of `region` nearest to x (the smallest first-order
-/// distance |q(x)| / |grad q(x)|), in the region's frame; +x if no atom has a gradient there.
+/// distance |q(x)| / |grad q(x)|), outward (as used), in the region's frame; +x if no atom has a
+/// gradient there.
 Eigen::Vector3d nearestAtomNormal(const QuadricRegion& region, const Eigen::Vector3d& x) {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
   double best = std::numeric_limits<double>::infinity();
@@ -452,6 +469,8 @@ Eigen::Vector3d nearestAtomNormal(const QuadricRegion& region, const Eigen::Vect
   return normal;
 }
 
+/// Adds the contact at `point` (world) if request.num_max_contacts allows: normal = that of o1's
+/// nearest boundary atom there (nearestAtomNormal() on `wa`, o1's world region), depth 0.
 void addRegionContact(const QuadricRegion& wa, const Eigen::Vector3d& point, const fcl::CollisionGeometry<double>* o1,
                       const fcl::CollisionGeometry<double>* o2, const fcl::CollisionRequest<double>& request,
                       fcl::CollisionResult<double>& result) {
@@ -873,10 +892,10 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
     }
     if (isQuadricShape(g)) {
       const auto& q = static_cast<const QuadricShape<double>&>(*g);
-      ConvexCover cover = convexCover(q.region(), q.localBox());
-      if (cover.exact) {
-        for (ConvexSupport& piece : cover.pieces)
-          out.push_back(PosedConvex{std::move(piece), tf.linear(), tf.translation(), -1, PosedConvex::Primitive, {}});
+      const std::shared_ptr<const ConvexCover> cover = q.sharedConvexCover();  // (made once per shape)
+      if (cover->exact) {
+        for (const ConvexSupport& piece : cover->pieces)
+          out.push_back(PosedConvex{piece, tf.linear(), tf.translation(), -1, PosedConvex::Primitive, {}});
       } else {
         out.push_back(PosedConvex{ConvexSupport{}, tf.linear(), tf.translation(), -1, PosedConvex::Primitive, {}, &q});
       }

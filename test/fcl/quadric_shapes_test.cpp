@@ -308,6 +308,48 @@ TEST(QuadricShapeDispatch, UnionNearContactWithOnePieceIsLeftToTheEngine) {
   }
 }
 
+// The support mapping each shape makes at construction, and the cover it makes once: the closed
+// form for an EllipticCylinder, fromRegion's for another convex region (the same support points
+// as one made afresh), none for a non-convex shape; the cover exact for a union of convex solids
+// and not for a ring, made once and shared by copies.
+TEST(QuadricShapeTypes, ConvexSupportAndCoverAreMadeOnceFromTheRegion) {
+  using Q = Quadric<double>;
+  const Transform I = Transform::Identity();
+  const EllipticCylinder<double> cylinder(0.6, 0.35, 1.4);
+  ASSERT_TRUE(cylinder.convexSupport());
+  EXPECT_EQ(cylinder.convexSupport()->kind(), ConvexSupport::Kind::EllipticCylinder);
+  const Q paraboloid = Q::ellipticParaboloid(0.8, 0.5, {{Eigen::Vector3d::UnitZ(), 1.5}});
+  ASSERT_TRUE(paraboloid.convexSupport());
+  const std::optional<ConvexSupport> fresh = ConvexSupport::fromRegion(paraboloid.region(), paraboloid.localBox());
+  ASSERT_TRUE(fresh);
+  std::mt19937_64 rng(8);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int i = 0; i < 50; ++i) {
+    const Eigen::Vector3d n(g(rng), g(rng), g(rng));
+    EXPECT_EQ(paraboloid.convexSupport()->support(n), fresh->support(n)) << n.transpose();
+    // The cylinder's support is its closed form: the rim point of the end facing n.
+    const Eigen::Vector3d x = cylinder.convexSupport()->support(n);
+    EXPECT_NEAR(x.x() * x.x() / (0.6 * 0.6) + x.y() * x.y() / (0.35 * 0.35), 1.0, 1e-12);
+    EXPECT_EQ(x.z(), n.z() >= 0 ? 0.7 : -0.7);
+  }
+  auto ball = std::make_shared<Q>(Q::ellipsoid(0.5, 0.5, 0.5));
+  Transform up = I;
+  up.translation() = Eigen::Vector3d(0, 0, 0.6);
+  const Csg balls(Op::Union, std::vector<Csg::Child>{{ball, I}, {ball, up}});
+  const Csg ring(Op::Difference, std::vector<Csg::Child>{{std::make_shared<Q>(Q::ellipsoid(1.0, 1.0, 0.5)), I},
+                                                         {std::make_shared<Q>(Q::ellipticCylinder(0.5, 0.5)), I}});
+  EXPECT_FALSE(balls.convexSupport());
+  EXPECT_FALSE(ring.convexSupport());
+  EXPECT_TRUE(balls.sharedConvexCover()->exact);
+  EXPECT_EQ(balls.sharedConvexCover()->pieces.size(), 2u);
+  EXPECT_FALSE(ring.sharedConvexCover()->exact);
+  EXPECT_EQ(cylinder.sharedConvexCover()->pieces.size(), 1u);
+  EXPECT_TRUE(cylinder.sharedConvexCover()->exact);
+  EXPECT_EQ(balls.sharedConvexCover(), balls.sharedConvexCover());  // made once
+  const Csg copy = balls;
+  EXPECT_EQ(copy.sharedConvexCover(), balls.sharedConvexCover());  // and shared by copies
+}
+
 TEST(QuadricShapeTypes, NamedQuadricsHaveAnalyticExtentsAndContacts) {
   using Clip = HalfspaceClip<double>;
   const double h = 2.0;
@@ -388,6 +430,8 @@ TEST(QuadricShapeTypes, BadInputThrowsNamingTheValue) {
   auto ballShape = std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(1.0, 1.0, 1.0));
   auto par = std::make_shared<Quadric<double>>(Quadric<double>::ellipticParaboloid(1.0, 1.0));
   expectThrow([&] { par->localBox(); }, "unbounded");
+  expectThrow([&] { par->sharedConvexCover(); }, "unbounded");
+  EXPECT_FALSE(par->convexSupport());  // (no failure mode: none for an unbounded shape)
   expectThrow([&] { fcl::CollisionObject<double> obj(par); }, "unbounded");
   expectThrow([&] { Csg(Op::Union, {}); }, "at least one child");
   expectThrow([&] { Csg(Op::Union, {{nullptr, Transform::Identity()}}); }, "child 0 is null");
