@@ -122,9 +122,9 @@ TEST(EllipticCylinderShape, AnalyticSphereContactsAlongEachAxis) {
   }
 }
 
-/// A bounded convex operand of the front door with its solid as a quadric region (local frame)
-/// and a bounding box: the region engine's view of it, the oracle of the tests below.
-struct ConvexOperand {
+/// An operand of the front door with its solid as a quadric region (local frame) and a bounding
+/// box: the region engine's view of it, the oracle of the tests below.
+struct SolidOperand {
   std::string name;
   std::shared_ptr<fcl::CollisionGeometry<double>> geometry;
   QuadricRegion region;
@@ -138,11 +138,11 @@ QuadricRegion boxSolid(const Eigen::Vector3d& h) {
   return QuadricRegion::combine(Op::Intersection, planes);
 }
 
-ConvexOperand quadricOperand(const std::string& name, std::shared_ptr<QuadricShape<double>> q) {
+SolidOperand quadricOperand(const std::string& name, std::shared_ptr<QuadricShape<double>> q) {
   return {name, q, q->region(), q->localBox()};
 }
 
-std::vector<ConvexOperand> convexOperands() {
+std::vector<SolidOperand> convexOperands() {
   using Q = Quadric<double>;
   const Eigen::Vector3d hb(0.5, 0.3, 0.7);
   const double rc = 0.5, hc = 0.6, rs = 0.45;
@@ -166,7 +166,7 @@ std::vector<ConvexOperand> convexOperands() {
 /// Operands that are not convex, or not bounded: a union of two balls (an exact convex cover),
 /// a ring (an inexact one: the bore is dropped) and a half-space (its oracle box is large enough
 /// to hold every partner's reach in the tests below).
-std::vector<ConvexOperand> otherOperands() {
+std::vector<SolidOperand> otherOperands() {
   using Q = Quadric<double>;
   const Transform I = Transform::Identity();
   Transform up = I, down = I;
@@ -191,14 +191,14 @@ std::vector<ConvexOperand> otherOperands() {
 // a reported contact point lies in both solids. Pairs of two non-convex shapes go to the engine
 // alone and are checked too.
 TEST(QuadricShapeDispatch, ScreenedPairsAgreeWithTheRegionEngine) {
-  std::vector<ConvexOperand> ops = convexOperands();
-  for (ConvexOperand& o : otherOperands()) ops.push_back(std::move(o));
+  std::vector<SolidOperand> ops = convexOperands();
+  for (SolidOperand& o : otherOperands()) ops.push_back(std::move(o));
   std::mt19937_64 rng(2030);
   std::uniform_real_distribution<double> u(-1.6, 1.6);
   int colliding = 0, separated = 0;
   for (int i = 0; i < 4 * static_cast<int>(ops.size() * ops.size()); ++i) {
-    const ConvexOperand& a = ops[i % ops.size()];
-    const ConvexOperand& b = ops[(i / ops.size()) % ops.size()];
+    const SolidOperand& a = ops[i % ops.size()];
+    const SolidOperand& b = ops[(i / ops.size()) % ops.size()];
     // Only pairs with a quadric shape take this path (FCL answers the others).
     if (!dynamic_cast<const QuadricShape<double>*>(a.geometry.get()) &&
         !dynamic_cast<const QuadricShape<double>*>(b.geometry.get()))
