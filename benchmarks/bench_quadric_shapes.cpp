@@ -337,33 +337,23 @@ bool quadricCollide(const DistancePair& c) {
   fcl::CollisionResultd res;
   return fcl_quadric::collide(c.a.get(), fcl::Transform3d::Identity(), c.b.get(), c.tb, req, res) > 0;
 }
-void BM_CylindersCollideOurs(benchmark::State& state) {
+/// One query per iteration over distancePairs(), walked cyclically.
+template <auto Query>
+void BM_DistancePairs(benchmark::State& state) {
   const auto& pairs = distancePairs();
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(quadricCollide(pairs[i]));
+    benchmark::DoNotOptimize(Query(pairs[i]));
     i = (i + 1) % pairs.size();
   }
 }
-BENCHMARK(BM_CylindersCollideOurs)->Name("QuadricShapes/Cylinders/fcl_quadric")->Unit(benchmark::kMicrosecond);
-void BM_CylindersDistanceOurs(benchmark::State& state) {
-  const auto& pairs = distancePairs();
-  std::size_t i = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(quadricDistance(pairs[i]));
-    i = (i + 1) % pairs.size();
-  }
-}
-void BM_CylindersDistanceFcl(benchmark::State& state) {
-  const auto& pairs = distancePairs();
-  std::size_t i = 0;
-  for (auto _ : state) {
-    benchmark::DoNotOptimize(fclDistance(pairs[i]));
-    i = (i + 1) % pairs.size();
-  }
-}
-BENCHMARK(BM_CylindersDistanceOurs)->Name("QuadricShapes/CylindersDistance/fcl_quadric")->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_CylindersDistanceFcl)->Name("QuadricShapes/CylindersDistance/FclGjkLibccd")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DistancePairs<quadricCollide>)->Name("QuadricShapes/Cylinders/fcl_quadric")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DistancePairs<quadricDistance>)
+    ->Name("QuadricShapes/CylindersDistance/fcl_quadric")
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DistancePairs<fclDistance>)
+    ->Name("QuadricShapes/CylindersDistance/FclGjkLibccd")
+    ->Unit(benchmark::kMicrosecond);
 
 /// One query of the cylinder posed tf against an environment (mesh or octree) at the identity:
 /// fcl_quadric on `ours` or FCL on `theirs`; the distance, or the number of contacts.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -51,7 +52,7 @@ bool isGjkPrimitive(const fcl::CollisionGeometry<double>* g) {
 /// An operand as convex pieces (local frame) posed in the world, with what the region engine
 /// needs to refine a bound when the cover is not the solid itself.
 struct Covered {
-  ConvexCover cover;
+  std::shared_ptr<const ConvexCover> cover;  // a quadric shape's own (made once per shape)
   Eigen::Matrix3d R;
   Eigen::Vector3d p;
   const fcl::CollisionGeometry<double>* g = nullptr;
@@ -61,16 +62,18 @@ struct Covered {
 /// \throws std::invalid_argument for an unbounded quadric shape.
 std::optional<Covered> coverOf(const fcl::CollisionGeometry<double>* g, const fcl::Transform3<double>& tf,
                                const char* which) {
-  ConvexCover c;
+  std::shared_ptr<const ConvexCover> c;
   if (detail::isQuadricShape(g)) {
     const auto& q = static_cast<const QuadricShape<double>&>(*g);
     if (!q.bounded())
       throw std::invalid_argument(std::string("fcl_quadric::distanceLowerBound: ") + which +
                                   " is an unbounded quadric shape (a CSG operand only)");
-    c = *q.sharedConvexCover();  // (made once per shape, not per query)
+    c = q.sharedConvexCover();  // (made once per shape, not per query: no copy)
   } else if (std::optional<ConvexSupport> s = detail::convexSupportOf(g, which)) {
-    c.pieces.push_back(std::move(*s));
-    c.exact = true;
+    auto own = std::make_shared<ConvexCover>();
+    own->pieces.push_back(std::move(*s));
+    own->exact = true;
+    c = std::move(own);
   } else {
     return std::nullopt;
   }
@@ -88,7 +91,7 @@ std::optional<Covered> coverOf(const fcl::CollisionGeometry<double>* g, const fc
 double coverBound(const Covered& a, const ConvexSupport& b, const Eigen::Matrix3d& Rb, const Eigen::Vector3d& pb,
                   double cap) {
   double best = cap;
-  for (const ConvexSupport& piece : a.cover.pieces) {
+  for (const ConvexSupport& piece : a.cover->pieces) {
     const double scale = piece.size() + b.size() + (a.R * piece.center() + a.p - Rb * b.center() - pb).norm();
     const double skip_above = std::isfinite(best) ? best + 1e-11 * scale : kInf;
     const ConvexScreening s = screenConvexPair(piece, a.R, a.p, b, Rb, pb, skip_above);
@@ -102,7 +105,7 @@ double coverBound(const Covered& a, const ConvexSupport& b, const Eigen::Matrix3
 /// The box of a's pieces in the frame (Rf, pf) (six support points per piece).
 Box3 coverBoxIn(const Covered& a, const Eigen::Matrix3d& Rf, const Eigen::Vector3d& pf) {
   Box3 b{Eigen::Vector3d::Constant(kInf), Eigen::Vector3d::Constant(-kInf)};
-  for (const ConvexSupport& piece : a.cover.pieces) {
+  for (const ConvexSupport& piece : a.cover->pieces) {
     const Box3 p = detail::supportBoxIn(piece, a.R, a.p, Rf, pf);
     b.lo = b.lo.cwiseMin(p.lo);
     b.hi = b.hi.cwiseMax(p.hi);
@@ -123,24 +126,24 @@ double engineBound(const Covered& a, const OffsetSuperset& grown, double reach, 
 /// Two covered operands (quadric shapes or convex primitives).
 double pairBound(const Covered& a, const Covered& b, double cap) {
   double best = cap;
-  for (const ConvexSupport& piece : b.cover.pieces) {
+  for (const ConvexSupport& piece : b.cover->pieces) {
     best = std::min(best, coverBound(a, piece, b.R, b.p, best));
     if (best <= 0.0) break;
   }
-  if (best > 0.0 || (a.cover.exact && b.cover.exact)) return best;
+  if (best > 0.0 || (a.cover->exact && b.cover->exact)) return best;
   // A cover touches the other operand, but it is larger than its solid: the region engine
   // certifies a superset of a delta-neighbourhood separate (region_distance_bound.h): of the
   // convex partner, scaled about an inner ball; else (two non-convex models, or a partner without
   // an inner ball) of one operand with its atoms grown.
-  const Covered& model = a.cover.exact ? b : a;
-  const Covered& partner = a.cover.exact ? a : b;
+  const Covered& model = a.cover->exact ? b : a;
+  const Covered& partner = a.cover->exact ? a : b;
   const auto& q = static_cast<const QuadricShape<double>&>(*model.g);
   auto grownBound = [&] {
     const detail::LocalSolid solid = detail::localSolid(partner.g, "partner", "fcl_quadric::distanceLowerBound");
     return regionPairDistanceLowerBound(q.region(), q.localBox(), solid.region, *solid.box,
                                         model.R.transpose() * partner.R, model.R.transpose() * (partner.p - model.p), cap);
   };
-  if (!partner.cover.exact) return grownBound();
+  if (!partner.cover->exact) return grownBound();
   if (isEllipsoidal(partner.g)) {
     const Eigen::Vector3d radii = partner.g->getNodeType() == fcl::GEOM_ELLIPSOID
                                       ? static_cast<const fcl::Ellipsoid<double>*>(partner.g)->radii
@@ -161,7 +164,7 @@ double pieceBound(const Covered& a, const ConvexSupport& piece, const Eigen::Vec
                   const std::optional<OffsetSuperset>& grown, double reach, const Eigen::Matrix3d& Rf,
                   const Eigen::Vector3d& pf, double cap) {
   const double c = coverBound(a, piece, Rf, Rf * piece_origin + pf, cap);
-  if (c > 0.0 || a.cover.exact || !grown) return c;
+  if (c > 0.0 || a.cover->exact || !grown) return c;
   return engineBound(a, *grown, reach, Rf, pf, cap);
 }
 
@@ -204,12 +207,12 @@ std::optional<double> distanceLowerBound(const fcl::CollisionGeometry<double>* o
     const Eigen::Vector3d n = Rb * hs->n.normalized();
     const double off = hs->d / hs->n.norm() + n.dot(pb);
     double best = cap;
-    for (const ConvexSupport& piece : a.cover.pieces) {
+    for (const ConvexSupport& piece : a.cover->pieces) {
       const Eigen::Vector3d x = a.R * piece.support(-(a.R.transpose() * n)) + a.p;
       const double scale = piece.size() + (a.R * piece.center() + a.p).norm() + std::abs(off);
       best = std::min(best, std::max(0.0, n.dot(x) - off - 1e-11 * scale));
     }
-    if (best > 0.0 || a.cover.exact) return best;
+    if (best > 0.0 || a.cover->exact) return best;
     // The engine against the half-space pushed out by delta, searched in a's box.
     const Box3 a_box = coverBoxIn(a, Rb, pb);
     const Eigen::Vector3d hn = hs->n.normalized();

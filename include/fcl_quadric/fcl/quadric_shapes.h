@@ -55,11 +55,12 @@ class QuadricShape : public fcl::ShapeBase<S> {
   /// The solid as a support mapping (local frame), made once at construction: the closed form
   /// for an EllipticCylinder, ConvexSupport::fromRegion for another convex region (half-spaces and
   /// at most one convex curved atom); none for an unbounded or a non-convex shape. The front
-  /// doors' GJK (screening, distance) runs on it. No failure mode.
+  /// doors' GJK (screening, distance; docs/algorithms.md section 12) runs on it. No failure mode.
   const std::optional<ConvexSupport>& convexSupport() const { return convex_; }
   /// Convex pieces whose union contains the solid (convexCover(); exact for a union of convex
   /// solids, one piece for a convex shape), made once on first use (thread-safe; copies of the
-  /// shape share it): the collide's GJK screening and the distance lower bound use it.
+  /// shape share it): the collide's GJK screening and the distance lower bound use it (the cover
+  /// of docs/algorithms.md section 12 over the CSG formula of thesis §6.1).
   /// \throws std::invalid_argument if unbounded.
   std::shared_ptr<const ConvexCover> sharedConvexCover() const;
 
