@@ -817,9 +817,41 @@ bool shapePairCollide(const fcl::CollisionGeometryd* a, const fcl::CollisionGeom
   const fcl::Transform3d I = fcl::Transform3d::Identity();
   return (ours ? fcl_quadric::collide(a, I, b, tb, req, res) : fcl::collide(a, I, b, tb, req, res)) > 0;
 }
+/// The distance of the same pair (session 31): fcl_quadric::distance, or fcl::distance on FCL's
+/// stand-in (libccd GJK, FCL's default; it reports -1 for an overlap where we give the depth).
+double shapePairDistance(const fcl::CollisionGeometryd* a, const fcl::CollisionGeometryd* b, const fcl::Transform3d& tb,
+                         bool ours) {
+  fcl::DistanceRequestd req;
+  fcl::DistanceResultd res;
+  const fcl::Transform3d I = fcl::Transform3d::Identity();
+  return ours ? fcl_quadric::distance(a, I, b, tb, req, res) : fcl::distance(a, I, b, tb, req, res);
+}
+/// The pairs whose distance is timed: FCL's stand-ins against a sphere and a capsule (the solids
+/// GJK and EPA run as a grown core since session 31) and against a box (a solid that is its own
+/// core, for comparison).
+bool distanceTimed(const ShapePairScene& s) {
+  return s.theirs && (s.name == "CylinderSphere" || s.name == "CylinderCapsule" || s.name == "CylinderBox");
+}
 void registerShapePairBenchmarks() {
   for (std::size_t k = 0; k < shapePairScenes().size(); ++k) {
     const ShapePairScene& s = shapePairScenes()[k];
+    if (distanceTimed(s)) {
+      for (const bool ours : {true, false}) {
+        benchmark::RegisterBenchmark(
+            ("QuadricShapes/PairsDistance/" + s.name + (ours ? "/fcl_quadric" : "/FclGjkLibccd")).c_str(),
+            [k, ours](benchmark::State& state) {
+              const ShapePairScene& c = shapePairScenes()[k];
+              const auto& poses = shapePairPoses();
+              std::size_t i = 0;
+              for (auto _ : state) {
+                benchmark::DoNotOptimize(
+                    shapePairDistance(ours ? c.ours.get() : c.theirs.get(), c.partner.get(), poses[i], ours));
+                i = (i + 1) % poses.size();
+              }
+            })
+            ->Unit(benchmark::kMicrosecond);
+      }
+    }
     for (const bool ours : {true, false}) {
       if (!ours && !s.theirs) continue;
       benchmark::RegisterBenchmark(("QuadricShapes/Pairs/" + s.name + (ours ? "/fcl_quadric" : "/FclGjkLibccd")).c_str(),
@@ -1005,6 +1037,22 @@ int main(int argc, char** argv) {
       std::printf(" %s %d", c.name.c_str(), hits);
       if (c.theirs) std::printf(" (%d)", differs);
       std::printf(";");
+    }
+    std::printf("\n");
+    // Their distances: separated poses (ours > 0), and the largest difference from FCL's where
+    // both are positive (FCL stops at 1e-6; it gives -1 for an overlap).
+    std::printf("Shape pair distances (separated; max |ours - FCL| where both > 0):");
+    for (const ShapePairScene& c : shapePairScenes()) {
+      if (!distanceTimed(c)) continue;
+      int separated = 0;
+      double worst = 0.0;
+      for (const fcl::Transform3d& tb : shapePairPoses()) {
+        const double ours = shapePairDistance(c.ours.get(), c.partner.get(), tb, true);
+        const double theirs = shapePairDistance(c.theirs.get(), c.partner.get(), tb, false);
+        separated += ours > 0.0;
+        if (ours > 0.0 && theirs > 0.0) worst = std::max(worst, std::abs(ours - theirs));
+      }
+      std::printf(" %s %d %.2g;", c.name.c_str(), separated, worst);
     }
     std::printf("\n");
   }

@@ -46,11 +46,13 @@ struct Minkowski {
   const ConvexSupport& B;
   const Eigen::Matrix3d& Rb;
   const Eigen::Vector3d& pb;
-  /// The point of D = A - B maximising d.x: s_A(d) - s_B(-d).
+  /// The point of D = A - B maximising d.x: s_A(d) - s_B(-d), on the cores
+  /// (ConvexSupport::coreSupport(): a sphere's centre, a capsule's segment; the solid itself for
+  /// every other kind). gjkEpa() adds the radii.
   Vertex support(const Eigen::Vector3d& d) const {
     Vertex v;
-    v.a = Ra * A.support(Ra.transpose() * d) + pa;
-    v.b = Rb * B.support(-(Rb.transpose() * d)) + pb;
+    v.a = Ra * A.coreSupport(Ra.transpose() * d) + pa;
+    v.b = Rb * B.coreSupport(-(Rb.transpose() * d)) + pb;
     v.w = v.a - v.b;
     return v;
   }
@@ -254,6 +256,22 @@ bool originInStar(const std::vector<Vertex>& verts, const std::vector<Face>& fac
 /// convexSignedDistance() with one more way for GJK to stop: as soon as its lower bound exceeds
 /// `stop_above` (screenConvexPair(); +infinity: never), with converged = false and distance the
 /// upper bound |v| at that step.
+///
+/// GJK and EPA run on the cores of the solids (ConvexSupport::radius()): with r = r_a + r_b the
+/// sum of the radii the cores are grown by (0 for solids that are their own cores), the distance
+/// of the solids is the cores' less r when the cores are apart, and minus (the cores' depth + r)
+/// when they overlap (Minkowski sums with balls: the standard "swept sphere" reduction, as Coal
+/// does for spheres and capsules). GJK's |v| (a point of the cores' difference) bounds the cores'
+/// distance from above and v.w / |v| from below, so
+///  - separated when v.w / |v| - r exceeds the margin,
+///  - overlapping when |v| < r - margin: the point of the segment between the cores' points that
+///    splits it in the ratio r_a : r_b is within r_a of a's core and r_b of b's, a common point;
+///    with want_depth = false GJK stops there, without EPA, often at its first step for a sphere;
+///  - with want_depth, the depth r - |v| once GJK has converged on the cores' distance to
+///    kConvexDistanceRelative of |distance| (r - v.w / |v|, an overestimate, if it has not);
+///  - cores that overlap: EPA's depth of the cores plus r; cores that meet in a flat set (two
+///    crossing segments, concentric spheres) have depth 0, so the solids' depth is r.
+/// The witnesses are the cores' points moved by their radii along the normal.
 SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, const Eigen::Vector3d& p_a,
                             const ConvexSupport& b, const Eigen::Matrix3d& R_b, const Eigen::Vector3d& p_b,
                             bool want_depth, double* lower_bound, double stop_above, const char* where) {
@@ -265,6 +283,9 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
   const double scale = a.size() + b.size() + (ca - cb).norm();
   const double margin = kConvexSeparationRelative * scale;
   const double tiny = 1e-14 * scale;
+  const double ra = a.radius(), rb = b.radius(), r = ra + rb;  // the cores' radii (function comment)
+  // GJK's stopping accuracy: relative to the solids' distance |v| - r (|v| when r = 0).
+  auto accuracy = [&](double vn) { return kConvexDistanceRelative * std::abs(vn - r) + tiny; };
 
   SignedDistanceResult out;
   if (lower_bound) *lower_bound = 0.0;
@@ -279,21 +300,22 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
   int it = 0;
   for (; it < kMaxGjkIterations; ++it) {
     const double vn = v.norm();
+    if (!want_depth && vn < r - margin) break;  // the grown solids overlap (certified below)
     if (!(vn > tiny)) {
       origin_in_hull = true;
       break;
     }
     const Vertex w = D.support(-v);
     lower = std::max(lower, v.dot(w.w) / vn);
-    if (lower > stop_above) break;  // the screening's certificate (not converged)
-    if (vn - lower <= kConvexDistanceRelative * vn + tiny) {
+    if (lower - r > stop_above) break;  // the screening's certificate (not converged)
+    if (vn - lower <= accuracy(vn)) {
       out.converged = true;
       break;
     }
     bool repeat = false;
     for (const Vertex& x : W) repeat = repeat || (x.w - w.w).norm() <= tiny;
     if (repeat) {  // no new support point: v is as close as this arithmetic gets
-      out.converged = vn - lower <= kConvexDistanceRelative * vn + tiny;
+      out.converged = vn - lower <= accuracy(vn);
       break;
     }
     W.push_back(w);
@@ -305,27 +327,43 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
       break;
     }
     if (!(v_new.norm() < vn)) {  // rounding stalled the descent
-      out.converged = vn - lower <= kConvexDistanceRelative * vn + tiny;
+      out.converged = vn - lower <= accuracy(vn);
       break;
     }
     v = v_new;
   }
   out.iterations = it;
 
-  if (!origin_in_hull) {
-    const double vn = v.norm();
-    Eigen::Vector3d pa = Eigen::Vector3d::Zero(), pb = Eigen::Vector3d::Zero();
-    for (std::size_t i = 0; i < W.size(); ++i) {
-      pa += lambda[i] * W[i].a;
-      pb += lambda[i] * W[i].b;
-    }
-    out.point_a = pa;
-    out.point_b = pb;
+  // The cores' nearest points found (pa - pb = v), of the simplex's points by its coordinates.
+  Eigen::Vector3d pa = Eigen::Vector3d::Zero(), pb = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < W.size(); ++i) {
+    pa += lambda[i] * W[i].a;
+    pb += lambda[i] * W[i].b;
+  }
+  const double vn = v.norm();
+  if (!want_depth && vn < r - margin) {
+    // The cores are closer than r: the point splitting [pa, pb] in the ratio r_a : r_b is within
+    // r_a |v| / r < r_a of pa and r_b |v| / r < r_b of pb, hence in both grown solids.
+    out.status = Separation::Overlapping;
+    out.distance = 0.0;
+    out.point_a = out.point_b = pa + (ra / r) * (pb - pa);
     out.normal = vn > 0.0 ? Eigen::Vector3d(-v / vn) : Eigen::Vector3d::UnitX();
-    if (lower > margin) {
+    out.converged = true;
+    return out;
+  }
+  if (!origin_in_hull) {
+    out.normal = vn > 0.0 ? Eigen::Vector3d(-v / vn) : Eigen::Vector3d::UnitX();
+    out.point_a = pa + ra * out.normal;
+    out.point_b = pb - rb * out.normal;
+    if (lower - r > margin) {
       out.status = Separation::Separated;
-      out.distance = vn;  // the upper bound: within the stopping gap of the distance
-      if (lower_bound) *lower_bound = lower;
+      out.distance = vn - r;  // the upper bound: within the stopping gap of the distance
+      if (lower_bound) *lower_bound = lower - r;
+    } else if (vn - r < -margin) {
+      // The grown solids overlap (the cores do not): depth r - |v| once converged, else the
+      // overestimate r - v.w / |v| (errs toward contact).
+      out.status = Separation::Overlapping;
+      out.distance = out.converged ? vn - r : lower - r;
     } else {
       out.status = Separation::Touching;
       out.distance = 0.0;
@@ -335,12 +373,17 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
 
   // --- The origin is in D (or within rounding of it): a tetrahedron containing it -------------------
   // A lower-dimensional simplex containing the origin is grown by support points off its hull; if
-  // D is flat in every direction tried (no interior) the pair is touching with depth 0.
+  // D is flat in every direction tried (no interior) the pair is touching with depth 0 (grown
+  // cores: overlapping by r).
   {
     const Eigen::Vector3d axes[3] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ()};
     while (W.size() < 4) {
       std::vector<Eigen::Vector3d> dirs;
       if (W.size() == 1) {
+        // Grown cores that meet in a point (a sphere's centre on the other core): the centres'
+        // direction first, the normal if nothing grows (concentric spheres).
+        const Eigen::Vector3d d = cb - ca;
+        if (r > margin && d.norm() > tiny) dirs.push_back(d.normalized());
         for (const auto& e : axes) {
           dirs.push_back(e);
           dirs.push_back(-e);
@@ -369,6 +412,17 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
         }
       }
       if (!grown) {
+        if (r > margin) {
+          // Cores meeting in a flat set (depth 0): the grown solids overlap by r, along the
+          // direction the set is flat in (the first one tried), from the cores' common point.
+          out.status = Separation::Overlapping;
+          out.distance = -r;
+          out.normal = dirs.front();
+          out.point_a = pa + ra * out.normal;
+          out.point_b = pa - rb * out.normal;
+          out.converged = true;
+          return out;
+        }
         out.status = Separation::Touching;
         out.distance = 0.0;
         out.point_a = W[0].a;
@@ -497,12 +551,12 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
     l2 = (w1 - w0).cross(p - w0).dot(n) / n2;
   }
   const double l0 = 1.0 - l1 - l2;
-  out.point_a = l0 * verts[f.v[0]].a + l1 * verts[f.v[1]].a + l2 * verts[f.v[2]].a;
-  out.point_b = l0 * verts[f.v[0]].b + l1 * verts[f.v[1]].b + l2 * verts[f.v[2]].b;
   out.normal = f.n;
-  if (f.d > margin) {
+  out.point_a = l0 * verts[f.v[0]].a + l1 * verts[f.v[1]].a + l2 * verts[f.v[2]].a + ra * f.n;
+  out.point_b = l0 * verts[f.v[0]].b + l1 * verts[f.v[1]].b + l2 * verts[f.v[2]].b - rb * f.n;
+  if (f.d + r > margin) {
     out.status = Separation::Overlapping;
-    out.distance = -depth;
+    out.distance = -(depth + r);
   } else {
     out.status = Separation::Touching;
     out.distance = 0.0;

@@ -111,6 +111,7 @@ ConvexSupport ConvexSupport::ellipsoid(const Eigen::Vector3d& radii) {
   s.kind_ = Kind::Ellipsoid;
   s.dims_ = radii;
   s.size_ = radii.norm();
+  if (radii[0] == radii[1] && radii[1] == radii[2]) s.radius_ = radii[0];  // a sphere: its centre grown
   return s;
 }
 
@@ -152,6 +153,7 @@ ConvexSupport ConvexSupport::capsule(double radius, double half_length) {
   s.kind_ = Kind::Capsule;
   s.dims_ = Eigen::Vector3d(radius, radius, half_length);
   s.size_ = Eigen::Vector3d(radius, radius, half_length + radius).norm();
+  s.radius_ = radius;  // its segment grown
   return s;
 }
 
@@ -313,6 +315,12 @@ Eigen::Vector3d ConvexSupport::support(const Eigen::Vector3d& n) const {
     case Kind::Region: return regionSupport(n);
   }
   return center_;
+}
+
+Eigen::Vector3d ConvexSupport::coreSupport(const Eigen::Vector3d& n) const {
+  if (radius_ == 0.0) return support(n);
+  if (kind_ == Kind::Capsule) return Eigen::Vector3d(0, 0, n.z() >= 0 ? dims_.z() : -dims_.z());
+  return Eigen::Vector3d::Zero();  // a sphere's centre
 }
 
 // KKT enumeration (file comment): every extreme point of the region is the unique smooth maximum

@@ -2,8 +2,11 @@
 // computations: the closed-form ellipsoid / cylinder / cone / box distances of the library, the
 // certified maxLinear bound of the region engine for support values, and the certified static
 // classification (collideRegions) of the pair translated along the reported normal.
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -316,7 +319,10 @@ TEST(ConvexDistance, SignOnlyOverlapOfASphereIsCertifiedWithoutTheConvergedDepth
   std::uniform_real_distribution<double> c(-1.5, 1.5);
   const double r = 0.4, cyl_r = 0.5, cyl_h = 0.6;
   const Eigen::Vector3d half(0.4, 0.3, 0.5);
-  const ConvexSupport sphere = ConvexSupport::ellipsoid(Eigen::Vector3d::Constant(r));
+  // The whole sphere (its own core): since session 31 a sphere runs as its centre grown by its
+  // radius, whose overlaps never reach EPA (GrownCoresAgreeWithTheWholeSolids); this test keeps
+  // EPA's early stop on a curved solid.
+  const ConvexSupport sphere = ConvexSupport::ellipsoid(Eigen::Vector3d::Constant(r)).whole();
   const ConvexSupport cylinder = ConvexSupport::ellipticCylinder(cyl_r, cyl_r, cyl_h), box = ConvexSupport::box(half);
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   const Eigen::Vector3d O = Eigen::Vector3d::Zero();
@@ -349,6 +355,136 @@ TEST(ConvexDistance, SignOnlyOverlapOfASphereIsCertifiedWithoutTheConvergedDepth
   }
   EXPECT_GT(overlapping, 200);
   EXPECT_EQ(fewer, overlapping);
+}
+
+/// A test solid: its support mapping and how far a local point is outside it (<= 0 inside),
+/// relative to its size: an independent membership test for common points.
+struct MemberSolid {
+  ConvexSupport support;
+  std::function<double(const Eigen::Vector3d&)> outside;
+};
+
+/// Distance of x from the segment z in [-h, h] of the z axis.
+double segmentDistance(const Eigen::Vector3d& x, double h) {
+  return Eigen::Vector3d(x.x(), x.y(), x.z() - std::clamp(x.z(), -h, h)).norm();
+}
+
+// Session 31: a sphere and a capsule run in GJK and EPA as a core (a point, a segment) grown by
+// their radius (ConvexSupport::radius(), the "swept sphere" reduction). Oracle: the same pairs on
+// the whole solids (whole(): the path before, whose support includes the ball), against every
+// kind of partner, grown ones included, both orders, random poses with about a third
+// overlapping. Checked: the same status and distance; the witnesses on the solids (support
+// points along the normal) and d = (point_b - point_a).normal; a sign-only overlap's common
+// point inside both solids; and fewer GJK/EPA steps in all.
+TEST(ConvexDistance, GrownCoresAgreeWithTheWholeSolids) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(0.2, 1.2), c(-1.6, 1.6);
+  int compared = 0, overlapping = 0, sign_only_overlaps = 0;
+  long steps_grown = 0, steps_whole = 0;
+  for (int i = 0; i < 300; ++i) {
+    const double r = u(rng), h = u(rng), pr = u(rng), ph = u(rng);
+    const Eigen::Vector3d half(u(rng), u(rng), u(rng)), radii(u(rng), u(rng), u(rng));
+    const double ca = u(rng), cb = u(rng), ch = u(rng);
+    const std::vector<MemberSolid> grown = {
+        {ConvexSupport::ellipsoid(Eigen::Vector3d::Constant(r)), [=](const Eigen::Vector3d& x) { return x.norm() - r; }},
+        {ConvexSupport::capsule(r, h), [=](const Eigen::Vector3d& x) { return segmentDistance(x, h) - r; }}};
+    const std::vector<MemberSolid> partners = {
+        {ConvexSupport::box(half), [=](const Eigen::Vector3d& x) { return (x.cwiseAbs() - half).maxCoeff(); }},
+        {ConvexSupport::ellipticCylinder(ca, cb, ch),
+         [=](const Eigen::Vector3d& x) {
+           return std::max(std::hypot(x.x() / ca, x.y() / cb) - 1.0, std::abs(x.z()) - ch);
+         }},
+        {ConvexSupport::ellipsoid(radii), [=](const Eigen::Vector3d& x) { return x.cwiseQuotient(radii).norm() - 1.0; }},
+        {ConvexSupport::cone(pr, ph), nullptr},
+        {ConvexSupport::points({{0, 0, 0}, {1.2, 0.1, 0}, {0.2, 0.9, 0.1}}), nullptr},
+        {ConvexSupport::ellipsoid(Eigen::Vector3d::Constant(pr)), [=](const Eigen::Vector3d& x) { return x.norm() - pr; }},
+        {ConvexSupport::capsule(pr, ph), [=](const Eigen::Vector3d& x) { return segmentDistance(x, ph) - pr; }}};
+    for (const MemberSolid& g : grown) {
+      for (const MemberSolid& q : partners) {
+        const Eigen::Matrix3d R1 = randomRotation(rng), R2 = randomRotation(rng);
+        const Eigen::Vector3d p1(c(rng), c(rng), c(rng)), p2(c(rng), c(rng), c(rng));
+        for (bool swap : {false, true}) {
+          const MemberSolid& a = swap ? q : g;
+          const MemberSolid& b = swap ? g : q;
+          const ConvexSupport &sa = a.support, &sb = b.support;
+          const double scale = sa.size() + sb.size() + (p1 - p2).norm();
+          const SignedDistanceResult got = convexSignedDistance(sa, R1, p1, sb, R2, p2);
+          const SignedDistanceResult ref = convexSignedDistance(sa.whole(), R1, p1, sb.whole(), R2, p2);
+          steps_grown += got.iterations;
+          steps_whole += ref.iterations;
+          const std::string where = std::to_string(i) + (swap ? " swapped" : "");
+          ASSERT_TRUE(got.converged) << where;
+          if (ref.converged && ref.status != Separation::Touching && got.status != Separation::Touching) {
+            ++compared;
+            EXPECT_EQ(got.status, ref.status) << where;
+            EXPECT_NEAR(got.distance, ref.distance, 1e-9 * scale) << where;
+            overlapping += got.status == Separation::Overlapping;
+            // The witnesses: b's point less a's is the distance along the normal, and for a
+            // separated pair each is its solid's support point along the normal (from a to b).
+            EXPECT_LE((got.point_b - got.point_a - got.distance * got.normal).norm(), 1e-8 * scale) << where;
+            if (got.status == Separation::Separated) {
+              const Eigen::Vector3d n = got.normal;
+              EXPECT_NEAR(n.dot(got.point_a), n.dot(R1 * sa.support(R1.transpose() * n) + p1), 1e-8 * scale) << where;
+              EXPECT_NEAR(n.dot(got.point_b), n.dot(R2 * sb.support(-(R2.transpose() * n)) + p2), 1e-8 * scale) << where;
+            }
+          }
+          // Sign only: the same decision, and an overlap's common point inside both solids.
+          const SignedDistanceResult sign = convexSignedDistance(sa, R1, p1, sb, R2, p2, false);
+          if (got.status != Separation::Touching && std::abs(got.distance) > 1e-9 * scale) {
+            EXPECT_EQ(sign.status, got.status) << where;
+          }
+          if (sign.status == Separation::Overlapping) {
+            ++sign_only_overlaps;
+            EXPECT_EQ(sign.point_a, sign.point_b) << where;
+            if (a.outside) {
+              EXPECT_LE(a.outside(R1.transpose() * (sign.point_a - p1)), 1e-12 * scale) << where;
+            }
+            if (b.outside) {
+              EXPECT_LE(b.outside(R2.transpose() * (sign.point_a - p2)), 1e-12 * scale) << where;
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(compared, 8000);  // of 8,400
+  EXPECT_GT(overlapping, 2000);
+  EXPECT_GT(sign_only_overlaps, 2000);
+  EXPECT_LT(2 * steps_grown, steps_whole);  // 43,704 against 202,618 when written
+}
+
+// Grown cores that meet without a common interior: concentric spheres (the cores are one point),
+// crossing capsules (two segments through one point: their difference is flat), a sphere centred
+// on a box's corner. The cores' depth is 0, so the solids' is the sum of the radii; the whole
+// solids, through EPA, give the same.
+TEST(ConvexDistance, GrownCoresMeetingInAFlatSetOverlapByTheRadii) {
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d Rx = Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::Vector3d O = Eigen::Vector3d::Zero();
+  struct Case {
+    ConvexSupport a, b;
+    Eigen::Matrix3d Rb;
+    Eigen::Vector3d pb;
+    double depth;
+  };
+  const std::vector<Case> cases = {
+      {ConvexSupport::ellipsoid(Eigen::Vector3d::Constant(0.3)), ConvexSupport::ellipsoid(Eigen::Vector3d::Constant(0.5)), I,
+       O, 0.8},
+      {ConvexSupport::capsule(0.2, 1.0), ConvexSupport::capsule(0.3, 0.7), Rx, O, 0.5},
+      {ConvexSupport::box({0.5, 0.4, 0.3}), ConvexSupport::ellipsoid(Eigen::Vector3d::Constant(0.25)), I,
+       Eigen::Vector3d(0.5, 0.4, 0.3), 0.25}};
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Case& t = cases[k];
+    for (bool whole : {false, true}) {
+      const SignedDistanceResult d = whole ? convexSignedDistance(t.a.whole(), I, O, t.b.whole(), t.Rb, t.pb)
+                                           : convexSignedDistance(t.a, I, O, t.b, t.Rb, t.pb);
+      EXPECT_EQ(d.status, Separation::Overlapping) << k << (whole ? " whole" : " grown");
+      EXPECT_NEAR(d.distance, -t.depth, 1e-9) << k << (whole ? " whole" : " grown");
+      EXPECT_NEAR(d.normal.norm(), 1.0, 1e-12) << k;
+      const SignedDistanceResult s = convexSignedDistance(t.a, I, O, t.b, t.Rb, t.pb, false);
+      EXPECT_EQ(s.status, Separation::Overlapping) << k;
+    }
+  }
 }
 
 TEST(ConvexDistance, RegionPairsAgreeWithTheCertifiedStaticEngineAlongTheNormal) {

@@ -8,7 +8,8 @@
 /// Kinds:
 ///  - closed forms: ellipsoid (and sphere), box, capped elliptic cylinder (and fcl::Cylinder),
 ///    cone (fcl::Cone: base disk at z = -h, apex at z = +h), capsule, the convex hull of a few
-///    points (a triangle);
+///    points (a triangle); a sphere and a capsule also as a core (a point, a segment) grown by a
+///    ball (radius(), coreSupport());
 ///  - `fromRegion`: a CSG formula (quadric_region.h) that is a conjunction of half-spaces and at
 ///    most one curved atom {x^T A x + 2 b.x + c <= 0} with A positive semidefinite (ellipsoid,
 ///    elliptic paraboloid, elliptic or parabolic cylinder, slab): such a set is convex (a sublevel
@@ -74,6 +75,23 @@ class ConvexSupport {
   /// \pre n finite: not checked (GJK's inner loop calls this; convexSignedDistance checks the
   /// poses its directions come from). A non-finite n gives a non-finite point.
   Eigen::Vector3d support(const Eigen::Vector3d& n) const;
+  /// The solid as a core grown by a ball: { c + u : c in the core, |u| <= radius() }. A sphere
+  /// (an ellipsoid with three equal radii) is its centre grown by its radius, a capsule its
+  /// segment grown by its radius; every other kind is its own core, radius() 0. GJK and EPA run
+  /// on the cores and add the radii (convex_distance.h): the cores' supports have no curvature
+  /// to converge on, and an overlap of the grown solids is certified as soon as the cores come
+  /// closer than the radii, without EPA. support() is that of the whole solid either way.
+  double radius() const { return radius_; }
+  /// A point of the core maximising n.x (local frame): support(n) less radius() n / |n|. The
+  /// centre for a sphere, the segment's end towards n for a capsule, support(n) otherwise.
+  Eigen::Vector3d coreSupport(const Eigen::Vector3d& n) const;
+  /// The same solid as its own core (radius() 0): GJK and EPA then run on its whole support, as
+  /// before session 31. For checks of the grown-core path against the whole solid.
+  ConvexSupport whole() const {
+    ConvexSupport s = *this;
+    s.radius_ = 0.0;
+    return s;
+  }
   /// A point of the solid (for Region: the last feasible candidate's box centre is not used; the
   /// bounding-box centre, which need not be inside, serves only as GJK's first direction).
   Eigen::Vector3d center() const { return center_; }
@@ -84,6 +102,7 @@ class ConvexSupport {
   Eigen::Vector3d regionSupport(const Eigen::Vector3d& n) const;
 
   Kind kind_ = Kind::Points;
+  double radius_ = 0.0;  // radius(): the ball the core is grown by (a sphere's or a capsule's)
   Eigen::Vector3d dims_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> points_;
   // Region: the curved atom (if any) and the planes h.x <= d.
