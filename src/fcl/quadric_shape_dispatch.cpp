@@ -271,13 +271,15 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
   // which decides it exactly. Before session 30 every pair went to the engine: 18-30 us for two
   // capped cylinders, where the screening takes well under a microsecond (docs/benchmarks.md).
   struct Operand {
-    std::shared_ptr<const ConvexCover> cover;  // a bounded quadric shape's (made once per shape)
+    const ConvexSupport* convex = nullptr;     // a convex quadric shape's support (made at construction)
+    std::shared_ptr<const ConvexCover> cover;  // another bounded quadric shape's (made once per shape)
     std::optional<ConvexSupport> own;          // an FCL convex primitive's
     bool halfspace = false;
-    bool screened() const { return cover || own || halfspace; }
-    bool exact() const { return own || (cover && cover->exact); }
+    bool screened() const { return convex || cover || own || halfspace; }
+    bool exact() const { return convex || own || (cover && cover->exact); }
     std::vector<const ConvexSupport*> pieces() const {
       std::vector<const ConvexSupport*> out;
+      if (convex) out.push_back(convex);
       if (own) out.push_back(&*own);
       if (cover)
         for (const ConvexSupport& p : cover->pieces) out.push_back(&p);
@@ -288,8 +290,14 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
   auto operandOf = [](const fcl::CollisionGeometry<double>* g, bool quadric) {
     Operand op;
     if (quadric) {
+      // A convex shape as its own support mapping (its cover's one piece), without the cover's
+      // shared pointer: no once-flag and no atomic count per query.
       const auto& q = static_cast<const QuadricShape<double>&>(*g);
-      if (q.bounded()) op.cover = q.sharedConvexCover();
+      if (q.convexSupport()) {
+        op.convex = &*q.convexSupport();
+      } else if (q.bounded()) {
+        op.cover = q.sharedConvexCover();
+      }
     } else if (g->getNodeType() == fcl::GEOM_HALFSPACE) {
       op.halfspace = true;
     } else {
