@@ -476,11 +476,11 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
   // The initial tetrahedron, each face counter-clockwise seen from outside.
   {
     const bool positive = (verts[1].w - verts[0].w).cross(verts[2].w - verts[0].w).dot(verts[3].w - verts[0].w) < 0.0;
-    const int a = 0, b = positive ? 1 : 2, c = positive ? 2 : 1, d = 3;
-    addFace(a, b, c);
-    addFace(a, d, b);
-    addFace(b, d, c);
-    addFace(c, d, a);
+    const int i0 = 0, i1 = positive ? 1 : 2, i2 = positive ? 2 : 1, i3 = 3;
+    addFace(i0, i1, i2);
+    addFace(i0, i3, i1);
+    addFace(i1, i3, i2);
+    addFace(i2, i3, i0);
   }
   double best_up = std::numeric_limits<double>::infinity();
   int face_at_stop = -1;
@@ -523,14 +523,14 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
       const int g = stack.back();
       stack.pop_back();
       for (int e = 0; e < 3; ++e) {
-        const int a = faces[g].v[e], b = faces[g].v[(e + 1) % 3];
-        const auto it = edge_face.find({b, a});
-        const int h = it == edge_face.end() ? -1 : it->second;
+        const int from = faces[g].v[e], to = faces[g].v[(e + 1) % 3];
+        const auto twin = edge_face.find({to, from});
+        const int h = twin == edge_face.end() ? -1 : twin->second;
         if (h >= 0 && faces[h].alive && faces[h].n.dot(w.w - verts[faces[h].v[0]].w) > tiny) {
           faces[h].alive = false;
           stack.push_back(h);
         } else if (h < 0 || faces[h].alive) {
-          horizon.emplace_back(a, b);
+          horizon.emplace_back(from, to);
         }
       }
     }
