@@ -9,7 +9,9 @@
 ///  - Separated only if GJK's lower bound v.w / |v| (w the support of D towards -v: no point of D
 ///    is closer than this along v) exceeds kConvexSeparationRelative * scale;
 ///  - Overlapping only if the origin lies inside a tetrahedron of support points of D with
-///    margin (its distance to every face exceeds the same bound);
+///    margin (its distance to every face exceeds the same bound), or, for a sphere or a capsule
+///    (ConvexSupport::radius(): GJK and EPA run on the cores and add the radii, docs/algorithms.md
+///    section 12), if GJK finds the cores closer than the sum of the radii less that bound;
 ///  - otherwise Touching, distance 0: near tangency the answer errs toward contact.
 /// The support points lie in the solids up to ConvexSupport's feasibility tolerance, so both
 /// certificates hold up to that (1e-12 of the size) for Region solids and to rounding otherwise.
