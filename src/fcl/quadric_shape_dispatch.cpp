@@ -277,13 +277,12 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
     bool halfspace = false;
     bool screened() const { return convex || cover || own || halfspace; }
     bool exact() const { return convex || own || (cover && cover->exact); }
-    std::vector<const ConvexSupport*> pieces() const {
-      std::vector<const ConvexSupport*> out;
-      if (convex) out.push_back(convex);
-      if (own) out.push_back(&*own);
-      if (cover)
-        for (const ConvexSupport& p : cover->pieces) out.push_back(&p);
-      return out;
+    /// The pieces, contiguous: (first, count), without an allocation per query.
+    std::pair<const ConvexSupport*, std::size_t> pieces() const {
+      if (convex) return {convex, 1};
+      if (own) return {&*own, 1};
+      if (cover) return {cover->pieces.data(), cover->pieces.size()};
+      return {nullptr, 0};
     }
   };
   const bool quadric1 = isQuadricShape(o1);  // (a dynamic_cast: asked once)
@@ -339,21 +338,22 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
     };
     const Operand& solid = op1.halfspace ? op2 : op1;  // (with a half-space: the other operand)
     const fcl::Transform3<double>& solid_tf = op1.halfspace ? tf2 : tf1;
-    const std::vector<const ConvexSupport*> pieces_a = solid.pieces();
-    const std::vector<const ConvexSupport*> pieces_b =
-        plane ? std::vector<const ConvexSupport*>{nullptr} : op2.pieces();
+    const auto [pieces_a, count_a] = solid.pieces();
+    // (with a half-space: one null piece b, the plane)
+    const auto [pieces_b, count_b] = plane ? std::pair<const ConvexSupport*, std::size_t>{nullptr, 1} : op2.pieces();
     const bool exact = solid.exact() && (plane || op2.exact());
     // At most kMaxScreenedPiecePairs GJK runs (two covers of up to 64 pieces each would be 4,096);
     // beyond, the engine alone, as before the screening.
     constexpr std::size_t kMaxScreenedPiecePairs = 64;
     bool all_far = false;
     std::optional<Eigen::Vector3d> common;
-    if (pieces_a.size() * pieces_b.size() <= kMaxScreenedPiecePairs) {
+    if (count_a * count_b <= kMaxScreenedPiecePairs) {
       all_far = true;
-      for (std::size_t i = 0; i < pieces_a.size() && !common; ++i) {
-        for (const ConvexSupport* b : pieces_b) {
+      for (std::size_t i = 0; i < count_a && !common; ++i) {
+        for (std::size_t j = 0; j < count_b; ++j) {
+          const ConvexSupport* b = pieces_b == nullptr ? nullptr : pieces_b + j;
           Eigen::Vector3d point;
-          const ConvexScreening::Verdict verdict = screen(*pieces_a[i], solid_tf, b, tf2, &point);
+          const ConvexScreening::Verdict verdict = screen(pieces_a[i], solid_tf, b, tf2, &point);
           all_far = all_far && verdict == ConvexScreening::Verdict::Far;
           if (verdict == ConvexScreening::Verdict::Overlapping && exact) {
             common = point;

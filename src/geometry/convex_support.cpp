@@ -14,12 +14,16 @@ namespace fcl_quadric {
 
 namespace {
 
-void requireSize(double v, const char* what, bool allow_zero) {
-  if (!std::isfinite(v) || v < 0.0 || (!allow_zero && v == 0.0)) {
-    std::ostringstream os;
-    os << "ConvexSupport: " << what << " = " << v << " must be finite and " << (allow_zero ? ">= 0" : "> 0");
-    throw std::invalid_argument(os.str());
-  }
+[[noreturn]] __attribute__((cold, noinline)) void throwSize(double v, const char* what, bool allow_zero) {
+  std::ostringstream os;
+  os << "ConvexSupport: " << what << " = " << v << " must be finite and " << (allow_zero ? ">= 0" : "> 0");
+  throw std::invalid_argument(os.str());
+}
+
+/// The check stays inline (the front doors make primitives' support mappings per query); the
+/// message is built out of line.
+inline void requireSize(double v, const char* what, bool allow_zero) {
+  if (!(std::isfinite(v) && (allow_zero ? v >= 0.0 : v > 0.0))) throwSize(v, what, allow_zero);  // (no FE_INVALID on NaN)
 }
 
 /// The point of {y^T A y + 2 b.y + c <= 0} (A positive semidefinite, K = 2 or 3 dimensions,
@@ -175,6 +179,32 @@ ConvexSupport ConvexSupport::points(const std::vector<Eigen::Vector3d>& pts) {
   return s;
 }
 
+/// What fromRegion() computes once (convex_support.h, region_): the curved atom {x^T A x + 2 b.x +
+/// c <= 0} if any (normalised by its largest eigenvalue), the planes h.x <= d (unit h), and the
+/// eigen-decompositions of the curved atom and of its section by each plane (x = x0 + U y), so
+/// that a support query costs only arithmetic.
+struct ConvexSupport::RegionData {
+  bool has_curved = false;
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  double c = 0.0;
+  std::vector<Eigen::Vector3d> plane_h;
+  std::vector<double> plane_d;
+  struct Curved {
+    Eigen::Vector3d lam = Eigen::Vector3d::Zero(), bz = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d V = Eigen::Matrix3d::Identity();
+    double b_tol = 0.0;
+  } curved;
+  struct Section {
+    Eigen::Matrix<double, 3, 2> U = Eigen::Matrix<double, 3, 2>::Zero();
+    Eigen::Vector3d x0 = Eigen::Vector3d::Zero();
+    Eigen::Vector2d lam = Eigen::Vector2d::Zero(), bz = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d V = Eigen::Matrix2d::Identity();
+    double c = 0.0, b_tol = 0.0;
+  };
+  std::vector<Section> sections;
+};
+
 std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& region, const Box3& box) {
   if (box.empty() || !box.lo.allFinite() || !box.hi.allFinite())
     throw std::invalid_argument("ConvexSupport::fromRegion: the bounding box is empty or not finite");
@@ -182,18 +212,19 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
   if (!collectConjunction(region, false, &atoms)) return std::nullopt;
   ConvexSupport s;
   s.kind_ = Kind::Region;
+  const auto g = std::make_shared<RegionData>();
   s.center_ = box.center();
   s.size_ = box.halfWidth().norm();
-  auto addPlane = [&s](Eigen::Vector3d h, double d) {
+  auto addPlane = [&s, &g](Eigen::Vector3d h, double d) {
     const double n = h.norm();
     h /= n;
     d /= n;
-    for (std::size_t k = 0; k < s.plane_h_.size(); ++k)  // drop exact repeats (the box's own faces)
-      if ((s.plane_h_[k] - h).cwiseAbs().maxCoeff() <= 1e-14 &&
-          std::abs(s.plane_d_[k] - d) <= 1e-14 * (std::abs(d) + s.size_ + s.center_.norm()))
+    for (std::size_t k = 0; k < g->plane_h.size(); ++k)  // drop exact repeats (the box's own faces)
+      if ((g->plane_h[k] - h).cwiseAbs().maxCoeff() <= 1e-14 &&
+          std::abs(g->plane_d[k] - d) <= 1e-14 * (std::abs(d) + s.size_ + s.center_.norm()))
         return;
-    s.plane_h_.push_back(h);
-    s.plane_d_.push_back(d);
+    g->plane_h.push_back(h);
+    g->plane_d.push_back(d);
   };
   for (const Eigen::Matrix4d& M : atoms) {
     const Eigen::Matrix3d A = M.topLeftCorner<3, 3>();
@@ -210,11 +241,11 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A, Eigen::EigenvaluesOnly);
     const double lmax = es.eigenvalues().cwiseAbs().maxCoeff();
     if (es.eigenvalues().minCoeff() < -tolerance_support::kSupportNullEigenRelative * lmax) return std::nullopt;
-    if (s.has_curved_) return std::nullopt;  // two curved atoms: no closed-form support here
-    s.has_curved_ = true;
-    s.A_ = A / lmax;
-    s.b_ = b / lmax;
-    s.c_ = c / lmax;
+    if (g->has_curved) return std::nullopt;  // two curved atoms: no closed-form support here
+    g->has_curved = true;
+    g->A = A / lmax;
+    g->b = b / lmax;
+    g->c = c / lmax;
   }
   for (int i = 0; i < 3; ++i) {
     Eigen::Vector3d e = Eigen::Vector3d::Zero();
@@ -222,33 +253,34 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
     addPlane(e, box.hi[i]);
     addPlane(-e, -box.lo[i]);
   }
-  if (s.has_curved_) {
+  if (g->has_curved) {
     // Everything about the curved atom and its planar sections that does not depend on n.
     const double length = s.size_ + s.center_.norm();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(s.A_);
-    s.curved_.lam = es.eigenvalues();
-    s.curved_.V = es.eigenvectors();
-    s.curved_.bz = es.eigenvectors().transpose() * s.b_;
-    s.curved_.b_tol = 1e-12 * (s.b_.norm() + s.curved_.lam.cwiseAbs().maxCoeff() * length);
-    for (std::size_t i = 0; i < s.plane_h_.size(); ++i) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(g->A);
+    g->curved.lam = es.eigenvalues();
+    g->curved.V = es.eigenvectors();
+    g->curved.bz = es.eigenvectors().transpose() * g->b;
+    g->curved.b_tol = 1e-12 * (g->b.norm() + g->curved.lam.cwiseAbs().maxCoeff() * length);
+    for (std::size_t i = 0; i < g->plane_h.size(); ++i) {
       // The plane h.x = d as x0 + U y (U orthonormal, h unit).
-      const Eigen::Vector3d& h = s.plane_h_[i];
-      Section sec;
-      sec.x0 = s.plane_d_[i] * h;
+      const Eigen::Vector3d& h = g->plane_h[i];
+      RegionData::Section sec;
+      sec.x0 = g->plane_d[i] * h;
       const Eigen::Vector3d t = std::abs(h.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
       const Eigen::Vector3d u1 = (t - t.dot(h) * h).normalized();
       sec.U << u1, h.cross(u1);
-      const Eigen::Matrix2d A2 = sec.U.transpose() * s.A_ * sec.U;
-      const Eigen::Vector2d b2 = sec.U.transpose() * (s.A_ * sec.x0 + s.b_);
+      const Eigen::Matrix2d A2 = sec.U.transpose() * g->A * sec.U;
+      const Eigen::Vector2d b2 = sec.U.transpose() * (g->A * sec.x0 + g->b);
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es2(A2);
       sec.lam = es2.eigenvalues();
       sec.V = es2.eigenvectors();
       sec.bz = es2.eigenvectors().transpose() * b2;
-      sec.c = sec.x0.dot(s.A_ * sec.x0) + 2.0 * s.b_.dot(sec.x0) + s.c_;
+      sec.c = sec.x0.dot(g->A * sec.x0) + 2.0 * g->b.dot(sec.x0) + g->c;
       sec.b_tol = 1e-12 * (b2.norm() + sec.lam.cwiseAbs().maxCoeff() * length);
-      s.sections_.push_back(sec);
+      g->sections.push_back(sec);
     }
   }
+  s.region_ = g;
   return s;
 }
 
@@ -328,18 +360,19 @@ Eigen::Vector3d ConvexSupport::coreSupport(const Eigen::Vector3d& n) const {
 // clipped by all other constraints; the best feasible candidate is the support.
 Eigen::Vector3d ConvexSupport::regionSupport(const Eigen::Vector3d& n) const {
   constexpr double kFeas = tolerance_support::kSupportFeasibilityRelative;
+  const RegionData& g = *region_;
   const double length = size_ + center_.norm();
-  const std::size_t np = plane_h_.size();
+  const std::size_t np = g.plane_h.size();
   auto curvedValue = [&](const Eigen::Vector3d& x, double* mag) {
-    *mag = x.cwiseAbs().dot(A_.cwiseAbs() * x.cwiseAbs()) + 2.0 * b_.cwiseAbs().dot(x.cwiseAbs()) + std::abs(c_);
-    return x.dot(A_ * x) + 2.0 * b_.dot(x) + c_;
+    *mag = x.cwiseAbs().dot(g.A.cwiseAbs() * x.cwiseAbs()) + 2.0 * g.b.cwiseAbs().dot(x.cwiseAbs()) + std::abs(g.c);
+    return x.dot(g.A * x) + 2.0 * g.b.dot(x) + g.c;
   };
   auto feasible = [&](const Eigen::Vector3d& x) {
     if (!x.allFinite()) return false;
     const double xn = x.norm();
     for (std::size_t k = 0; k < np; ++k)
-      if (plane_h_[k].dot(x) - plane_d_[k] > kFeas * (xn + std::abs(plane_d_[k]) + length)) return false;
-    if (has_curved_) {
+      if (g.plane_h[k].dot(x) - g.plane_d[k] > kFeas * (xn + std::abs(g.plane_d[k]) + length)) return false;
+    if (g.has_curved) {
       double mag = 0.0;
       if (curvedValue(x, &mag) > kFeas * mag) return false;
     }
@@ -354,33 +387,33 @@ Eigen::Vector3d ConvexSupport::regionSupport(const Eigen::Vector3d& n) const {
       best_x = x;
     }
   };
-  if (has_curved_) {
-    if (auto x = smoothMax<3>(curved_.lam, curved_.V, curved_.bz, c_, n, curved_.b_tol)) {
+  if (g.has_curved) {
+    if (auto x = smoothMax<3>(g.curved.lam, g.curved.V, g.curved.bz, g.c, n, g.curved.b_tol)) {
       // The maximum over the curved atom alone: if the planes keep it, it is the maximum over the
       // whole solid (which it bounds), and no other candidate can beat it.
       if (feasible(*x)) return *x;
     }
-    for (const Section& sec : sections_)
+    for (const RegionData::Section& sec : g.sections)
       if (auto y = smoothMax<2>(sec.lam, sec.V, sec.bz, sec.c, Eigen::Vector2d(sec.U.transpose() * n), sec.b_tol))
         consider(sec.x0 + sec.U * *y);
   }
   for (std::size_t i = 0; i < np; ++i) {
     for (std::size_t j = i + 1; j < np; ++j) {
-      const Eigen::Vector3d& hi = plane_h_[i];
-      const Eigen::Vector3d& hj = plane_h_[j];
+      const Eigen::Vector3d& hi = g.plane_h[i];
+      const Eigen::Vector3d& hj = g.plane_h[j];
       const Eigen::Vector3d u = hi.cross(hj);
       const double un2 = u.squaredNorm();
       if (!(un2 > 1e-24)) continue;  // parallel planes (unit normals)
       // The point of both planes nearest the origin: x0 = (d_i (hj x u) + d_j (u x hi)) / |u|^2.
-      const Eigen::Vector3d x0 = (plane_d_[i] * hj.cross(u) + plane_d_[j] * u.cross(hi)) / un2;
+      const Eigen::Vector3d x0 = (g.plane_d[i] * hj.cross(u) + g.plane_d[j] * u.cross(hi)) / un2;
       double lo = -std::numeric_limits<double>::infinity(), hiT = std::numeric_limits<double>::infinity();
       bool empty = false;
       for (std::size_t k = 0; k < np && !empty; ++k) {
         if (k == i || k == j) continue;
-        const double a = plane_h_[k].dot(u);
-        const double r = plane_d_[k] - plane_h_[k].dot(x0);
+        const double a = g.plane_h[k].dot(u);
+        const double r = g.plane_d[k] - g.plane_h[k].dot(x0);
         if (std::abs(a) <= 1e-14 * std::sqrt(un2)) {
-          if (r < -kFeas * (x0.norm() + std::abs(plane_d_[k]) + length)) empty = true;
+          if (r < -kFeas * (x0.norm() + std::abs(g.plane_d[k]) + length)) empty = true;
         } else if (a > 0) {
           hiT = std::min(hiT, r / a);
         } else {
@@ -388,9 +421,9 @@ Eigen::Vector3d ConvexSupport::regionSupport(const Eigen::Vector3d& n) const {
         }
       }
       if (empty) continue;
-      if (has_curved_) {
+      if (g.has_curved) {
         // q(t) = qa t^2 + 2 qb t + qc <= 0 along x0 + t u.
-        const double qa = u.dot(A_ * u), qb = u.dot(A_ * x0 + b_);
+        const double qa = u.dot(g.A * u), qb = u.dot(g.A * x0 + g.b);
         double mag = 0.0;
         const double qc = curvedValue(x0, &mag);
         const double qa_tol = tolerance_support::kSupportNullEigenRelative * un2;

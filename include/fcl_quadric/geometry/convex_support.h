@@ -23,6 +23,7 @@
 ///    solid's size.
 
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -105,28 +106,11 @@ class ConvexSupport {
   double radius_ = 0.0;  // radius(): the ball the core is grown by (a sphere's or a capsule's)
   Eigen::Vector3d dims_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> points_;
-  // Region: the curved atom (if any) and the planes h.x <= d.
-  bool has_curved_ = false;
-  Eigen::Matrix3d A_ = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b_ = Eigen::Vector3d::Zero();
-  double c_ = 0.0;
-  std::vector<Eigen::Vector3d> plane_h_;
-  std::vector<double> plane_d_;
-  /// Eigen-decompositions of the curved atom and of its section by each plane (x = x0 + U y),
-  /// computed once: a support query then costs only arithmetic.
-  struct Curved {
-    Eigen::Vector3d lam = Eigen::Vector3d::Zero(), bz = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d V = Eigen::Matrix3d::Identity();
-    double b_tol = 0.0;
-  } curved_;
-  struct Section {
-    Eigen::Matrix<double, 3, 2> U = Eigen::Matrix<double, 3, 2>::Zero();
-    Eigen::Vector3d x0 = Eigen::Vector3d::Zero();
-    Eigen::Vector2d lam = Eigen::Vector2d::Zero(), bz = Eigen::Vector2d::Zero();
-    Eigen::Matrix2d V = Eigen::Matrix2d::Identity();
-    double c = 0.0, b_tol = 0.0;
-  };
-  std::vector<Section> sections_;
+  // Region: the curved atom (if any), the planes h.x <= d, and their eigen-decompositions, made
+  // once by fromRegion() and shared by copies (convex_support.cpp). A copy of any support
+  // mapping is then a few words: the front doors make and copy them per query.
+  struct RegionData;
+  std::shared_ptr<const RegionData> region_;
   Eigen::Vector3d center_ = Eigen::Vector3d::Zero();
   double size_ = 0.0;
 };
