@@ -341,20 +341,21 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
     pb += lambda[i] * W[i].b;
   }
   const double vn = v.norm();
+  const Eigen::Vector3d normal = vn > 0.0 ? Eigen::Vector3d(-v / vn) : Eigen::Vector3d::UnitX();  // from a to b
   if (!want_depth && vn < r - margin) {
     // The cores are closer than r: the point splitting [pa, pb] in the ratio r_a : r_b is within
     // r_a |v| / r < r_a of pa and r_b |v| / r < r_b of pb, hence in both grown solids.
     out.status = Separation::Overlapping;
     out.distance = 0.0;
     out.point_a = out.point_b = pa + (ra / r) * (pb - pa);
-    out.normal = vn > 0.0 ? Eigen::Vector3d(-v / vn) : Eigen::Vector3d::UnitX();
+    out.normal = normal;
     out.converged = true;
     return out;
   }
   if (!origin_in_hull) {
-    out.normal = vn > 0.0 ? Eigen::Vector3d(-v / vn) : Eigen::Vector3d::UnitX();
-    out.point_a = pa + ra * out.normal;
-    out.point_b = pb - rb * out.normal;
+    out.normal = normal;
+    out.point_a = pa + ra * normal;
+    out.point_b = pb - rb * normal;
     if (lower - r > margin) {
       out.status = Separation::Separated;
       out.distance = vn - r;  // the upper bound: within the stopping gap of the distance
