@@ -82,12 +82,17 @@ class ConvexSupport {
   /// on the cores and add the radii (convex_distance.h): the cores' supports have no curvature
   /// to converge on, and an overlap of the grown solids is certified as soon as the cores come
   /// closer than the radii, without EPA. support() is that of the whole solid either way.
+  /// (The Minkowski sum with a ball, docs/algorithms.md section 12 "Grown cores"; the
+  /// swept-sphere shapes of Coal and of van den Bergen's GJK.) No failure mode.
   double radius() const { return radius_; }
   /// A point of the core maximising n.x (local frame): support(n) less radius() n / |n|. The
   /// centre for a sphere, the segment's end towards n for a capsule, support(n) otherwise.
+  /// \pre n finite, as for support() (not checked; a non-finite n gives a non-finite point or a
+  /// segment end, never a throw).
   Eigen::Vector3d coreSupport(const Eigen::Vector3d& n) const;
   /// The same solid as its own core (radius() 0): GJK and EPA then run on its whole support, as
-  /// before session 31. For checks of the grown-core path against the whole solid.
+  /// before session 31. For checks of the grown-core path against the whole solid. No failure
+  /// mode.
   ConvexSupport whole() const {
     ConvexSupport s = *this;
     s.radius_ = 0.0;
