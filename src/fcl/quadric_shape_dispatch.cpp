@@ -80,16 +80,28 @@ void addRegionContact(const QuadricRegion& wa, const Eigen::Vector3d& point, con
 void addRegionContact(const QuadricRegion& local_a, const fcl::Transform3<double>& tf1, const Eigen::Vector3d& point,
                       const fcl::CollisionGeometry<double>* o1, const fcl::CollisionGeometry<double>* o2,
                       const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result);
+Eigen::Vector3d regionNormalAt(const QuadricRegion& local_a, const fcl::Transform3<double>& tf1,
+                               const Eigen::Vector3d& point);
+
+}  // namespace
+
+namespace {
+
+/// A triangle whose area is below 1e-14 of the product of two edges' lengths (or not finite):
+/// skipped by collide, as it has no normal to build a region with (documented).
+bool zeroAreaTriangle(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
+  const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
+  const double scale = (p1 - p0).norm() * (p2 - p0).norm();
+  return !(n.norm() > 1e-14 * scale);
+}
 
 }  // namespace
 
 /// A triangle as the region {n.x = d} intersected with its three edge half-spaces (in-plane),
 /// with its AABB; none for a zero-area triangle (skipped: documented).
 std::optional<LocalSolid> triangleSolid(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) {
-  const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
-  const double scale = (p1 - p0).norm() * (p2 - p0).norm();
-  if (!(n.norm() > 1e-14 * scale)) return std::nullopt;
-  const Eigen::Vector3d u = n.normalized();
+  if (zeroAreaTriangle(p0, p1, p2)) return std::nullopt;
+  const Eigen::Vector3d u = (p1 - p0).cross(p2 - p0).normalized();
   std::vector<QuadricRegion> parts{QuadricRegion::halfspace(u, u.dot(p0)), QuadricRegion::halfspace(-u, -u.dot(p0))};
   const Eigen::Vector3d pts[3] = {p0, p1, p2};
   for (int i = 0; i < 3; ++i) {
@@ -181,6 +193,28 @@ LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which
 }
 
 
+namespace {
+
+/// GJK's screening of one piece of a mesh or octree (a triangle, an occupied leaf's box) against a
+/// convex shape (docs/algorithms.md section 12), the same for the front doors' mesh walk and for
+/// QuadricSolver's triangle kernel. Far: GJK certifies the pair farther apart than 2e-8 of its
+/// scale (well outside the region engine's touching band, so no contact the engine would report
+/// is lost); the piece is skipped. Overlapping: the origin is inside GJK's tetrahedron with margin;
+/// *common receives a point of both, a contact. Undecided (near contact, a stall): the region
+/// engine decides. GJK stops at the first step whose lower bound certifies the gap
+/// (screenConvexPair), so a far piece needs no converged distance.
+ConvexScreening::Verdict screenPiece(const ConvexSupport& shape, const fcl::Transform3<double>& tfs,
+                                     const ConvexSupport& piece, const Eigen::Matrix3d& R_piece,
+                                     const Eigen::Vector3d& p_piece, Eigen::Vector3d* common) {
+  const double scale = shape.size() + piece.size() + (tfs.translation() - p_piece).norm();
+  const ConvexScreening d =
+      screenConvexPair(shape, tfs.linear(), tfs.translation(), piece, R_piece, p_piece, 2e-8 * scale);
+  if (d.verdict == ConvexScreening::Verdict::Overlapping) *common = d.common_point;
+  return d.verdict;
+}
+
+}  // namespace
+
 std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
                                  const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
                                  const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result) {
@@ -210,22 +244,9 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
     std::optional<ConvexSupport> convex;
     if (const auto* q = dynamic_cast<const QuadricShape<double>*>(gs); q == nullptr || q->bounded())
       convex = convexSupportOf(gs, "shape");
-    // A piece GJK certifies overlapping (the origin inside its tetrahedron with margin) is a contact
-    // at the common point GJK returns; the engine runs only for the pieces in between.
-    enum class Gjk { Far, Overlap, Engine };
     auto gjk = [&](const ConvexSupport& p, const Eigen::Vector3d& p_W, Eigen::Vector3d* common) {
-      if (!convex) return Gjk::Engine;
-      // GJK stops at the first step whose lower bound certifies the gap (screenConvexPair): a
-      // far piece needs no converged distance.
-      const double scale = convex->size() + p.size() + (tfs.translation() - p_W).norm();
-      const ConvexScreening d = screenConvexPair(*convex, tfs.linear(), tfs.translation(), p, tfp.linear(), p_W,
-                                                 2e-8 * scale);
-      if (d.verdict == ConvexScreening::Verdict::Far) return Gjk::Far;
-      if (d.verdict == ConvexScreening::Verdict::Overlapping) {
-        *common = d.common_point;
-        return Gjk::Overlap;
-      }
-      return Gjk::Engine;
+      if (!convex) return ConvexScreening::Verdict::Undecided;
+      return screenPiece(*convex, tfs, p, tfp.linear(), p_W, common);
     };
     // o1's world region, for the contact normal.
     auto contactAt = [&](const QuadricRegion& piece_local, const Eigen::Vector3d& x) {
@@ -241,21 +262,22 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
           visitMeshTriangles(m, query, posed ? &*posed : nullptr, [&](int, const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
                                            const Eigen::Vector3d& p2) {
             Eigen::Vector3d x;
-            const Gjk g = gjk(ConvexSupport::points({p0, p1, p2}), tfp.translation(), &x);
-            if (g == Gjk::Far) return false;
+            const ConvexScreening::Verdict g = gjk(ConvexSupport::points({p0, p1, p2}), tfp.translation(), &x);
+            if (g == ConvexScreening::Verdict::Far) return false;
             const std::optional<LocalSolid> t = triangleSolid(p0, p1, p2);
             if (!t) return false;
-            return g == Gjk::Overlap ? contactAt(t->region, x) : piece(*t);
+            return g == ConvexScreening::Verdict::Overlapping ? contactAt(t->region, x) : piece(*t);
           });
         }) &&
         gp->getObjectType() == fcl::OT_OCTREE) {
       visitOcTreeLeaves(*static_cast<const fcl::OcTree<double>*>(gp), query, posed ? &*posed : nullptr,
                         [&](const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
                           Eigen::Vector3d x;
-                          const Gjk g = gjk(ConvexSupport::box(h), tfp.linear() * c + tfp.translation(), &x);
-                          if (g == Gjk::Far) return false;
+                          const ConvexScreening::Verdict g =
+                              gjk(ConvexSupport::box(h), tfp.linear() * c + tfp.translation(), &x);
+                          if (g == ConvexScreening::Verdict::Far) return false;
                           const LocalSolid leaf{boxRegion(c, h), Box3{c - h, c + h}, false};
-                          return g == Gjk::Overlap ? contactAt(leaf.region, x) : piece(leaf);
+                          return g == ConvexScreening::Verdict::Overlapping ? contactAt(leaf.region, x) : piece(leaf);
                         });
     }
     return result.numContacts();
@@ -487,6 +509,15 @@ void addRegionContact(const QuadricRegion& wa, const Eigen::Vector3d& point, con
                                          nearestAtomNormal(wa, point), 0.0));
 }
 
+/// The outward unit normal at `point` (world) of the nearest boundary atom of a region given in its
+/// local frame and posed by tf1 (rigid): the point is taken to that frame and the normal back,
+/// which gives the world region's normal (the first-order distances are invariant under rigid
+/// motions) without transforming the region.
+Eigen::Vector3d regionNormalAt(const QuadricRegion& local_a, const fcl::Transform3<double>& tf1,
+                               const Eigen::Vector3d& point) {
+  return tf1.linear() * nearestAtomNormal(local_a, tf1.linear().transpose() * (point - tf1.translation()));
+}
+
 /// addRegionContact() with o1's region in its local frame, posed by tf1 (rigid): the point is
 /// taken to that frame and the normal back, which gives the world region's normal (the first-order
 /// distances are invariant under rigid motions) without transforming the region.
@@ -494,9 +525,8 @@ void addRegionContact(const QuadricRegion& local_a, const fcl::Transform3<double
                       const fcl::CollisionGeometry<double>* o1, const fcl::CollisionGeometry<double>* o2,
                       const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result) {
   if (result.numContacts() >= request.num_max_contacts) return;
-  const Eigen::Vector3d x = tf1.linear().transpose() * (point - tf1.translation());
   result.addContact(fcl::Contact<double>(o1, o2, fcl::Contact<double>::NONE, fcl::Contact<double>::NONE, point,
-                                         tf1.linear() * nearestAtomNormal(local_a, x), 0.0));
+                                         regionNormalAt(local_a, tf1, point), 0.0));
 }
 
 }  // namespace
@@ -1127,6 +1157,36 @@ fcl::BVHModel<fcl::AABB<double>> oneTriangleMesh(const Eigen::Vector3d& P1, cons
 bool quadricShapeTriangleIntersect(const fcl::CollisionGeometry<double>& s, const fcl::Transform3<double>& tf,
                                    const Eigen::Vector3d& P1, const Eigen::Vector3d& P2, const Eigen::Vector3d& P3,
                                    const fcl::Transform3<double>& tf_triangle, ExactContact* contact) {
+  // A convex quadric shape: the steps of the front doors' mesh walk for this one triangle, without
+  // building a one-triangle mesh and the shape's region per leaf (what made FCL's traversal nodes
+  // ~5x slower than the front door, docs/benchmarks.md session 32). The same tests in the same
+  // order, hence the same verdicts: the triangle's box against the shape's box posed in the
+  // triangle's frame (the one-triangle BVH's root test), GJK's screening (screenPiece()), the
+  // zero-area skip; anything GJK leaves undecided goes the one-triangle mesh's way below.
+  const auto* q = isQuadricShape(&s) ? static_cast<const QuadricShape<double>*>(&s) : nullptr;
+  if (q != nullptr && q->convexSupport() && q->bounded()) {
+    for (const Eigen::Vector3d* v : {&P1, &P2, &P3})
+      if (!v->allFinite()) throw std::invalid_argument("fcl_quadric::QuadricSolver: a triangle vertex is not finite");
+    const fcl::Transform3<double> X = tf_triangle.inverse() * tf;
+    const Box3& box = q->localBox();
+    const PosedBox posed{X.linear(), X * box.center(), box.halfWidth()};
+    fcl::AABB<double> bv(P1);
+    bv += P2;
+    bv += P3;
+    if (!nodeMeets(bv, Box3{}, &posed)) return false;
+    Eigen::Vector3d x;
+    const ConvexScreening::Verdict g = screenPiece(*q->convexSupport(), tf, ConvexSupport::points({P1, P2, P3}),
+                                                   tf_triangle.linear(), tf_triangle.translation(), &x);
+    if (g == ConvexScreening::Verdict::Far || zeroAreaTriangle(P1, P2, P3)) return false;
+    if (g == ConvexScreening::Verdict::Overlapping) {
+      if (contact) {
+        contact->pos = x;
+        contact->normal = regionNormalAt(q->region(), tf, x);
+        contact->depth = 0.0;
+      }
+      return true;
+    }
+  }
   const fcl::BVHModel<fcl::AABB<double>> mesh = oneTriangleMesh(P1, P2, P3);
   return quadricShapeIntersect(s, tf, mesh, tf_triangle, contact);
 }

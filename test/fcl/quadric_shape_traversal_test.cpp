@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <random>
 #include <vector>
@@ -325,6 +326,99 @@ TEST(FclTraversalNodes, DistanceNodesWithAQuadricShapeMatchStockLibccdAndTheFron
     // The floor's top is at z = 0 (cells [-0.2, 0] for resolution 0.2): the gap is h - L/2.
     EXPECT_NEAR(r.min_distance, h - 0.5 * kLength, 1e-8) << h;
   }
+}
+
+/// The triangle P1 P2 P3 (frame tf) as a one-triangle mesh: what the solver's triangle kernel
+/// answered through before session 32, and the stock oracle's operand.
+std::shared_ptr<fcl::BVHModel<fcl::AABB<double>>> oneTriangle(const Eigen::Vector3d& P1, const Eigen::Vector3d& P2,
+                                                             const Eigen::Vector3d& P3) {
+  auto m = std::make_shared<fcl::BVHModel<fcl::AABB<double>>>();
+  m->beginModel(1, 3);
+  m->addTriangle(P1, P2, P3);
+  m->endModel();
+  return m;
+}
+
+TEST(FclTraversalNodes, SolverTriangleKernelAgreesWithTheFrontDoorAndStockLibccdOnOneTriangle) {
+  // Random triangles (edges 0.02 to 1.5, posed in their own frame) near a capped cylinder: the
+  // solver's triangle kernel (GJK's screening per leaf for a convex shape since session 32) must
+  // give the front door's verdict on the same triangle as a one-triangle mesh, the stock libccd
+  // margin oracle's wherever it decides, and a contact on both solids. Zero-area triangles
+  // (collinear vertices) are skipped by both (documented), even when the segment crosses the
+  // cylinder; a ring (non-convex: the one-triangle mesh's way) agrees with the front door too.
+  const Cyl cyl(kRadius, kRadius, kLength);
+  using Csg = QuadricCSG<double>;
+  auto outer = std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(1.0, 1.0, 0.4));
+  auto bore = std::make_shared<Quadric<double>>(Quadric<double>::ellipticCylinder(0.5, 0.5));
+  const Csg ring(Csg::Op::Difference, {{outer, fcl::Transform3d::Identity()}, {bore, fcl::Transform3d::Identity()}});
+  const Solver solver;
+  std::mt19937_64 rng(32);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), edge(0.02, 1.5);
+  int hits = 0, misses = 0, decided_hit = 0, decided_miss = 0, degenerate = 0, ring_hits = 0, ring_misses = 0,
+      same_point = 0;
+  for (int k = 0; k < 1500; ++k) {
+    const fcl::Transform3d tf_cyl = pose(test::randomRotation(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const fcl::Transform3d tf_tri = pose(test::randomRotation(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    // A vertex near the cylinder's surface (in the triangle's frame), the others at random.
+    const Eigen::Vector3d c = tf_tri.inverse() * (tf_cyl * Eigen::Vector3d(0.6 * u(rng), 0.6 * u(rng), 0.7 * u(rng)));
+    const Eigen::Vector3d P1 = c + edge(rng) * Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    Eigen::Vector3d P2 = c + edge(rng) * Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    Eigen::Vector3d P3 = c + edge(rng) * Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    const bool collinear = k % 10 == 0;
+    if (collinear) {  // P1, c and P2 on one segment through c; P3 on it too
+      P2 = c - (P1 - c);
+      P3 = c + 0.25 * (P1 - c);
+    }
+    const auto mesh = oneTriangle(P1, P2, P3);
+    Eigen::Vector3d pos = Eigen::Vector3d::Zero(), n = Eigen::Vector3d::Zero();
+    double depth = -1.0;
+    const bool hit = solver.shapeTriangleIntersect(cyl, tf_cyl, P1, P2, P3, tf_tri, &pos, &depth, &n);
+    // The world-frame overload (tf = the identity for the vertices): the same verdict.
+    EXPECT_EQ(solver.shapeTriangleIntersect(cyl, tf_cyl, tf_tri * P1, tf_tri * P2, tf_tri * P3), hit) << k;
+    fcl::CollisionResult<double> front;
+    const bool front_hit =
+        fcl_quadric::collide(&cyl, tf_cyl, mesh.get(), tf_tri, fcl::CollisionRequest<double>(1, true), front) > 0;
+    ASSERT_EQ(hit, front_hit) << k;
+    if (collinear) {
+      EXPECT_FALSE(hit) << k << ": a zero-area triangle is skipped";
+      ++degenerate;
+      continue;
+    }
+    expectAgreesWithStockMargins(hit, mesh.get(), tf_tri, tf_cyl, &decided_hit, &decided_miss, "triangle kernel");
+    (hit ? hits : misses)++;
+    if (hit) {
+      // On the triangle's plane and inside the cylinder (within the engine's band); the unit
+      // normal of the cylinder's nearest boundary there, as the front door's contact gives it.
+      const Eigen::Vector3d tri_n = (P2 - P1).cross(P3 - P1).normalized();
+      EXPECT_LT(std::abs(tri_n.dot(tf_tri.inverse() * pos - P1)), 1e-6) << k;
+      const Eigen::Vector3d l = tf_cyl.inverse() * pos;
+      EXPECT_LE(std::hypot(l.x(), l.y()), kRadius + 1e-6) << k;
+      EXPECT_LE(std::abs(l.z()), 0.5 * kLength + 1e-6) << k;
+      EXPECT_NEAR(n.norm(), 1.0, 1e-12) << k;
+      EXPECT_EQ(depth, 0.0) << k;
+      const fcl::Contact<double>& fc = front.getContact(0);
+      if ((fc.pos - pos).norm() < 1e-12) {
+        EXPECT_LT((fc.normal - n).norm(), 1e-9) << k;
+        ++same_point;
+      }
+    }
+    // The ring: not convex, so the kernel takes the one-triangle mesh's way; the same verdict.
+    const bool ring_hit = solver.shapeTriangleIntersect(ring, tf_cyl, P1, P2, P3, tf_tri);
+    fcl::CollisionResult<double> ring_front;
+    EXPECT_EQ(ring_hit, fcl_quadric::collide(&ring, tf_cyl, mesh.get(), tf_tri, fcl::CollisionRequest<double>(),
+                                             ring_front) > 0)
+        << k;
+    (ring_hit ? ring_hits : ring_misses)++;
+  }
+  EXPECT_GE(hits, 300);
+  EXPECT_GE(misses, 300);
+  EXPECT_GE(decided_hit + decided_miss, hits + misses - 20);
+  EXPECT_EQ(degenerate, 150);
+  EXPECT_GE(same_point, hits / 2);  // GJK's common point: the front door's contact on the same triangle
+  EXPECT_GE(ring_hits, 100);
+  EXPECT_GE(ring_misses, 100);
+  std::printf("triangle kernel: %d hits, %d misses (stock decides %d / %d), %d at the front door's point, "
+              "ring %d / %d\n", hits, misses, decided_hit, decided_miss, same_point, ring_hits, ring_misses);
 }
 
 TEST(FclTraversalNodes, SolverTriangleKernelsAnswerAtClosedFormsAndRejectBadInput) {
