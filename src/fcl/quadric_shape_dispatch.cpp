@@ -1207,6 +1207,27 @@ bool quadricShapeTriangleDistance(const fcl::CollisionGeometry<double>& s, const
                                   const Eigen::Vector3d& P1, const Eigen::Vector3d& P2, const Eigen::Vector3d& P3,
                                   const fcl::Transform3<double>& tf_triangle, bool signed_distance,
                                   ExactDistance* out) {
+  // A convex quadric shape: distanceQuadricShapes' steps for this one triangle (its solve() on a
+  // triangle piece), without the one-triangle mesh: GJK / EPA on the shape's support mapping and
+  // the triangle's vertices. The near-contact band, where the front door's collide decides the
+  // sign, goes the one-triangle mesh's way below.
+  const auto* q = isQuadricShape(&s) ? static_cast<const QuadricShape<double>*>(&s) : nullptr;
+  if (q != nullptr && q->convexSupport() && q->bounded()) {
+    for (const Eigen::Vector3d* v : {&P1, &P2, &P3})
+      if (!v->allFinite()) throw std::invalid_argument("fcl_quadric::QuadricSolver: a triangle vertex is not finite");
+    const ConvexSupport& shape = *q->convexSupport();
+    const ConvexSupport piece = ConvexSupport::points({P1, P2, P3});
+    const SignedDistanceResult d = convexSignedDistance(shape, tf.linear(), tf.translation(), piece,
+                                                        tf_triangle.linear(), tf_triangle.translation(), signed_distance);
+    const double scale = shape.size() + piece.size() + (tf.translation() - tf_triangle.translation()).norm();
+    const bool depth_unknown = d.status == Separation::Overlapping && !signed_distance;
+    if (depth_unknown || std::abs(d.distance) > 1e-8 * scale) {
+      out->distance = depth_unknown ? -1.0 : d.distance;
+      out->p1 = d.point_a;
+      out->p2 = d.point_b;
+      return out->distance >= 0.0;
+    }
+  }
   const fcl::BVHModel<fcl::AABB<double>> mesh = oneTriangleMesh(P1, P2, P3);
   return quadricShapeDistance(s, tf, mesh, tf_triangle, signed_distance, out);
 }

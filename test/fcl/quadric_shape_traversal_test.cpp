@@ -330,23 +330,26 @@ TEST(FclTraversalNodes, DistanceNodesWithAQuadricShapeMatchStockLibccdAndTheFron
 
 /// The triangle P1 P2 P3 (frame tf) as a one-triangle mesh: what the solver's triangle kernel
 /// answered through before session 32, and the stock oracle's operand.
-std::shared_ptr<fcl::BVHModel<fcl::AABB<double>>> oneTriangle(const Eigen::Vector3d& P1, const Eigen::Vector3d& P2,
-                                                             const Eigen::Vector3d& P3) {
-  auto m = std::make_shared<fcl::BVHModel<fcl::AABB<double>>>();
+/// (OBBRSS: FCL 0.7's distance table has no AABB mesh against a cylinder.)
+std::shared_ptr<fcl::BVHModel<fcl::OBBRSS<double>>> oneTriangle(const Eigen::Vector3d& P1, const Eigen::Vector3d& P2,
+                                                               const Eigen::Vector3d& P3) {
+  auto m = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
   m->beginModel(1, 3);
   m->addTriangle(P1, P2, P3);
   m->endModel();
   return m;
 }
 
-TEST(FclTraversalNodes, SolverTriangleKernelAgreesWithTheFrontDoorAndStockLibccdOnOneTriangle) {
+TEST(FclTraversalNodes, SolverTriangleKernelsAgreeWithTheFrontDoorAndStockLibccdOnOneTriangle) {
   // Random triangles (edges 0.02 to 1.5, posed in their own frame) near a capped cylinder: the
-  // solver's triangle kernel (GJK's screening per leaf for a convex shape since session 32) must
-  // give the front door's verdict on the same triangle as a one-triangle mesh, the stock libccd
-  // margin oracle's wherever it decides, and a contact on both solids. Zero-area triangles
-  // (collinear vertices) are skipped by both (documented), even when the segment crosses the
-  // cylinder; a ring (non-convex: the one-triangle mesh's way) agrees with the front door too.
+  // solver's triangle kernels (GJK per leaf for a convex shape since session 32) must give the
+  // front door's verdict and distance on the same triangle as a one-triangle mesh, the stock libccd
+  // margin oracle's wherever it decides, and a contact on both solids; a distance certified by a
+  // separating plane and not above stock fcl::distance's. Zero-area triangles (collinear
+  // vertices) are skipped by collide (documented), even when the segment crosses the cylinder; a
+  // ring (non-convex: the one-triangle mesh's way) agrees with the front door too.
   const Cyl cyl(kRadius, kRadius, kLength);
+  const fcl::Cylinder<double> stock(kRadius, kLength);
   using Csg = QuadricCSG<double>;
   auto outer = std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(1.0, 1.0, 0.4));
   auto bore = std::make_shared<Quadric<double>>(Quadric<double>::ellipticCylinder(0.5, 0.5));
@@ -355,7 +358,7 @@ TEST(FclTraversalNodes, SolverTriangleKernelAgreesWithTheFrontDoorAndStockLibccd
   std::mt19937_64 rng(32);
   std::uniform_real_distribution<double> u(-1.0, 1.0), edge(0.02, 1.5);
   int hits = 0, misses = 0, decided_hit = 0, decided_miss = 0, degenerate = 0, ring_hits = 0, ring_misses = 0,
-      same_point = 0;
+      same_point = 0, distances_compared = 0;
   for (int k = 0; k < 1500; ++k) {
     const fcl::Transform3d tf_cyl = pose(test::randomRotation(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)));
     const fcl::Transform3d tf_tri = pose(test::randomRotation(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)));
@@ -379,6 +382,44 @@ TEST(FclTraversalNodes, SolverTriangleKernelAgreesWithTheFrontDoorAndStockLibccd
     const bool front_hit =
         fcl_quadric::collide(&cyl, tf_cyl, mesh.get(), tf_tri, fcl::CollisionRequest<double>(1, true), front) > 0;
     ASSERT_EQ(hit, front_hit) << k;
+    // The distance kernel: the front door's distance to the one-triangle mesh, to the bit where GJK
+    // decides (the same computation), and witnesses that far apart.
+    double dist = -2.0;
+    Eigen::Vector3d w1 = Eigen::Vector3d::Zero(), w2 = Eigen::Vector3d::Zero();
+    const bool clear = solver.shapeTriangleDistance(cyl, tf_cyl, P1, P2, P3, tf_tri, &dist, &w1, &w2);
+    fcl::DistanceResult<double> front_d;
+    fcl_quadric::distance(&cyl, tf_cyl, mesh.get(), tf_tri, fcl::DistanceRequest<double>(true), front_d);
+    EXPECT_EQ(dist, front_d.min_distance) << k;
+    EXPECT_EQ(clear, dist > 0.0) << k;
+    if (!collinear) {
+      EXPECT_EQ(clear, !hit) << k;  // (a zero-area triangle has a distance, not a contact)
+    }
+    if (clear) {
+      EXPECT_NEAR((w1 - w2).norm(), dist, 1e-9) << k;
+      EXPECT_LT((w1 - front_d.nearest_points[0]).norm(), 1e-12) << k;
+      // Certified from both sides, independently of GJK: the plane normal to w2 - w1 bounds the
+      // distance from below by the gap between the triangle's lowest vertex along it and the
+      // cylinder's closed-form support (r |n_xy| + L/2 |n_z| in its frame); the witnesses, a point
+      // of each solid, from above.
+      const Eigen::Vector3d nrm = (w2 - w1) / dist, nl = tf_cyl.linear().transpose() * nrm;
+      const double reach = nrm.dot(tf_cyl.translation()) + kRadius * std::hypot(nl.x(), nl.y()) +
+                           0.5 * kLength * std::abs(nl.z());
+      const double lowest = std::min({nrm.dot(tf_tri * P1), nrm.dot(tf_tri * P2), nrm.dot(tf_tri * P3)});
+      EXPECT_LT(dist - (lowest - reach), 1e-9) << k;
+      const Eigen::Vector3d l1 = tf_cyl.inverse() * w1, l2 = tf_tri.inverse() * w2;
+      EXPECT_LE(std::max(std::hypot(l1.x(), l1.y()) - kRadius, std::abs(l1.z()) - 0.5 * kLength), 1e-9) << k;
+      if (!collinear) {
+        EXPECT_LT(std::abs((P2 - P1).cross(P3 - P1).normalized().dot(l2 - P1)), 1e-9) << k;
+      }
+      // Stock libccd's distance (the distance between two points it found: not below the true one,
+      // up to its rounding) is not smaller than ours.
+      fcl::DistanceResult<double> stock_d;
+      fcl::distance(mesh.get(), tf_tri, &stock, tf_cyl, fcl::DistanceRequest<double>(true), stock_d);
+      if (stock_d.min_distance > kMargin) {
+        EXPECT_LE(dist, stock_d.min_distance + 1e-9) << k;
+        ++distances_compared;
+      }
+    }
     if (collinear) {
       EXPECT_FALSE(hit) << k << ": a zero-area triangle is skipped";
       ++degenerate;
@@ -415,10 +456,12 @@ TEST(FclTraversalNodes, SolverTriangleKernelAgreesWithTheFrontDoorAndStockLibccd
   EXPECT_GE(decided_hit + decided_miss, hits + misses - 20);
   EXPECT_EQ(degenerate, 150);
   EXPECT_GE(same_point, hits / 2);  // GJK's common point: the front door's contact on the same triangle
+  EXPECT_GE(distances_compared, 300);
   EXPECT_GE(ring_hits, 100);
   EXPECT_GE(ring_misses, 100);
   std::printf("triangle kernel: %d hits, %d misses (stock decides %d / %d), %d at the front door's point, "
-              "ring %d / %d\n", hits, misses, decided_hit, decided_miss, same_point, ring_hits, ring_misses);
+              "ring %d / %d; %d distances against libccd\n",
+              hits, misses, decided_hit, decided_miss, same_point, ring_hits, ring_misses, distances_compared);
 }
 
 TEST(FclTraversalNodes, SolverTriangleKernelsAnswerAtClosedFormsAndRejectBadInput) {
@@ -450,6 +493,16 @@ TEST(FclTraversalNodes, SolverTriangleKernelsAnswerAtClosedFormsAndRejectBadInpu
                                            Eigen::Vector3d(0, 1, 0.85), &d, &p1, &p2));
   EXPECT_NEAR(d, 0.25, 1e-9);
   EXPECT_NEAR(p2.z(), 0.85, 1e-12);
+  // Within 1e-8 of the scale of the cap the front door's collide decides the sign: the kernel
+  // answers as the front door does on the triangle as a one-triangle mesh.
+  for (const double z : {0.6, 0.6 * (1 + 1e-12), 0.6 * (1 + 1e-9), 0.6 * (1 - 1e-9)}) {
+    const Eigen::Vector3d A(-1, -1, z), B(1, -1, z), C(0, 1, z);
+    EXPECT_TRUE(solver.shapeTriangleDistance(cyl, I, A, B, C, &d, &p1, &p2) || d <= 0.0) << z;
+    fcl::DistanceResult<double> front;
+    fcl_quadric::distance(&cyl, I, oneTriangle(A, B, C).get(), I, fcl::DistanceRequest<double>(true), front);
+    EXPECT_EQ(d, front.min_distance) << z;
+    EXPECT_EQ(d > 0.0, z > 0.6 * (1 + 1e-10)) << z << " " << d;
+  }
 }
 
 }  // namespace
