@@ -8,6 +8,7 @@
 #include <map>
 #include <utility>
 #include <stdexcept>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -81,9 +82,10 @@ bool tetrahedronCoordinates(const Simplex& W, std::array<double, 4>* l) {
 /// Affine projection of the origin on the hull of the s points W[idx[0..s-1]] (s = 2, 3):
 /// barycentric coordinates l (all > 0 required) and the point p. Fixed-size arithmetic (no
 /// allocation: this runs several times per GJK step). False for an affinely degenerate subset or
-/// a coordinate <= 0.
+/// a coordinate <= 0. Inlined into closestPoint()'s subsets, whose indices are constants there.
 template <int K>
-bool affineProjectionK(const Simplex& W, const int* idx, std::array<double, 4>* l, Eigen::Vector3d* p) {
+__attribute__((always_inline)) inline bool affineProjectionK(const Simplex& W, const int* idx,
+                                                             std::array<double, 4>* l, Eigen::Vector3d* p) {
   const Eigen::Vector3d& w0 = W[idx[0]].w;
   Eigen::Matrix<double, 3, K> E;
   for (int i = 0; i < K; ++i) E.col(i) = W[idx[i + 1]].w - w0;
@@ -122,11 +124,6 @@ bool affineProjectionK(const Simplex& W, const int* idx, std::array<double, 4>* 
   return true;
 }
 
-bool affineProjection(const Simplex& W, const int* idx, int s, std::array<double, 4>* l,
-                      Eigen::Vector3d* p) {
-  return s == 2 ? affineProjectionK<1>(W, idx, l, p) : affineProjectionK<2>(W, idx, l, p);
-}
-
 /// Closest point to the origin of the convex hull of W (1..4 vertices): among the subsets that
 /// contain the newest point, the affine projection of the origin whose barycentric coordinates are
 /// all > 0 and which is nearest. Every such projection is a point of the hull and the true closest
@@ -143,17 +140,21 @@ bool closestPoint(Simplex* W, std::array<double, 4>* lambda, Eigen::Vector3d* v)
   int best_mask = 0;
   std::array<double, 4> best_l{};
   // Tries the subset `mask` (it holds the newest point, W's last): true if its projection is
-  // valid, and then it is kept if nearest so far.
-  auto consider = [&](int mask) {
-    int idx[4] = {0, 0, 0, 0}, s = 0;
-    for (int i = 0; i < k; ++i)
-      if (mask & (1 << i)) idx[s++] = i;
+  // valid, and then it is kept if nearest so far. The mask is a compile-time constant, so each
+  // call is specialised to its subset (its indices and size folded; before session 32 one
+  // out-of-line lambda walked the mask's bits at run time: ~19% of a cylinder-box distance).
+  auto consider = [&](auto mask_constant) {
+    constexpr int mask = decltype(mask_constant)::value;
+    constexpr int s = (mask & 1) + ((mask >> 1) & 1) + ((mask >> 2) & 1) + ((mask >> 3) & 1);
+    int idx[4] = {0, 0, 0, 0};
+    for (int i = 0, j = 0; i < 4; ++i)
+      if (mask & (1 << i)) idx[j++] = i;
     std::array<double, 4> l{};
     Eigen::Vector3d p;
-    if (s == 1) {
+    if constexpr (s == 1) {
       l[0] = 1.0;
       p = (*W)[idx[0]].w;
-    } else if (!affineProjection(*W, idx, s, &l, &p)) {
+    } else if (!affineProjectionK<s - 1>(*W, idx, &l, &p)) {
       return false;
     }
     const double d = p.squaredNorm();
@@ -165,16 +166,30 @@ bool closestPoint(Simplex* W, std::array<double, 4>* lambda, Eigen::Vector3d* v)
     }
     return true;
   };
-  const int newest = 1 << (k - 1);
+  // The subsets as compile-time masks (bit i: W[i]; the newest point is bit k - 1).
+  using M1 = std::integral_constant<int, 1>;
+  using M2 = std::integral_constant<int, 2>;
+  using M3 = std::integral_constant<int, 3>;
+  using M4 = std::integral_constant<int, 4>;
+  using M5 = std::integral_constant<int, 5>;
+  using M6 = std::integral_constant<int, 6>;
+  using M7 = std::integral_constant<int, 7>;
+  using M8 = std::integral_constant<int, 8>;
+  using M9 = std::integral_constant<int, 9>;
+  using M10 = std::integral_constant<int, 10>;
+  using M11 = std::integral_constant<int, 11>;
+  using M12 = std::integral_constant<int, 12>;
+  using M13 = std::integral_constant<int, 13>;
+  using M14 = std::integral_constant<int, 14>;
   switch (k) {
-    case 1: consider(1); break;
+    case 1: consider(M1{}); break;
     case 2:
-      if (!consider(3)) consider(newest);
+      if (!consider(M3{})) consider(M2{});
       break;
     case 3:
-      if (!consider(7)) {
-        const bool e0 = consider(1 | newest), e1 = consider(2 | newest);
-        if (!e0 && !e1) consider(newest);
+      if (!consider(M7{})) {
+        const bool e0 = consider(M5{}), e1 = consider(M6{});
+        if (!e0 && !e1) consider(M4{});
       }
       break;
     default: {
@@ -188,12 +203,12 @@ bool closestPoint(Simplex* W, std::array<double, 4>* lambda, Eigen::Vector3d* v)
       }
       // The faces {0,1,3}, {0,2,3}, {1,2,3}. Edge {i,3} lies in the two faces that hold i: it is
       // tried when neither has a valid projection.
-      const bool f01 = consider(1 | 2 | newest), f02 = consider(1 | 4 | newest), f12 = consider(2 | 4 | newest);
+      const bool f01 = consider(M11{}), f02 = consider(M13{}), f12 = consider(M14{});
       bool any = f01 || f02 || f12;
-      if (!f01 && !f02) any = consider(1 | newest) || any;
-      if (!f01 && !f12) any = consider(2 | newest) || any;
-      if (!f02 && !f12) any = consider(4 | newest) || any;
-      if (!any) consider(newest);
+      if (!f01 && !f02) any = consider(M9{}) || any;
+      if (!f01 && !f12) any = consider(M10{}) || any;
+      if (!f02 && !f12) any = consider(M12{}) || any;
+      if (!any) consider(M8{});
     }
   }
   if (best_mask == 0) return false;
