@@ -1159,7 +1159,7 @@ bool quadricShapeTriangleIntersect(const fcl::CollisionGeometry<double>& s, cons
                                    const fcl::Transform3<double>& tf_triangle, ExactContact* contact) {
   // A convex quadric shape: the steps of the front doors' mesh walk for this one triangle, without
   // building a one-triangle mesh and the shape's region per leaf (what made FCL's traversal nodes
-  // ~5x slower than the front door, docs/benchmarks.md session 32). The same tests in the same
+  // ~4x slower than the front door, docs/benchmarks.md session 32). The same tests in the same
   // order, hence the same verdicts: the triangle's box against the shape's box posed in the
   // triangle's frame (the one-triangle BVH's root test), GJK's screening (screenPiece()), the
   // zero-area skip; anything GJK leaves undecided goes the one-triangle mesh's way below.

@@ -124,6 +124,10 @@ __attribute__((always_inline)) inline bool affineProjectionK(const Simplex& W, c
   return true;
 }
 
+/// A subset of GJK's simplex as a compile-time bit mask (bit i: W[i]), for closestPoint().
+template <int N>
+using SubsetMask = std::integral_constant<int, N>;
+
 /// Closest point to the origin of the convex hull of W (1..4 vertices): among the subsets that
 /// contain the newest point, the affine projection of the origin whose barycentric coordinates are
 /// all > 0 and which is nearest. Every such projection is a point of the hull and the true closest
@@ -167,29 +171,15 @@ bool closestPoint(Simplex* W, std::array<double, 4>* lambda, Eigen::Vector3d* v)
     return true;
   };
   // The subsets as compile-time masks (bit i: W[i]; the newest point is bit k - 1).
-  using M1 = std::integral_constant<int, 1>;
-  using M2 = std::integral_constant<int, 2>;
-  using M3 = std::integral_constant<int, 3>;
-  using M4 = std::integral_constant<int, 4>;
-  using M5 = std::integral_constant<int, 5>;
-  using M6 = std::integral_constant<int, 6>;
-  using M7 = std::integral_constant<int, 7>;
-  using M8 = std::integral_constant<int, 8>;
-  using M9 = std::integral_constant<int, 9>;
-  using M10 = std::integral_constant<int, 10>;
-  using M11 = std::integral_constant<int, 11>;
-  using M12 = std::integral_constant<int, 12>;
-  using M13 = std::integral_constant<int, 13>;
-  using M14 = std::integral_constant<int, 14>;
   switch (k) {
-    case 1: consider(M1{}); break;
+    case 1: consider(SubsetMask<1>{}); break;
     case 2:
-      if (!consider(M3{})) consider(M2{});
+      if (!consider(SubsetMask<3>{})) consider(SubsetMask<2>{});
       break;
     case 3:
-      if (!consider(M7{})) {
-        const bool e0 = consider(M5{}), e1 = consider(M6{});
-        if (!e0 && !e1) consider(M4{});
+      if (!consider(SubsetMask<7>{})) {
+        const bool e0 = consider(SubsetMask<5>{}), e1 = consider(SubsetMask<6>{});
+        if (!e0 && !e1) consider(SubsetMask<4>{});
       }
       break;
     default: {
@@ -203,12 +193,13 @@ bool closestPoint(Simplex* W, std::array<double, 4>* lambda, Eigen::Vector3d* v)
       }
       // The faces {0,1,3}, {0,2,3}, {1,2,3}. Edge {i,3} lies in the two faces that hold i: it is
       // tried when neither has a valid projection.
-      const bool f01 = consider(M11{}), f02 = consider(M13{}), f12 = consider(M14{});
+      const bool f01 = consider(SubsetMask<11>{}), f02 = consider(SubsetMask<13>{});
+      const bool f12 = consider(SubsetMask<14>{});
       bool any = f01 || f02 || f12;
-      if (!f01 && !f02) any = consider(M9{}) || any;
-      if (!f01 && !f12) any = consider(M10{}) || any;
-      if (!f02 && !f12) any = consider(M12{}) || any;
-      if (!any) consider(M8{});
+      if (!f01 && !f02) any = consider(SubsetMask<9>{}) || any;
+      if (!f01 && !f12) any = consider(SubsetMask<10>{}) || any;
+      if (!f02 && !f12) any = consider(SubsetMask<12>{}) || any;
+      if (!any) consider(SubsetMask<8>{});
     }
   }
   if (best_mask == 0) return false;
