@@ -328,8 +328,8 @@ TEST(FclTraversalNodes, DistanceNodesWithAQuadricShapeMatchStockLibccdAndTheFron
   }
 }
 
-/// The triangle P1 P2 P3 (frame tf) as a one-triangle mesh: what the solver's triangle kernel
-/// answered through before session 32, and the stock oracle's operand.
+/// The triangle P1 P2 P3 as a one-triangle mesh (in its own frame): the front door's operand, the
+/// way the solver's triangle kernels answered before session 32, and the stock oracle's operand.
 /// (OBBRSS: FCL 0.7's distance table has no AABB mesh against a cylinder.)
 std::shared_ptr<fcl::BVHModel<fcl::OBBRSS<double>>> oneTriangle(const Eigen::Vector3d& P1, const Eigen::Vector3d& P2,
                                                                const Eigen::Vector3d& P3) {
@@ -390,11 +390,11 @@ TEST(FclTraversalNodes, SolverTriangleKernelsAgreeWithTheFrontDoorAndStockLibccd
     fcl::DistanceResult<double> front_d;
     fcl_quadric::distance(&cyl, tf_cyl, mesh.get(), tf_tri, fcl::DistanceRequest<double>(true), front_d);
     EXPECT_EQ(dist, front_d.min_distance) << k;
-    EXPECT_EQ(clear, dist > 0.0) << k;
+    EXPECT_EQ(clear, dist >= 0.0) << k;  // FCL's convention: false for an overlap (distance -1)
     if (!collinear) {
-      EXPECT_EQ(clear, !hit) << k;  // (a zero-area triangle has a distance, not a contact)
+      EXPECT_EQ(dist > 0.0, !hit) << k;  // (a zero-area triangle has a distance, not a contact)
     }
-    if (clear) {
+    if (dist > 0.0) {
       EXPECT_NEAR((w1 - w2).norm(), dist, 1e-9) << k;
       EXPECT_LT((w1 - front_d.nearest_points[0]).norm(), 1e-12) << k;
       // Certified from both sides, independently of GJK: the plane normal to w2 - w1 bounds the
@@ -499,7 +499,8 @@ TEST(FclTraversalNodes, SolverTriangleKernelsAnswerAtClosedFormsAndRejectBadInpu
   // answers as the front door does on the triangle as a one-triangle mesh.
   for (const double z : {0.6, 0.6 * (1 + 1e-12), 0.6 * (1 + 1e-9), 0.6 * (1 - 1e-9)}) {
     const Eigen::Vector3d A(-1, -1, z), B(1, -1, z), C(0, 1, z);
-    EXPECT_TRUE(solver.shapeTriangleDistance(cyl, I, A, B, C, &d, &p1, &p2) || d <= 0.0) << z;
+    const bool clear = solver.shapeTriangleDistance(cyl, I, A, B, C, &d, &p1, &p2);
+    EXPECT_EQ(clear, d >= 0.0) << z;  // FCL's convention: false for an overlap (distance -1)
     fcl::DistanceResult<double> front;
     fcl_quadric::distance(&cyl, I, oneTriangle(A, B, C).get(), I, fcl::DistanceRequest<double>(true), front);
     EXPECT_EQ(d, front.min_distance) << z;
