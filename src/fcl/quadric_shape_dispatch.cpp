@@ -1141,15 +1141,29 @@ namespace {
 
 /// The triangle as a one-triangle mesh in its own frame, so that it goes through the front doors'
 /// mesh path (GJK screening, zero-area triangles skipped, the triangle as a zero-thickness region).
+/// (Vertices checked finite by the caller, requireFiniteTriangle().)
 fcl::BVHModel<fcl::AABB<double>> oneTriangleMesh(const Eigen::Vector3d& P1, const Eigen::Vector3d& P2,
                                                   const Eigen::Vector3d& P3) {
-  for (const Eigen::Vector3d* v : {&P1, &P2, &P3})
-    if (!v->allFinite()) throw std::invalid_argument("fcl_quadric::QuadricSolver: a triangle vertex is not finite");
   fcl::BVHModel<fcl::AABB<double>> mesh;
   mesh.beginModel(1, 3);
   mesh.addTriangle(P1, P2, P3);
   mesh.endModel();
   return mesh;
+}
+
+/// The solver's triangle kernels' input check. \throws std::invalid_argument if a vertex is not
+/// finite.
+void requireFiniteTriangle(const Eigen::Vector3d& P1, const Eigen::Vector3d& P2, const Eigen::Vector3d& P3) {
+  for (const Eigen::Vector3d* v : {&P1, &P2, &P3})
+    if (!v->allFinite()) throw std::invalid_argument("fcl_quadric::QuadricSolver: a triangle vertex is not finite");
+}
+
+/// A convex quadric shape's own support mapping (made at its construction; convex shapes are
+/// bounded); null for a non-convex quadric shape or any other geometry.
+const ConvexSupport* convexQuadricSupport(const fcl::CollisionGeometry<double>& s) {
+  if (!isQuadricShape(&s)) return nullptr;
+  const std::optional<ConvexSupport>& c = static_cast<const QuadricShape<double>&>(s).convexSupport();
+  return c ? &*c : nullptr;
 }
 
 }  // namespace
@@ -1163,25 +1177,24 @@ bool quadricShapeTriangleIntersect(const fcl::CollisionGeometry<double>& s, cons
   // order, hence the same verdicts: the triangle's box against the shape's box posed in the
   // triangle's frame (the one-triangle BVH's root test), GJK's screening (screenPiece()), the
   // zero-area skip; anything GJK leaves undecided goes the one-triangle mesh's way below.
-  const auto* q = isQuadricShape(&s) ? static_cast<const QuadricShape<double>*>(&s) : nullptr;
-  if (q != nullptr && q->convexSupport() && q->bounded()) {
-    for (const Eigen::Vector3d* v : {&P1, &P2, &P3})
-      if (!v->allFinite()) throw std::invalid_argument("fcl_quadric::QuadricSolver: a triangle vertex is not finite");
+  requireFiniteTriangle(P1, P2, P3);
+  if (const ConvexSupport* convex = convexQuadricSupport(s)) {
+    const auto& q = static_cast<const QuadricShape<double>&>(s);
     const fcl::Transform3<double> X = tf_triangle.inverse() * tf;
-    const Box3& box = q->localBox();
+    const Box3& box = q.localBox();
     const PosedBox posed{X.linear(), X * box.center(), box.halfWidth()};
     fcl::AABB<double> bv(P1);
     bv += P2;
     bv += P3;
     if (!nodeMeets(bv, Box3{}, &posed)) return false;
     Eigen::Vector3d x;
-    const ConvexScreening::Verdict g = screenPiece(*q->convexSupport(), tf, ConvexSupport::points({P1, P2, P3}),
+    const ConvexScreening::Verdict g = screenPiece(*convex, tf, ConvexSupport::points({P1, P2, P3}),
                                                    tf_triangle.linear(), tf_triangle.translation(), &x);
     if (g == ConvexScreening::Verdict::Far || zeroAreaTriangle(P1, P2, P3)) return false;
     if (g == ConvexScreening::Verdict::Overlapping) {
       if (contact) {
         contact->pos = x;
-        contact->normal = regionNormalAt(q->region(), tf, x);
+        contact->normal = regionNormalAt(q.region(), tf, x);
         contact->depth = 0.0;
       }
       return true;
@@ -1211,11 +1224,9 @@ bool quadricShapeTriangleDistance(const fcl::CollisionGeometry<double>& s, const
   // triangle piece), without the one-triangle mesh: GJK / EPA on the shape's support mapping and
   // the triangle's vertices. The near-contact band, where the front door's collide decides the
   // sign, goes the one-triangle mesh's way below.
-  const auto* q = isQuadricShape(&s) ? static_cast<const QuadricShape<double>*>(&s) : nullptr;
-  if (q != nullptr && q->convexSupport() && q->bounded()) {
-    for (const Eigen::Vector3d* v : {&P1, &P2, &P3})
-      if (!v->allFinite()) throw std::invalid_argument("fcl_quadric::QuadricSolver: a triangle vertex is not finite");
-    const ConvexSupport& shape = *q->convexSupport();
+  requireFiniteTriangle(P1, P2, P3);
+  if (const ConvexSupport* convex = convexQuadricSupport(s)) {
+    const ConvexSupport& shape = *convex;
     const ConvexSupport piece = ConvexSupport::points({P1, P2, P3});
     const SignedDistanceResult d = convexSignedDistance(shape, tf.linear(), tf.translation(), piece,
                                                         tf_triangle.linear(), tf_triangle.translation(), signed_distance);
