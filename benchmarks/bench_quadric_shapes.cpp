@@ -425,7 +425,8 @@ double terrainQuery(const fcl::Transform3d& tf) {
 }
 // The same query through FCL's own traversal node template instantiated with the quadric shape
 // and QuadricSolver (what a user assembling FCL's nodes gets): FCL's OBBRSS tests, then one
-// QuadricSolver::shapeTriangleIntersect (a one-triangle mesh through the front door) per leaf.
+// QuadricSolver::shapeTriangleIntersect per leaf (for this convex shape, the front door's
+// per-triangle steps run directly; since session 32).
 bool terrainNodeCollides(const fcl::Transform3d& tf) {
   const TerrainScene& t = terrain();
   static const fcl_quadric::QuadricSolverd solver;
