@@ -20,6 +20,22 @@ MovingEllipsoid movingEllipsoid(const SceneObject& object, std::size_t index) {
   return MovingEllipsoid{body, PiecewiseMotion(MotionMatrix::constant(object.pose.linear(), object.pose.translation()))};
 }
 
+SceneError degreeLimitError(const Scene& scene, std::size_t i, std::size_t j, const CcdDegreeError& e) {
+  auto degree = [&](std::size_t k) {
+    int d = -1;  // an object without a motion ranks below any moving one
+    if (scene.objects[k].motion)
+      for (const MotionMatrix& m : scene.objects[k].motion->pieces()) d = std::max(d, m.degree());
+    return d;
+  };
+  const std::size_t k = degree(j) > degree(i) ? j : i;
+  const std::size_t other = k == i ? j : i;
+  const SceneObject& o = scene.objects[k];
+  // Polynomial motions are the ones without a linear translation (those from poses have one).
+  const bool polynomial = o.motion && !o.motion->pieces().empty() && !o.motion->pieces().front().linearTranslation();
+  return SceneError("/objects/" + std::to_string(k) + (polynomial ? "/motion/matrix" : "/motion"),
+                    "paired with \"" + scene.objects[other].name + "\": " + e.what());
+}
+
 MovingEllipse2 movingEllipse2(const SceneObject& object) {
   return MovingEllipse2(object.shape.dimensions[0], object.shape.dimensions[1], object.motion2);
 }
@@ -133,10 +149,19 @@ nlohmann::ordered_json ccdScene(const Scene& scene, RegionCcdSolver solver) {
     const SceneObject& a = scene.objects.at(i);
     const SceneObject& b = scene.objects.at(j);
     if (!isEllipsoidal(a.shape) || !isEllipsoidal(b.shape)) {
-      pairs.push_back(regionPair(a, b, solver));
+      try {
+        pairs.push_back(regionPair(a, b, solver));
+      } catch (const CcdDegreeError& e) {
+        throw degreeLimitError(scene, i, j, e);
+      }
       continue;
     }
-    const EllipsoidCcdResult r = continuousCollideEllipsoids(movingEllipsoid(a, i), movingEllipsoid(b, j), options);
+    EllipsoidCcdResult r;
+    try {
+      r = continuousCollideEllipsoids(movingEllipsoid(a, i), movingEllipsoid(b, j), options);
+    } catch (const CcdDegreeError& e) {
+      throw degreeLimitError(scene, i, j, e);
+    }
     nlohmann::ordered_json entry;
     entry["a"] = a.name;
     entry["b"] = b.name;

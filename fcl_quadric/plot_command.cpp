@@ -963,7 +963,12 @@ void plotCcdFunction(const Scene& scene, std::size_t i, std::size_t j, const std
   }
   const MovingEllipsoid a = movingEllipsoid(scene.objects[i], i), b = movingEllipsoid(scene.objects[j], j);
   const CcdInterpolation interpolation = scene.ccd.affine ? CcdInterpolation::Affine : CcdInterpolation::Rigid;
-  const CcdFunctionPlot plot = sampleCcdFunction(a, b, interpolation);
+  CcdFunctionPlot plot;
+  try {
+    plot = sampleCcdFunction(a, b, interpolation);
+  } catch (const CcdDegreeError& e) {
+    throw degreeLimitError(scene, i, j, e);
+  }
   const std::string heading_text = "CCD function F(u, t) \u00b7 " + pairName(scene, i, j) + "   (" + title + ")";
   const std::string subtitle = std::string("F(u, t) = det((u \u2212 1) A(t) \u2212 u B(t)), zero set by marching squares, ") +
                                (scene.ccd.affine ? "affine interpolant (thesis \u00a75.2)" : "rigid motions") +

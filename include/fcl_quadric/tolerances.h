@@ -139,6 +139,14 @@ constexpr double kCcdBalanceRatio = 4.0;
 constexpr int kCcdMaxBalanceDepth = 48;
 constexpr int kCcdMaxBalanceSegments = 256;
 
+/// Largest degree in t of the CCD function F(u, t) of an ellipsoid pair under exact (rigid or
+/// polynomial) motions: the Bernstein conversions of F use rows of Pascal's triangle up to this
+/// one (ccd_function.cpp). Two motions from poses give 18, the thesis' degree-6 arm links 96, a
+/// general affine motion of degree k against a fixed body 24 k; ccdFunctionDegree() gives the
+/// degree of a pair, and a pair above this limit is rejected up front (CcdDegreeError, a
+/// std::invalid_argument), before any cull or root search runs on it.
+constexpr int kCcdMaxDegree = 400;
+
 /// Ill-conditioned CCD pairs (docs/algorithms.md section 8): a condition estimate (aspect ratio x
 /// condition of the motion's linear part)^2 of either moving quadric above this sets
 /// EllipsoidCcdResult::precision_checked, whose answers the extended-precision error estimate

@@ -42,6 +42,13 @@ const std::vector<double>& binomialTable() {
 double binomial(int n, int k) {
   if (k < 0 || k > n) return 0.0;
   if (n < kTableRows) return binomialTable()[static_cast<std::size_t>(n * (n + 1) / 2 + k)];
+  if (n > kMaxBernsteinDegree) {
+    // Beyond it C(n, k) overflows (n > 1029) and the conversions would divide inf by inf: NaN
+    // coefficients, which a sign test can mistake for a certificate (found in session 34: a
+    // degree-1024 cull polynomial of the CCD "certified" a colliding pair separate).
+    throw std::invalid_argument("Bernstein basis: degree " + std::to_string(n) + " exceeds kMaxBernsteinDegree = " +
+                                std::to_string(kMaxBernsteinDegree));
+  }
   return binomialLoop(n, k);
 }
 

@@ -11,6 +11,7 @@
 #include <Eigen/LU>
 
 #include "fcl_quadric/algebra/bernstein_polynomial.h"
+#include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
 
@@ -42,8 +43,9 @@ V convolve(const V& a, const V& b) {
 }
 
 // Rows 0..kMaxRow of Pascal's triangle, computed once (exact up to row 56; beyond, correctly
-// rounded sums; the CCD degrees stay far below kMaxRow).
-constexpr int kMaxRow = 400;
+// rounded sums). continuousCollideEllipsoids() rejects pairs of a higher degree up front
+// (ccdFunctionDegree()), so the throw below is a last guard.
+constexpr int kMaxRow = tolerance::kCcdMaxDegree;
 const std::vector<double>& binomialRow(int r) {
   static const std::vector<std::vector<double>> rows = [] {
     std::vector<std::vector<double>> t(kMaxRow + 1);

@@ -832,8 +832,9 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
     const std::vector<Eigen::Matrix4d> P = multiplyCoefficients(mb.inverseCoefficients(), ma.matrixCoefficients());
     const std::vector<Eigen::Matrix4d> Pinv = multiplyCoefficients(ma.inverseCoefficients(), mb.matrixCoefficients());
     if (2 * static_cast<int>(P.size() - 1) > tolerance_region::kRegionCcdMaxDegree)
-      throw std::invalid_argument("continuousCollideRegionsByReduction: relative motion of degree " +
-                                  std::to_string(P.size() - 1) + " exceeds kRegionCcdMaxDegree / 2");
+      throw CcdDegreeError("continuousCollideRegionsByReduction: relative motion of degree " + std::to_string(P.size() - 1) +
+                               " exceeds kRegionCcdMaxDegree / 2 = " + std::to_string(tolerance_region::kRegionCcdMaxDegree / 2),
+                           2 * static_cast<int>(P.size() - 1), tolerance_region::kRegionCcdMaxDegree);
     const Posed pa = pose(A, {Eigen::Matrix4d::Identity()}, {Eigen::Matrix4d::Identity()});
     const Posed pb = pose(B, P, Pinv);
 

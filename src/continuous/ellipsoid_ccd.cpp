@@ -66,10 +66,16 @@ Vec4P times(const PolynomialMatrix4& M, const Eigen::Vector4d& v) {  // M(t) v
 int certifiedSign(const Polynomial& p, const Polynomial& magnitude, double error) {
   const BernsteinPolynomial b = BernsteinPolynomial::fromPower(p.trimmed(), 0.0, 1.0);
   double scale = 0.0;
-  for (double c : b.coefficients()) scale = std::max(scale, std::abs(c));
+  for (double c : b.coefficients()) {
+    // A coefficient that overflowed (inf, or NaN, which std::max and every comparison below
+    // would pass over) certifies nothing.
+    if (!std::isfinite(c)) return 0;
+    scale = std::max(scale, std::abs(c));
+  }
   double mag = 0.0;
   for (double c : magnitude.coefficients()) mag += c;
   const double margin = 1e-10 * scale + error * mag;
+  if (!std::isfinite(margin)) return 0;
   if (b.minCoefficient() > margin) return 1;
   if (b.maxCoefficient() < -margin) return -1;
   return 0;
@@ -1271,6 +1277,44 @@ std::vector<double> solverBreaks(const MovingEllipsoid& a, const MovingEllipsoid
 
 }  // namespace
 
+namespace {
+
+// c'_j of ccdFunctionDegree(): the degree of column j of N(t) S over the motion's pieces, S
+// mixing every column of N into the last one (segmentPencil()'s frame).
+std::array<int, 4> columnDegrees(const PiecewiseMotion& motion) {
+  std::array<int, 4> c{0, 0, 0, 0};
+  for (const MotionMatrix& m : motion.pieces()) {
+    const std::vector<Eigen::Matrix4d>& N = m.inverseCoefficients();
+    for (int k = static_cast<int>(N.size()) - 1; k > 0; --k)
+      for (int j = 0; j < 4; ++j)
+        if (c[j] < k && !N[k].col(j).isZero(0.0)) c[j] = k;
+  }
+  c[3] = *std::max_element(c.begin(), c.end());
+  return c;
+}
+
+// The up-front degree check of the exact solver (tolerance::kCcdMaxDegree): above it the
+// Bernstein conversions would leave their binomial tables, and the culls would run on overflowed
+// coefficients (session 34: a translation of degree 512 was "certified" collision-free).
+void checkCcdDegree(const MovingEllipsoid& a, const MovingEllipsoid& b, const char* where) {
+  const int degree = ccdFunctionDegree(a, b);
+  if (degree > tolerance::kCcdMaxDegree) {
+    std::ostringstream os;
+    os << where << ": the motions give a CCD function of degree " << degree << " in t, above kCcdMaxDegree = "
+       << tolerance::kCcdMaxDegree << " (split a motion into pieces of lower degree, or use the affine interpolation)";
+    throw CcdDegreeError(os.str(), degree, tolerance::kCcdMaxDegree);
+  }
+}
+
+}  // namespace
+
+int ccdFunctionDegree(const MovingEllipsoid& a, const MovingEllipsoid& b) {
+  const std::array<int, 4> ca = columnDegrees(a.motion), cb = columnDegrees(b.motion);
+  int sum = 0;
+  for (int j = 0; j < 4; ++j) sum += std::max(ca[j], cb[j]);
+  return 2 * sum;
+}
+
 EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const MovingEllipsoid& b,
                                                const CcdOptions& options) {
   // std::isnan first: an ordered comparison with NaN raises FE_INVALID (trapped by the tests).
@@ -1284,6 +1328,7 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
     os << "continuousCollideEllipsoids: max_condition must be positive, got " << options.max_condition;
     throw std::invalid_argument(os.str());
   }
+  if (options.interpolation == CcdInterpolation::Rigid) checkCcdDegree(a, b, "continuousCollideEllipsoids");
   const bool single = a.motion.pieces().size() == 1 && b.motion.pieces().size() == 1;
   if (single && options.interpolation == CcdInterpolation::Rigid) {
     if (std::optional<EllipsoidCcdResult> r = movingSpheres(a, b, options)) return *r;
@@ -1355,6 +1400,7 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
 std::vector<CcdFunctionSegment> ccdFunctionSegments(const MovingEllipsoid& a, const MovingEllipsoid& b,
                                                     CcdInterpolation interpolation) {
   const bool affine = interpolation == CcdInterpolation::Affine;
+  if (!affine) checkCcdDegree(a, b, "ccdFunctionSegments");
   const std::vector<double> breaks = solverBreaks(a, b, 1.0, false);
   std::vector<CcdFunctionSegment> segments;
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {

@@ -198,6 +198,20 @@ MotionMatrix MotionMatrix::fromPoses(const Eigen::Matrix3d& R0, const Eigen::Vec
 }
 
 MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M_given) {
+  // Degree first: the validation below converts det L (degree up to 3 kMaxMotionDegree) to the
+  // Bernstein form, and above kMaxBernsteinDegree that would overflow (session 34: a degree-2000
+  // entry ran for 92 s before the CCD answered wrongly).
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const int degree = M_given(i, j).trimmed().degree();
+      if (degree > kMaxMotionDegree) {
+        std::ostringstream os;
+        os << "motion matrix entry (" << i << "," << j << ") has degree " << degree << " in t, above kMaxMotionDegree = "
+           << kMaxMotionDegree;
+        throw std::invalid_argument(os.str());
+      }
+    }
+  }
   // M and s M are the same motion for any s != 0. Far outside [2^-32, 2^32] the products below
   // (det L, the adjugate, and the CCD function built from them) overflow to inf and NaN, and the
   // root certificates would run on garbage (found by fuzz_motion: coefficients ~1e300 passed

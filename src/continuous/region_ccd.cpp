@@ -627,7 +627,7 @@ RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegi
       std::ostringstream os;
       os << "continuousCollideRegions: the relative motion gives moving atoms of degree " << degree
          << " in t, above kRegionCcdMaxDegree = " << kRegionCcdMaxDegree;
-      throw std::invalid_argument(os.str());
+      throw CcdDegreeError(os.str(), degree, kRegionCcdMaxDegree);
     }
     for (MovingAtom& m : atoms) {
       m.constant = m.S.size() == 1;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -102,6 +103,30 @@ TEST(BernsteinPolynomial, PowerBernsteinRoundTripIsExactOnDyadicUnitInterval) {
     // The power basis on such intervals has a condition number growing like ~6^n.
     const double tol = 1e-15 * std::pow(6.0, p.degree());
     for (int i = 0; i <= p.degree(); ++i) EXPECT_NEAR(back.coefficient(i), p.coefficient(i), tol);
+  }
+}
+
+// Up to kMaxBernsteinDegree the conversion stays finite; above it, it throws instead of dividing
+// overflowed binomial coefficients (inf / inf = NaN; session 34: such NaN coefficients passed a
+// sign test of the CCD). p(t) = 1 + t^n has Bernstein coefficients 1, ..., 1, 2 on [0, 1].
+TEST(BernsteinPolynomial, ConversionsUpToTheDegreeLimitAreFiniteAndAboveItThrow) {
+  for (int n : {200, 600, kMaxBernsteinDegree}) {
+    std::vector<double> q(static_cast<std::size_t>(n) + 1, 0.0);
+    q.front() = 1.0;
+    q.back() = 1.0;
+    const BernsteinPolynomial b = BernsteinPolynomial::fromPower(Polynomial(q));
+    ASSERT_EQ(b.degree(), n);
+    for (int i = 0; i < n; ++i) ASSERT_EQ(b.coefficient(i), 1.0) << "n = " << n << ", i = " << i;
+    EXPECT_EQ(b.coefficient(n), 2.0);
+    EXPECT_NEAR(b.evaluate(0.5), 1.0, 1e-15);
+  }
+  std::vector<double> q(static_cast<std::size_t>(kMaxBernsteinDegree) + 2, 0.0);
+  q.back() = 1.0;
+  try {
+    BernsteinPolynomial::fromPower(Polynomial(q));
+    FAIL() << "degree " << kMaxBernsteinDegree + 1 << " accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(std::to_string(kMaxBernsteinDegree + 1)), std::string::npos) << e.what();
   }
 }
 

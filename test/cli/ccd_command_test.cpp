@@ -3,6 +3,7 @@
 // times), and bad input gives exit status 2 with the JSON pointer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -207,6 +208,44 @@ TEST(CcdCommand, SingularMotionExitsWithStatusTwoAndThePath) {
   EXPECT_EQ(r.status, kExitBadInput);
   EXPECT_NE(r.err.find("/objects/0/motion/matrix"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("0.25"), std::string::npos) << "names where det L(t) vanishes: " << r.err;
+}
+
+// A pair whose motions exceed a solver's degree limit is a bad scene, not an internal error:
+// exit 2 naming the motion (session 34; before, exit 1 from deep inside the CCD function, and
+// above degree 511 a silent "no collision").
+TEST(CcdCommand, MotionsAboveTheDegreeLimitExitWithStatusTwoAndThePath) {
+  auto translation = [](int k) {
+    std::string x = "[";
+    for (int i = 0; i < k; ++i) x += "0,";
+    return x + "3]";
+  };
+  const std::string ellipsoids = R"({"objects":[{"name":"B","shape":{"type":"sphere","radius":0.5},"pose":{"translation":[3,0,0]}},
+    {"name":"A","shape":{"type":"ellipsoid","radii":[1,0.5,0.5]},
+     "motion":{"type":"polynomial","matrix":[[1,0,0,)" + translation(201) + R"(],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}}]})";
+  RunResult r = runCcdText(ellipsoids, "ccd_degree");
+  EXPECT_EQ(r.status, kExitBadInput);
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("/objects/1/motion/matrix"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("degree 402"), std::string::npos) << r.err;
+  // The region CCD's own limit (kRegionCcdMaxDegree = 60: a translation of degree 31).
+  const std::string region = R"({"objects":[{"name":"ball","shape":{"type":"sphere","radius":0.5},
+     "motion":{"type":"polynomial","matrix":[[1,0,0,)" + translation(31) + R"(],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}},
+    {"name":"pillar","shape":{"type":"cylinder","radius":0.5,"length":1},"pose":{"translation":[3,0,0]}}]})";
+  r = runCcdText(region, "ccd_region_degree");
+  EXPECT_EQ(r.status, kExitBadInput);
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_NE(r.err.find("/objects/0/motion/matrix"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("kRegionCcdMaxDegree"), std::string::npos) << r.err;
+  // Degree 30 is within it: the ball (radius 0.5, centre 3 t^30) meets the pillar's side at x = 2.
+  nlohmann::json doc;
+  const RunResult ok = runCcdText(R"({"objects":[{"name":"ball","shape":{"type":"sphere","radius":0.5},
+     "motion":{"type":"polynomial","matrix":[[1,0,0,)" + translation(30) + R"(],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}},
+    {"name":"pillar","shape":{"type":"cylinder","radius":0.5,"length":1},"pose":{"translation":[3,0,0]}}]})",
+                                  "ccd_region_degree_ok");
+  ASSERT_EQ(ok.status, kExitOk) << ok.err;
+  doc = nlohmann::json::parse(ok.out);
+  EXPECT_NEAR(doc["pairs"][0]["first_contact_time"].get<double>(), std::pow(2.0 / 3.0, 1.0 / 30.0), 1e-8);
 }
 
 std::string readText(const std::string& path) {

@@ -106,6 +106,71 @@ TEST(MotionMatrix, BadMatricesAreRejectedWithTheReason) {
                std::invalid_argument);
 }
 
+// Session 34 (an independent audit): a translation of degree 512 gave a cull polynomial of degree
+// 1024, whose Bernstein conversion overflowed to NaN; the cull then "certified" a colliding pair
+// collision-free. Degrees 201-511 threw from deep inside the CCD function. Now every degree is
+// either solved or rejected up front: a of radii (1, 0.5, 0.5) at x(t) = 3 t^k against a ball of
+// radius 0.5 at x = 3 touches when 3 - 3 t^k = 1.5, t* = 0.5^(1/k), and overlaps on [t*, 1].
+MovingEllipsoid polynomialTranslation(int k) {
+  PolynomialMatrix4 M(Eigen::Matrix4d::Identity());
+  std::vector<double> x(static_cast<std::size_t>(k) + 1, 0.0);
+  x.back() = 3.0;
+  M(0, 3) = Polynomial(x);
+  return {bodyEllipsoid(Eigen::Vector3d(1.0, 0.5, 0.5)), PiecewiseMotion(MotionMatrix::fromPolynomialMatrix(M))};
+}
+
+TEST(EllipsoidCcd, HighDegreeMotionsAreSolvedUpToTheDegreeLimitAndRejectedAboveIt) {
+  const MovingEllipsoid b{Ellipsoid::sphere(0.5, Eigen::Vector3d::Zero()),
+                          PiecewiseMotion(MotionMatrix::constant(Eigen::Matrix3d::Identity(), Eigen::Vector3d(3.0, 0.0, 0.0)))};
+  for (int k : {10, 100, 200}) {
+    const MovingEllipsoid a = polynomialTranslation(k);
+    EXPECT_EQ(ccdFunctionDegree(a, b), 2 * k);
+    for (bool all : {true, false}) {
+      CcdOptions options;
+      options.all_intervals = all;
+      const EllipsoidCcdResult r = continuousCollideEllipsoids(a, b, options);
+      const double t_star = std::pow(0.5, 1.0 / k);
+      ASSERT_TRUE(r.collide) << "k = " << k;
+      EXPECT_LE(r.degree_t, ccdFunctionDegree(a, b));
+      EXPECT_NEAR(*r.first_contact_time, t_star, 1e-9) << "k = " << k;
+      EXPECT_LE(*r.first_contact_time, t_star + 1e-12) << "never late, k = " << k;
+      if (all) {
+        ASSERT_EQ(r.collision_intervals.size(), 1u) << "k = " << k;
+        EXPECT_EQ(r.collision_intervals[0].end, 1.0);
+      }
+    }
+  }
+  for (int k : {201, 300}) {
+    const MovingEllipsoid a = polynomialTranslation(k);
+    try {
+      continuousCollideEllipsoids(a, b);
+      FAIL() << "degree " << 2 * k << " accepted";
+    } catch (const CcdDegreeError& e) {
+      EXPECT_EQ(e.degree(), 2 * k);
+      EXPECT_EQ(e.limit(), tolerance::kCcdMaxDegree);
+      EXPECT_NE(std::string(e.what()).find("degree " + std::to_string(2 * k)), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(ccdFunctionSegments(a, b), CcdDegreeError);
+    // The affine interpolant has degree 6 whatever the motions: no limit there.
+    CcdOptions affine;
+    affine.interpolation = CcdInterpolation::Affine;
+    EXPECT_NO_THROW(continuousCollideEllipsoids(a, b, affine));
+  }
+  try {
+    polynomialTranslation(kMaxMotionDegree + 1);
+    FAIL() << "a motion entry of degree " << kMaxMotionDegree + 1 << " accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("degree " + std::to_string(kMaxMotionDegree + 1)), std::string::npos) << e.what();
+  }
+  // Two motions from poses: columns of N(t) of degrees (2, 2, 2, 3), so 18 (motion_matrix.h).
+  const MovingEllipsoid p{bodyEllipsoid(Eigen::Vector3d(1.0, 2.0, 3.0)),
+                          PiecewiseMotion(MotionMatrix::fromPoses(Eigen::Isometry3d::Identity(),
+                                                                  pose(Eigen::Matrix3d(Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitY())),
+                                                                       Eigen::Vector3d(1.0, 2.0, 3.0))))};
+  EXPECT_EQ(ccdFunctionDegree(p, p), 18);
+  EXPECT_EQ(ccdFunctionDegree(b, b), 0);
+}
+
 // --- CCD function -----------------------------------------------------------------------------
 
 TEST(CcdFunction, MatchesTheDeterminantOfTheEvaluatedPencil) {

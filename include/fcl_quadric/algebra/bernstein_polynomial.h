@@ -17,6 +17,13 @@
 
 namespace fcl_quadric {
 
+/// Largest degree of the Bernstein-basis conversions (fromPower(), fromScaled(), toPower(),
+/// toScaled(), products, degree elevation): their weights are binomial coefficients C(n, k),
+/// which overflow a double beyond n = 1029 (C(1030, 515) > 1.8e308), and the conversion would
+/// then produce NaN coefficients. A conversion of higher degree throws std::invalid_argument
+/// naming the degree instead. 1000 keeps every intermediate product of the binomial loop finite.
+constexpr int kMaxBernsteinDegree = 1000;
+
 /// A polynomial of degree n (formal) in the Bernstein basis of [a, b], a < b, both finite.
 ///
 /// Bad input: a non-finite coefficient or bound, an empty coefficient vector, or a >= b throws
@@ -132,7 +139,8 @@ BernsteinPolynomial operator*(const BernsteinPolynomial& p, const BernsteinPolyn
 namespace detail {
 
 /// Binomial coefficient C(n, k) in double (exact while it is below 2^53; n <= 56 always is).
-/// Returns 0 for k < 0 or k > n. \pre n >= 0.
+/// Returns 0 for k < 0 or k > n. \pre n >= 0. \throws std::invalid_argument if
+/// n > kMaxBernsteinDegree (every basis conversion above that degree goes through here).
 double binomial(int n, int k);
 
 /// Throws std::invalid_argument naming `where` unless a and b are finite and a < b.

@@ -116,10 +116,19 @@ struct EllipsoidCcdResult {
   int segments = 0;
 };
 
+/// The degree in t of the CCD function F(u, t) = det((u - 1) A(t) - u B(t)) that the exact
+/// (CcdInterpolation::Rigid) solver builds for the pair, structurally (leading coefficients that
+/// cancel can make the computed one lower): 2 sum_j max(c_j^a, c_j^b), where c_j is the degree of
+/// column j of a motion's inverse factor N(t) S, over all its pieces (thesis §5.1; S, the solver's
+/// frame, mixes every column of N into the last). 18 for two motions from poses, 2 k for a
+/// translation of degree k against a fixed body. No failure mode.
+int ccdFunctionDegree(const MovingEllipsoid& a, const MovingEllipsoid& b);
+
 /// Continuous collision of two moving ellipsoids over [0, options.t_max].
 /// \throws std::invalid_argument if t_max is not in (0, 1], or if an intermediate polynomial
-/// overflows (a non-finite coefficient; extreme magnitudes of radii or coordinates). The result
-/// never holds NaN.
+/// overflows (a non-finite coefficient; extreme magnitudes of radii or coordinates);
+/// CcdDegreeError (a std::invalid_argument) if the interpolation is Rigid and
+/// ccdFunctionDegree(a, b) exceeds tolerance::kCcdMaxDegree. The result never holds NaN.
 EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const MovingEllipsoid& b,
                                                const CcdOptions& options = CcdOptions());
 

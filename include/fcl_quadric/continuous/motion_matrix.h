@@ -27,6 +27,8 @@
 /// Part of the continuous-collision layer: standard library and Eigen only.
 
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -40,6 +42,30 @@ namespace fcl_quadric {
 
 /// 4x4 matrices in extended precision (long double: a 64-bit significand on x86-64).
 using Matrix4ld = Eigen::Matrix<long double, 4, 4>;
+
+/// Largest degree of an entry of a motion given by its polynomial matrix
+/// (MotionMatrix::fromPolynomialMatrix): its validation converts det L(t), of degree up to three
+/// times that, to the Bernstein form, whose conversions stop at kMaxBernsteinDegree = 1000. The
+/// solvers have lower limits of their own (tolerance::kCcdMaxDegree, kRegionCcdMaxDegree), on
+/// the degree of what a pair of motions produces (CcdDegreeError).
+constexpr int kMaxMotionDegree = 300;
+
+/// Thrown by the continuous solvers when a pair's motions would give a CCD function (or moving
+/// quadric) of a higher degree in t than the solver supports: the polynomial arithmetic would
+/// leave the range of its binomial tables. A std::invalid_argument whose message names both
+/// degrees; degree() and limit() give them to a caller that reports it (the CLI names the
+/// motion's JSON path).
+class CcdDegreeError : public std::invalid_argument {
+ public:
+  CcdDegreeError(const std::string& what, int degree, int limit)
+      : std::invalid_argument(what), degree_(degree), limit_(limit) {}
+  int degree() const { return degree_; }
+  int limit() const { return limit_; }
+
+ private:
+  int degree_;
+  int limit_;
+};
 
 /// A rational motion M(t), t in [0, 1], with its polynomial inverse N(t) (see the file comment).
 class MotionMatrix {
@@ -69,7 +95,8 @@ class MotionMatrix {
   /// where in [0, 1] it fails. M and s M are the same motion: when the largest coefficient is
   /// outside [2^-32, 2^32] the matrix is first rescaled by a power of two (exact), so that huge or
   /// tiny coefficients cannot overflow the validation or the CCD (matrix() returns the rescaled
-  /// matrix).
+  /// matrix). Entries of degree above kMaxMotionDegree are rejected (std::invalid_argument naming
+  /// the entry and its degree).
   static MotionMatrix fromPolynomialMatrix(const PolynomialMatrix4& M);
 
   /// The composition outer(inner(x)): M = M_outer M_inner with the polynomial inverse

@@ -97,8 +97,8 @@ struct RegionCcdResult {
 };
 
 /// First contact of a and b over t in [0, 1] (file comment).
-/// \throws std::invalid_argument if neither region has a box, or a motion pair's relative degree
-/// exceeds kRegionCcdMaxDegree.
+/// \throws std::invalid_argument if neither region has a box; CcdDegreeError (a
+/// std::invalid_argument) if a motion pair's relative degree exceeds kRegionCcdMaxDegree.
 RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegion& b);
 
 /// The label of the boundary element (thesis §6.1-6.2) formed by the given atoms of a CQM:
