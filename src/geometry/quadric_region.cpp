@@ -396,6 +396,60 @@ PointSearchResult findPoint(const QuadricRegion& region, const Box3& box, int ex
   return findPointFormula(Formula(region), box, extra_after_undecided, kRegionMaxAspect);
 }
 
+std::optional<Eigen::Vector3d> pencilInteriorCandidate(const Eigen::Matrix4d& A_in, const Eigen::Matrix4d& B_in) {
+  const double na = A_in.cwiseAbs().maxCoeff(), nb = B_in.cwiseAbs().maxCoeff();
+  if (!(na > 0.0 && nb > 0.0 && std::isfinite(na) && std::isfinite(nb))) return std::nullopt;
+  // Positive factors move the maximiser along the same curve x(mu) and keep a(x) = b(x) < 0 there
+  // (as a multiple of each): normalise both to max |entry| 1 for a balanced mu.
+  const Eigen::Matrix4d A = A_in / na, B = B_in / nb;
+  struct Eval {
+    Eigen::Vector3d x;
+    double diff;  // a(x) - b(x) = g'(mu): decreasing in mu, g being concave
+  };
+  auto eval = [&](double mu) -> std::optional<Eval> {
+    const Eigen::Matrix4d C = mu * A + (1.0 - mu) * B;
+    const Eigen::LLT<Eigen::Matrix3d> llt(C.topLeftCorner<3, 3>());
+    if (llt.info() != Eigen::Success) return std::nullopt;
+    const Eigen::Vector3d x = -llt.solve(Eigen::Vector3d(C.topRightCorner<3, 1>()));
+    if (!x.allFinite()) return std::nullopt;
+    const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
+    return Eval{x, X.dot(A * X) - X.dot(B * X)};
+  };
+  // The mu with a positive definite block form an interval (a convex set): find one of them, then
+  // its ends by bisection, keeping the last definite point on each side.
+  double inside = -1.0;
+  for (double mu : {1.0, 0.0, 0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875}) {
+    if (eval(mu)) {
+      inside = mu;
+      break;
+    }
+  }
+  if (inside < 0.0) return std::nullopt;
+  auto end = [&](double outer) {
+    if (eval(outer)) return outer;
+    double in = inside, out = outer;
+    for (int k = 0; k < 50; ++k) {
+      const double mid = 0.5 * (in + out);
+      (eval(mid) ? in : out) = mid;
+    }
+    return in;
+  };
+  double lo = end(0.0), hi = end(1.0);
+  const std::optional<Eval> e_lo = eval(lo), e_hi = eval(hi);
+  if (!e_lo || !e_hi) return std::nullopt;
+  if (e_hi->diff >= 0.0) return e_hi->x;  // g increases up to hi: its maximum is there
+  if (e_lo->diff <= 0.0) return e_lo->x;
+  Eigen::Vector3d best = e_lo->x;
+  for (int k = 0; k < 60 && lo < hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    const std::optional<Eval> e = eval(mid);
+    if (!e) break;
+    best = e->x;
+    (e->diff > 0.0 ? lo : hi) = mid;
+  }
+  return best;
+}
+
 QuadricRegion intersectionInFrame(const QuadricRegion& a, const QuadricRegion& b, const Eigen::Matrix3d& R_AB,
                                   const Eigen::Vector3d& p_AB) {
   return QuadricRegion::combine(QuadricRegion::Op::Intersection, {a, b.transformed(R_AB, p_AB)});

@@ -14,7 +14,9 @@
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/geometry/ellipsoid_cylinder.h"
+#include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/geometry/quadric_region.h"
+#include "fcl_quadric/geometry/signed_distance.h"
 #include "support/exact_oracle.h"
 #include "support/random_ellipsoids.h"
 
@@ -543,6 +545,30 @@ TEST(QuadricRegionCollision, EllipticCylinderPairsVsDenseExactSampling) {
   EXPECT_GT(sep, 30);
   EXPECT_GT(ovl, 30);
   std::printf("elliptic cylinder pairs: %d separated, %d overlapping, %d touching\n", sep, ovl, tch);
+}
+
+// pencilInteriorCandidate (session 34, `fcl_quadric check`'s fallback): for two ellipsoids the
+// maximiser of min_x (mu a + (1 - mu) b) is Theorem 4.1's pencil point, inside both exactly when
+// they overlap. Judged by the independent certified classifier and signed distance: every clear
+// overlap (depth above 1e-6 of the sizes) gets a candidate certified interior to both solids.
+TEST(PencilInteriorCandidate, IsACommonInteriorPointOfEveryClearlyOverlappingEllipsoidPair) {
+  std::mt19937_64 rng(2034);
+  int overlapping = 0, certified = 0;
+  for (int k = 0; k < 400; ++k) {
+    const Ellipsoid a = test::anchorEllipsoid(rng), b = test::anchorEllipsoid(rng);
+    if (classifyEllipsoids(a, b).status != Separation::Overlapping) continue;
+    if (!(signedDistance(a, b).distance < -1e-6 * (a.maxRadius() + b.maxRadius()))) continue;
+    ++overlapping;
+    const std::optional<Eigen::Vector3d> x = pencilInteriorCandidate(a.quadricMatrix(), b.quadricMatrix());
+    ASSERT_TRUE(x.has_value()) << "pair " << k;
+    certified += QuadricRegion::atom(a.quadricMatrix()).classifyPoint(*x) > 0 &&
+                 QuadricRegion::atom(b.quadricMatrix()).classifyPoint(*x) > 0;
+  }
+  EXPECT_GT(overlapping, 100);
+  EXPECT_EQ(certified, overlapping);
+  // No mu makes a definite block: mu diag(1, -1, 1) + (1 - mu) diag(-1, 1, -1).
+  EXPECT_FALSE(pencilInteriorCandidate(Eigen::Vector4d(1, -1, 1, -1).asDiagonal().toDenseMatrix(),
+                                       Eigen::Vector4d(-1, 1, -1, -1).asDiagonal().toDenseMatrix()));
 }
 
 }  // namespace

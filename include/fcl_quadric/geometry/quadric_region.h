@@ -14,6 +14,7 @@
 /// Only rounding-padded signs are trusted (tolerance::kRegionSignRelative).
 
 #include <string>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -144,6 +145,16 @@ struct PointSearchResult {
 /// for an interior point (0: answer Undecided at once, as maxLinear does).
 PointSearchResult findPoint(const QuadricRegion& region, const Box3& box,
                             int extra_after_undecided = tolerance_region::kRegionExtraBoxesAfterUndecided);
+
+/// A candidate common interior point of the solids X^T A X < 0 and X^T B X < 0 (homogeneous 4x4
+/// matrices, one frame) from their pencil, the static analogue of Theorem 4.1's separating
+/// pencil (thesis §4.2): over the mu in [0, 1] where the upper-left 3x3 block of
+/// C(mu) = mu A + (1 - mu) B is positive definite, g(mu) = min_x X^T C(mu) X is concave, and at
+/// its maximiser the minimiser x(mu) has a(x) = b(x) = g (the derivative a - b vanishes): inside
+/// both when g < 0. Found by bisection on the sign of a(x(mu)) - b(x(mu)) (60 steps). Empty when
+/// no such mu exists (neither block positive definite). Not certified: a caller certifies the
+/// candidate (QuadricRegion::classifyPoint). No failure mode.
+std::optional<Eigen::Vector3d> pencilInteriorCandidate(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B);
 
 /// Intersection of two regions as a region (in a's frame, b posed by X_AB = (R, p)).
 QuadricRegion intersectionInFrame(const QuadricRegion& a, const QuadricRegion& b, const Eigen::Matrix3d& R_AB,
