@@ -68,6 +68,7 @@ nlohmann::ordered_json ccdScene2(const Scene& scene) {
     bool unverified = r.capped;
     for (const EllipseContact& c : r.contacts) unverified = unverified || !c.verified;
     entry["near_tangent"] = unverified;
+    entry["unresolved"] = r.capped;
     pairs.push_back(std::move(entry));
   }
   nlohmann::ordered_json document;
@@ -104,6 +105,7 @@ nlohmann::ordered_json regionPair(const SceneObject& a, const SceneObject& b, Re
         entry["contact_point"] = d.collide ? toJson(d.point) : nlohmann::ordered_json(nullptr);
         entry["overlap_intervals"] = nullptr;
         entry["near_tangent"] = false;  // every candidate is verified through both CSG trees
+        entry["unresolved"] = false;
         entry["elements"] = d.collide ? nlohmann::ordered_json::array({d.label_a, d.label_b}) : nlohmann::ordered_json::array();
         entry["method"] = "dimension_reduction";
         return entry;
@@ -119,6 +121,7 @@ nlohmann::ordered_json regionPair(const SceneObject& a, const SceneObject& b, Re
   entry["contact_point"] = r.collide ? toJson(r.point) : nlohmann::ordered_json(nullptr);
   entry["overlap_intervals"] = nullptr;  // the region CCD finds the first contact only
   entry["near_tangent"] = r.near_tangent || r.capped;
+  entry["unresolved"] = r.capped;
   nlohmann::ordered_json elements = nlohmann::ordered_json::array();
   if (r.collide) {
     auto label = [](const QuadricRegion& region, const std::optional<Box3>& box, const std::vector<int>& active) {
@@ -172,6 +175,7 @@ nlohmann::ordered_json ccdScene(const Scene& scene, RegionCcdSolver solver) {
     for (const CcdInterval& c : r.collision_intervals) intervals.push_back({c.begin, c.end});
     entry["overlap_intervals"] = std::move(intervals);
     entry["near_tangent"] = r.near_tangent || r.unresolved;
+    entry["unresolved"] = r.unresolved;
     pairs.push_back(std::move(entry));
   }
   nlohmann::ordered_json document;

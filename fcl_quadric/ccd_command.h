@@ -30,7 +30,7 @@ MovingEllipse2 movingEllipse2(const SceneObject& object);
 
 /// The JSON document printed by `ccd`:
 /// {"pairs":[{"a","b","collide","first_contact_time","contact_point","overlap_intervals",
-///            "near_tangent"}]}
+///            "near_tangent","unresolved"}]}
 /// with times in [0, 1]; first_contact_time and contact_point are null for a collision-free pair;
 /// overlap_intervals lists the maximal collision intervals [t0, t1] (a grazing contact is a short
 /// interval about the touching instant, as wide as the touching band allows; with
@@ -42,7 +42,8 @@ MovingEllipse2 movingEllipse2(const SceneObject& object);
 /// ("F<i>" face, "E<i>" edge, "V<i>" vertex, indices into the shape's boundaryElements; [] when
 /// there is no contact). near_tangent: some reported interval has no instant certified
 /// overlapping (a contact within the tolerance band, or an uncertified conservative answer: the
-/// work cap; reported early, never late).
+/// work cap; reported early, never late). unresolved: the answer is that conservative one (the
+/// work cap, or an ellipsoid pair's motion beyond the condition the solver decides).
 ///
 /// `solver` (`ccd --solver`) chooses the method for those region pairs:
 ///  - RegionCcdSolver::SpaceTime (default): the certified space-time search;

@@ -48,6 +48,7 @@ TEST(CcdCommand, SpheresOnStraightLinesGiveTheClosedFormTimes) {
   EXPECT_NEAR(p["overlap_intervals"][0][1].get<double>(), 5.5 / 8, 1e-10);
   EXPECT_NEAR(p["contact_point"][0].get<double>(), -0.5, 1e-8);  // B's surface facing A
   EXPECT_FALSE(p["near_tangent"].get<bool>());
+  EXPECT_FALSE(p["unresolved"].get<bool>());
 }
 
 TEST(CcdCommand, ExampleSceneTimesAreContactsOfTheStaticTest) {
@@ -208,6 +209,21 @@ TEST(CcdCommand, SingularMotionExitsWithStatusTwoAndThePath) {
   EXPECT_EQ(r.status, kExitBadInput);
   EXPECT_NE(r.err.find("/objects/0/motion/matrix"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("0.25"), std::string::npos) << "names where det L(t) vanishes: " << r.err;
+}
+
+// A motion beyond the condition the CCD decides (a shear of 1e7 on an ellipsoid of aspect 4:
+// kCcdMaxCondition) gets the conservative answer, colliding throughout, and says so.
+TEST(CcdCommand, ConservativeAnswersAreFlaggedUnresolved) {
+  const RunResult r = runCcdText(R"({"objects":[{"name":"A","shape":{"type":"ellipsoid","radii":[1,0.25,0.25]},
+    "motion":{"type":"polynomial","matrix":[[1,1e7,0,[0,1]],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}},
+    {"name":"B","shape":{"type":"sphere","radius":0.5},"pose":{"translation":[10,0,0]}}]})",
+                                 "ccd_unresolved");
+  ASSERT_EQ(r.status, kExitOk) << r.err;
+  const nlohmann::json p = nlohmann::json::parse(r.out)["pairs"][0];
+  EXPECT_TRUE(p["collide"].get<bool>());
+  EXPECT_TRUE(p["unresolved"].get<bool>());
+  EXPECT_TRUE(p["near_tangent"].get<bool>());
+  EXPECT_EQ(p["overlap_intervals"], nlohmann::json::parse("[[0.0, 1.0]]"));
 }
 
 // A pair whose motions exceed a solver's degree limit is a bad scene, not an internal error:
