@@ -135,10 +135,11 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
     }
   }
   if (report.status == Separation::Touching) {
-    // Still undecided (the engine's cap on a thin common part, and no convex covers: an
-    // unbounded quadric, a ring): the pencil of each pair of atoms proposes a common interior
-    // point (pencilInteriorCandidate); one certified interior to both regions decides
-    // Overlapping (session 34: an ellipsoid pushed 1e-6 into a hyperboloid was "touching").
+    // Still undecided (the engine's cap on a thin common part, and no exact convex covers: a
+    // clipped hyperboloid, a cylinder's complement, a ring): the pencil of each pair of atoms
+    // proposes a common interior point (pencilInteriorCandidate); one certified interior to both
+    // regions decides Overlapping (session 34: an ellipsoid pushed 1e-6 into a hyperboloid was
+    // "touching").
     for (const Eigen::Matrix4d& A : wa.signedAtoms()) {
       for (const Eigen::Matrix4d& B : wb.signedAtoms()) {
         const std::optional<Eigen::Vector3d> x = pencilInteriorCandidate(A, B);
