@@ -59,7 +59,9 @@
 /// Bad input throws std::invalid_argument naming the argument: a null geometry, object or
 /// motion, a non-finite transform, a motion whose pose at some visited time is not finite, a
 /// non-rigid RationalMotion on a pair that is not ellipsoid/sphere, and CCDC_POLYNOMIAL_SOLVER
-/// with a motion that is not an fcl::TranslationMotion (FCL would reinterpret it as one).
+/// with a motion that is not an fcl::TranslationMotion (FCL would reinterpret it as one); and
+/// CcdDegreeError (a std::invalid_argument) for RationalMotions of a degree the continuous
+/// solvers do not take (tolerance::kCcdMaxDegree, kRegionCcdMaxDegree).
 ///
 /// Call it qualified (fcl_quadric::continuousCollide): with FCL argument types an unqualified
 /// call also finds fcl::continuousCollide by argument-dependent lookup. Only S = double is

@@ -61,7 +61,8 @@ class RationalMotion : public fcl::MotionBase<S> {
   RationalMotion(const std::vector<S>& times, const std::vector<fcl::Transform3<S>>& poses);
 
   /// An explicit motion matrix (MotionMatrix::fromPolynomialMatrix; may be affine).
-  /// \throws std::invalid_argument if the matrix is not a valid motion on [0, 1].
+  /// \throws std::invalid_argument if the matrix is not a valid motion on [0, 1] or an entry's
+  /// degree exceeds kMaxMotionDegree.
   explicit RationalMotion(const PolynomialMatrix4& M);
 
   /// Any piecewise rational motion.
