@@ -10,6 +10,7 @@
 #include "fcl_quadric/algebra/bernstein_polynomial.h"
 #include "fcl_quadric/algebra/root_isolation.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
+#include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
 
@@ -220,6 +221,22 @@ MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M_given
   double max_abs = 0.0;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) max_abs = std::max(max_abs, M_given(i, j).maxAbsCoefficient());
+  // The translation and w(t) against the linear part: beyond kMaxLength apart, the motion moves
+  // or shrinks the body out of the supported range, and the rescaling below would underflow
+  // det L to zero (session 34's audit: a translation of 1e150 with L = I was rejected as "det of
+  // the linear part identically zero").
+  double max_linear = 0.0, max_rest = M_given(3, 3).maxAbsCoefficient();
+  for (int i = 0; i < 3; ++i) {
+    max_rest = std::max(max_rest, M_given(i, 3).maxAbsCoefficient());
+    for (int j = 0; j < 3; ++j) max_linear = std::max(max_linear, M_given(i, j).maxAbsCoefficient());
+  }
+  if (max_linear > 0.0 && max_rest > tolerance::kMaxLength * max_linear) {
+    std::ostringstream os;
+    os << "motion matrix: the translation or w(t) coefficients (up to " << max_rest
+       << ") exceed those of the linear part L(t) (up to " << max_linear << ") by more than kMaxLength = "
+       << tolerance::kMaxLength << ": the motion leaves the supported range";
+    throw std::invalid_argument(os.str());
+  }
   PolynomialMatrix4 M = M_given;
   if (max_abs > 0.0 && (max_abs > 0x1p32 || max_abs < 0x1p-32)) {
     int e = 0;

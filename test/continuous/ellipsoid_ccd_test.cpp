@@ -96,6 +96,19 @@ TEST(MotionMatrix, BadMatricesAreRejectedWithTheReason) {
   PolynomialMatrix4 R(Eigen::Matrix4d::Identity());
   R(3, 0) = Polynomial{0.0, 1.0};
   EXPECT_THROW(MotionMatrix::fromPolynomialMatrix(R), std::invalid_argument);
+  // A translation 1e150 times the linear part leaves kMaxLength (session 34: the message was
+  // "det of the linear part identically zero", the rescaling having underflowed det L); 1e90 is
+  // within range.
+  PolynomialMatrix4 far(Eigen::Matrix4d::Identity());
+  far(0, 3) = Polynomial{0.0, 1e150};
+  try {
+    MotionMatrix::fromPolynomialMatrix(far);
+    FAIL() << "a translation of 1e150 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("kMaxLength"), std::string::npos) << e.what();
+  }
+  far(0, 3) = Polynomial{0.0, 1e90};
+  EXPECT_NO_THROW(MotionMatrix::fromPolynomialMatrix(far));
   Eigen::Matrix3d bad = Eigen::Matrix3d::Identity();
   bad(0, 1) = 0.1;
   EXPECT_THROW(MotionMatrix::fromPoses(bad, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()),
