@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
 
@@ -156,6 +157,37 @@ TEST(QuadricScene, BadQuadricShapesAreRejectedWithTheirPointers) {
   EXPECT_EQ(pointerOf({{"type", "sphere"}, {"radius", 1.0}, {"pose", json::object()}}), "/objects/0/shape/pose");
 }
 
+// A scene of an ellipsoid E (radii r, centre c, orientation q) and a quadric K (its homogeneous
+// matrix, clipped to |x_i| <= clip when clip > 0), written as text: nested JSON initialiser
+// lists for these scenes cost ~45 s of compile time in this unity build.
+json ellipsoidAndQuadric(const Eigen::Vector3d& r, const Eigen::Vector3d& c, const Eigen::Quaterniond& q,
+                         const Eigen::Matrix4d& K, double clip) {
+  char buf[320];
+  std::string text = R"({"objects":[{"name":"E","shape":{"type":"ellipsoid","radii":[)";
+  std::snprintf(buf, sizeof buf, "%.17g,%.17g,%.17g]},\"pose\":{\"translation\":[%.17g,%.17g,%.17g],", r[0], r[1], r[2], c[0],
+                c[1], c[2]);
+  text += buf;
+  std::snprintf(buf, sizeof buf, "\"quaternion\":[%.17g,%.17g,%.17g,%.17g]}},", q.w(), q.x(), q.y(), q.z());
+  text += buf;
+  text += R"({"name":"K","shape":{"type":"quadric","matrix":[)";
+  for (int i = 0; i < 4; ++i) {
+    std::snprintf(buf, sizeof buf, "%s[%.17g,%.17g,%.17g,%.17g]", i ? "," : "", K(i, 0), K(i, 1), K(i, 2), K(i, 3));
+    text += buf;
+  }
+  text += "]";
+  if (clip > 0) {
+    text += R"(,"clip":[)";
+    for (int i = 0; i < 6; ++i) {
+      std::snprintf(buf, sizeof buf, "%s{\"normal\":[%d,%d,%d],\"offset\":%.17g}", i ? "," : "", i / 2 == 0 ? 1 - 2 * (i % 2) : 0,
+                    i / 2 == 1 ? 1 - 2 * (i % 2) : 0, i / 2 == 2 ? 1 - 2 * (i % 2) : 0, clip);
+      text += buf;
+    }
+    text += "]";
+  }
+  text += "}}]}";
+  return json::parse(text);
+}
+
 // A small ellipsoid tangent to a quadric ellipsoid from outside, then pushed in by delta along the
 // normal: penetration depth delta up to O(delta^2 curvature). The region engine's search stops at
 // its box cap on the thin common part; before session 34 `check` then said "touching" for about a
@@ -164,8 +196,7 @@ TEST(QuadricScene, SmallEllipsoidsPushedIntoAQuadricAreOverlappingWithTheirDepth
   std::mt19937_64 rng(34);
   std::uniform_real_distribution<double> U(0.0, 1.0);
   const Eigen::Vector3d k(1.0, 0.8, 0.6);  // the quadric's semi-axes: diag(1/k^2, -1)
-  const json K = {{"type", "quadric"},
-                  {"matrix", {{1 / (k[0] * k[0]), 0, 0, 0}, {0, 1 / (k[1] * k[1]), 0, 0}, {0, 0, 1 / (k[2] * k[2]), 0}, {0, 0, 0, -1}}}};
+  const Eigen::Matrix4d K = Eigen::Vector4d(1 / (k[0] * k[0]), 1 / (k[1] * k[1]), 1 / (k[2] * k[2]), -1).asDiagonal();
   int overlapping = 0;
   for (int n = 0; n < 24; ++n) {
     const double theta = std::acos(2 * U(rng) - 1), phi = 2 * M_PI * U(rng);
@@ -179,11 +210,7 @@ TEST(QuadricScene, SmallEllipsoidsPushedIntoAQuadricAreOverlappingWithTheirDepth
     const Eigen::Vector3d centre = P + R * (r.asDiagonal() * u) / u.norm();
     for (double delta : {-1e-5, -1e-6, -1e-8, 1e-6}) {
       const Eigen::Vector3d c = centre + delta * normal;
-      const json doc = {{"objects",
-                         {{{"name", "E"},
-                           {"shape", {{"type", "ellipsoid"}, {"radii", {r[0], r[1], r[2]}}}},
-                           {"pose", {{"translation", {c[0], c[1], c[2]}}, {"quaternion", {q.w(), q.x(), q.y(), q.z()}}}}},
-                          {{"name", "K"}, {"shape", K}}}}};
+      const json doc = ellipsoidAndQuadric(r, c, q, K, 0.0);
       const json p = checkScene(parseScene(doc))["pairs"][0];
       if (delta > 0) {
         EXPECT_EQ(p["status"], "separate") << "n = " << n << ", delta = " << delta;
@@ -221,15 +248,6 @@ TEST(QuadricScene, SmallEllipsoidsPushedIntoOtherQuadricsAreOverlapping) {
     const Eigen::Matrix4d Q0 = kind == 0 ? hyperboloid : kind == 1 ? cylinder : paraboloid;
     for (double side : {1.0, -1.0}) {  // the solid, then its complement
       const Eigen::Matrix4d Q = side * Q0;
-      json matrix = json::array();
-      for (int i = 0; i < 4; ++i) matrix.push_back({Q(i, 0), Q(i, 1), Q(i, 2), Q(i, 3)});
-      json clip = json::array();  // scene quadrics are bounded: clipped to the box |x_i| <= 3
-      for (int i = 0; i < 3; ++i)
-        for (double sign : {1.0, -1.0}) {
-          json normal = {0.0, 0.0, 0.0};
-          normal[i] = sign;
-          clip.push_back({{"normal", normal}, {"offset", 3.0}});
-        }
       for (int n = 0; n < 6; ++n) {
         const Eigen::Vector3d P = surfacePoint(kind);
         const Eigen::Vector3d normal = (Q * P.homogeneous()).head<3>().normalized();  // outward
@@ -240,11 +258,7 @@ TEST(QuadricScene, SmallEllipsoidsPushedIntoOtherQuadricsAreOverlapping) {
         const Eigen::Vector3d centre = P + R * (r.asDiagonal() * w) / w.norm();
         for (double delta : {1e-6, 1e-8}) {
           const Eigen::Vector3d c = centre - delta * normal;
-          const json doc = {{"objects",
-                             {{{"name", "E"},
-                               {"shape", {{"type", "ellipsoid"}, {"radii", {r[0], r[1], r[2]}}}},
-                               {"pose", {{"translation", {c[0], c[1], c[2]}}, {"quaternion", {q.w(), q.x(), q.y(), q.z()}}}}},
-                              {{"name", "K"}, {"shape", {{"type", "quadric"}, {"matrix", matrix}, {"clip", clip}}}}}}};
+          const json doc = ellipsoidAndQuadric(r, c, q, Q, 3.0);  // scene quadrics are clipped (bounded)
           const json p = checkScene(parseScene(doc))["pairs"][0];
           ++cases;
           EXPECT_EQ(p["status"], "overlapping") << "kind " << kind << ", side " << side << ", n = " << n << ", delta = " << delta;
