@@ -95,6 +95,16 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
   }
   report.collide = report.status != Separation::Separated;
   report.point_a = report.point_b = s.point;
+  // A point certified interior to both solids decides an undecided pair Overlapping (the fallbacks
+  // below, for thin common parts the engine's search gave up on).
+  auto overlapAt = [&](const Eigen::Vector3d& x) {
+    if (!(wa.classifyPoint(x) > 0 && wb.classifyPoint(x) > 0)) return false;
+    report.status = Separation::Overlapping;
+    report.collide = true;
+    s.point = x;
+    report.point_a = report.point_b = x;
+    return true;
+  };
   // Convex pairs and unions of convex solids (both bounded, exact convex covers; docs/algorithms.md
   // section 12) also get the signed distance with witness points and normal, when GJK / EPA
   // certifies the engine's status (touching: 0): the nearest pair of pieces, or the deepest.
@@ -112,16 +122,9 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
       if (report.status == Separation::Touching && d.status == Separation::Overlapping) {
         // The engine's search stopped undecided (its box cap) on a thin common part, where EPA
         // found the deepest pieces overlapping: the midpoint of EPA's witnesses usually lies in
-        // both pieces (each witness in the other piece, both convex). A point certified interior
-        // to both regions decides Overlapping (session 34, an audit: a small ellipsoid pushed
-        // 1e-5 into a quadric, 1.3e-4 of its size, was reported touching).
-        const Eigen::Vector3d x = 0.5 * (d.point_a + d.point_b);
-        if (wa.classifyPoint(x) > 0 && wb.classifyPoint(x) > 0) {
-          report.status = Separation::Overlapping;
-          report.collide = true;
-          s.point = x;
-          report.point_a = report.point_b = x;
-        }
+        // both pieces (each witness in the other piece, both convex). Session 34, an audit: a
+        // small ellipsoid pushed 1e-5 into a quadric, 1.3e-4 of its size, was reported touching.
+        overlapAt(0.5 * (d.point_a + d.point_b));
       }
       if (report.status == Separation::Touching) {
         report.signed_distance = 0.0;
@@ -137,23 +140,13 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
   if (report.status == Separation::Touching) {
     // Still undecided (the engine's cap on a thin common part, and no exact convex covers: a
     // clipped hyperboloid, a cylinder's complement, a ring): the pencil of each pair of atoms
-    // proposes a common interior point (pencilInteriorCandidate); one certified interior to both
-    // regions decides Overlapping (session 34: an ellipsoid pushed 1e-6 into a hyperboloid was
-    // "touching").
-    for (const Eigen::Matrix4d& A : wa.signedAtoms()) {
-      for (const Eigen::Matrix4d& B : wb.signedAtoms()) {
-        const std::optional<Eigen::Vector3d> x = pencilInteriorCandidate(A, B);
-        if (x && wa.classifyPoint(*x) > 0 && wb.classifyPoint(*x) > 0) {
-          report.status = Separation::Overlapping;
-          report.collide = true;
+    // proposes a common interior point (pencilInteriorCandidate). Session 34: an ellipsoid pushed
+    // 1e-6 into a hyperboloid was "touching".
+    const std::vector<Eigen::Matrix4d> atoms_a = wa.signedAtoms(), atoms_b = wb.signedAtoms();
+    for (std::size_t i = 0; i < atoms_a.size() && report.status == Separation::Touching; ++i)
+      for (std::size_t j = 0; j < atoms_b.size() && report.status == Separation::Touching; ++j)
+        if (const std::optional<Eigen::Vector3d> x = pencilInteriorCandidate(atoms_a[i], atoms_b[j]); x && overlapAt(*x))
           report.signed_distance = std::numeric_limits<double>::quiet_NaN();  // depth not computed
-          s.point = *x;
-          report.point_a = report.point_b = *x;
-          break;
-        }
-      }
-      if (report.status == Separation::Overlapping) break;
-    }
   }
   // Other bounded separated pairs (rings, wedges, clipped hyperboloids: not unions of convex
   // solids) get the distance of region_distance.h's branch and bound, with its witnesses; a

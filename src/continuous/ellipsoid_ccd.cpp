@@ -1275,10 +1275,6 @@ std::vector<double> solverBreaks(const MovingEllipsoid& a, const MovingEllipsoid
   return breaks;
 }
 
-}  // namespace
-
-namespace {
-
 // c'_j of ccdFunctionDegree(): the degree of column j of N(t) S over the motion's pieces, S
 // mixing every column of N into the last one (segmentPencil()'s frame).
 std::array<int, 4> columnDegrees(const PiecewiseMotion& motion) {

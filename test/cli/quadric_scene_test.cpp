@@ -188,6 +188,24 @@ json ellipsoidAndQuadric(const Eigen::Vector3d& r, const Eigen::Vector3d& c, con
   return json::parse(text);
 }
 
+// A random small ellipsoid (radii 0.02-0.12, random orientation) touching a surface from outside
+// at P, outward normal n: its support point towards -n is P, so its centre is
+// P + R S^2 R^T n / |S R^T n|.
+struct Touching {
+  Eigen::Vector3d radii, centre;
+  Eigen::Quaterniond q;
+};
+Touching touchingAt(const Eigen::Vector3d& P, const Eigen::Vector3d& n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  Touching t;
+  t.radii = Eigen::Vector3d(0.02 + 0.1 * U(rng), 0.02 + 0.1 * U(rng), 0.02 + 0.1 * U(rng));
+  t.q = Eigen::Quaterniond(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5).normalized();
+  const Eigen::Matrix3d R = t.q.toRotationMatrix();
+  const Eigen::Vector3d u = t.radii.asDiagonal() * (R.transpose() * n);
+  t.centre = P + R * (t.radii.asDiagonal() * u) / u.norm();
+  return t;
+}
+
 // A small ellipsoid tangent to a quadric ellipsoid from outside, then pushed in by delta along the
 // normal: penetration depth delta up to O(delta^2 curvature). The region engine's search stops at
 // its box cap on the thin common part; before session 34 `check` then said "touching" for about a
@@ -202,15 +220,9 @@ TEST(QuadricScene, SmallEllipsoidsPushedIntoAQuadricAreOverlappingWithTheirDepth
     const double theta = std::acos(2 * U(rng) - 1), phi = 2 * M_PI * U(rng);
     const Eigen::Vector3d P(k[0] * std::sin(theta) * std::cos(phi), k[1] * std::sin(theta) * std::sin(phi), k[2] * std::cos(theta));
     const Eigen::Vector3d normal = P.cwiseQuotient(k.cwiseProduct(k)).normalized();
-    const Eigen::Vector3d r(0.02 + 0.1 * U(rng), 0.02 + 0.1 * U(rng), 0.02 + 0.1 * U(rng));
-    const Eigen::Quaterniond q = Eigen::Quaterniond(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5).normalized();
-    const Eigen::Matrix3d R = q.toRotationMatrix();
-    // E's support point towards -normal is P: centre = P + R S^2 R^T n / |S R^T n|.
-    const Eigen::Vector3d u = r.asDiagonal() * (R.transpose() * normal);
-    const Eigen::Vector3d centre = P + R * (r.asDiagonal() * u) / u.norm();
+    const Touching e = touchingAt(P, normal, rng);
     for (double delta : {-1e-5, -1e-6, -1e-8, 1e-6}) {
-      const Eigen::Vector3d c = centre + delta * normal;
-      const json doc = ellipsoidAndQuadric(r, c, q, K, 0.0);
+      const json doc = ellipsoidAndQuadric(e.radii, e.centre + delta * normal, e.q, K, 0.0);
       const json p = checkScene(parseScene(doc))["pairs"][0];
       if (delta > 0) {
         EXPECT_EQ(p["status"], "separate") << "n = " << n << ", delta = " << delta;
@@ -226,9 +238,9 @@ TEST(QuadricScene, SmallEllipsoidsPushedIntoAQuadricAreOverlappingWithTheirDepth
 
 // The same pushes against non-convex quadrics and their complements (hyperboloid of one sheet,
 // elliptic cylinder, paraboloid; clipped to a box, as scenes require): no exact convex cover, so
-// before session 34 the engine's cap left
-// about a third of them "touching"; the atoms' pencil now proposes a common interior point, which
-// classifyPoint certifies. A push inward overlaps whatever the rest of the surface does.
+// before session 34 the engine's cap left about a third of them "touching"; the atoms' pencil now
+// proposes a common interior point, which classifyPoint certifies. A push inward overlaps
+// whatever the rest of the surface does.
 TEST(QuadricScene, SmallEllipsoidsPushedIntoOtherQuadricsAreOverlapping) {
   std::mt19937_64 rng(3434);
   std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -251,14 +263,10 @@ TEST(QuadricScene, SmallEllipsoidsPushedIntoOtherQuadricsAreOverlapping) {
       for (int n = 0; n < 6; ++n) {
         const Eigen::Vector3d P = surfacePoint(kind);
         const Eigen::Vector3d normal = (Q * P.homogeneous()).head<3>().normalized();  // outward
-        const Eigen::Vector3d r(0.02 + 0.1 * U(rng), 0.02 + 0.1 * U(rng), 0.02 + 0.1 * U(rng));
-        const Eigen::Quaterniond q = Eigen::Quaterniond(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5).normalized();
-        const Eigen::Matrix3d R = q.toRotationMatrix();
-        const Eigen::Vector3d w = r.asDiagonal() * (R.transpose() * normal);
-        const Eigen::Vector3d centre = P + R * (r.asDiagonal() * w) / w.norm();
+        const Touching e = touchingAt(P, normal, rng);
         for (double delta : {1e-6, 1e-8}) {
-          const Eigen::Vector3d c = centre - delta * normal;
-          const json doc = ellipsoidAndQuadric(r, c, q, Q, 3.0);  // scene quadrics are clipped (bounded)
+          // Scene quadrics are clipped (bounded): to |x_i| <= 3.
+          const json doc = ellipsoidAndQuadric(e.radii, e.centre - delta * normal, e.q, Q, 3.0);
           const json p = checkScene(parseScene(doc))["pairs"][0];
           ++cases;
           EXPECT_EQ(p["status"], "overlapping") << "kind " << kind << ", side " << side << ", n = " << n << ", delta = " << delta;
