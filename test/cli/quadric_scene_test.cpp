@@ -278,6 +278,59 @@ TEST(QuadricScene, SmallEllipsoidsPushedIntoOtherQuadricsAreOverlapping) {
   EXPECT_EQ(overlapping, cases);
 }
 
+// The same small ellipsoids moved out from the tangent placement by delta: separate at the
+// distance delta (the plane through P normal to n supports the quadric there, the one through
+// P + delta n the ellipsoid, whose curvature, >= 1.4, exceeds the concave curvature of these
+// surfaces near P, <= 1). Before session 35 `check` reported these with GJK's or the branch and
+// bound's stopping gaps: null below ~1e-6 (the search's "contact"), and 1e-6 high above it (an
+// audit). The KKT refinement of the witnesses (nearest_points.h) takes them to rounding.
+TEST(QuadricScene, SmallEllipsoidsNearAQuadricGetTheirDistanceToRounding) {
+  std::mt19937_64 rng(35);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const Eigen::Matrix4d hyperboloid = Eigen::Vector4d(1, 1, -1, -1).asDiagonal();
+  const Eigen::Matrix4d cylinder = Eigen::Vector4d(1, 1 / 0.64, 0, -1).asDiagonal();
+  const Eigen::Matrix4d ellipsoid = Eigen::Vector4d(1, 1 / 0.64, 1 / 0.36, -1).asDiagonal();
+  Eigen::Matrix4d paraboloid = Eigen::Matrix4d::Zero();  // x^2 + y^2 - z <= 0
+  paraboloid(0, 0) = paraboloid(1, 1) = 1;
+  paraboloid(2, 3) = paraboloid(3, 2) = -0.5;
+  // (kind, side): the hyperboloid's solid and its complement, the cylinder, the paraboloid and the
+  // ellipsoid (convex: the complements of these three curve more than the small ellipsoids do).
+  const std::pair<int, double> kinds[] = {{0, 1.0}, {0, -1.0}, {1, 1.0}, {2, 1.0}, {3, 1.0}};
+  double worst = 0.0;
+  int cases = 0;
+  for (const auto& [kind, side] : kinds) {
+    const Eigen::Matrix4d Q = side * (kind == 0 ? hyperboloid : kind == 1 ? cylinder : kind == 2 ? paraboloid : ellipsoid);
+    for (int n = 0; n < 4; ++n) {
+      const double u = 2 * M_PI * U(rng), v = 2 * U(rng) - 1;
+      const Eigen::Vector3d P = kind == 0   ? Eigen::Vector3d(std::cosh(v) * std::cos(u), std::cosh(v) * std::sin(u), std::sinh(v))
+                                : kind == 1 ? Eigen::Vector3d(std::cos(u), 0.8 * std::sin(u), v)
+                                : kind == 2 ? Eigen::Vector3d(v * std::cos(u), v * std::sin(u), v * v)
+                                            : Eigen::Vector3d(std::sqrt(1 - v * v) * std::cos(u), 0.8 * std::sqrt(1 - v * v) * std::sin(u), 0.6 * v);
+      const Eigen::Vector3d normal = (Q * P.homogeneous()).head<3>().normalized();  // outward
+      const Touching e = touchingAt(P, normal, rng);
+      for (double delta : {1e-4, 1e-6, 1e-8, 1e-9}) {
+        const json doc = ellipsoidAndQuadric(e.radii, e.centre + delta * normal, e.q, Q, 3.0);
+        const json p = checkScene(parseScene(doc))["pairs"][0];
+        ++cases;
+        ASSERT_EQ(p["status"], "separate") << "kind " << kind << ", side " << side << ", n = " << n << ", delta = " << delta;
+        ASSERT_TRUE(p["signed_distance"].is_number()) << "kind " << kind << ", side " << side << ", delta = " << delta;
+        const double d = p["signed_distance"].get<double>();
+        // Rounding: the centre's (~3e-16 of ~3) and the small ellipsoid's 4x4 matrix, whose
+        // terms ~ |c|^2 / r^2 cancel on its surface (~eps |c|^2 / r: up to ~1e-13 here).
+        EXPECT_NEAR(d, delta, 2e-13) << "kind " << kind << ", side " << side << ", n = " << n << ", delta = " << delta;
+        worst = std::max(worst, std::fabs(d - delta));
+        // The witnesses realise the distance, normal from E to K.
+        const Eigen::Vector3d a(p["points"][0][0], p["points"][0][1], p["points"][0][2]);
+        const Eigen::Vector3d b(p["points"][1][0], p["points"][1][1], p["points"][1][2]);
+        EXPECT_NEAR((b - a).norm(), d, 1e-15);
+        EXPECT_LT((b - P).norm(), 1e-6) << "kind " << kind << ", delta = " << delta;
+      }
+    }
+  }
+  EXPECT_EQ(cases, 5 * 4 * 4);
+  std::printf("worst |distance - delta|: %.3g\n", worst);
+}
+
 // Two half-spaces have no bounded region to search: a bad pair for `check` as for `ccd` (session
 // 34, an audit: `check` gave exit 1, "internal error", without a pointer).
 TEST(QuadricScene, TwoHalfspacesAreABadPair) {

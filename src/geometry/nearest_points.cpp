@@ -1,0 +1,335 @@
+// Newton's method on the KKT system of the distance of two quadric models: nearest_points.h,
+// docs/algorithms.md section 12c.
+#include "fcl_quadric/geometry/nearest_points.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <limits>
+#include <optional>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace fcl_quadric {
+
+using namespace tolerance_nearest_points;
+
+namespace {
+
+/// An atom g(x) = x^T A x + 2 b.x + c (<= 0 on the model's side), scaled so that its gradient at
+/// the start point has unit length: g is then the signed distance to its surface to first order,
+/// and the multipliers are O(1).
+struct Atom {
+  Eigen::Matrix3d A;
+  Eigen::Vector3d b;
+  double c = 0.0;
+  int index = 0;  ///< in signedAtoms()
+  double value(const Eigen::Vector3d& x) const { return x.dot(A * x) + 2.0 * b.dot(x) + c; }
+  Eigen::Vector3d gradient(const Eigen::Vector3d& x) const { return 2.0 * (A * x + b); }
+};
+
+/// Atom k of `atoms` scaled to a unit gradient at x; nullopt where the gradient vanishes (a cone's
+/// apex, a degenerate atom) or is not finite.
+std::optional<Atom> scaledAtom(const std::vector<Eigen::Matrix4d>& atoms, int k, const Eigen::Vector3d& x) {
+  const Eigen::Matrix4d& Q = atoms[k];
+  Atom t;
+  t.A = Q.topLeftCorner<3, 3>();
+  t.b = Q.topRightCorner<3, 1>();
+  t.c = Q(3, 3);
+  t.index = k;
+  const double gn = t.gradient(x).norm();
+  if (!(gn > 0.0) || !std::isfinite(gn)) return std::nullopt;
+  const double s = 1.0 / gn;
+  t.A *= s;
+  t.b *= s;
+  t.c *= s;
+  return t;
+}
+
+/// |g| / |grad g| at x for atom k (infinite where the gradient vanishes).
+double surfaceDistance(const Eigen::Matrix4d& Q, const Eigen::Vector3d& x) {
+  const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
+  const Eigen::Vector3d grad = 2.0 * (Q.topLeftCorner<3, 3>() * x + Q.topRightCorner<3, 1>());
+  const double gn = grad.norm();
+  return gn > 0.0 ? std::fabs(X.dot(Q * X)) / gn : std::numeric_limits<double>::infinity();
+}
+
+/// The atoms whose surfaces pass within `band` of x, nearest first, at most three.
+std::vector<int> activeAtoms(const std::vector<Eigen::Matrix4d>& atoms, const Eigen::Vector3d& x, double band) {
+  std::vector<std::pair<double, int>> near;
+  for (std::size_t k = 0; k < atoms.size(); ++k) {
+    const double s = surfaceDistance(atoms[k], x);
+    if (s <= band) near.emplace_back(s, static_cast<int>(k));
+  }
+  std::sort(near.begin(), near.end());
+  std::vector<int> out;
+  for (std::size_t i = 0; i < near.size() && i < 3; ++i) out.push_back(near[i].second);
+  return out;
+}
+
+/// The atom of `atoms` (not in `active`) that x violates most, by g / |grad g| > 0; -1 if none.
+int mostViolated(const std::vector<Eigen::Matrix4d>& atoms, const std::vector<int>& active, const Eigen::Vector3d& x) {
+  int worst = -1;
+  double excess = 0.0;
+  for (std::size_t k = 0; k < atoms.size(); ++k) {
+    if (std::find(active.begin(), active.end(), static_cast<int>(k)) != active.end()) continue;
+    const Eigen::Matrix4d& Q = atoms[k];
+    const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
+    const double gn = 2.0 * (Q.topLeftCorner<3, 3>() * x + Q.topRightCorner<3, 1>()).norm();
+    const double e = gn > 0.0 ? X.dot(Q * X) / gn : 0.0;
+    if (e > excess) {
+      excess = e;
+      worst = static_cast<int>(k);
+    }
+  }
+  return worst;
+}
+
+/// Newton's method on the KKT system of min |x - y| with the given active surfaces
+/// (nearest_points.h; the distance itself, not its square, is the objective: its multipliers stay
+/// O(1) as the gap closes, where those of |x - y|^2 / 2 vanish with it and the joint sliding of
+/// both points along the surfaces, the system's weakest direction, would be determined only to
+/// rounding / gap). On success x, y, lambda, mu hold the solution.
+/// p moved onto the surfaces of `atoms` (Gauss-Newton, minimal-norm steps, quadratically
+/// convergent: two or three take a point within a Newton step's O(step^2) of them to rounding;
+/// at most kProjectionSteps). Newton's steps move along the
+/// surfaces' tangent planes; without this retraction a long step along a curved surface leaves
+/// both points off their surfaces by more than their gap, and they seem to cross.
+Eigen::Vector3d ontoSurfaces(const std::vector<Atom>& atoms, Eigen::Vector3d p) {
+  const int m = static_cast<int>(atoms.size());
+  for (int step = 0; step < kProjectionSteps; ++step) {
+    Eigen::MatrixXd J(m, 3);
+    Eigen::VectorXd g(m);
+    for (int i = 0; i < m; ++i) {
+      J.row(i) = atoms[i].gradient(p).transpose();
+      g[i] = atoms[i].value(p);
+    }
+    const Eigen::Vector3d dp = -J.completeOrthogonalDecomposition().solve(g);
+    if (!dp.allFinite()) break;
+    p += dp;
+    if (dp.norm() <= kStepRelative * p.norm()) break;
+  }
+  return p;
+}
+
+/// How a run of Newton's method on one active set ended.
+struct KktRun {
+  enum class Outcome { Converged, LeftA, LeftB, Failed };
+  Outcome outcome = Outcome::Failed;
+  Eigen::Vector3d x, y;  ///< Converged: the solution; LeftA / LeftB: the last pair inside both models
+  Eigen::Vector3d exit;  ///< LeftA / LeftB: the point that left its model
+  Eigen::VectorXd lambda, mu;
+  int steps = 0;
+};
+
+KktRun solveKkt(const std::vector<Atom>& ga, const std::vector<Atom>& hb, const QuadricRegion& a, const QuadricRegion& b,
+                Eigen::Vector3d x, Eigen::Vector3d y, double scale) {
+  using Outcome = KktRun::Outcome;
+  const int na = static_cast<int>(ga.size()), nb = static_cast<int>(hb.size());
+  const int n = 6 + na + nb;
+  KktRun run;
+  run.x = x;
+  run.y = y;
+  // A point that left its model ends the run: the caller adds the surface it crossed.
+  auto left = [&](const Eigen::Vector3d& xn, const Eigen::Vector3d& yn) {
+    if (a.classifyPoint(xn) < 0) {
+      run.outcome = Outcome::LeftA;
+      run.exit = xn;
+      return true;
+    }
+    if (b.classifyPoint(yn) < 0) {
+      run.outcome = Outcome::LeftB;
+      run.exit = yn;
+      return true;
+    }
+    return false;
+  };
+  // Align the start: x becomes the foot point of y on a's surfaces and y that of x on b's, so
+  // that x - y starts along a surface normal. Starts displaced along the surfaces (GJK's and the
+  // branch and bound's near contact) are otherwise joined by a nearly tangent x - y, far from
+  // where Newton's method converges quadratically.
+  {
+    // A foot point outside its model ends the run as a Newton step would (the surface it
+    // crossed joins the active set: near an edge the foot point on one face is often beyond it).
+    // Three alternations: on an edge the foot point can lie far along it from y, and x must
+    // follow it to face it.
+    for (int round = 0; round < 3; ++round) {
+      const Eigen::Vector3d xa = ontoSurfaces(ga, y);
+      const Eigen::Vector3d yb = ontoSurfaces(hb, xa);
+      if (!xa.allFinite() || !yb.allFinite() || left(xa, yb)) return run;
+      x = xa;
+      y = yb;
+    }
+  }
+  // Multipliers from the start's stationarity, in the least-squares sense.
+  auto multipliers = [](const std::vector<Atom>& atoms, const Eigen::Vector3d& p, const Eigen::Vector3d& target) {
+    Eigen::MatrixXd G(3, atoms.size());
+    for (std::size_t i = 0; i < atoms.size(); ++i) G.col(static_cast<Eigen::Index>(i)) = atoms[i].gradient(p);
+    return Eigen::VectorXd(G.colPivHouseholderQr().solve(target));
+  };
+  double d = (x - y).norm();
+  if (!std::isfinite(d) || !(d > 0.0)) return run;
+  run.lambda = multipliers(ga, x, (y - x) / d);
+  run.mu = multipliers(hb, y, (x - y) / d);
+  const double tiny = kStepRelative * scale;
+  bool converged = false;
+  double last_len = std::numeric_limits<double>::infinity();
+  for (int step = 0; step < kMaxNewtonSteps && !converged; ++step) {
+    run.steps = step + 1;
+    run.x = x;
+    run.y = y;
+    d = (x - y).norm();
+    if (!std::isfinite(d) || !(d > 0.0)) return run;
+    const Eigen::Vector3d u = (x - y) / d;
+    const Eigen::Matrix3d P = (Eigen::Matrix3d::Identity() - u * u.transpose()) / d;
+    Eigen::VectorXd F = Eigen::VectorXd::Zero(n);
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n);
+    Eigen::Vector3d fx = u, fy = -u;
+    Eigen::Matrix3d Jxx = P, Jyy = P;
+    for (int i = 0; i < na; ++i) {
+      const Eigen::Vector3d g = ga[i].gradient(x);
+      fx += run.lambda[i] * g;
+      Jxx += 2.0 * run.lambda[i] * ga[i].A;
+      J.block<3, 1>(0, 6 + i) = g;
+      J.block<1, 3>(6 + i, 0) = g.transpose();
+      F[6 + i] = ga[i].value(x);
+    }
+    for (int j = 0; j < nb; ++j) {
+      const Eigen::Vector3d h = hb[j].gradient(y);
+      fy += run.mu[j] * h;
+      Jyy += 2.0 * run.mu[j] * hb[j].A;
+      J.block<3, 1>(3, 6 + na + j) = h;
+      J.block<1, 3>(6 + na + j, 3) = h.transpose();
+      F[6 + na + j] = hb[j].value(y);
+    }
+    F.segment<3>(0) = fx;
+    F.segment<3>(3) = fy;
+    J.block<3, 3>(0, 0) = Jxx;
+    J.block<3, 3>(0, 3) = -P;
+    J.block<3, 3>(3, 0) = -P;
+    J.block<3, 3>(3, 3) = Jyy;
+    if (!F.allFinite() || !J.allFinite()) return run;
+    const Eigen::VectorXd delta = J.fullPivLu().solve(-F);
+    if (!delta.allFinite()) return run;
+    const Eigen::Vector3d dx = delta.segment<3>(0), dy = delta.segment<3>(3);
+    // Damping: no step longer than kMaxStepRelative of the scale; each step is retracted onto the
+    // surfaces (ontoSurfaces()) and halved until the retracted points neither cross (x - y keeps
+    // its side of the plane normal to u) nor move apart (beyond rounding): the iteration descends
+    // the distance between the surfaces and cannot wander to a distant stationary pair.
+    double k = 1.0;
+    const double len = std::max(dx.norm(), dy.norm());
+    if (len > kMaxStepRelative * scale) k = kMaxStepRelative * scale / len;
+    Eigen::Vector3d xn = ontoSurfaces(ga, x + k * dx), yn = ontoSurfaces(hb, y + k * dy);
+    const double rounding = kDistanceRoundingRelative * scale;
+    auto acceptable = [&] { return (xn - yn).dot(u) > 0.0 && (xn - yn).norm() <= d + rounding; };
+    bool stalled = false;
+    for (int halvings = 0; !acceptable(); ++halvings) {
+      if (halvings == 60) {
+        stalled = true;
+        break;
+      }
+      k *= 0.5;
+      xn = ontoSurfaces(ga, x + k * dx);
+      yn = ontoSurfaces(hb, y + k * dy);
+    }
+    if (stalled) {
+      // No step along this direction keeps the distance: at a settled pair that is rounding (the
+      // pair stands), elsewhere a direction that does not descend (the run fails).
+      converged = len <= kSettledRelative * scale;
+      break;
+    }
+    if (left(xn, yn)) return run;
+    x = xn;
+    y = yn;
+    run.lambda += k * delta.segment(6, na);
+    run.mu += k * delta.segment(6 + na, nb);
+    converged = k == 1.0 && len <= tiny;
+    last_len = len;  // Newton's own step, undamped: a damped one says nothing about convergence
+  }
+  // At the step cap, a pair whose last step was below kSettledRelative of the scale counts: the
+  // residual's rounding (that of u = (x - y) / |x - y|, eps |x| / |x - y|) can keep the joint
+  // sliding from settling below kStepRelative at tiny gaps, but the distance is second-order in it.
+  converged = converged || last_len <= kSettledRelative * scale;
+  if (!converged || !x.allFinite() || !y.allFinite()) return run;
+  run.outcome = Outcome::Converged;
+  run.x = x;
+  run.y = y;
+  return run;
+}
+
+}  // namespace
+
+std::optional<NearestPoints> refineNearestPoints(const QuadricRegion& a, const QuadricRegion& b,
+                                                 const Eigen::Vector3d& start_a, const Eigen::Vector3d& start_b,
+                                                 double scale) {
+  using Outcome = KktRun::Outcome;
+  const double start = (start_b - start_a).norm();
+  // (isfinite before the ordered comparisons, which would raise FE_INVALID on a NaN.)
+  if (!std::isfinite(start) || !std::isfinite(scale) || !(start > 0.0) || !(scale > 0.0)) return std::nullopt;
+  const std::vector<Eigen::Matrix4d> atoms_a = a.signedAtoms(), atoms_b = b.signedAtoms();
+  const double band = kActiveRelative * scale;
+  std::vector<int> act_a = activeAtoms(atoms_a, start_a, band), act_b = activeAtoms(atoms_b, start_b, band);
+  Eigen::Vector3d x = start_a, y = start_b;
+  NearestPoints out;
+  for (int round = 0; round < kMaxActiveSetRounds; ++round) {
+    if (act_a.empty() || act_b.empty()) return std::nullopt;
+    std::vector<Atom> ga, hb;
+    for (int k : act_a) {
+      const std::optional<Atom> t = scaledAtom(atoms_a, k, x);
+      if (!t) return std::nullopt;
+      ga.push_back(*t);
+    }
+    for (int k : act_b) {
+      const std::optional<Atom> t = scaledAtom(atoms_b, k, y);
+      if (!t) return std::nullopt;
+      hb.push_back(*t);
+    }
+    const KktRun run = solveKkt(ga, hb, a, b, x, y, scale);
+    out.iterations += run.steps;
+    x = run.x;
+    y = run.y;
+    switch (run.outcome) {
+      case Outcome::Failed: return std::nullopt;
+      case Outcome::LeftA:
+      case Outcome::LeftB: {
+        // The surface the point crossed most joins the active set (a face becomes the edge it ran
+        // into, an edge the vertex); the next run starts from the last pair inside both models.
+        const bool on_a = run.outcome == Outcome::LeftA;
+        std::vector<int>& act = on_a ? act_a : act_b;
+        if (act.size() >= 3) return std::nullopt;
+        const int k = mostViolated(on_a ? atoms_a : atoms_b, act, run.exit);
+        if (k < 0) return std::nullopt;
+        act.push_back(k);
+        continue;
+      }
+      case Outcome::Converged: break;
+    }
+    // A negative multiplier: the minimum lies off that surface, on the model's side of it; the
+    // surface leaves the active set and the next run starts from this solution.
+    auto mostNegative = [](const Eigen::VectorXd& m) {
+      Eigen::Index i = 0;
+      const double v = m.minCoeff(&i);
+      return v < -kNegativeMultiplier ? static_cast<int>(i) : -1;
+    };
+    const int neg_a = mostNegative(run.lambda), neg_b = mostNegative(run.mu);
+    if (neg_a >= 0 && act_a.size() > 1) {
+      act_a.erase(act_a.begin() + neg_a);
+      continue;
+    }
+    if (neg_b >= 0 && act_b.size() > 1) {
+      act_b.erase(act_b.begin() + neg_b);
+      continue;
+    }
+    if (neg_a >= 0 || neg_b >= 0) return std::nullopt;  // a face's own multiplier: not a minimum
+    const double dist = (y - x).norm();
+    if (a.classifyPoint(x) < 0 || b.classifyPoint(y) < 0 || !(dist > 0.0) || dist > start) return std::nullopt;
+    out.point_a = x;
+    out.point_b = y;
+    out.distance = dist;
+    return out;
+  }
+  return std::nullopt;
+}
+
+}  // namespace fcl_quadric
