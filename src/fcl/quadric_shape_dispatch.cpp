@@ -213,11 +213,24 @@ ConvexScreening::Verdict screenPiece(const ConvexSupport& shape, const fcl::Tran
   return d.verdict;
 }
 
+/// A quadric shape and its partner are posed by rigid motions within kMaxLength: the regions,
+/// the support mappings and the convex covers assume orthonormal frames, so a scaled or sheared
+/// transform is an error, not a silently scaled solid (session 35, an audit: an elliptic cylinder
+/// against an ellipsoid posed by 2 I reported the scaled ellipsoid's depth).
+void checkRigidPoses(const fcl::Transform3<double>& tf1, const fcl::Transform3<double>& tf2, const char* where) {
+  const std::string w(where);
+  detail::checkRotation(tf1.linear(), (w + ": the rotation of tf1").c_str());
+  detail::checkPosition(tf1.translation(), (w + ": the translation of tf1").c_str());
+  detail::checkRotation(tf2.linear(), (w + ": the rotation of tf2").c_str());
+  detail::checkPosition(tf2.translation(), (w + ": the translation of tf2").c_str());
+}
+
 }  // namespace
 
 std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
                                  const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
                                  const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result) {
+  checkRigidPoses(tf1, tf2, "fcl_quadric::collide");
   // Meshes and octrees: the pieces (triangles / occupied leaves) whose bounding boxes meet the
   // shape's, found through the mesh's BVH or the octree's cells; the first contact wins
   // (docs/fcl_integration.md section 9).
@@ -916,6 +929,7 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
                              const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
                              const fcl::DistanceRequest<double>& request, fcl::DistanceResult<double>& result) {
   const char* where = "fcl_quadric::distance";
+  checkRigidPoses(tf1, tf2, where);
   // The quadric shape (o1 or o2) as one convex piece; the partner as one piece, or as the pieces of
   // a mesh / octree, or a half-space.
   // A convex operand as one piece; a quadric shape whose convex cover is exact (a union of convex

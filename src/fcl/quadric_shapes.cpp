@@ -272,7 +272,7 @@ QuadricRegion csgRegion(QuadricRegion::Op op, const std::vector<typename Quadric
     const Eigen::Vector3d p = c.pose.translation().template cast<double>();
     const std::string what = "QuadricCSG child " + std::to_string(i) + " pose";
     detail::checkRotation(R, what.c_str());
-    detail::checkFinite(p, what.c_str());
+    detail::checkPosition(p, what.c_str());
     parts.push_back(c.shape->region().transformed(R, p));
     bounded.push_back(c.shape->bounded());
     boxes.push_back(c.shape->bounded() ? transformBox(c.shape->localBox(), R, p) : Box3{});

@@ -104,7 +104,15 @@ bool exactSignedDistance(const Ellipsoid& e, const Ellipsoid& other, ExactDistan
 
 WorldPlane planeFromFcl(const Eigen::Vector3d& n, double d, bool halfspace, const Eigen::Matrix3d& R,
                         const Eigen::Vector3d& t, const char* which) {
-  // fcl::transform(Plane / Halfspace, tf) followed by the constructor's unitNormalTest.
+  // fcl::transform(Plane / Halfspace, tf) followed by the constructor's unitNormalTest. The pose
+  // must be rigid and within kMaxLength, as every other partner's (R n is the plane's normal only
+  // for a rotation R).
+  try {
+    fcl_quadric::detail::checkRotation(R, "plane rotation");
+    fcl_quadric::detail::checkPosition(t, "plane translation");
+  } catch (const std::invalid_argument& e) {
+    rethrowNamed(which, halfspace ? "fcl::Halfspace" : "fcl::Plane", e);
+  }
   WorldPlane P;
   P.halfspace = halfspace;
   P.n = R * n;
@@ -134,6 +142,7 @@ WorldBox boxFromFcl(const Eigen::Vector3d& side, const Eigen::Matrix3d& R, const
       }
     }
     fcl_quadric::detail::checkRotation(R, "box rotation");
+    fcl_quadric::detail::checkPosition(p, "box centre");
   } catch (const std::invalid_argument& e) {
     rethrowNamed(which, "fcl::Box", e);
   }
@@ -155,6 +164,7 @@ WorldCapsule capsuleFromFcl(double radius, double length, const Eigen::Matrix3d&
       }
     }
     fcl_quadric::detail::checkRotation(R, "capsule rotation");
+    fcl_quadric::detail::checkPosition(p, "capsule centre");
   } catch (const std::invalid_argument& e) {
     rethrowNamed(which, "fcl::Capsule", e);
   }
@@ -181,6 +191,7 @@ World roundSolidFromFcl(double radius, double length, const Eigen::Matrix3d& R, 
       }
     }
     fcl_quadric::detail::checkRotation(R, (std::string(noun) + " rotation").c_str());
+    fcl_quadric::detail::checkPosition(p, (std::string(noun) + " centre").c_str());
   } catch (const std::invalid_argument& e) {
     rethrowNamed(which, shape, e);
   }

@@ -22,6 +22,13 @@ namespace {
   throw std::invalid_argument(os.str());
 }
 
+[[noreturn, gnu::cold, gnu::noinline]] void throwOutOfRange(const Eigen::Vector3d& v, const char* what) {
+  std::ostringstream os;
+  os << what << " coordinates must be within +-" << tolerance::kMaxLength << ", got [" << v[0] << ", " << v[1] << ", "
+     << v[2] << "]";
+  throw std::invalid_argument(os.str());
+}
+
 [[noreturn, gnu::cold, gnu::noinline]] void throwNotRotation(const Eigen::Matrix3d& R, const char* what, bool finite,
                                                              bool bounded) {
   std::ostringstream os;
@@ -62,6 +69,13 @@ namespace detail {
 void checkFinite(const Eigen::Vector3d& v, const char* what) {
   // std::isfinite per entry: Eigen's allFinite() computes x - x, which raises FE_INVALID on inf.
   if (!(std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]))) throwNonFinite(v, what);
+}
+
+void checkPosition(const Eigen::Vector3d& v, const char* what) {
+  checkFinite(v, what);
+  if (!(std::fabs(v[0]) <= tolerance::kMaxLength && std::fabs(v[1]) <= tolerance::kMaxLength &&
+        std::fabs(v[2]) <= tolerance::kMaxLength))
+    throwOutOfRange(v, what);
 }
 
 namespace {

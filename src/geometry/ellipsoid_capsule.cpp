@@ -20,7 +20,7 @@ SignedDistanceResult signedDistanceEllipsoidCapsule(const Ellipsoid& e, double r
     }
   }
   detail::checkRotation(R_WC, "capsule rotation");
-  detail::checkFinite(p_WC, "capsule centre");
+  detail::checkPosition(p_WC, "capsule centre");
   const Eigen::Vector3d axis = R_WC.col(2) * (0.5 * length);
   const Eigen::Vector3d a = p_WC - axis, b = p_WC + axis;
   SignedDistanceResult d = signedDistanceEllipsoidTriangle(e, a, b, b);  // the segment (exact status)

@@ -500,7 +500,7 @@ RoundSolid validated(const char* what, const Ellipsoid& e, double radius, double
   // As for Ellipsoid: the supports r |n - (n.a) a| treat (u, v, a) as orthonormal and the witness
   // parametrises the solid by them, so both describe the stored rotation.
   const Eigen::Matrix3d Rs = detail::storedRotation(R, (w + " rotation").c_str());
-  detail::checkFinite(p, (w + " centre").c_str());
+  detail::checkPosition(p, (w + " centre").c_str());
   RoundSolid k;
   k.u = Rs.col(0);
   k.v = Rs.col(1);

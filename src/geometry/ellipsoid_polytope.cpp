@@ -88,14 +88,6 @@ void certify(const Candidate& best, const Eigen::Vector3d* vertices, int nv, dou
   out->status = Separation::Touching;  // within the band: err toward contact
 }
 
-void checkFiniteVector(const Eigen::Vector3d& v, const char* what) {
-  if (!v.allFinite()) {
-    std::ostringstream os;
-    os << what << " must be finite, got [" << v.transpose() << "]";
-    throw std::invalid_argument(os.str());
-  }
-}
-
 }  // namespace
 
 EllipsoidPolytopeResult classifyEllipsoidBox(const Ellipsoid& e, const Eigen::Vector3d& half_extents,
@@ -108,7 +100,7 @@ EllipsoidPolytopeResult classifyEllipsoidBox(const Ellipsoid& e, const Eigen::Ve
     }
   }
   detail::checkRotation(R_WB, "box rotation");
-  checkFiniteVector(p_WB, "box centre");
+  detail::checkPosition(p_WB, "box centre");
   // Unit frame: u = g + G s, s in [-1,1]^3.
   const Eigen::Matrix3d SinvRt = e.inverseRadii().asDiagonal() * e.rotation().transpose();
   const Eigen::Vector3d g = SinvRt * (p_WB - e.center());
@@ -199,9 +191,9 @@ Separation ellipsoidBoxStatus(const Ellipsoid& e, const Eigen::Vector3d& half_ex
 
 EllipsoidPolytopeResult classifyEllipsoidTriangle(const Ellipsoid& e, const Eigen::Vector3d& a,
                                                   const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  checkFiniteVector(a, "triangle vertex a");
-  checkFiniteVector(b, "triangle vertex b");
-  checkFiniteVector(c, "triangle vertex c");
+  detail::checkPosition(a, "triangle vertex a");
+  detail::checkPosition(b, "triangle vertex b");
+  detail::checkPosition(c, "triangle vertex c");
   const Eigen::Matrix3d SinvRt = e.inverseRadii().asDiagonal() * e.rotation().transpose();
   const Eigen::Vector3d ua = SinvRt * (a - e.center()), ub = SinvRt * (b - e.center()), uc = SinvRt * (c - e.center());
   Eigen::Matrix<double, 3, 2> G;

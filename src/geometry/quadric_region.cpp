@@ -122,7 +122,7 @@ QuadricRegion QuadricRegion::transformedAffine(const Eigen::Matrix3d& M, const E
 
 QuadricRegion QuadricRegion::transformed(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) const {
   detail::checkRotation(R, "CSG pose rotation");
-  detail::checkFinite(p, "CSG pose translation");
+  detail::checkPosition(p, "CSG pose translation");
   // T^-1 = [R^T, -R^T p] exactly (rigid), so Q' = T^-T Q T^-1 needs no inversion.
   Eigen::Matrix4d Tinv = Eigen::Matrix4d::Identity();
   Tinv.topLeftCorner<3, 3>() = R.transpose();

@@ -64,7 +64,7 @@ class Side {
       throw std::invalid_argument(std::string("regionDistance: operand ") + which +
                                   " must be exactly one of a region and a convex support");
     detail::checkRotation(op.R, (std::string("regionDistance: ") + which + " rotation").c_str());
-    detail::checkFinite(op.p, (std::string("regionDistance: ") + which + " translation").c_str());
+    detail::checkPosition(op.p, (std::string("regionDistance: ") + which + " translation").c_str());
     if (!is_region) return;
     if (op.box.empty() || !op.box.lo.allFinite() || !op.box.hi.allFinite())
       throw std::invalid_argument(std::string("regionDistance: ") + which + "'s bounding box is empty or not finite");

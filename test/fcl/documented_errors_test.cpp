@@ -3,13 +3,23 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <memory>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
+
 #include "support/expect_invalid.h"
+#include "fcl_quadric/fcl/collision.h"
 #include "fcl_quadric/fcl/continuous_broadphase.h"
+#include "fcl_quadric/fcl/distance.h"
+#include "fcl_quadric/fcl/quadric_shapes.h"
 #include "fcl_quadric/fcl/rational_motion.h"
 
 namespace fcl_quadric {
@@ -37,6 +47,52 @@ TEST(DocumentedErrors, SweptAABBOfABallRejectsBadRadiusAndCentre) {
   const fcl::AABB<double> box = sweptAABB(Eigen::Vector3d(1, 2, 3), 0.5, still);
   EXPECT_LE(box.min_[0], 0.5);
   EXPECT_GE(box.max_[2], 3.5);
+}
+
+// Session 35, an audit of the static front door: partners of an ellipsoid posed beyond kMaxLength
+// were accepted (a box 1e300 away "collided" with an ellipsoid at the origin: its products
+// overflowed), and a quadric shape's partner posed by a scaled transform was silently scaled.
+// Both are now errors naming the argument, for collide and distance alike.
+TEST(DocumentedErrors, PartnersPosedOutOfRangeOrByNonRigidTransformsAreRejected) {
+  const auto ellipsoid = std::make_shared<fcl::Ellipsoidd>(1.0, 0.5, 0.3);
+  const auto box = std::make_shared<fcl::Boxd>(1.0, 1.0, 1.0);
+  const auto cylinder = std::make_shared<fcl::Cylinderd>(1.0, 1.0);
+  const auto halfspace = std::make_shared<fcl::Halfspaced>(Eigen::Vector3d::UnitX(), -2.0);
+  const auto elliptic = std::make_shared<EllipticCylinder<double>>(1.0, 0.5, 1.0);
+  const fcl::Transform3d I = fcl::Transform3d::Identity();
+  fcl::Transform3d far = I, scaled = I;
+  far.translation() = Eigen::Vector3d(1e300, 0.0, 0.0);
+  scaled.linear() = 2.0 * Eigen::Matrix3d::Identity();
+  scaled.translation() = Eigen::Vector3d(2.5, 0.0, 0.0);
+  const fcl::CollisionRequestd creq(1, true);
+  fcl::DistanceRequestd dreq(true);
+  auto collide = [&](const fcl::CollisionGeometryd* a, const fcl::Transform3d& ta, const fcl::CollisionGeometryd* b,
+                     const fcl::Transform3d& tb) {
+    fcl::CollisionResultd r;
+    fcl_quadric::collide(a, ta, b, tb, creq, r);
+  };
+  auto distance = [&](const fcl::CollisionGeometryd* a, const fcl::Transform3d& ta, const fcl::CollisionGeometryd* b,
+                      const fcl::Transform3d& tb) {
+    fcl::DistanceResultd r;
+    fcl_quadric::distance(a, ta, b, tb, dreq, r);
+  };
+  for (auto query : {std::function<void(const fcl::CollisionGeometryd*, const fcl::Transform3d&, const fcl::CollisionGeometryd*,
+                                        const fcl::Transform3d&)>(collide),
+                     std::function<void(const fcl::CollisionGeometryd*, const fcl::Transform3d&, const fcl::CollisionGeometryd*,
+                                        const fcl::Transform3d&)>(distance)}) {
+    expectInvalid([&] { query(ellipsoid.get(), I, box.get(), far); }, "box centre coordinates must be within +-1e+100");
+    expectInvalid([&] { query(cylinder.get(), far, ellipsoid.get(), I); }, "cylinder centre coordinates must be within");
+    expectInvalid([&] { query(ellipsoid.get(), I, halfspace.get(), scaled); }, "plane rotation");
+    expectInvalid([&] { query(elliptic.get(), I, ellipsoid.get(), scaled); }, "the rotation of tf2");
+    expectInvalid([&] { query(elliptic.get(), far, ellipsoid.get(), I); }, "the translation of tf1");
+  }
+  // The same pairs posed in range and rigidly are answered.
+  fcl::Transform3d near = I;
+  near.translation() = Eigen::Vector3d(2.5, 0.0, 0.0);
+  fcl::CollisionResultd r;
+  EXPECT_EQ(fcl_quadric::collide(elliptic.get(), I, ellipsoid.get(), near, creq, r), 0u);
+  fcl::DistanceResultd d;
+  EXPECT_NEAR(fcl_quadric::distance(elliptic.get(), I, ellipsoid.get(), near, dreq, d), 0.5, 1e-12);
 }
 
 }  // namespace
