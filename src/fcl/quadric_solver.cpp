@@ -2,6 +2,8 @@
 // instantiates no FCL traversal or function matrix (those live in collision.cpp / distance.cpp).
 #include "fcl_quadric/fcl/quadric_solver.h"
 
+
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -213,6 +215,45 @@ WorldCylinder cylinderFromFcl(double radius, double length, const Eigen::Matrix3
 WorldCone coneFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
                       const char* which) {
   return roundSolidFromFcl<WorldCone>(radius, length, R, p, which, "fcl::Cone", "cone");
+}
+
+WorldConvex convexFromFcl(const std::vector<Eigen::Vector3d>& v, const std::vector<int>& faces, int face_count,
+                          const Eigen::Matrix3d& R, const Eigen::Vector3d& p, const char* which) {
+  WorldConvex out;
+  try {
+    fcl_quadric::detail::checkRotation(R, "convex rotation");
+    fcl_quadric::detail::checkPosition(p, "convex translation");
+    if (v.empty()) throw std::invalid_argument("convex has no vertices");
+    for (const Eigen::Vector3d& x : v) {
+      fcl_quadric::detail::checkPosition(x, "convex vertex");
+      out.vertices.push_back(R * x + p);
+    }
+    // FCL's flat face list: for each face its vertex count n, then n indices.
+    std::size_t at = 0;
+    for (int k = 0; k < face_count; ++k) {
+      if (at >= faces.size() || faces[at] < 0 || at + 1 + static_cast<std::size_t>(faces[at]) > faces.size()) {
+        std::ostringstream os;
+        os << "convex face list ends before face " << k << " of " << face_count;
+        throw std::invalid_argument(os.str());
+      }
+      const int n = faces[at];
+      out.faces.emplace_back(faces.begin() + static_cast<std::ptrdiff_t>(at) + 1,
+                             faces.begin() + static_cast<std::ptrdiff_t>(at) + 1 + n);
+      at += 1 + static_cast<std::size_t>(n);
+      const std::vector<int>& f = out.faces.back();
+      const bool indices_ok =
+          std::all_of(f.begin(), f.end(), [&](int i) { return i >= 0 && static_cast<std::size_t>(i) < v.size(); });
+      if (n < 3 || !indices_ok) {
+        std::ostringstream os;
+        os << "convex face " << k << " needs at least 3 vertex indices in [0, " << v.size() << "), got " << n
+           << " indices" << (indices_ok ? "" : " with one out of range");
+        throw std::invalid_argument(os.str());
+      }
+    }
+  } catch (const std::invalid_argument& e) {
+    rethrowNamed(which, "fcl::Convex", e);
+  }
+  return out;
 }
 
 WorldTriangle triangleFromFcl(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
@@ -504,6 +545,22 @@ bool exactDistance(const Ellipsoid& e, const WorldCone& c, ExactDistance* out) {
 }
 bool exactSignedDistance(const Ellipsoid& e, const WorldCone& c, ExactDistance* out) {
   return signedDistanceFrom(signedDistanceEllipsoidCone(e, c.radius, c.length, c.R, c.p), out);
+}
+
+bool exactIntersect(const Ellipsoid& e, const WorldConvex& P, ExactContact* contact) {
+  if (!contact) return classifyEllipsoidConvex(e, P).status != Separation::Separated;
+  return contactFrom(signedDistanceEllipsoidConvex(e, P), contact);
+}
+
+bool exactDistance(const Ellipsoid& e, const WorldConvex& P, ExactDistance* out) {
+  const EllipsoidPolytopeResult cert = classifyEllipsoidConvex(e, P);
+  if (cert.status == Separation::Overlapping) return distanceFrom(cert, nullptr, out);
+  const SignedDistanceResult d = signedDistanceEllipsoidConvex(e, P);
+  return distanceFrom(cert, &d, out);
+}
+
+bool exactSignedDistance(const Ellipsoid& e, const WorldConvex& P, ExactDistance* out) {
+  return signedDistanceFrom(signedDistanceEllipsoidConvex(e, P), out);
 }
 
 bool exactIntersect(const Ellipsoid& e, const WorldTriangle& t, ExactContact* contact) {

@@ -4,8 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <set>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
@@ -360,6 +364,111 @@ SignedDistanceResult signedDistanceEllipsoidTriangle(const Ellipsoid& e, const E
     normals[nf++] = -nrm.normalized();
   }
   return polytopeSignedDistance(e, {v, 3, edges, 3, normals, nf}, cl.status);
+}
+
+namespace {
+
+/// The validated polytope's outward face normals (a degenerate face's is zero) and its edges
+/// (each pair of consecutive face vertices once).
+struct ConvexFeatures {
+  std::vector<Eigen::Vector3d> normals;
+  std::vector<std::array<int, 2>> edges;
+  double scale = 0.0;  ///< max |v|_inf over the vertices: the plane tests' rounding scale
+};
+
+ConvexFeatures convexFeatures(const ConvexPolytope& P) {
+  if (P.vertices.empty()) throw std::invalid_argument("convex polytope has no vertices");
+  const int nv = static_cast<int>(P.vertices.size());
+  ConvexFeatures f;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : P.vertices) {
+    detail::checkPosition(v, "convex polytope vertex");
+    mean += v;
+    f.scale = std::max(f.scale, v.cwiseAbs().maxCoeff());
+  }
+  mean /= nv;  // strictly inside a solid convex polytope (the mean of its vertices)
+  std::set<std::pair<int, int>> seen;
+  for (std::size_t k = 0; k < P.faces.size(); ++k) {
+    const std::vector<int>& face = P.faces[k];
+    if (face.size() < 3) {
+      std::ostringstream os;
+      os << "convex polytope face " << k << " has " << face.size() << " vertices (at least 3 needed)";
+      throw std::invalid_argument(os.str());
+    }
+    for (int i : face)
+      if (i < 0 || i >= nv) {
+        std::ostringstream os;
+        os << "convex polytope face " << k << " has vertex index " << i << ", outside [0, " << nv << ")";
+        throw std::invalid_argument(os.str());
+      }
+    // Newell's normal of the polygon, turned outward (away from the vertices' mean).
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const Eigen::Vector3d& a = P.vertices[face[i]];
+      const Eigen::Vector3d& b = P.vertices[face[(i + 1) % face.size()]];
+      n += (a - mean).cross(b - mean);
+      const int lo = std::min(face[i], face[(i + 1) % face.size()]), hi = std::max(face[i], face[(i + 1) % face.size()]);
+      if (lo != hi && seen.insert({lo, hi}).second) f.edges.push_back({lo, hi});
+    }
+    const double len = n.norm();
+    if (len > 0.0) {
+      n /= len;
+      if (n.dot(P.vertices[face[0]] - mean) < 0.0) n = -n;
+    }
+    f.normals.push_back(n);
+  }
+  return f;
+}
+
+}  // namespace
+
+EllipsoidPolytopeResult classifyEllipsoidConvex(const Ellipsoid& e, const ConvexPolytope& P) {
+  const ConvexFeatures f = convexFeatures(P);
+  // The centre strictly inside every face plane (by more than the rounding of n.(c - v), a few
+  // eps of |n||c - v|: 2^-40 of the coordinates' scale, as the triangles' band).
+  const Eigen::Vector3d c = e.center();
+  const double band = std::ldexp(1.0, -40) * (f.scale + c.cwiseAbs().maxCoeff());
+  bool inside = !P.faces.empty();
+  for (std::size_t k = 0; k < P.faces.size() && inside; ++k)
+    inside = f.normals[k].squaredNorm() > 0.0 && f.normals[k].dot(c - P.vertices[P.faces[k][0]]) < -band;
+  if (inside) return EllipsoidPolytopeResult{Separation::Overlapping, 0.0, c};
+  EllipsoidPolytopeResult best{Separation::Separated, std::numeric_limits<double>::infinity(), P.vertices.front()};
+  bool touching = false;
+  for (const std::vector<int>& face : P.faces)
+    for (std::size_t i = 1; i + 1 < face.size(); ++i) {
+      const EllipsoidPolytopeResult r =
+          classifyEllipsoidTriangle(e, P.vertices[face[0]], P.vertices[face[i]], P.vertices[face[i + 1]]);
+      if (r.status == Separation::Overlapping) return r;
+      touching = touching || r.status == Separation::Touching;
+      if (r.unit_distance2 < best.unit_distance2) best = r;
+    }
+  if (P.faces.empty()) {  // no boundary given: the vertices alone (points of P)
+    for (const Eigen::Vector3d& v : P.vertices) {
+      const EllipsoidPolytopeResult r = classifyEllipsoidTriangle(e, v, v, v);
+      if (r.status == Separation::Overlapping) return r;
+      touching = touching || r.status == Separation::Touching;
+      if (r.unit_distance2 < best.unit_distance2) best = r;
+    }
+  }
+  best.status = touching ? Separation::Touching : Separation::Separated;
+  return best;
+}
+
+SignedDistanceResult signedDistanceEllipsoidConvex(const Ellipsoid& e, const ConvexPolytope& P) {
+  const EllipsoidPolytopeResult c = classifyEllipsoidConvex(e, P);  // validates
+  const ConvexFeatures f = convexFeatures(P);
+  const std::unique_ptr<int[][2]> edges(new int[f.edges.size() + 1][2]);
+  for (std::size_t k = 0; k < f.edges.size(); ++k) {
+    edges[k][0] = f.edges[k][0];
+    edges[k][1] = f.edges[k][1];
+  }
+  std::vector<Eigen::Vector3d> normals;
+  for (const Eigen::Vector3d& n : f.normals)
+    if (n.squaredNorm() > 0.0) normals.push_back(n);
+  return polytopeSignedDistance(e,
+                                {P.vertices.data(), static_cast<int>(P.vertices.size()), edges.get(),
+                                 static_cast<int>(f.edges.size()), normals.data(), static_cast<int>(normals.size())},
+                                c.status);
 }
 
 }  // namespace fcl_quadric

@@ -4,14 +4,19 @@
 // not asserted).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <random>
 #include <string>
 
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cone.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 
 #include "fcl/fcl_test_support.h"
@@ -177,9 +182,12 @@ TEST(CylinderConePair, NearTangentPairsAreCertifiedAndStockFclIsCounted) {
   }
 }
 
-TEST(CylinderConePair, SphereCylinderStaysWithLibccdAndBadInputNamesTheOperand) {
-  // (Sphere, Cylinder) is delegated like (Sphere, Capsule): only ellipsoid pairs are exact.
-  static_assert(detail::QuadricPair<fcl::Sphered, fcl::Cylinderd>::kind == detail::QuadricPairKind::kLibccd, "");
+TEST(CylinderConePair, SphereCylinderIsExactAndBadInputNamesTheOperand) {
+  // (Sphere, Cylinder) goes to the ellipsoid kernel, as (Sphere, Capsule) / Box / Cone do (the
+  // sphere an ellipsoid of equal radii; session 35).
+  static_assert(detail::QuadricPair<fcl::Sphered, fcl::Cylinderd>::kind == detail::QuadricPairKind::kEllipsoidCylinder, "");
+  static_assert(!detail::QuadricPair<fcl::Sphered, fcl::Cylinderd>::swapped, "");
+  static_assert(detail::QuadricPair<fcl::Sphered, fcl::Sphered>::kind == detail::QuadricPairKind::kSphereSphere, "");
   static_assert(detail::QuadricPair<fcl::Coned, fcl::Ellipsoidd>::kind == detail::QuadricPairKind::kEllipsoidCone, "");
   static_assert(detail::QuadricPair<fcl::Coned, fcl::Ellipsoidd>::swapped, "");
   const QuadricSolverd solver;
@@ -203,6 +211,93 @@ TEST(CylinderConePair, SphereCylinderStaysWithLibccdAndBadInputNamesTheOperand) 
   } catch (const std::invalid_argument& ex) {
     EXPECT_NE(std::string(ex.what()).find("o2 (fcl::Cone): cone rotation"), std::string::npos) << ex.what();
   }
+}
+
+// Sphere pairs against closed forms, through the front doors in both argument orders. A sphere of
+// radius r is placed at a known gap g (negative: overlap) along the outward normal of a point of
+// the partner's face (sphere, box face, capsule, cylinder side, cone side), so the signed distance
+// is g exactly (up to the placement's rounding). Until session 35 these pairs went to libccd: an
+// audit measured signed distances off by up to 6e-5 of the scale, a positive one for spheres
+// overlapping by 1e-9, and sphere-cone collisions that missed overlaps of 1e-9-1e-6.
+TEST(CylinderConePair, SpherePairsMatchClosedFormsInBothOrders) {
+  std::mt19937_64 rng(35);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const fcl::CollisionRequestd creq(1, true);
+  fcl::DistanceRequestd dreq(true);
+  dreq.enable_signed_distance = true;
+  int cases = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const double r = 0.1 + U(rng);
+    const Eigen::Matrix3d R = test::randomRotation(rng);
+    const Eigen::Vector3d p = 2.0 * test::randomUnitVector(rng);
+    const double th = 2 * M_PI * U(rng);
+    const Eigen::Vector3d radial(std::cos(th), std::sin(th), 0.0);
+    // The partner, its local point P with local outward unit normal n.
+    std::shared_ptr<fcl::CollisionGeometryd> partner;
+    Eigen::Vector3d P, n;
+    switch (trial % 5) {
+      case 0: {  // a sphere
+        const double rs = 0.2 + U(rng);
+        partner = std::make_shared<fcl::Sphered>(rs);
+        n = test::randomUnitVector(rng);
+        P = rs * n;
+        break;
+      }
+      case 1: {  // a box face, away from its edges
+        const Eigen::Vector3d h(0.3 + U(rng), 0.3 + U(rng), 0.3 + U(rng));
+        partner = std::make_shared<fcl::Boxd>(2.0 * h);
+        P = Eigen::Vector3d((U(rng) - 0.5) * h[0], (U(rng) - 0.5) * h[1], h[2]);
+        n = Eigen::Vector3d::UnitZ();
+        break;
+      }
+      case 2: {  // a capsule's side
+        const double rc = 0.2 + U(rng), L = 0.5 + U(rng);
+        partner = std::make_shared<fcl::Capsuled>(rc, L);
+        P = rc * radial + (U(rng) - 0.5) * L * Eigen::Vector3d::UnitZ();
+        n = radial;
+        break;
+      }
+      case 3: {  // a cylinder's side, away from its rims
+        const double rc = 0.3 + U(rng), L = 1.0 + U(rng);
+        partner = std::make_shared<fcl::Cylinderd>(rc, L);
+        P = rc * radial + (U(rng) - 0.5) * 0.5 * L * Eigen::Vector3d::UnitZ();
+        n = radial;
+        break;
+      }
+      default: {  // a cone's side (base at z = -h, apex at z = h), away from apex and rim
+        const double rc = 0.5 + U(rng), h = 0.5 + 0.5 * U(rng);
+        partner = std::make_shared<fcl::Coned>(rc, 2.0 * h);
+        const double z = h * (U(rng) - 0.5);
+        P = rc * (h - z) / (2.0 * h) * radial + z * Eigen::Vector3d::UnitZ();
+        n = (radial + rc / (2.0 * h) * Eigen::Vector3d::UnitZ()).normalized();
+        break;
+      }
+    }
+    // Small spheres only where the partner's side curves (so the face point stays the nearest).
+    const double rs = std::min(r, 0.25);
+    const auto sphere = std::make_shared<fcl::Sphered>(rs);
+    for (double g : {1e-2, 1e-6, 1e-9, -1e-9, -1e-6, -1e-2}) {
+      fcl::Transform3d tp = fcl::Transform3d::Identity(), ts = fcl::Transform3d::Identity();
+      tp.linear() = R;
+      tp.translation() = p;
+      ts.translation() = p + R * (P + (rs + g) * n);
+      for (const bool sphere_first : {true, false}) {
+        const fcl::CollisionGeometryd* a = sphere_first ? static_cast<const fcl::CollisionGeometryd*>(sphere.get()) : partner.get();
+        const fcl::CollisionGeometryd* b = sphere_first ? static_cast<const fcl::CollisionGeometryd*>(partner.get()) : sphere.get();
+        const fcl::Transform3d& ta = sphere_first ? ts : tp;
+        const fcl::Transform3d& tb = sphere_first ? tp : ts;
+        fcl::CollisionResultd cres;
+        fcl_quadric::collide(a, ta, b, tb, creq, cres);
+        EXPECT_EQ(cres.isCollision(), g < 0) << "partner " << trial % 5 << ", gap " << g << ", sphere first " << sphere_first;
+        fcl::DistanceResultd dres;
+        const double d = fcl_quadric::distance(a, ta, b, tb, dreq, dres);
+        // Exact up to the placement's rounding (coordinates ~3: a few 1e-16).
+        EXPECT_NEAR(d, g, 4e-15) << "partner " << trial % 5 << ", gap " << g << ", sphere first " << sphere_first;
+        ++cases;
+      }
+    }
+  }
+  EXPECT_EQ(cases, 40 * 6 * 2);
 }
 
 }  // namespace

@@ -12,6 +12,8 @@
 /// ball, separation by the plane orthogonal to the minimiser that leaves every vertex strictly
 /// outside; otherwise Touching (within a relative band of 2^-40; counts as contact).
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "fcl_quadric/geometry/ellipsoid.h"
@@ -66,5 +68,28 @@ SignedDistanceResult signedDistanceEllipsoidBox(const Ellipsoid& e, const Eigen:
                                                 const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_WB);
 SignedDistanceResult signedDistanceEllipsoidTriangle(const Ellipsoid& e, const Eigen::Vector3d& a,
                                                      const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+/// A convex polytope in the world frame (fcl::Convex): its vertices and its faces, each the
+/// indices of one planar convex polygon's vertices in order around it (either orientation).
+struct ConvexPolytope {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::vector<int>> faces;
+};
+
+/// Ellipsoid e against the convex polytope P. They intersect iff e's centre is in P or e meets
+/// P's boundary (P and e convex: a segment from the centre to a common point crosses the
+/// boundary inside e). The centre counts as in P when it is inside every face plane by more than
+/// the plane test's rounding; the boundary is the faces' fan triangles, each classified by
+/// classifyEllipsoidTriangle (certified). Overlapping if the centre is in P or a triangle
+/// overlaps; Touching if a triangle touches; otherwise Separated, with the nearest triangle's
+/// unit distance and point. \pre P is convex and its faces are its boundary (as fcl::Convex
+/// assumes; not checked). 	hrows std::invalid_argument for no vertices, a vertex not finite or
+/// beyond kMaxLength, a face with fewer than three vertices or an index out of range.
+EllipsoidPolytopeResult classifyEllipsoidConvex(const Ellipsoid& e, const ConvexPolytope& P);
+
+/// Signed distance between e and P, as signedDistanceEllipsoidBox (the same feature candidates:
+/// P's faces, vertices and edges), with the status of classifyEllipsoidConvex.
+/// 	hrows std::invalid_argument as classifyEllipsoidConvex.
+SignedDistanceResult signedDistanceEllipsoidConvex(const Ellipsoid& e, const ConvexPolytope& P);
 
 }  // namespace fcl_quadric
