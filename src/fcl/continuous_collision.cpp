@@ -17,6 +17,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/sphere.h>
@@ -494,15 +495,14 @@ double exactPair(const Ellipsoid& a_body, const fcl::MotionBase<double>* m1, Mot
   return result.time_of_contact;
 }
 
-// One solid of a conservative-advancement pair: pose at t and a certified bound of the speed of
-// its points over [0, 1].
+// One solid of a conservative-advancement pair: its pose at t (solidSpeedBound() bounds the
+// velocity of its points over [0, 1]).
 struct AdvancingSolid {
   const fcl::MotionBase<double>* motion = nullptr;
   MotionKind kind = MotionKind::Other;
   const char* which = "";
   Eigen::Vector3d radii;
   bool rigid = true;
-  double speed = 0.0;
 
   Eigen::Matrix4d pose(double t) const {
     if (kind == MotionKind::Rational) {
@@ -551,17 +551,28 @@ struct SplineAccess : fcl::SplineMotion<double> {
 };
 SplineControlPoints splineControlPoints(const fcl::SplineMotion<double>& m) { return SplineAccess::get(m); }
 
-// Certified speed bound of every point of the solid (body ball of radius max radius around the
-// origin) over [0, 1], from the motion's parameters.
-double solidSpeedBound(const AdvancingSolid& s) {
+// Certified bound of the velocity of every point of the solid (body ball of radius max radius
+// around the origin) over [0, 1], from the motion's parameters: a constant velocity `linear`
+// shared by all its points (the motion's translation at a constant rate, zero where it has none)
+// plus a vector of length at most `rest`. The relative velocity of two solids' points is then at
+// most |linear_a - linear_b| + rest_a + rest_b: two bodies translated alike do not approach each
+// other (session 35, an audit: two balls moved side by side 1000 apart at a gap of 1e-2 hit the
+// step cap, and were reported colliding, with the plain sum of their speeds).
+struct SpeedBound {
+  Eigen::Vector3d linear = Eigen::Vector3d::Zero();
+  double rest = 0.0;
+};
+
+SpeedBound solidSpeedBound(const AdvancingSolid& s) {
   const double r = s.radii.maxCoeff();
   switch (s.kind) {
     case MotionKind::Rational:
-      return static_cast<const RationalMotion<double>*>(s.motion)->speedBound(Eigen::Vector3d::Zero(), r, 0.0);
+      return {Eigen::Vector3d::Zero(),
+              static_cast<const RationalMotion<double>*>(s.motion)->speedBound(Eigen::Vector3d::Zero(), r, 0.0)};
     case MotionKind::Translation: {
       const Eigen::Vector3d v = static_cast<const fcl::TranslationMotion<double>*>(s.motion)->getVelocity();
       for (int i = 0; i < 3; ++i) requireFinite(v[i], s.which, "velocity");
-      return v.norm();
+      return {v, 0.0};
     }
     case MotionKind::Interp: {
       // x(t) = R(t) (x_b - ref) + tf1 * ref + v t, R(t) = AngleAxis(omega t, axis) R1 (interp_motion-inl.h):
@@ -580,7 +591,7 @@ double solidSpeedBound(const AdvancingSolid& s) {
       const Eigen::Vector3d y = R0 * (-ref);
       const double an = axis.norm();
       const double perp = an > 0.0 ? (axis.cross(y)).norm() / an : y.norm();
-      return (v.norm() + std::abs(omega) * (perp + r)) * (1.0 + 1e-12);
+      return {v, std::abs(omega) * (perp + r) * (1.0 + 1e-12) + 1e-12 * v.norm()};
     }
     case MotionKind::Screw: {
       // x(t) = dR(t) (R1 x_b + T1 - p) + p + axis lv t (screw_motion-inl.h): |dx/dt| <=
@@ -599,7 +610,8 @@ double solidSpeedBound(const AdvancingSolid& s) {
       const Eigen::Vector3d y = T0 - p;
       const double an = axis.norm();
       const double perp = an > 0.0 ? (axis.cross(y)).norm() / an : y.norm();
-      return (an * std::abs(lv) + std::abs(omega) * (perp + r)) * (1.0 + 1e-12);
+      const Eigen::Vector3d v = lv * axis;
+      return {v, std::abs(omega) * (perp + r) * (1.0 + 1e-12) + 1e-12 * v.norm()};
     }
     case MotionKind::Spline: {
       // spline_motion-inl.h: T(t) = sum_i Td_i w_i(t), rotation = exp of w(t) = sum_i Rd_i w_i(t)
@@ -631,16 +643,15 @@ double solidSpeedBound(const AdvancingSolid& s) {
         }
         return std::sqrt(sum);
       };
-      return (maxDerivative(cp.T) + maxDerivative(cp.R) * r) * (1.0 + 1e-12);
+      return {Eigen::Vector3d::Zero(), (maxDerivative(cp.T) + maxDerivative(cp.R) * r) * (1.0 + 1e-12)};
     }
-    default: return std::numeric_limits<double>::infinity();
+    default: return {Eigen::Vector3d::Zero(), std::numeric_limits<double>::infinity()};
   }
 }
 
 double advancementPair(AdvancingSolid a, AdvancingSolid b, fcl::ContinuousCollisionResult<double>& result) {
-  a.speed = solidSpeedBound(a);
-  b.speed = solidSpeedBound(b);
-  const double speed = a.speed + b.speed;
+  const SpeedBound va = solidSpeedBound(a), vb = solidSpeedBound(b);  // (relative velocity: see SpeedBound)
+  const double speed = ((va.linear - vb.linear).norm() + va.rest + vb.rest) * (1.0 + 1e-12);
   const double scale = a.radii.maxCoeff() + b.radii.maxCoeff();
   const double tol = kAdvancementDistanceRelative * scale;
   g_stats.path = ContinuousCollideStats::Path::ConservativeAdvancement;
@@ -669,7 +680,7 @@ double advancementPair(AdvancingSolid a, AdvancingSolid b, fcl::ContinuousCollis
       contact = t;
       break;
     }
-    if (!(speed > 0.0)) break;  // neither solid moves
+    if (!(speed > 0.0)) break;  // neither solid moves relative to the other
     const double next = t + d / speed;
     if (next > 1.0) break;
     t = next;
@@ -710,10 +721,21 @@ double quadricShapePair(const fcl::CollisionGeometry<double>* o1, const fcl::Mot
   return result.time_of_contact;
 }
 
+/// FCL's naive solver samples t = i / (num_max_iterations - 1): with fewer than two iterations
+/// that is 0 / 0, and it returned NaN as the contact time with is_collide set, even for a clear
+/// miss (session 35, an audit). A request FCL cannot answer is an error here.
+void checkDelegatedRequest(const fcl::ContinuousCollisionRequest<double>& request) {
+  if (request.ccd_solver_type == fcl::CCDC_NAIVE && request.num_max_iterations < 2)
+    throw std::invalid_argument(std::string(kWhere) +
+                                ": request.num_max_iterations must be >= 2 for CCDC_NAIVE (FCL samples t = i / (n - 1)), "
+                                "got " + std::to_string(request.num_max_iterations));
+}
+
 double delegate(const fcl::CollisionGeometry<double>* o1, const fcl::MotionBase<double>* motion1,
                 const fcl::CollisionGeometry<double>* o2, const fcl::MotionBase<double>* motion2,
                 const fcl::ContinuousCollisionRequest<double>& request,
                 fcl::ContinuousCollisionResult<double>& result) {
+  checkDelegatedRequest(request);
   g_stats.path = ContinuousCollideStats::Path::Delegated;
   return fcl::continuousCollide(o1, motion1, o2, motion2, request, result);
 }
@@ -790,6 +812,15 @@ S continuousCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S
   detail::checkPose(tf1_end, kWhere, "tf1_end");
   detail::checkPose(tf2_beg, kWhere, "tf2_beg");
   detail::checkPose(tf2_end, kWhere, "tf2_end");
+  // FCL builds its motions from rigid poses (a quaternion of the rotation, or the rotation kept as
+  // given): a scaled or sheared linear part was read as a rotation and answered silently (session
+  // 35, an audit), for every pair.
+  for (const auto& [tf, which] : {std::pair(&tf1_beg, "tf1_beg"), std::pair(&tf1_end, "tf1_end"),
+                                  std::pair(&tf2_beg, "tf2_beg"), std::pair(&tf2_end, "tf2_end")}) {
+    const std::string what = std::string(kWhere) + ": " + which;
+    detail::checkRotation(Eigen::Matrix3d(tf->linear().template cast<double>()), (what + " rotation").c_str());
+    detail::checkPosition(Eigen::Vector3d(tf->translation().template cast<double>()), (what + " translation").c_str());
+  }
   if (detail::isQuadricShape(o1) || detail::isQuadricShape(o2)) {
     // Only translations are rational among FCL's motion types (FCL's CCDM_LINEAR / CCDM_SCREW
     // rotate at a constant angular velocity, which no rational motion reproduces).
@@ -802,6 +833,7 @@ S continuousCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S
     return fcl_quadric::continuousCollide(o1, &m1, o2, &m2, request, result);
   }
   if (!(quadricRadii(o1) && quadricRadii(o2))) {
+    checkDelegatedRequest(request);
     g_stats = ContinuousCollideStats();
     g_stats.path = ContinuousCollideStats::Path::Delegated;
     return fcl::continuousCollide(o1, tf1_beg, tf1_end, o2, tf2_beg, tf2_end, request, result);

@@ -748,6 +748,36 @@ TEST(ContinuousBroadPhase, StaticAndNonEllipsoidObjectsAreHandled) {
 
 // --- (g) bad input ----------------------------------------------------------------------------------
 
+// Conservative advancement bounds the relative velocity of the two solids, not the sum of their
+// speeds: two balls translated alike side by side (CCDM_LINEAR, 1000 units at a gap of 1e-2, or 10
+// units at 1e-4) never approach each other. With the sum, an audit found both at the step cap and
+// reported colliding at t = 0.05 (session 35). Moving towards each other they still collide at the
+// closed-form time, never later.
+TEST(ContinuousCollide, AdvancementBoundsTheRelativeVelocity) {
+  const auto ball = std::make_shared<fcl::Sphered>(1.0);
+  fcl::ContinuousCollisionRequestd req;
+  req.ccd_motion_type = fcl::CCDM_LINEAR;
+  for (const auto& [length, gap] : {std::pair(1000.0, 1e-2), std::pair(10.0, 1e-4), std::pair(1000.0, 1e-4)}) {
+    fcl::Transform3d a0 = fcl::Transform3d::Identity(), a1 = a0, b0 = a0, b1 = a0;
+    a1.translation() = Eigen::Vector3d(length, 0, 0);
+    b0.translation() = Eigen::Vector3d(0, 2.0 + gap, 0);
+    b1.translation() = Eigen::Vector3d(length, 2.0 + gap, 0);
+    fcl::ContinuousCollisionResultd res;
+    fcl_quadric::continuousCollide(ball.get(), a0, a1, ball.get(), b0, b1, req, res);
+    EXPECT_FALSE(res.is_collide) << "length " << length << ", gap " << gap << ", toc " << res.time_of_contact;
+    EXPECT_FALSE(lastContinuousCollideStats().step_cap);
+    // b drifts towards a by 2 gap over the motion: contact at t = 1/2 exactly.
+    b1.translation().y() = 2.0 - gap;
+    fcl_quadric::continuousCollide(ball.get(), a0, a1, ball.get(), b0, b1, req, res);
+    EXPECT_TRUE(res.is_collide);
+    EXPECT_LE(res.time_of_contact, 0.5);
+    // Contact is reported once the distance is within kAdvancementDistanceRelative (r_a + r_b) = 2e-6,
+    // which the distance gap (1 - 2t) reaches at t = 1/2 - 1e-6 / gap.
+    EXPECT_GE(res.time_of_contact, 0.5 - kAdvancementDistanceRelative * 2.0 / (2.0 * gap) - 1e-12)
+        << "length " << length << ", gap " << gap;
+  }
+}
+
 TEST(ContinuousCollide, BadInputThrowsNamingTheArgument) {
   const auto e = std::make_shared<fcl::Ellipsoidd>(1.0, 0.5, 0.7);
   const auto box = std::make_shared<fcl::Boxd>(1.0, 1.0, 1.0);
@@ -795,6 +825,27 @@ TEST(ContinuousCollide, BadInputThrowsNamingTheArgument) {
   fcl::AABBd aabb(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones());
   EXPECT_THROW(m.computeMotionBound(fcl::TBVMotionBoundVisitor<fcl::AABBd>(aabb, Eigen::Vector3d::UnitX())),
                std::logic_error);
+  // Session 35, an audit: non-rigid transforms were read as rotations, and FCL's naive solver
+  // with one iteration answered NaN (t = 0 / 0) with is_collide set.
+  fcl::Transform3d scaled = I;
+  scaled.linear() = 2.0 * Eigen::Matrix3d::Identity();
+  fcl::Transform3d far = I;
+  far.translation().x() = 1e200;
+  for (const fcl::CCDMotionType type : {fcl::CCDM_TRANS, fcl::CCDM_LINEAR, fcl::CCDM_SCREW}) {
+    fcl::ContinuousCollisionRequestd r;
+    r.ccd_motion_type = type;
+    expectInvalid([&] { fcl_quadric::continuousCollide(e.get(), scaled, I, e.get(), I, I, r, res); }, "tf1_beg rotation");
+    expectInvalid([&] { fcl_quadric::continuousCollide(e.get(), I, I, box.get(), I, scaled, r, res); }, "tf2_end rotation");
+    expectInvalid([&] { fcl_quadric::continuousCollide(e.get(), I, far, e.get(), I, I, r, res); },
+                  "tf1_end translation coordinates must be within");
+  }
+  fcl::ContinuousCollisionRequestd one;
+  one.ccd_solver_type = fcl::CCDC_NAIVE;
+  one.num_max_iterations = 1;
+  expectInvalid([&] { fcl_quadric::continuousCollide(box.get(), I, I, box.get(), I, I, one, res); }, "num_max_iterations");
+  const fcl::TranslationMotion<double> still(I, I);
+  expectInvalid([&] { fcl_quadric::continuousCollide<double>(box.get(), &still, box.get(), &still, one, res); },
+                "num_max_iterations");
   // Broad phase.
   ContinuousBroadPhaseResult bres;
   expectInvalid([&] { continuousCollideBroadPhase(nullptr, MotionMap(), ContinuousBroadPhaseRequest(), bres); },

@@ -16,17 +16,20 @@
 ///    all_intervals = false. The contact time is never later than the exact first contact (by at
 ///    most ~1e-12, tolerances.h kCcdTimeTolerance / kCcdTouchingRelative) and errs early only at
 ///    near-tangent grazes. request.ccd_solver_type, num_max_iterations and toc_err are ignored.
-///  - some motion fcl::InterpMotion or fcl::ScrewMotion (the other any of the four):
-///    CERTIFIED-CONSERVATIVE advancement driven by the exact signed distance (signedDistance of the
-///    world ellipsoids at t, a certified lower bound of the distance: it is the support gap along a
-///    unit normal) and a certified bound of the speed of every point of each solid, from the
-///    motion's parameters (see kAdvancement* below). t advances by d / (V1 + V2); contact is
-///    reported at the first t where the pair is not certified separate or d <= tolerance; the
-///    reported time is never later than the true first contact. On the step cap the current t
-///    is reported as contact (conservative).
-///  - some motion fcl::SplineMotion, or another MotionBase: no certified bound is available:
-///    delegated to fcl::continuousCollide (NOT certified: FCL's naive sampling or its conservative
-///    advancement, per request.ccd_solver_type).
+///  - some motion fcl::InterpMotion, fcl::ScrewMotion or fcl::SplineMotion (the other any of
+///    the five): CERTIFIED-CONSERVATIVE advancement driven by the exact signed distance
+///    (signedDistance of the world ellipsoids at t, a certified lower bound of the distance: it is
+///    the support gap along a unit normal) and a certified bound of the relative velocity of the
+///    two solids' points, from the motions' parameters: |v1 - v2| + W1 + W2, with v the motion's
+///    constant translational velocity (none for a spline or a RationalMotion) and W a bound of the
+///    rest (rotation; a spline's whole velocity, from its control points). t advances by d over
+///    that bound; contact is reported at the first t where the pair is not certified separate or
+///    d <= tolerance (see kAdvancement* below); the reported time is never later than the true
+///    first contact. On the step cap the current t is reported as contact (conservative; stats
+///    step_cap).
+///  - another MotionBase: no certified bound is available: delegated to fcl::continuousCollide
+///    (NOT certified: FCL's naive sampling or its conservative advancement, per
+///    request.ccd_solver_type).
 /// Quadric shapes (quadric_shapes.h: EllipticCylinder, Quadric, QuadricCSG) against each other,
 /// an fcl Sphere / Ellipsoid / Box / Cylinder / Cone / Capsule / Halfspace, a BVH mesh or an
 /// fcl::OcTree (piece by piece: each triangle, each occupied leaf; docs/fcl_integration.md §9):
@@ -44,7 +47,12 @@
 ///
 /// Transforms overload: the motions are built as fcl::continuousCollide builds them from
 /// request.ccd_motion_type (CCDM_TRANS: TranslationMotion, which keeps tf_beg's rotation;
-/// CCDM_LINEAR: InterpMotion; CCDM_SCREW: ScrewMotion; CCDM_SPLINE: SplineMotion). For
+/// CCDM_LINEAR: InterpMotion; CCDM_SCREW: ScrewMotion). CCDM_SPLINE throws: FCL 0.7's
+/// SplineMotion(tf1, tf2) leaves its control points uninitialised (pass SplineMotion objects built
+/// from control points to the motion overload). CCDM_SCREW is FCL's ScrewMotion(tf1, tf2)
+/// unchanged, including its pure translation (no rotation): the axis is then T2 - T1 unnormalised
+/// and the speed |T2 - T1|, so the motion runs |T2 - T1| times past tf_end (a unit-length move
+/// ends at tf_end; a move of 3 ends 9 away). For
 /// ellipsoid pairs the InterpMotion is built with its reference point at the body origin (FCL's
 /// InterpMotion(tf1, tf2) constructor leaves the reference point uninitialised). FCL's
 /// CCDM_LINEAR is not a rational motion (it rotates at constant angular velocity about a fixed
@@ -57,7 +65,9 @@
 /// before reusing it there.
 ///
 /// Bad input throws std::invalid_argument naming the argument: a null geometry, object or
-/// motion, a non-finite transform, a motion whose pose at some visited time is not finite, a
+/// motion, a non-finite transform, a transforms-overload pose that is not rigid or lies beyond
+/// +-1e100, a delegated pair's CCDC_NAIVE request with num_max_iterations < 2 (FCL samples
+/// t = i / (n - 1)), a motion whose pose at some visited time is not finite, a
 /// non-rigid RationalMotion on a pair that is not ellipsoid/sphere, and CCDC_POLYNOMIAL_SOLVER
 /// with a motion that is not an fcl::TranslationMotion (FCL would reinterpret it as one); and
 /// CcdDegreeError (a std::invalid_argument) for RationalMotions of a degree the continuous
