@@ -117,11 +117,12 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
     const double scale = ba->halfWidth().norm() + bb->halfWidth().norm() + (ca - cb).norm();
     return refineNearestPoints(wa, wb, pa, pb, scale);
   };
-  auto setDistance = [&](double distance, const Eigen::Vector3d& pa, const Eigen::Vector3d& pb) {
+  auto setDistance = [&](double distance, const Eigen::Vector3d& pa, const Eigen::Vector3d& pb,
+                         const Eigen::Vector3d& normal) {
     report.signed_distance = distance;
     report.point_a = pa;
     report.point_b = pb;
-    report.normal = (pb - pa) / distance;
+    report.normal = normal;
     if (const std::optional<NearestPoints> r = refinedDistance(pa, pb); r && r->distance < distance) {
       report.signed_distance = r->distance;
       report.point_a = r->point_a;
@@ -157,7 +158,7 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
         report.point_a = d.point_a;
         report.point_b = d.point_b;
         report.normal = d.normal;
-        if (d.status == Separation::Separated) setDistance(d.distance, d.point_a, d.point_b);
+        if (d.status == Separation::Separated) setDistance(d.distance, d.point_a, d.point_b, d.normal);
         return report;
       }
     }
@@ -189,7 +190,7 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
       };
       const RegionDistanceResult r = regionDistance(operand(ra, *ba, sa, a.pose), operand(rb, *bb, sb, b.pose));
       if (r.status == RegionDistanceResult::Status::Separated && r.distance > 0.0) {
-        setDistance(r.distance, r.point_a, r.point_b);
+        setDistance(r.distance, r.point_a, r.point_b, (r.point_b - r.point_a) / r.distance);
         return report;
       }
       // Within the search's stopping gap of contact (its status Contact, though the engine

@@ -2,7 +2,6 @@
 // instantiates no FCL traversal or function matrix (those live in collision.cpp / distance.cpp).
 #include "fcl_quadric/fcl/quadric_solver.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>

@@ -5,9 +5,9 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
-#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -24,7 +24,6 @@ struct Atom {
   Eigen::Matrix3d A;
   Eigen::Vector3d b;
   double c = 0.0;
-  int index = 0;  ///< in signedAtoms()
   double value(const Eigen::Vector3d& x) const { return x.dot(A * x) + 2.0 * b.dot(x) + c; }
   Eigen::Vector3d gradient(const Eigen::Vector3d& x) const { return 2.0 * (A * x + b); }
 };
@@ -37,9 +36,8 @@ std::optional<Atom> scaledAtom(const std::vector<Eigen::Matrix4d>& atoms, int k,
   t.A = Q.topLeftCorner<3, 3>();
   t.b = Q.topRightCorner<3, 1>();
   t.c = Q(3, 3);
-  t.index = k;
   const double gn = t.gradient(x).norm();
-  if (!(gn > 0.0) || !std::isfinite(gn)) return std::nullopt;
+  if (!std::isfinite(gn) || !(gn > 0.0)) return std::nullopt;
   const double s = 1.0 / gn;
   t.A *= s;
   t.b *= s;
@@ -86,11 +84,6 @@ int mostViolated(const std::vector<Eigen::Matrix4d>& atoms, const std::vector<in
   return worst;
 }
 
-/// Newton's method on the KKT system of min |x - y| with the given active surfaces
-/// (nearest_points.h; the distance itself, not its square, is the objective: its multipliers stay
-/// O(1) as the gap closes, where those of |x - y|^2 / 2 vanish with it and the joint sliding of
-/// both points along the surfaces, the system's weakest direction, would be determined only to
-/// rounding / gap). On success x, y, lambda, mu hold the solution.
 /// p moved onto the surfaces of `atoms` (Gauss-Newton, minimal-norm steps, quadratically
 /// convergent: two or three take a point within a Newton step's O(step^2) of them to rounding;
 /// at most kProjectionSteps). Newton's steps move along the
@@ -123,6 +116,11 @@ struct KktRun {
   int steps = 0;
 };
 
+/// Newton's method on the KKT system of min |x - y| with the given active surfaces, from (x, y)
+/// (nearest_points.h; the distance itself, not its square, is the objective: its multipliers stay
+/// O(1) as the gap closes, where those of |x - y|^2 / 2 vanish with it and the joint sliding of
+/// both points along the surfaces, the system's weakest direction, would be determined only to
+/// rounding / gap).
 KktRun solveKkt(const std::vector<Atom>& ga, const std::vector<Atom>& hb, const QuadricRegion& a, const QuadricRegion& b,
                 Eigen::Vector3d x, Eigen::Vector3d y, double scale) {
   using Outcome = KktRun::Outcome;
