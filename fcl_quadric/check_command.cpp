@@ -111,10 +111,12 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
   // contact (session 35: a cylinder 1e-7 from an ellipsoid was reported 2.2e-3 too far, and at
   // 1e-8 without a distance). The refined pair replaces theirs when it is closer; nullopt when
   // Newton's method gives nothing certain (the caller's pair stands).
+  // (Copies: a C++17 lambda cannot capture the structured bindings ba, bb.)
+  const std::optional<Box3> box_a = ba, box_b = bb;
   auto refinedDistance = [&](const Eigen::Vector3d& pa, const Eigen::Vector3d& pb) -> std::optional<NearestPoints> {
-    if (!ba || !bb) return std::nullopt;
-    const Eigen::Vector3d ca = a.pose * ba->center(), cb = b.pose * bb->center();
-    const double scale = ba->halfWidth().norm() + bb->halfWidth().norm() + (ca - cb).norm();
+    if (!box_a || !box_b) return std::nullopt;
+    const Eigen::Vector3d ca = a.pose * box_a->center(), cb = b.pose * box_b->center();
+    const double scale = box_a->halfWidth().norm() + box_b->halfWidth().norm() + (ca - cb).norm();
     return refineNearestPoints(wa, wb, pa, pb, scale);
   };
   auto setDistance = [&](double distance, const Eigen::Vector3d& pa, const Eigen::Vector3d& pb,
