@@ -182,12 +182,14 @@ TEST(CylinderConePair, NearTangentPairsAreCertifiedAndStockFclIsCounted) {
   }
 }
 
-TEST(CylinderConePair, SphereCylinderIsExactAndBadInputNamesTheOperand) {
-  // (Sphere, Cylinder) goes to the ellipsoid kernel, as (Sphere, Capsule) / Box / Cone do (the
-  // sphere an ellipsoid of equal radii; session 35).
-  static_assert(detail::QuadricPair<fcl::Sphered, fcl::Cylinderd>::kind == detail::QuadricPairKind::kEllipsoidCylinder, "");
-  static_assert(!detail::QuadricPair<fcl::Sphered, fcl::Cylinderd>::swapped, "");
-  static_assert(detail::QuadricPair<fcl::Sphered, fcl::Sphered>::kind == detail::QuadricPairKind::kSphereSphere, "");
+TEST(CylinderConePair, SpherePairsRouteAndBadInputNamesTheOperand) {
+  // (Sphere, Cylinder): FCL's closed forms for collision and distance, the ellipsoid kernel for
+  // the signed distance, as (Sphere, Sphere / Box / Capsule); (Sphere, Cone) the ellipsoid kernel
+  // throughout (session 35).
+  static_assert(detail::QuadricPair<fcl::Sphered, fcl::Cylinderd>::kind == detail::QuadricPairKind::kSphereClosedForm, "");
+  static_assert(detail::QuadricPair<fcl::Cylinderd, fcl::Sphered>::swapped, "");
+  static_assert(detail::QuadricPair<fcl::Sphered, fcl::Sphered>::kind == detail::QuadricPairKind::kSphereClosedForm, "");
+  static_assert(detail::QuadricPair<fcl::Sphered, fcl::Coned>::kind == detail::QuadricPairKind::kEllipsoidCone, "");
   static_assert(detail::QuadricPair<fcl::Coned, fcl::Ellipsoidd>::kind == detail::QuadricPairKind::kEllipsoidCone, "");
   static_assert(detail::QuadricPair<fcl::Coned, fcl::Ellipsoidd>::swapped, "");
   const QuadricSolverd solver;

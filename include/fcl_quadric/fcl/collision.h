@@ -6,7 +6,8 @@
 /// Same overloads and meaning as fcl::collide in <fcl/narrowphase/collision.h>; the call is routed
 /// through FCL's CollisionFunctionMatrix instantiated for QuadricSolver<double> (src/fcl/collision.cpp),
 /// so shapes, BVH meshes and OcTrees work as with FCL. Differences from fcl::collide:
-///  - the narrow phase is QuadricSolver<S> (exact ellipsoid/sphere pairs, libccd for the rest)
+///  - the narrow phase is QuadricSolver<S> (exact pairs with an ellipsoid or a sphere, libccd for
+///    the rest; quadric_solver.h's table)
 ///    whatever request.gjk_solver_type says; its libccd fallback gets
 ///    collision_tolerance = request.gjk_tolerance, as fcl::collide does for GST_LIBCCD;
 ///  - bad input throws std::invalid_argument instead of crashing: a null object or geometry

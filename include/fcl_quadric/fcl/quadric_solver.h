@@ -70,22 +70,21 @@ enum class QuadricPairKind {
   /// fcl_quadric::Ellipsoid (a sphere is an ellipsoid with equal radii) and answered by
   /// classifyEllipsoids / signedDistance.
   kEllipsoidEllipsoid,
-  /// fcl::Sphere x fcl::Sphere: collision and unsigned distance are FCL's closed forms (exact up
-  /// to rounding, and cheaper than the ellipsoid kernel); the signed distance is the ellipsoid
-  /// kernel's. libccd's EPA, which FCL 0.7 runs for it, gave +1e-6 for spheres overlapping by
-  /// 1e-9, and aborted inside libccd with distance_tolerance = 1e-12 (session 35, an audit).
-  kSphereSphere,
+  /// fcl::Sphere x fcl::Sphere / Box / Capsule / Cylinder (both orders): collision and unsigned
+  /// distance are FCL's closed forms (sphere_*-inl.h: exact up to rounding, ~50-120 ns, where the
+  /// ellipsoid kernels take 0.2-25 us); the signed distance is the ellipsoid kernels' (the sphere
+  /// an ellipsoid of equal radii). libccd's EPA, which FCL 0.7 runs for it, was off by up to 6e-5
+  /// of the scale, gave +1e-6 for two spheres overlapping by 1e-9, and aborted inside libccd with
+  /// distance_tolerance = 1e-12 (session 35, an audit).
+  kSphereClosedForm,
   /// fcl::Ellipsoid x fcl::Plane (both orders): classifyEllipsoidPlane (seed Theorem 13 /
   /// Corollary 14) and the support function; contacts as FCL's ellipsoidPlaneIntersect.
   kEllipsoidPlane,
   /// fcl::Ellipsoid x fcl::Halfspace (both orders): ellipsoidHalfspace; contacts as FCL's
   /// ellipsoidHalfspaceIntersect.
   kEllipsoidHalfspace,
-  /// fcl::Ellipsoid or fcl::Sphere x fcl::Box (both orders; OcTree leaves are (Box, Ellipsoid)):
-  /// classifyEllipsoidBox / signedDistanceEllipsoidBox. The sphere pairs of this kind and of the
-  /// capsule, cylinder and cone kinds below went to libccd until session 35: its signed distances
-  /// were off by up to 6e-5 of the scale, and sphere-cone collisions missed overlaps of 1e-9-1e-6
-  /// (an audit).
+  /// fcl::Ellipsoid x fcl::Box (both orders; OcTree leaves are (Box, Ellipsoid)):
+  /// classifyEllipsoidBox / signedDistanceEllipsoidBox.
   kEllipsoidBox,
   /// fcl::Ellipsoid x fcl::Capsule (both orders): signedDistanceEllipsoidCapsule (the segment's
   /// exact classification and signed distance, minus the radius).
@@ -93,6 +92,9 @@ enum class QuadricPairKind {
   /// fcl::Ellipsoid x fcl::Cylinder / fcl::Cone (both orders): signedDistanceEllipsoidCylinder /
   /// signedDistanceEllipsoidCone (ellipsoid_cylinder.h: certified status, exact signed distance).
   kEllipsoidCylinder,
+  /// ... and fcl::Sphere x fcl::Cone too: FCL 0.7 has no closed form for it, and libccd's GJK
+  /// missed overlaps of 1e-9-1e-6 of the size (session 35, an audit). ~22 us against libccd's
+  /// 0.3 us: the price of not missing.
   kEllipsoidCone,
   /// fcl::Ellipsoid or fcl::Sphere x fcl::Convex (both orders): classifyEllipsoidConvex (the
   /// centre inside every face plane, or a face's fan triangle met: classifyEllipsoidTriangle) /
@@ -164,10 +166,10 @@ FCL_QUADRIC_PAIR_BOTH_ORDERS(Ellipsoid, Cylinder, kEllipsoidCylinder)
 FCL_QUADRIC_PAIR_BOTH_ORDERS(Ellipsoid, Cone, kEllipsoidCone)
 FCL_QUADRIC_PAIR_BOTH_ORDERS(Ellipsoid, Convex, kEllipsoidConvex)
 FCL_QUADRIC_PAIR_BOTH_ORDERS(Sphere, Convex, kEllipsoidConvex)
-FCL_QUADRIC_PAIR_SYMMETRIC(Sphere, Sphere, kSphereSphere)
-FCL_QUADRIC_PAIR_BOTH_ORDERS(Sphere, Box, kEllipsoidBox)
-FCL_QUADRIC_PAIR_BOTH_ORDERS(Sphere, Capsule, kEllipsoidCapsule)
-FCL_QUADRIC_PAIR_BOTH_ORDERS(Sphere, Cylinder, kEllipsoidCylinder)
+FCL_QUADRIC_PAIR_SYMMETRIC(Sphere, Sphere, kSphereClosedForm)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Sphere, Box, kSphereClosedForm)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Sphere, Capsule, kSphereClosedForm)
+FCL_QUADRIC_PAIR_BOTH_ORDERS(Sphere, Cylinder, kSphereClosedForm)
 FCL_QUADRIC_PAIR_BOTH_ORDERS(Sphere, Cone, kEllipsoidCone)
 // Shapes answered against planes and half-spaces by their support functions.
 FCL_QUADRIC_PAIR_BOTH_ORDERS(Sphere, Plane, kSupportPlane)
@@ -627,7 +629,7 @@ class QuadricSolver {
     detail::checkTransform(tf2, "tf2");
     using Pair = detail::QuadricPair<Shape1, Shape2>;
     if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd || Pair::kind == detail::QuadricPairKind::kSupportPlane ||
-                  Pair::kind == detail::QuadricPairKind::kPlanePlane || Pair::kind == detail::QuadricPairKind::kSphereSphere) {
+                  Pair::kind == detail::QuadricPairKind::kPlanePlane || Pair::kind == detail::QuadricPairKind::kSphereClosedForm) {
       return libccd_.shapeIntersect(s1, tf1, s2, tf2, contacts);  // FCL's closed forms
     } else if constexpr (Pair::kind == detail::QuadricPairKind::kSupportPlaneExact) {
       S dist = 0;
@@ -712,7 +714,7 @@ class QuadricSolver {
     detail::checkTransform(tf1, "tf1");
     detail::checkTransform(tf2, "tf2");
     using Pair = detail::QuadricPair<Shape1, Shape2>;
-    if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd || Pair::kind == detail::QuadricPairKind::kSphereSphere) {
+    if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd || Pair::kind == detail::QuadricPairKind::kSphereClosedForm) {
       return libccd_.shapeDistance(s1, tf1, s2, tf2, dist, p1, p2);
     } else if constexpr (Pair::kind == detail::QuadricPairKind::kSupportPlane ||
                          Pair::kind == detail::QuadricPairKind::kSupportPlaneExact) {
@@ -758,7 +760,7 @@ class QuadricSolver {
           "and its GJK segfaults on them)");
     } else {
       static_assert(isShapePairKind(Pair::kind) || Pair::kind == detail::QuadricPairKind::kQuadricShape ||
-                        Pair::kind == detail::QuadricPairKind::kSphereSphere,
+                        Pair::kind == detail::QuadricPairKind::kSphereClosedForm,
                     "QuadricSolver::shapeSignedDistance: unhandled pair kind");
       detail::ExactDistance d;
       bool separated;
