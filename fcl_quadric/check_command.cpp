@@ -119,18 +119,19 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
     const double scale = box_a->halfWidth().norm() + box_b->halfWidth().norm() + (ca - cb).norm();
     return refineNearestPoints(wa, wb, pa, pb, scale);
   };
+  auto useRefined = [&](const NearestPoints& r) {
+    report.signed_distance = r.distance;
+    report.point_a = r.point_a;
+    report.point_b = r.point_b;
+    report.normal = (r.point_b - r.point_a) / r.distance;
+  };
   auto setDistance = [&](double distance, const Eigen::Vector3d& pa, const Eigen::Vector3d& pb,
                          const Eigen::Vector3d& normal) {
     report.signed_distance = distance;
     report.point_a = pa;
     report.point_b = pb;
     report.normal = normal;
-    if (const std::optional<NearestPoints> r = refinedDistance(pa, pb); r && r->distance < distance) {
-      report.signed_distance = r->distance;
-      report.point_a = r->point_a;
-      report.point_b = r->point_b;
-      report.normal = (r->point_b - r->point_a) / r->distance;
-    }
+    if (const std::optional<NearestPoints> r = refinedDistance(pa, pb); r && r->distance < distance) useRefined(*r);
   };
   // Convex pairs and unions of convex solids (both bounded, exact convex covers; docs/algorithms.md
   // section 12) also get the signed distance with witness points and normal, when GJK / EPA
@@ -200,10 +201,7 @@ PairReport quadricRegionReport(const SceneObject& a, const SceneObject& b) {
       // witnesses (otherwise none: the search's own bounds are too loose to report).
       if (r.distance > 0.0) {
         if (const std::optional<NearestPoints> n = refinedDistance(r.point_a, r.point_b)) {
-          report.signed_distance = n->distance;
-          report.point_a = n->point_a;
-          report.point_b = n->point_b;
-          report.normal = (n->point_b - n->point_a) / n->distance;
+          useRefined(*n);
           return report;
         }
       }

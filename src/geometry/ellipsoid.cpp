@@ -55,13 +55,6 @@ namespace {
   throw std::invalid_argument(os.str());
 }
 
-[[noreturn, gnu::cold, gnu::noinline]] void throwCentreOutOfRange(const Eigen::Vector3d& p) {
-  std::ostringstream os;
-  os << "ellipsoid centre coordinates must be within +-" << tolerance::kMaxLength << ", got [" << p.transpose()
-     << "]";
-  throw std::invalid_argument(os.str());
-}
-
 }  // namespace
 
 namespace detail {
@@ -164,10 +157,7 @@ Ellipsoid::Ellipsoid(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE, 
       throwBadRadius(radii, i);
   }
   pose_.leftCols<3>() = detail::storedRotation(R_WE, "ellipsoid rotation");  // the pre-tests' supports need it
-  detail::checkFinite(p_WE, "ellipsoid centre");
-  if (!(std::fabs(p_WE[0]) <= tolerance::kMaxLength && std::fabs(p_WE[1]) <= tolerance::kMaxLength &&
-        std::fabs(p_WE[2]) <= tolerance::kMaxLength))
-    throwCentreOutOfRange(p_WE);
+  detail::checkPosition(p_WE, "ellipsoid centre");
   pose_.col(3) = p_WE;
   shape_[3] = std::fabs(p_WE[0]) + std::fabs(p_WE[1]) + std::fabs(p_WE[2]) + radii[0] + radii[1] + radii[2];
 }

@@ -420,10 +420,8 @@ ConvexFeatures convexFeatures(const ConvexPolytope& P) {
   return f;
 }
 
-}  // namespace
-
-EllipsoidPolytopeResult classifyEllipsoidConvex(const Ellipsoid& e, const ConvexPolytope& P) {
-  const ConvexFeatures f = convexFeatures(P);
+/// classifyEllipsoidConvex() on P's validated features.
+EllipsoidPolytopeResult classifyConvex(const Ellipsoid& e, const ConvexPolytope& P, const ConvexFeatures& f) {
   // The centre strictly inside every face plane (by more than the rounding of n.(c - v), a few
   // eps of |n||c - v|: 2^-40 of the coordinates' scale, as the triangles' band).
   const Eigen::Vector3d c = e.center();
@@ -454,9 +452,15 @@ EllipsoidPolytopeResult classifyEllipsoidConvex(const Ellipsoid& e, const Convex
   return best;
 }
 
+}  // namespace
+
+EllipsoidPolytopeResult classifyEllipsoidConvex(const Ellipsoid& e, const ConvexPolytope& P) {
+  return classifyConvex(e, P, convexFeatures(P));  // (convexFeatures validates)
+}
+
 SignedDistanceResult signedDistanceEllipsoidConvex(const Ellipsoid& e, const ConvexPolytope& P) {
-  const EllipsoidPolytopeResult c = classifyEllipsoidConvex(e, P);  // validates
-  const ConvexFeatures f = convexFeatures(P);
+  const ConvexFeatures f = convexFeatures(P);  // validates
+  const EllipsoidPolytopeResult c = classifyConvex(e, P, f);
   const std::unique_ptr<int[][2]> edges(new int[f.edges.size() + 1][2]);
   for (std::size_t k = 0; k < f.edges.size(); ++k) {
     edges[k][0] = f.edges[k][0];

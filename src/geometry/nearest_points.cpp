@@ -45,21 +45,21 @@ std::optional<Atom> scaledAtom(const std::vector<Eigen::Matrix4d>& atoms, int k,
   return t;
 }
 
-/// |g| / |grad g| at x for atom k (infinite where the gradient vanishes).
-double surfaceDistance(const Eigen::Matrix4d& Q, const Eigen::Vector3d& x) {
+/// g(x) / |grad g(x)| for the atom Q: to first order the signed distance from x to its surface
+/// (> 0 on the side the model excludes); nullopt where the gradient vanishes.
+std::optional<double> surfaceOffset(const Eigen::Matrix4d& Q, const Eigen::Vector3d& x) {
   const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
-  const Eigen::Vector3d grad = 2.0 * (Q.topLeftCorner<3, 3>() * x + Q.topRightCorner<3, 1>());
-  const double gn = grad.norm();
-  return gn > 0.0 ? std::fabs(X.dot(Q * X)) / gn : std::numeric_limits<double>::infinity();
+  const double gn = 2.0 * (Q.topLeftCorner<3, 3>() * x + Q.topRightCorner<3, 1>()).norm();
+  if (!(gn > 0.0)) return std::nullopt;
+  return X.dot(Q * X) / gn;
 }
 
 /// The atoms whose surfaces pass within `band` of x, nearest first, at most three.
 std::vector<int> activeAtoms(const std::vector<Eigen::Matrix4d>& atoms, const Eigen::Vector3d& x, double band) {
   std::vector<std::pair<double, int>> near;
-  for (std::size_t k = 0; k < atoms.size(); ++k) {
-    const double s = surfaceDistance(atoms[k], x);
-    if (s <= band) near.emplace_back(s, static_cast<int>(k));
-  }
+  for (std::size_t k = 0; k < atoms.size(); ++k)
+    if (const std::optional<double> o = surfaceOffset(atoms[k], x); o && std::fabs(*o) <= band)
+      near.emplace_back(std::fabs(*o), static_cast<int>(k));
   std::sort(near.begin(), near.end());
   std::vector<int> out;
   for (std::size_t i = 0; i < near.size() && i < 3; ++i) out.push_back(near[i].second);
@@ -72,12 +72,8 @@ int mostViolated(const std::vector<Eigen::Matrix4d>& atoms, const std::vector<in
   double excess = 0.0;
   for (std::size_t k = 0; k < atoms.size(); ++k) {
     if (std::find(active.begin(), active.end(), static_cast<int>(k)) != active.end()) continue;
-    const Eigen::Matrix4d& Q = atoms[k];
-    const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
-    const double gn = 2.0 * (Q.topLeftCorner<3, 3>() * x + Q.topRightCorner<3, 1>()).norm();
-    const double e = gn > 0.0 ? X.dot(Q * X) / gn : 0.0;
-    if (e > excess) {
-      excess = e;
+    if (const std::optional<double> o = surfaceOffset(atoms[k], x); o && *o > excess) {
+      excess = *o;
       worst = static_cast<int>(k);
     }
   }

@@ -114,7 +114,7 @@ double unitFrameRounding(const Ellipsoid& e, double world_l1);
 void checkFinite(const Eigen::Vector3d& v, const char* what);
 /// checkFinite(v, what), then throws std::invalid_argument("<what> coordinates must be within
 /// +-1e+100, ...") unless every |v_i| <= tolerance::kMaxLength: the range of positions every
-/// solid's tests are exact in (as the Ellipsoid constructor requires of its centre). Beyond it
+/// solid's tests are exact in (the Ellipsoid constructor's check of its centre). Beyond it
 /// their products overflow; a box 1e300 away was reported colliding with an ellipsoid at the
 /// origin (session 35, an audit).
 void checkPosition(const Eigen::Vector3d& v, const char* what);
