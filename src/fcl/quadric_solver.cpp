@@ -14,6 +14,7 @@
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/geometry/signed_distance.h"
+#include "fcl_quadric/geometry/sphere_solid.h"
 
 namespace fcl_quadric {
 namespace detail {
@@ -82,7 +83,12 @@ bool distanceEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactDistance* o
 }
 
 bool signedDistanceEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactDistance* out) {
-  const SignedDistanceResult d = signedDistance(a, b);
+  // Two spheres: b is a capsule of length 0 (sphere_solid.h), |c_b - c_a| - r_a - r_b in closed
+  // form (the general Newton search takes ~1 us).
+  const SignedDistanceResult d =
+      isSphere(a) && isSphere(b)
+          ? signedDistanceSphereCapsule(a.center(), a.radii()[0], b.radii()[0], 0.0, Eigen::Matrix3d::Identity(), b.center())
+          : signedDistance(a, b);
   out->distance = d.distance;
   out->p1 = d.point_a;
   out->p2 = d.point_b;
@@ -475,12 +481,34 @@ bool signedDistanceFrom(const SignedDistanceResult& d, ExactDistance* out) {
 
 }  // namespace
 
+// A sphere against a box, a triangle or a convex: the closed form (sphere_solid.h) answers all three
+// queries, so that its status decides them all (the ellipsoid kernels' classification and
+// signed distance are separate computations).
+namespace {
+
+/// One certified kernel answering all three queries: its status decides each.
+bool intersectFrom(const SignedDistanceResult& d, ExactContact* contact) {
+  if (!contact) return d.status != Separation::Separated;
+  return contactFrom(d, contact);
+}
+
+bool unsignedDistanceFrom(const SignedDistanceResult& d, ExactDistance* out) {
+  if (d.status == Separation::Separated) return signedDistanceFrom(d, out);
+  out->distance = -1.0;  // libccd's convention for overlapping pairs
+  out->p1 = out->p2 = 0.5 * (d.point_a + d.point_b);
+  return false;
+}
+
+}  // namespace
+
 bool exactIntersect(const Ellipsoid& e, const WorldBox& b, ExactContact* contact) {
+  if (isSphere(e)) return intersectFrom(signedDistanceEllipsoidBox(e, b.half, b.R, b.p), contact);
   if (!contact) return ellipsoidBoxStatus(e, b.half, b.R, b.p) != Separation::Separated;
   return contactFrom(signedDistanceEllipsoidBox(e, b.half, b.R, b.p), contact);
 }
 
 bool exactDistance(const Ellipsoid& e, const WorldBox& b, ExactDistance* out) {
+  if (isSphere(e)) return unsignedDistanceFrom(signedDistanceEllipsoidBox(e, b.half, b.R, b.p), out);
   const EllipsoidPolytopeResult cert = classifyEllipsoidBox(e, b.half, b.R, b.p);
   if (cert.status == Separation::Overlapping) return distanceFrom(cert, nullptr, out);
   const SignedDistanceResult d = signedDistanceEllipsoidBox(e, b.half, b.R, b.p);
@@ -510,21 +538,6 @@ bool exactSignedDistance(const Ellipsoid& e, const WorldCapsule& c, ExactDistanc
 }
 
 // Cylinder and cone: one certified kernel answers all three queries (as for the capsule).
-namespace {
-
-bool intersectFrom(const SignedDistanceResult& d, ExactContact* contact) {
-  if (!contact) return d.status != Separation::Separated;
-  return contactFrom(d, contact);
-}
-
-bool unsignedDistanceFrom(const SignedDistanceResult& d, ExactDistance* out) {
-  if (d.status == Separation::Separated) return signedDistanceFrom(d, out);
-  out->distance = -1.0;  // libccd's convention for overlapping pairs
-  out->p1 = out->p2 = 0.5 * (d.point_a + d.point_b);
-  return false;
-}
-
-}  // namespace
 
 bool exactIntersect(const Ellipsoid& e, const WorldCylinder& c, ExactContact* contact) {
   return intersectFrom(signedDistanceEllipsoidCylinder(e, c.radius, c.length, c.R, c.p), contact);
@@ -547,11 +560,13 @@ bool exactSignedDistance(const Ellipsoid& e, const WorldCone& c, ExactDistance* 
 }
 
 bool exactIntersect(const Ellipsoid& e, const WorldConvex& P, ExactContact* contact) {
+  if (isSphere(e)) return intersectFrom(signedDistanceEllipsoidConvex(e, P), contact);
   if (!contact) return classifyEllipsoidConvex(e, P).status != Separation::Separated;
   return contactFrom(signedDistanceEllipsoidConvex(e, P), contact);
 }
 
 bool exactDistance(const Ellipsoid& e, const WorldConvex& P, ExactDistance* out) {
+  if (isSphere(e)) return unsignedDistanceFrom(signedDistanceEllipsoidConvex(e, P), out);
   const EllipsoidPolytopeResult cert = classifyEllipsoidConvex(e, P);
   if (cert.status == Separation::Overlapping) return distanceFrom(cert, nullptr, out);
   const SignedDistanceResult d = signedDistanceEllipsoidConvex(e, P);
@@ -563,11 +578,13 @@ bool exactSignedDistance(const Ellipsoid& e, const WorldConvex& P, ExactDistance
 }
 
 bool exactIntersect(const Ellipsoid& e, const WorldTriangle& t, ExactContact* contact) {
+  if (isSphere(e)) return intersectFrom(signedDistanceEllipsoidTriangle(e, t.a, t.b, t.c), contact);
   if (!contact) return classifyEllipsoidTriangle(e, t.a, t.b, t.c).status != Separation::Separated;
   return contactFrom(signedDistanceEllipsoidTriangle(e, t.a, t.b, t.c), contact);
 }
 
 bool exactDistance(const Ellipsoid& e, const WorldTriangle& t, ExactDistance* out) {
+  if (isSphere(e)) return unsignedDistanceFrom(signedDistanceEllipsoidTriangle(e, t.a, t.b, t.c), out);
   const EllipsoidPolytopeResult cert = classifyEllipsoidTriangle(e, t.a, t.b, t.c);
   if (cert.status == Separation::Overlapping) return distanceFrom(cert, nullptr, out);
   const SignedDistanceResult d = signedDistanceEllipsoidTriangle(e, t.a, t.b, t.c);

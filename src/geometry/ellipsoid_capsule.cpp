@@ -6,12 +6,14 @@
 #include <stdexcept>
 
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
+#include "fcl_quadric/geometry/sphere_solid.h"
 #include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
 
 SignedDistanceResult signedDistanceEllipsoidCapsule(const Ellipsoid& e, double radius, double length,
                                                     const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
+  if (isSphere(e)) return signedDistanceSphereCapsule(e.center(), e.radii()[0], radius, length, R_WC, p_WC);
   for (const auto& [what, v] : {std::pair<const char*, double>{"radius", radius}, {"length", length}}) {
     if (!std::isfinite(v) || !(v >= 0.0)) {
       std::ostringstream os;

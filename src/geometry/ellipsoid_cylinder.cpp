@@ -12,6 +12,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "fcl_quadric/geometry/point_ellipsoid.h"
+#include "fcl_quadric/geometry/sphere_solid.h"
 #include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
@@ -516,6 +517,7 @@ RoundSolid validated(const char* what, const Ellipsoid& e, double radius, double
 
 SignedDistanceResult signedDistanceEllipsoidCylinder(const Ellipsoid& e, double radius, double length,
                                                      const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
+  if (isSphere(e)) return signedDistanceSphereCylinder(e.center(), e.radii()[0], radius, length, R_WC, p_WC);
   RoundSolid k = validated("cylinder", e, radius, length, R_WC, p_WC);
   k.r[0] = k.r[1] = radius;
   return solve(e, k);
@@ -523,6 +525,7 @@ SignedDistanceResult signedDistanceEllipsoidCylinder(const Ellipsoid& e, double 
 
 SignedDistanceResult signedDistanceEllipsoidCone(const Ellipsoid& e, double radius, double length,
                                                  const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
+  if (isSphere(e)) return signedDistanceSphereCone(e.center(), e.radii()[0], radius, length, R_WC, p_WC);
   RoundSolid k = validated("cone", e, radius, length, R_WC, p_WC);
   k.r[0] = radius;  // base at z = -L/2
   k.r[1] = 0.0;     // apex at z = +L/2

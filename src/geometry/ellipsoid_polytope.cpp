@@ -15,6 +15,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "fcl_quadric/geometry/point_ellipsoid.h"
+#include "fcl_quadric/geometry/sphere_solid.h"
 #include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
@@ -339,6 +340,7 @@ SignedDistanceResult polytopeSignedDistance(const Ellipsoid& e, const PolytopeDa
 
 SignedDistanceResult signedDistanceEllipsoidBox(const Ellipsoid& e, const Eigen::Vector3d& half_extents,
                                                 const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_WB) {
+  if (isSphere(e)) return signedDistanceSphereBox(e.center(), e.radii()[0], half_extents, R_WB, p_WB);
   const EllipsoidPolytopeResult c = classifyEllipsoidBox(e, half_extents, R_WB, p_WB);  // validates
   Eigen::Vector3d v[8];
   for (int i = 0; i < 8; ++i)
@@ -353,6 +355,7 @@ SignedDistanceResult signedDistanceEllipsoidBox(const Ellipsoid& e, const Eigen:
 
 SignedDistanceResult signedDistanceEllipsoidTriangle(const Ellipsoid& e, const Eigen::Vector3d& a,
                                                      const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  if (isSphere(e)) return signedDistanceSphereTriangle(e.center(), e.radii()[0], a, b, c);
   const EllipsoidPolytopeResult cl = classifyEllipsoidTriangle(e, a, b, c);  // validates
   const Eigen::Vector3d v[3] = {a, b, c};
   static const int edges[3][2] = {{0, 1}, {1, 2}, {2, 0}};
@@ -452,6 +455,55 @@ EllipsoidPolytopeResult classifyConvex(const Ellipsoid& e, const ConvexPolytope&
   return best;
 }
 
+/// A sphere (centre c, radius r) against P in closed form (docs/algorithms.md §12d): the centre's
+/// signed distance to P minus r. Inside every face plane, the nearest face plane (for a convex
+/// polytope, the distance of an interior point to its boundary); otherwise the nearest of the
+/// faces' fan triangles (signedDistanceSphereTriangle), or of the vertices when no face is given.
+SignedDistanceResult sphereConvex(const Eigen::Vector3d& c, double r, const ConvexPolytope& P, const ConvexFeatures& f) {
+  bool inside = !P.faces.empty();
+  int nearest_face = -1;
+  double depth = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < P.faces.size() && inside; ++k) {
+    const double s = f.normals[k].dot(c - P.vertices[P.faces[k][0]]);
+    inside = f.normals[k].squaredNorm() > 0.0 && s <= 0.0;
+    if (inside && s > depth) {
+      depth = s;
+      nearest_face = static_cast<int>(k);
+    }
+  }
+  SignedDistanceResult best;
+  best.converged = true;
+  if (inside) {
+    const Eigen::Vector3d& n = f.normals[nearest_face];  // outward, unit
+    best.normal = -n;                                     // toward the nearest face, from inside
+    best.point_a = c + r * best.normal;
+    best.point_b = c - depth * n;
+    // The plane tests' rounding scale, as classifyConvex's, plus the radius.
+    const double band = tolerance::kCertificateRelativeBoundDouble * (f.scale + c.cwiseAbs().maxCoeff() + r);
+    best.distance = depth - r;
+    best.status = best.distance < -band ? Separation::Overlapping : Separation::Touching;
+    if (best.status == Separation::Touching) best.distance = 0.0;
+    return best;
+  }
+  // The nearest triangle by the centre's distance (the answers' own distances are zeroed in the
+  // touching band, so they cannot rank).
+  double nearest = std::numeric_limits<double>::infinity();
+  const auto consider = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& t) {
+    const SignedDistanceResult d = signedDistanceSphereTriangle(c, r, a, b, t);
+    const double to_centre = (d.point_b - c).norm();
+    if (to_centre < nearest) {
+      nearest = to_centre;
+      best = d;
+    }
+  };
+  for (const std::vector<int>& face : P.faces)
+    for (std::size_t i = 1; i + 1 < face.size(); ++i)
+      consider(P.vertices[face[0]], P.vertices[face[i]], P.vertices[face[i + 1]]);
+  if (P.faces.empty())
+    for (const Eigen::Vector3d& v : P.vertices) consider(v, v, v);
+  return best;
+}
+
 }  // namespace
 
 EllipsoidPolytopeResult classifyEllipsoidConvex(const Ellipsoid& e, const ConvexPolytope& P) {
@@ -460,6 +512,7 @@ EllipsoidPolytopeResult classifyEllipsoidConvex(const Ellipsoid& e, const Convex
 
 SignedDistanceResult signedDistanceEllipsoidConvex(const Ellipsoid& e, const ConvexPolytope& P) {
   const ConvexFeatures f = convexFeatures(P);  // validates
+  if (isSphere(e)) return sphereConvex(e.center(), e.radii()[0], P, f);
   const EllipsoidPolytopeResult c = classifyConvex(e, P, f);
   const std::unique_ptr<int[][2]> edges(new int[f.edges.size() + 1][2]);
   for (std::size_t k = 0; k < f.edges.size(); ++k) {

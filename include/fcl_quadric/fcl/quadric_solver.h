@@ -71,11 +71,11 @@ enum class QuadricPairKind {
   /// classifyEllipsoids / signedDistance.
   kEllipsoidEllipsoid,
   /// fcl::Sphere x fcl::Sphere / Box / Capsule / Cylinder (both orders): collision and unsigned
-  /// distance are FCL's closed forms (sphere_*-inl.h: exact up to rounding, ~50-120 ns, where the
-  /// ellipsoid kernels take 0.2-25 us); the signed distance is the ellipsoid kernels' (the sphere
-  /// an ellipsoid of equal radii). libccd's EPA, which FCL 0.7 runs for it, was off by up to 6e-5
-  /// of the scale, gave +1e-6 for two spheres overlapping by 1e-9, and aborted inside libccd with
-  /// distance_tolerance = 1e-12 (session 35, an audit).
+  /// distance are FCL's closed forms (sphere_*-inl.h: exact up to rounding, ~50-120 ns); the
+  /// signed distance is fcl_quadric's closed forms (sphere_solid.h, reached through the ellipsoid
+  /// kernels, which hand them an ellipsoid of equal radii: 0.17-0.25 us). libccd's EPA, which FCL
+  /// 0.7 runs for it, was off by up to 6e-5 of the scale, gave +1e-6 for two spheres overlapping by
+  /// 1e-9, and aborted inside libccd with distance_tolerance = 1e-12 (session 35, an audit).
   kSphereClosedForm,
   /// fcl::Ellipsoid x fcl::Plane (both orders): classifyEllipsoidPlane (seed Theorem 13 /
   /// Corollary 14) and the support function; contacts as FCL's ellipsoidPlaneIntersect.
@@ -93,8 +93,8 @@ enum class QuadricPairKind {
   /// signedDistanceEllipsoidCone (ellipsoid_cylinder.h: certified status, exact signed distance).
   kEllipsoidCylinder,
   /// ... and fcl::Sphere x fcl::Cone too: FCL 0.7 has no closed form for it, and libccd's GJK
-  /// missed overlaps of 1e-9-1e-6 of the size (session 35, an audit). ~22 us against libccd's
-  /// 0.3 us: the price of not missing.
+  /// missed overlaps of 1e-9-1e-6 of the size (session 35, an audit). The kernel hands a sphere to
+  /// signedDistanceSphereCone (sphere_solid.h): ~0.24 us, as fast as libccd's boolean GJK.
   kEllipsoidCone,
   /// fcl::Ellipsoid or fcl::Sphere x fcl::Convex (both orders): classifyEllipsoidConvex (the
   /// centre inside every face plane, or a face's fan triangle met: classifyEllipsoidTriangle) /
@@ -247,7 +247,8 @@ bool distanceEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactDistance* o
 
 /// FCL's shapeSignedDistance convention: signedDistance(a, b) (negative = minus the penetration
 /// depth), p1 = point_a, p2 = point_b (for overlap: the deepest point of each inside the other,
-/// as libccd's EPA); returns false iff the distance is negative.
+/// as libccd's EPA); returns false iff the distance is negative. Two spheres (equal radii each):
+/// the closed form of sphere_solid.h instead, with its 2^-40 touching band.
 bool signedDistanceEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactDistance* out);
 
 /// Throws std::invalid_argument naming `which` and the offending transform.
