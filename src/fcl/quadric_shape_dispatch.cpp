@@ -47,6 +47,7 @@
 #include "fcl_quadric/geometry/ellipsoid.h"
 #include "fcl_quadric/geometry/ellipsoid_plane.h"
 #include "fcl_quadric/geometry/ellipsoid_quadric.h"
+#include "fcl_quadric/geometry/nearest_points.h"
 #include "fcl_quadric/geometry/quadric_region.h"
 #include "fcl_quadric/geometry/region_distance.h"
 #include "fcl_quadric/geometry/region_distance_bound.h"
@@ -901,6 +902,11 @@ std::optional<ConvexSupport> convexSupportOf(const fcl::CollisionGeometry<double
 
 namespace {
 
+/// Convex pairs (GJK) closer than this times their scale get their witnesses refined
+/// (refineNearestPoints): GJK's absolute accuracy, ~1e-13 of the scale, is then more than 1e-10
+/// of the distance.
+constexpr double kRefineConvexRelative = 1e-3;
+
 /// A convex piece posed in the world, with the FCL primitive index it reports (-1: none) and
 /// what rebuilds its region for collidePair: a primitive (the geometry itself), a triangle
 /// (vertices v[0..2], mesh frame) or an OcTree leaf (centre v[0], half widths v[1], tree frame).
@@ -974,6 +980,7 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
   };
 
   // The distance from one convex piece of the shape to the partner.
+  std::optional<QuadricRegion> shape_world;  // the shape's region posed by tfs (made on first use)
   std::vector<PosedConvex> partner_pieces;  // a convex partner's pieces (never empty once computed)
   auto fromShapePiece = [&](const PosedConvex& shape) {
     if (gp->getNodeType() == fcl::GEOM_HALFSPACE && !shape.model) {
@@ -1002,6 +1009,7 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
     auto solve = [&](const PosedConvex& piece) {
       const bool region_pair = shape.model || piece.model;
       SignedDistanceResult d;
+      double region_lower_bound = 0.0;  // the branch and bound's certified lower bound
       if (region_pair) {
         // A non-convex quadric shape: branch and bound (region_distance.h). Its "Contact" (the
         // bounds within the tolerance of 0) goes to the static collide below, as near contact.
@@ -1011,6 +1019,7 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
         d.point_b = r.point_b;
         d.converged = r.converged;
         d.iterations = r.nodes;
+        region_lower_bound = r.lower_bound;
         const bool contact = r.status == RegionDistanceResult::Status::Contact;
         d.status = contact ? Separation::Touching : Separation::Separated;
         d.distance = contact ? 0.0 : r.distance;
@@ -1019,15 +1028,19 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
                                  request.enable_signed_distance);
       }
       const double scale = shape.size() + piece.size() + (shape.p - piece.p).norm();
+      // The partner's solid this piece belongs to, in the partner's frame tfp (none for a
+      // zero-area triangle).
+      auto pieceSolid = [&]() -> std::optional<LocalSolid> {
+        if (piece.kind == PosedConvex::Primitive) return localSolid(gp, "o2", where);
+        if (piece.kind == PosedConvex::Triangle) return triangleSolid(piece.v[0], piece.v[1], piece.v[2]);
+        return LocalSolid{boxRegion(piece.v[0], piece.v[1]), Box3{piece.v[0] - piece.v[1], piece.v[0] + piece.v[1]}};
+      };
       // (An overlap certified without its depth, want_depth = false, reports distance 0: not near.)
       const bool depth_unknown = d.status == Separation::Overlapping && !request.enable_signed_distance;
       if (!depth_unknown && std::abs(d.distance) <= 1e-8 * scale) {
         fcl::CollisionRequest<double> creq(1);
         fcl::CollisionResult<double> cres;
-        std::optional<LocalSolid> b;
-        if (piece.kind == PosedConvex::Primitive) b = localSolid(gp, "o2", where);
-        else if (piece.kind == PosedConvex::Triangle) b = triangleSolid(piece.v[0], piece.v[1], piece.v[2]);
-        else b = LocalSolid{boxRegion(piece.v[0], piece.v[1]), Box3{piece.v[0] - piece.v[1], piece.v[0] + piece.v[1]}};
+        const std::optional<LocalSolid> b = pieceSolid();
         if (b) {  // (a zero-area triangle has no region: GJK's answer stands)
           const PointSearch found = collidePair(localSolid(gs, "o1", where), tfs, *b, tfp, gs, gp, creq, cres);
           if (cres.numContacts() > 0) {
@@ -1039,6 +1052,30 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
           } else {
             d.status = Separation::Separated;
             d.distance = std::max(d.distance, (d.point_b - d.point_a).norm());
+          }
+        }
+      }
+      // A separated pair's witnesses refined by Newton's method on the distance's KKT system
+      // (nearest_points.h, docs/algorithms.md §12c). The branch and bound stops at 1e-6 of the
+      // scale (a clipped hyperboloid 1e-10 from a ball was reported 2.8e-6 away), and GJK's
+      // accuracy is ~1e-13 of the scale absolute, so relative to a small gap it degrades (an
+      // elliptic cylinder's side 1e-8 from a ball: 5e-7 away, from its witnesses; session 36).
+      // The refined pair (both points certified members of the whole models) replaces its pair
+      // when closer. Only for a piece that can still become the nearest: a region pair whose
+      // certified lower bound is not above the best distance so far, a convex pair within
+      // kRefineConvexRelative of the scale of contact and not farther than the best.
+      const bool may_be_best = region_pair ? !(region_lower_bound > result.min_distance)
+                                           : d.distance <= kRefineConvexRelative * scale &&
+                                                 !(d.distance - 1e-10 * scale > result.min_distance);
+      if (d.status == Separation::Separated && d.distance > 0.0 && may_be_best) {
+        if (const std::optional<LocalSolid> b = pieceSolid()) {
+          if (!shape_world) shape_world = localSolid(gs, "o1", where).region.transformed(tfs.linear(), tfs.translation());
+          const QuadricRegion piece_world = b->region.transformed(tfp.linear(), tfp.translation());
+          const std::optional<NearestPoints> n = refineNearestPoints(*shape_world, piece_world, d.point_a, d.point_b, scale);
+          if (n && n->distance < d.distance) {
+            d.point_a = n->point_a;
+            d.point_b = n->point_b;
+            d.distance = n->distance;
           }
         }
       }
@@ -1237,7 +1274,8 @@ bool quadricShapeTriangleDistance(const fcl::CollisionGeometry<double>& s, const
   // A convex quadric shape: distanceQuadricShapes' steps for this one triangle (its solve() on a
   // triangle piece), without the one-triangle mesh: GJK / EPA on the shape's support mapping and
   // the triangle's vertices. The near-contact band, where the front door's collide decides the
-  // sign, goes the one-triangle mesh's way below.
+  // sign, and the band where it refines GJK's witnesses (kRefineConvexRelative) go the
+  // one-triangle mesh's way below.
   requireFiniteTriangle(P1, P2, P3);
   if (const ConvexSupport* convex = convexQuadricSupport(s)) {
     const ConvexSupport& shape = *convex;
@@ -1246,7 +1284,8 @@ bool quadricShapeTriangleDistance(const fcl::CollisionGeometry<double>& s, const
                                                         tf_triangle.linear(), tf_triangle.translation(), signed_distance);
     const double scale = shape.size() + piece.size() + (tf.translation() - tf_triangle.translation()).norm();
     const bool depth_unknown = d.status == Separation::Overlapping && !signed_distance;
-    if (depth_unknown || std::abs(d.distance) > 1e-8 * scale) {
+    const bool refined = d.status == Separation::Separated && d.distance <= kRefineConvexRelative * scale;
+    if (depth_unknown || (std::abs(d.distance) > 1e-8 * scale && !refined)) {
       out->distance = depth_unknown ? -1.0 : d.distance;
       out->p1 = d.point_a;
       out->p2 = d.point_b;

@@ -17,6 +17,12 @@ using namespace tolerance_nearest_points;
 
 namespace {
 
+// Fixed-capacity matrices (at most three active surfaces per model, so at most 12 unknowns): no
+// heap allocation in the iteration, whose cost it otherwise dominated.
+using Multipliers = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
+using KktVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 12, 1>;
+using KktMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 12, 12>;
+
 /// An atom g(x) = x^T A x + 2 b.x + c (<= 0 on the model's side), scaled so that its gradient at
 /// the start point has unit length: g is then the signed distance to its surface to first order,
 /// and the multipliers are O(1).
@@ -88,13 +94,32 @@ int mostViolated(const std::vector<Eigen::Matrix4d>& atoms, const std::vector<in
 Eigen::Vector3d ontoSurfaces(const std::vector<Atom>& atoms, Eigen::Vector3d p) {
   const int m = static_cast<int>(atoms.size());
   for (int step = 0; step < kProjectionSteps; ++step) {
-    Eigen::MatrixXd J(m, 3);
-    Eigen::VectorXd g(m);
+    Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 3, 3> J(m, 3);
+    Multipliers g(m);
     for (int i = 0; i < m; ++i) {
       J.row(i) = atoms[i].gradient(p).transpose();
       g[i] = atoms[i].value(p);
     }
-    const Eigen::Vector3d dp = -J.completeOrthogonalDecomposition().solve(g);
+    // The minimal-norm step -J^T (J J^T)^-1 g: through the m x m Gram matrix (Cholesky) when
+    // it is well conditioned, the usual case of independent surface normals; otherwise (normals
+    // nearly dependent) by the complete orthogonal decomposition.
+    Eigen::Vector3d dp;
+    const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3> gram = J * J.transpose();
+    const Eigen::LLT<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>> llt(gram);
+    const double diag_min = gram.diagonal().minCoeff(), diag_max = gram.diagonal().maxCoeff();
+    bool gram_ok = llt.info() == Eigen::Success && diag_min > 0.0;
+    if (gram_ok) {
+      // Cholesky's pivots bound the conditioning: a small one means nearly dependent normals.
+      for (int i = 0; i < m; ++i) {
+        const double pivot = llt.matrixLLT()(i, i);
+        gram_ok = gram_ok && pivot * pivot > 1e-8 * diag_max;
+      }
+    }
+    if (gram_ok) {
+      dp = -J.transpose() * llt.solve(g);
+    } else {
+      dp = -J.completeOrthogonalDecomposition().solve(g);
+    }
     if (!dp.allFinite()) break;
     p += dp;
     if (dp.norm() <= kStepRelative * p.norm()) break;
@@ -108,7 +133,7 @@ struct KktRun {
   Outcome outcome = Outcome::Failed;
   Eigen::Vector3d x, y;  ///< Converged: the solution; LeftA / LeftB: the last pair inside both models
   Eigen::Vector3d exit;  ///< LeftA / LeftB: the point that left its model
-  Eigen::VectorXd lambda, mu;
+  Multipliers lambda, mu;
   int steps = 0;
 };
 
@@ -158,9 +183,9 @@ KktRun solveKkt(const std::vector<Atom>& ga, const std::vector<Atom>& hb, const 
   }
   // Multipliers from the start's stationarity, in the least-squares sense.
   auto multipliers = [](const std::vector<Atom>& atoms, const Eigen::Vector3d& p, const Eigen::Vector3d& target) {
-    Eigen::MatrixXd G(3, atoms.size());
+    Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3> G(3, atoms.size());
     for (std::size_t i = 0; i < atoms.size(); ++i) G.col(static_cast<Eigen::Index>(i)) = atoms[i].gradient(p);
-    return Eigen::VectorXd(G.colPivHouseholderQr().solve(target));
+    return Multipliers(G.colPivHouseholderQr().solve(target));
   };
   double d = (x - y).norm();
   if (!std::isfinite(d) || !(d > 0.0)) return run;
@@ -177,8 +202,8 @@ KktRun solveKkt(const std::vector<Atom>& ga, const std::vector<Atom>& hb, const 
     if (!std::isfinite(d) || !(d > 0.0)) return run;
     const Eigen::Vector3d u = (x - y) / d;
     const Eigen::Matrix3d P = (Eigen::Matrix3d::Identity() - u * u.transpose()) / d;
-    Eigen::VectorXd F = Eigen::VectorXd::Zero(n);
-    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n);
+    KktVector F = KktVector::Zero(n);
+    KktMatrix J = KktMatrix::Zero(n, n);
     Eigen::Vector3d fx = u, fy = -u;
     Eigen::Matrix3d Jxx = P, Jyy = P;
     for (int i = 0; i < na; ++i) {
@@ -204,7 +229,7 @@ KktRun solveKkt(const std::vector<Atom>& ga, const std::vector<Atom>& hb, const 
     J.block<3, 3>(3, 0) = -P;
     J.block<3, 3>(3, 3) = Jyy;
     if (!F.allFinite() || !J.allFinite()) return run;
-    const Eigen::VectorXd delta = J.fullPivLu().solve(-F);
+    const KktVector delta = J.fullPivLu().solve(-F);
     if (!delta.allFinite()) return run;
     const Eigen::Vector3d dx = delta.segment<3>(0), dy = delta.segment<3>(3);
     // Damping: no step longer than kMaxStepRelative of the scale; each step is retracted onto the
@@ -301,7 +326,7 @@ std::optional<NearestPoints> refineNearestPoints(const QuadricRegion& a, const Q
     }
     // A negative multiplier: the minimum lies off that surface, on the model's side of it; the
     // surface leaves the active set and the next run starts from this solution.
-    auto mostNegative = [](const Eigen::VectorXd& m) {
+    auto mostNegative = [](const Multipliers& m) {
       Eigen::Index i = 0;
       const double v = m.minCoeff(&i);
       return v < -kNegativeMultiplier ? static_cast<int>(i) : -1;

@@ -358,5 +358,62 @@ TEST(QuadricShapeDistance, NonConvexRingMatchesClosedFormsAndAgreesWithCollide) 
   test::expectInvalid([&] { fcl_quadric::distance(&ring, I, &plane, I, req, res); }, "o2 has node type");
 }
 
+// Near contact: a ball at a known gap from a clipped one-sheet hyperboloid's waist (x^2 + y^2 -
+// z^2 <= 1, |z| <= 1: not convex, so the branch and bound answers), from a ring's outer face, and
+// from an elliptic cylinder's side and rim (convex: GJK answers), under random rigid poses, in
+// both argument orders and both distance modes. The branch and bound stops at 1e-6 of the scale
+// and GJK's accuracy is ~1e-13 of it; their witnesses refined by Newton's method
+// (nearest_points.h) give the gap to rounding. Before the refinement (a scratch driver of session
+// 36) the hyperboloid's distances were up to 3e-6 too large (2.8e-6 at a gap of 1e-10), the
+// cylinder side's 5e-7 at gaps of 1e-8 and 1e-10 (GJK's witnesses), 3.8e-13 at 1e-4.
+TEST(QuadricShapeDistance, QuadricShapesNearContactGetTheGapToRounding) {
+  using Clip = HalfspaceClip<double>;
+  const Quadric<double> hyp =
+      Quadric<double>::hyperboloidOneSheet(1.0, 1.0, 1.0, {Clip{{0, 0, 1}, 1.0}, Clip{{0, 0, -1}, 1.0}});
+  auto ball = std::make_shared<Quadric<double>>(Quadric<double>::ellipsoid(1.0, 1.0, 1.0));
+  auto bore = std::make_shared<Quadric<double>>(Quadric<double>::ellipticCylinder(0.6, 0.6));
+  const QuadricCSG<double> ring(QuadricRegion::Op::Difference, {{ball, Transform::Identity()}, {bore, Transform::Identity()}});
+  const EllipticCylinder<double> cylinder(1.0, 0.6, 2.0);
+  const fcl::Sphere<double> s(0.2);
+  std::mt19937_64 rng(36);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  const char* names[] = {"hyperboloid", "ring", "cylinder side", "cylinder rim"};
+  for (int model = 0; model < 4; ++model) {
+    const fcl::CollisionGeometry<double>& shape = model == 0   ? static_cast<const fcl::CollisionGeometry<double>&>(hyp)
+                                                  : model == 1 ? static_cast<const fcl::CollisionGeometry<double>&>(ring)
+                                                               : cylinder;
+    for (double gap : {1e-3, 1e-6, 1e-9}) {
+      for (int i = 0; i < 3; ++i) {
+        // The surface point and its outward normal: the hyperboloid's waist (nearest point of
+        // the surface to every point of its outward normal line up to x = 2, so to the ball's
+        // centre at 1.2 + gap), the ring's outer sphere between polar angles 60 and 120 deg, the
+        // cylinder's side (normal (cos phi / a, sin phi / b, 0)) or its top rim (that normal
+        // tilted up by 0.2-1.4 rad, inside the rim's normal cone).
+        const double phi = 2.0 * M_PI * u01(rng), theta = model == 1 ? M_PI / 3 * (1.0 + u01(rng)) : M_PI / 2;
+        Eigen::Vector3d foot(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+        Eigen::Vector3d n = foot;
+        if (model >= 2) {
+          foot = Eigen::Vector3d(std::cos(phi), 0.6 * std::sin(phi), model == 2 ? 2.0 * u01(rng) - 1.0 : 1.0);
+          n = Eigen::Vector3d(std::cos(phi), std::sin(phi) / 0.6, 0.0).normalized();
+          if (model == 3) {
+            const double tilt = 0.2 + 1.2 * u01(rng);
+            n = std::cos(tilt) * n + std::sin(tilt) * Eigen::Vector3d::UnitZ();
+          }
+        }
+        const Transform X = pose(test::randomRotation(rng), Eigen::Vector3d(u01(rng), u01(rng), u01(rng)));
+        const Transform Y = pose(Eigen::Matrix3d::Identity(), X * (foot + (0.2 + gap) * n));
+        SCOPED_TRACE(testing::Message() << names[model] << " gap " << gap << " case " << i);
+        for (bool signed_distance : {false, true}) {
+          fcl::DistanceResult<double> r;
+          EXPECT_NEAR(dist(shape, X, s, Y, signed_distance, &r), gap, 1e-13);
+          EXPECT_NEAR((r.nearest_points[0] - X * foot).norm(), 0.0, 1e-7);  // the surface point
+          EXPECT_NEAR(dist(s, Y, shape, X, signed_distance), gap, 1e-13);
+        }
+        EXPECT_FALSE(collides(shape, X, s, Y));
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fcl_quadric
