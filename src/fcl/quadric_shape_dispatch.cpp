@@ -902,9 +902,12 @@ std::optional<ConvexSupport> convexSupportOf(const fcl::CollisionGeometry<double
 
 namespace {
 
-/// Convex pairs (GJK) closer than this times their scale get their witnesses refined
-/// (refineNearestPoints): GJK's absolute accuracy, ~1e-13 of the scale, is then more than 1e-10
-/// of the distance.
+/// The distance's relative accuracy: a branch and bound answer whose certified bracket
+/// (distance - lower bound) is wider than this times the distance gets its witnesses refined
+/// (refineNearestPoints, to rounding).
+constexpr double kRefineRelative = 1e-10;
+/// Convex pairs (GJK) closer than this times their scale get their witnesses refined: GJK's
+/// absolute accuracy, ~1e-13 of the scale, is then more than kRefineRelative of the distance.
 constexpr double kRefineConvexRelative = 1e-3;
 
 /// A convex piece posed in the world, with the FCL primitive index it reports (-1: none) and
@@ -1061,13 +1064,17 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
       // accuracy is ~1e-13 of the scale absolute, so relative to a small gap it degrades (an
       // elliptic cylinder's side 1e-8 from a ball: 5e-7 away, from its witnesses; session 36).
       // The refined pair (both points certified members of the whole models) replaces its pair
-      // when closer. Only for a piece that can still become the nearest: a region pair whose
-      // certified lower bound is not above the best distance so far, a convex pair within
-      // kRefineConvexRelative of the scale of contact and not farther than the best.
-      const bool may_be_best = region_pair ? !(region_lower_bound > result.min_distance)
-                                           : d.distance <= kRefineConvexRelative * scale &&
-                                                 !(d.distance - 1e-10 * scale > result.min_distance);
-      if (d.status == Separation::Separated && d.distance > 0.0 && may_be_best) {
+      // when closer. Only where the answer is not already within 1e-10 of the distance (the
+      // accuracy documented for GJK's) and for a piece that can still become the nearest: a
+      // region pair whose certified bracket is wider than that and whose lower bound is not above
+      // the best distance so far; a convex pair within kRefineConvexRelative of the scale of
+      // contact and not farther than the best.
+      const bool worth_refining =
+          region_pair ? d.distance - region_lower_bound > kRefineRelative * d.distance &&
+                            !(region_lower_bound > result.min_distance)
+                      : d.distance <= kRefineConvexRelative * scale &&
+                            !(d.distance - kRefineRelative * scale > result.min_distance);
+      if (d.status == Separation::Separated && d.distance > 0.0 && worth_refining) {
         if (const std::optional<LocalSolid> b = pieceSolid()) {
           if (!shape_world) shape_world = localSolid(gs, "o1", where).region.transformed(tfs.linear(), tfs.translation());
           const QuadricRegion piece_world = b->region.transformed(tfp.linear(), tfp.translation());
