@@ -15,6 +15,7 @@
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/geometry/signed_distance.h"
 #include "fcl_quadric/geometry/sphere_solid.h"
+#include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
 namespace detail {
@@ -25,6 +26,53 @@ namespace {
   std::ostringstream os;
   os << "fcl_quadric::QuadricSolver: " << which << " (" << shape << "): " << e.what();
   throw std::invalid_argument(os.str());
+}
+
+bool contactFrom(const SignedDistanceResult& d, ExactContact* contact) {
+  if (d.status == Separation::Separated) return false;
+  contact->normal = d.normal;  // from the ellipsoid to the polytope
+  contact->pos = 0.5 * (d.point_a + d.point_b);
+  contact->depth = -d.distance;  // 0 in the touching band
+  return true;
+}
+
+bool distanceFrom(const EllipsoidPolytopeResult& cert, const SignedDistanceResult* d, ExactDistance* out) {
+  if (cert.status == Separation::Overlapping) {
+    out->distance = -1.0;  // libccd's ccdGJKDist2 value
+    out->p1 = out->p2 = cert.closest;  // a polytope point strictly inside the ellipsoid
+    return false;
+  }
+  out->distance = d->distance;
+  out->p1 = d->point_a;
+  out->p2 = d->point_b;
+  return true;
+}
+
+bool signedDistanceFrom(const SignedDistanceResult& d, ExactDistance* out) {
+  out->distance = d.distance;
+  out->p1 = d.point_a;
+  out->p2 = d.point_b;
+  return d.distance >= 0.0;
+}
+
+/// One certified kernel answering all three queries (a round solid's, or the closed form of a
+/// sphere: sphere_solid.h), so that its status decides each.
+bool intersectFrom(const SignedDistanceResult& d, ExactContact* contact) {
+  if (!contact) return d.status != Separation::Separated;
+  return contactFrom(d, contact);
+}
+
+/// FCL's shapeDistance convention as distanceEllipsoids() keeps it: separated or touching, the
+/// distance (0 when touching) and the witnesses; overlapping, -1 and a point of both. (Touching
+/// pairs got -1 until session 36, an audit.)
+bool unsignedDistanceFrom(const SignedDistanceResult& d, ExactDistance* out) {
+  if (d.status != Separation::Overlapping) {
+    signedDistanceFrom(d, out);
+    return true;
+  }
+  out->distance = -1.0;  // libccd's convention for overlapping pairs
+  out->p1 = out->p2 = 0.5 * (d.point_a + d.point_b);
+  return false;
 }
 
 }  // namespace
@@ -38,7 +86,26 @@ Ellipsoid ellipsoidFromFcl(const Eigen::Vector3d& radii, const Eigen::Matrix3d& 
   }
 }
 
-Ellipsoid sphereFromFcl(double radius, const Eigen::Vector3d& p_WS, const char* which) {
+void checkSphereFromFcl(double radius, const Eigen::Matrix3d& R_WS, const Eigen::Vector3d& p_WS, const char* which) {
+  try {
+    // (isfinite first: an ordered comparison with NaN raises FE_INVALID, which the tests trap.)
+    if (!std::isfinite(radius) || !(radius >= tolerance::kMinRadius && radius <= tolerance::kMaxLength)) {
+      std::ostringstream os;
+      os << "sphere radius must be finite and in [" << tolerance::kMinRadius << ", " << tolerance::kMaxLength
+         << "], got " << radius;
+      throw std::invalid_argument(os.str());
+    }
+    // A sphere's rotation does not move it, but a linear part that is not a rotation (a scaling,
+    // a reflection) is refused as for every other solid (session 36, an audit: it was ignored).
+    fcl_quadric::detail::checkRotation(R_WS, "sphere rotation");
+    fcl_quadric::detail::checkPosition(p_WS, "sphere centre");
+  } catch (const std::invalid_argument& e) {
+    rethrowNamed(which, "fcl::Sphere", e);
+  }
+}
+
+Ellipsoid sphereFromFcl(double radius, const Eigen::Matrix3d& R_WS, const Eigen::Vector3d& p_WS, const char* which) {
+  checkSphereFromFcl(radius, R_WS, p_WS, which);
   try {
     return Ellipsoid::sphere(radius, p_WS);
   } catch (const std::invalid_argument& e) {
@@ -52,7 +119,17 @@ void throwNonFiniteTransform(const char* which, const Eigen::Matrix<double, 3, 4
   throw std::invalid_argument(os.str());
 }
 
+namespace {
+/// Two spheres (equal radii each): |c_b - c_a| - r_a - r_b in closed form (sphere_solid.h), which
+/// then decides all three queries (the general search takes ~1 us and its band differed from the
+/// closed form's).
+SignedDistanceResult sphereSphere(const Ellipsoid& a, const Ellipsoid& b) {
+  return signedDistanceSphereSphere(a.center(), a.radii()[0], b.center(), b.radii()[0]);
+}
+}  // namespace
+
 bool intersectEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactContact* contact) {
+  if (isSphere(a) && isSphere(b)) return intersectFrom(sphereSphere(a, b), contact);
   // Without a contact to fill (FCL's boolean collide) the status alone decides: no certificate.
   if (separationStatus(a, b) == Separation::Separated) return false;
   if (!contact) return true;
@@ -66,6 +143,7 @@ bool intersectEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactContact* c
 }
 
 bool distanceEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactDistance* out) {
+  if (isSphere(a) && isSphere(b)) return unsignedDistanceFrom(sphereSphere(a, b), out);
   const SeparationCertificate cert = classifyEllipsoids(a, b);
   if (cert.status == Separation::Overlapping) {
     // GJKSolver_libccd's shapeDistance reports -1 for overlapping shapes (ccdGJKDist2); the
@@ -83,12 +161,7 @@ bool distanceEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactDistance* o
 }
 
 bool signedDistanceEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactDistance* out) {
-  // Two spheres: b is a capsule of length 0 (sphere_solid.h), |c_b - c_a| - r_a - r_b in closed
-  // form (the general Newton search takes ~1 us).
-  const SignedDistanceResult d =
-      isSphere(a) && isSphere(b)
-          ? signedDistanceSphereCapsule(a.center(), a.radii()[0], b.radii()[0], 0.0, Eigen::Matrix3d::Identity(), b.center())
-          : signedDistance(a, b);
+  const SignedDistanceResult d = isSphere(a) && isSphere(b) ? sphereSphere(a, b) : signedDistance(a, b);
   out->distance = d.distance;
   out->p1 = d.point_a;
   out->p2 = d.point_b;
@@ -141,13 +214,7 @@ WorldPlane planeFromFcl(const Eigen::Vector3d& n, double d, bool halfspace, cons
 WorldBox boxFromFcl(const Eigen::Vector3d& side, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
                     const char* which) {
   try {
-    for (int i = 0; i < 3; ++i) {
-      if (!std::isfinite(side[i]) || !(side[i] >= 0.0)) {
-        std::ostringstream os;
-        os << "box side " << i << " must be finite and >= 0, got " << side[i];
-        throw std::invalid_argument(os.str());
-      }
-    }
+    for (int i = 0; i < 3; ++i) fcl_quadric::detail::checkLength(side[i], "box side", nullptr, i);
     fcl_quadric::detail::checkRotation(R, "box rotation");
     fcl_quadric::detail::checkPosition(p, "box centre");
   } catch (const std::invalid_argument& e) {
@@ -163,13 +230,8 @@ WorldBox boxFromFcl(const Eigen::Vector3d& side, const Eigen::Matrix3d& R, const
 WorldCapsule capsuleFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
                             const char* which) {
   try {
-    for (const auto& [what, v] : {std::pair<const char*, double>{"radius", radius}, {"length", length}}) {
-      if (!std::isfinite(v) || !(v >= 0.0)) {
-        std::ostringstream os;
-        os << "capsule " << what << " must be finite and >= 0, got " << v;
-        throw std::invalid_argument(os.str());
-      }
-    }
+    fcl_quadric::detail::checkLength(radius, "capsule radius");
+    fcl_quadric::detail::checkLength(length, "capsule length");
     fcl_quadric::detail::checkRotation(R, "capsule rotation");
     fcl_quadric::detail::checkPosition(p, "capsule centre");
   } catch (const std::invalid_argument& e) {
@@ -188,17 +250,14 @@ namespace {
 /// The radius / length / rotation checks of a round solid (capsuleFromFcl's, for `shape`).
 template <typename World>
 World roundSolidFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
-                        const char* which, const char* shape, const char* noun) {
+                        const char* which, const char* shape, const char* noun, const char* rotation_name,
+                        const char* centre_name) {
   try {
-    for (const auto& [what, v] : {std::pair<const char*, double>{"radius", radius}, {"length", length}}) {
-      if (!std::isfinite(v) || !(v >= 0.0)) {
-        std::ostringstream os;
-        os << noun << " " << what << " must be finite and >= 0, got " << v;
-        throw std::invalid_argument(os.str());
-      }
-    }
-    fcl_quadric::detail::checkRotation(R, (std::string(noun) + " rotation").c_str());
-    fcl_quadric::detail::checkPosition(p, (std::string(noun) + " centre").c_str());
+    fcl_quadric::detail::checkLength(radius, noun, "radius");
+    fcl_quadric::detail::checkLength(length, noun, "length");
+    // (Literal names: building "<noun> rotation" on every call cost an allocation per query.)
+    fcl_quadric::detail::checkRotation(R, rotation_name);
+    fcl_quadric::detail::checkPosition(p, centre_name);
   } catch (const std::invalid_argument& e) {
     rethrowNamed(which, shape, e);
   }
@@ -214,12 +273,13 @@ World roundSolidFromFcl(double radius, double length, const Eigen::Matrix3d& R, 
 
 WorldCylinder cylinderFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
                               const char* which) {
-  return roundSolidFromFcl<WorldCylinder>(radius, length, R, p, which, "fcl::Cylinder", "cylinder");
+  return roundSolidFromFcl<WorldCylinder>(radius, length, R, p, which, "fcl::Cylinder", "cylinder", "cylinder rotation",
+                                          "cylinder centre");
 }
 
 WorldCone coneFromFcl(double radius, double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
                       const char* which) {
-  return roundSolidFromFcl<WorldCone>(radius, length, R, p, which, "fcl::Cone", "cone");
+  return roundSolidFromFcl<WorldCone>(radius, length, R, p, which, "fcl::Cone", "cone", "cone rotation", "cone centre");
 }
 
 WorldConvex convexFromFcl(const std::vector<Eigen::Vector3d>& v, const std::vector<int>& faces, int face_count,
@@ -450,56 +510,6 @@ Eigen::Vector3d supportPoint(const WorldCone& cone, const Eigen::Vector3d& dir) 
 
 // --- Ellipsoid against a box or a triangle -----------------------------------------------------
 
-namespace {
-
-bool contactFrom(const SignedDistanceResult& d, ExactContact* contact) {
-  if (d.status == Separation::Separated) return false;
-  contact->normal = d.normal;  // from the ellipsoid to the polytope
-  contact->pos = 0.5 * (d.point_a + d.point_b);
-  contact->depth = -d.distance;  // 0 in the touching band
-  return true;
-}
-
-bool distanceFrom(const EllipsoidPolytopeResult& cert, const SignedDistanceResult* d, ExactDistance* out) {
-  if (cert.status == Separation::Overlapping) {
-    out->distance = -1.0;  // libccd's ccdGJKDist2 value
-    out->p1 = out->p2 = cert.closest;  // a polytope point strictly inside the ellipsoid
-    return false;
-  }
-  out->distance = d->distance;
-  out->p1 = d->point_a;
-  out->p2 = d->point_b;
-  return true;
-}
-
-bool signedDistanceFrom(const SignedDistanceResult& d, ExactDistance* out) {
-  out->distance = d.distance;
-  out->p1 = d.point_a;
-  out->p2 = d.point_b;
-  return d.distance >= 0.0;
-}
-
-}  // namespace
-
-// A sphere against a box, a triangle or a convex: the closed form (sphere_solid.h) answers all three
-// queries, so that its status decides them all (the ellipsoid kernels' classification and
-// signed distance are separate computations).
-namespace {
-
-/// One certified kernel answering all three queries: its status decides each.
-bool intersectFrom(const SignedDistanceResult& d, ExactContact* contact) {
-  if (!contact) return d.status != Separation::Separated;
-  return contactFrom(d, contact);
-}
-
-bool unsignedDistanceFrom(const SignedDistanceResult& d, ExactDistance* out) {
-  if (d.status == Separation::Separated) return signedDistanceFrom(d, out);
-  out->distance = -1.0;  // libccd's convention for overlapping pairs
-  out->p1 = out->p2 = 0.5 * (d.point_a + d.point_b);
-  return false;
-}
-
-}  // namespace
 
 bool exactIntersect(const Ellipsoid& e, const WorldBox& b, ExactContact* contact) {
   if (isSphere(e)) return intersectFrom(signedDistanceEllipsoidBox(e, b.half, b.R, b.p), contact);

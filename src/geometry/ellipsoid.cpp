@@ -71,6 +71,17 @@ void checkPosition(const Eigen::Vector3d& v, const char* what) {
     throwOutOfRange(v, what);
 }
 
+void checkLength(double v, const char* what, const char* name, int index) {
+  if (!std::isfinite(v) || !(v >= 0.0) || !(v <= tolerance::kMaxLength)) {
+    std::ostringstream os;
+    os << what;
+    if (name) os << " " << name;
+    if (index >= 0) os << " " << index;
+    os << " must be finite and in [0, " << tolerance::kMaxLength << "], got " << v;
+    throw std::invalid_argument(os.str());
+  }
+}
+
 namespace {
 
 /// checkRotation()'s test without the throw: whether R's entries are finite, bounded by 2 (a

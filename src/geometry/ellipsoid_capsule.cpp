@@ -14,13 +14,8 @@ namespace fcl_quadric {
 SignedDistanceResult signedDistanceEllipsoidCapsule(const Ellipsoid& e, double radius, double length,
                                                     const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
   if (isSphere(e)) return signedDistanceSphereCapsule(e.center(), e.radii()[0], radius, length, R_WC, p_WC);
-  for (const auto& [what, v] : {std::pair<const char*, double>{"radius", radius}, {"length", length}}) {
-    if (!std::isfinite(v) || !(v >= 0.0)) {
-      std::ostringstream os;
-      os << "capsule " << what << " must be finite and >= 0, got " << v;
-      throw std::invalid_argument(os.str());
-    }
-  }
+  detail::checkLength(radius, "capsule radius");
+  detail::checkLength(length, "capsule length");
   detail::checkRotation(R_WC, "capsule rotation");
   detail::checkPosition(p_WC, "capsule centre");
   const Eigen::Vector3d axis = R_WC.col(2) * (0.5 * length);

@@ -490,14 +490,9 @@ SignedDistanceResult solve(const Ellipsoid& e, const RoundSolid& k) {
 
 RoundSolid validated(const char* what, const Ellipsoid& e, double radius, double length, const Eigen::Matrix3d& R,
                      const Eigen::Vector3d& p) {
-  for (const auto& [name, v] : {std::pair<const char*, double>{"radius", radius}, {"length", length}}) {
-    if (!std::isfinite(v) || !(v >= 0.0)) {
-      std::ostringstream os;
-      os << what << " " << name << " must be finite and >= 0, got " << v;
-      throw std::invalid_argument(os.str());
-    }
-  }
   const std::string w(what);
+  detail::checkLength(radius, what, "radius");
+  detail::checkLength(length, what, "length");
   // As for Ellipsoid: the supports r |n - (n.a) a| treat (u, v, a) as orthonormal and the witness
   // parametrises the solid by them, so both describe the stored rotation.
   const Eigen::Matrix3d Rs = detail::storedRotation(R, (w + " rotation").c_str());

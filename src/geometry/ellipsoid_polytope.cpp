@@ -97,13 +97,7 @@ void certify(const Candidate& best, const Eigen::Vector3d* vertices, int nv, dou
 
 EllipsoidPolytopeResult classifyEllipsoidBox(const Ellipsoid& e, const Eigen::Vector3d& half_extents,
                                              const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_WB) {
-  for (int i = 0; i < 3; ++i) {
-    if (!std::isfinite(half_extents[i]) || !(half_extents[i] >= 0.0)) {
-      std::ostringstream os;
-      os << "box half extent " << i << " must be finite and >= 0, got " << half_extents[i];
-      throw std::invalid_argument(os.str());
-    }
-  }
+  for (int i = 0; i < 3; ++i) detail::checkLength(half_extents[i], "box half extent", nullptr, i);
   detail::checkRotation(R_WB, "box rotation");
   detail::checkPosition(p_WB, "box centre");
   // Unit frame: u = g + G s, s in [-1,1]^3.
@@ -379,7 +373,9 @@ struct ConvexFeatures {
   double scale = 0.0;  ///< max |v|_inf over the vertices: the plane tests' rounding scale
 };
 
-ConvexFeatures convexFeatures(const ConvexPolytope& P) {
+/// P's face normals and (want_edges) its edges, validating P. The edges' set is what a sphere's
+/// closed form does not need (it cost more than its answer).
+ConvexFeatures convexFeatures(const ConvexPolytope& P, bool want_edges = true) {
   if (P.vertices.empty()) throw std::invalid_argument("convex polytope has no vertices");
   const int nv = static_cast<int>(P.vertices.size());
   ConvexFeatures f;
@@ -411,9 +407,11 @@ ConvexFeatures convexFeatures(const ConvexPolytope& P) {
       const Eigen::Vector3d& b = P.vertices[face[(i + 1) % face.size()]];
       n += (a - mean).cross(b - mean);
       const int lo = std::min(face[i], face[(i + 1) % face.size()]), hi = std::max(face[i], face[(i + 1) % face.size()]);
-      if (lo != hi && seen.insert({lo, hi}).second) f.edges.push_back({lo, hi});
+      if (want_edges && lo != hi && seen.insert({lo, hi}).second) f.edges.push_back({lo, hi});
     }
-    const double len = n.norm();
+    // stableNorm: |n| of a polytope of 1e78 overflowed and of 1e-90 underflowed with norm()
+    // (session 36, an audit).
+    const double len = n.stableNorm();
     if (len > 0.0) {
       n /= len;
       if (n.dot(P.vertices[face[0]] - mean) < 0.0) n = -n;
@@ -461,10 +459,13 @@ EllipsoidPolytopeResult classifyConvex(const Ellipsoid& e, const ConvexPolytope&
 /// faces' fan triangles (signedDistanceSphereTriangle), or of the vertices when no face is given.
 SignedDistanceResult sphereConvex(const Eigen::Vector3d& c, double r, const ConvexPolytope& P, const ConvexFeatures& f) {
   bool inside = !P.faces.empty();
+  double reach = 0.0;  // max |c - v| over the faces' first vertices: the plane tests' rounding scale
   int nearest_face = -1;
   double depth = -std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < P.faces.size() && inside; ++k) {
-    const double s = f.normals[k].dot(c - P.vertices[P.faces[k][0]]);
+    const Eigen::Vector3d w = c - P.vertices[P.faces[k][0]];
+    const double s = f.normals[k].dot(w);
+    reach = std::max(reach, w.cwiseAbs().maxCoeff());
     inside = f.normals[k].squaredNorm() > 0.0 && s <= 0.0;
     if (inside && s > depth) {
       depth = s;
@@ -478,8 +479,10 @@ SignedDistanceResult sphereConvex(const Eigen::Vector3d& c, double r, const Conv
     best.normal = -n;                                     // toward the nearest face, from inside
     best.point_a = c + r * best.normal;
     best.point_b = c - depth * n;
-    // The plane tests' rounding scale, as classifyConvex's, plus the radius.
-    const double band = tolerance::kCertificateRelativeBoundDouble * (f.scale + c.cwiseAbs().maxCoeff() + r);
+    // The plane tests' rounding: that of n.(c - v), relative to |c - v| (each difference exact to
+    // one rounding of itself), not to the coordinates' magnitude (a cube of 1e-6 at 1e6 was all
+    // "touching" with that: session 36, an audit); plus the radius.
+    const double band = tolerance::kCertificateRelativeBoundDouble * (reach + r);
     best.distance = depth - r;
     best.status = best.distance < -band ? Separation::Overlapping : Separation::Touching;
     if (best.status == Separation::Touching) best.distance = 0.0;
@@ -511,8 +514,8 @@ EllipsoidPolytopeResult classifyEllipsoidConvex(const Ellipsoid& e, const Convex
 }
 
 SignedDistanceResult signedDistanceEllipsoidConvex(const Ellipsoid& e, const ConvexPolytope& P) {
+  if (isSphere(e)) return sphereConvex(e.center(), e.radii()[0], P, convexFeatures(P, false));  // (validates)
   const ConvexFeatures f = convexFeatures(P);  // validates
-  if (isSphere(e)) return sphereConvex(e.center(), e.radii()[0], P, f);
   const EllipsoidPolytopeResult c = classifyConvex(e, P, f);
   const std::unique_ptr<int[][2]> edges(new int[f.edges.size() + 1][2]);
   for (std::size_t k = 0; k < f.edges.size(); ++k) {

@@ -2,8 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
-#include <stdexcept>
+#include <initializer_list>
 #include <string>
 
 #include "fcl_quadric/tolerances.h"
@@ -12,34 +11,43 @@ namespace fcl_quadric {
 
 namespace {
 
-void checkNonNegative(double v, const std::string& what) {
-  if (!std::isfinite(v) || !(v >= 0.0)) {
-    std::ostringstream os;
-    os << what << " must be finite and >= 0, got " << v;
-    throw std::invalid_argument(os.str());
-  }
-}
-
 /// The sphere's centre and radius, checked.
 void checkSphere(const Eigen::Vector3d& c, double r) {
-  checkNonNegative(r, "sphere radius");
+  detail::checkLength(r, "sphere radius");
   detail::checkPosition(c, "sphere centre");
 }
 
-/// The point's answer in the solid's frame, turned into the sphere's (docs/algorithms.md §12d).
-/// nearest: the solid's boundary point nearest to the centre (local); toward: the unit direction
-/// from the centre toward the solid (local: nearest - x normalised outside, minus the outward
-/// normal of the nearest face inside); point_distance: signed distance of the centre (> 0
-/// outside, <= 0 inside).
+/// 2^-e for the exponent e of the largest of `magnitudes` (1 if all are 0): multiplying the
+/// problem's lengths by it is exact and brings the largest into [1, 2), so that no square or
+/// product below overflows or underflows whatever the inputs' magnitude (solids of 1e-170 and of
+/// 1e155 were wrong otherwise: a session 36 audit).
+double unitScale(std::initializer_list<double> magnitudes) {
+  double m = 0.0;
+  for (double v : magnitudes) m = std::max(m, std::fabs(v));
+  if (!(m > 0.0) || !std::isfinite(m)) return 1.0;
+  return std::ldexp(1.0, -std::ilogb(m));
+}
+
+/// The solid's answer for the centre, in its frame and scaled by unitScale(): the boundary point
+/// nearest to the centre, the unit direction from the centre toward the solid (nearest - x
+/// normalised outside; minus the outward normal of the nearest face inside), the centre's signed
+/// distance (> 0 outside, <= 0 inside), and the scale of its rounding (docs/algorithms.md §12d).
+struct LocalAnswer {
+  Eigen::Vector3d nearest;
+  Eigen::Vector3d toward;
+  double point_distance;
+  double scale;
+};
+
+/// The sphere's answer from the solid's (scaled by `unit`, in the frame (R, p)).
 SignedDistanceResult finish(const Eigen::Vector3d& c, double r, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
-                            const Eigen::Vector3d& nearest, const Eigen::Vector3d& toward, double point_distance,
-                            double scale) {
+                            const LocalAnswer& a, double unit) {
   SignedDistanceResult out;
-  out.normal = (R * toward).normalized();
-  out.point_b = p + R * nearest;
+  out.normal = (R * a.toward).normalized();
+  out.point_b = p + R * (a.nearest / unit);
   out.point_a = c + r * out.normal;
-  const double d = point_distance - r;
-  const double band = tolerance::kCertificateRelativeBoundDouble * scale;
+  const double d = a.point_distance / unit - r;
+  const double band = tolerance::kCertificateRelativeBoundDouble * (a.scale / unit + r);
   if (d > band) {
     out.status = Separation::Separated;
     out.distance = d;
@@ -64,6 +72,21 @@ Eigen::Vector3d nearestOnSegment(const Eigen::Vector3d& q, const Eigen::Vector3d
   return a + t * e;
 }
 
+/// a * d - b * c to within about one rounding of the result (Kahan's algorithm with a fused
+/// multiply-add), where the plain expression loses everything to cancellation.
+double differenceOfProducts(double a, double d, double b, double c) {
+  const double bc = b * c;
+  const double err = std::fma(-b, c, bc);
+  return std::fma(a, d, -bc) + err;
+}
+
+/// u x v with each coordinate accurate to about one rounding: the normal of a nearly degenerate
+/// triangle (its plain cross product's direction is off by ~eps / sin(angle)).
+Eigen::Vector3d accurateCross(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
+  return Eigen::Vector3d(differenceOfProducts(u.y(), v.z(), u.z(), v.y()), differenceOfProducts(u.z(), v.x(), u.x(), v.z()),
+                         differenceOfProducts(u.x(), v.y(), u.y(), v.x()));
+}
+
 /// A solid of revolution about local z seen in the meridian half-plane of the local point x:
 /// (rho, z) coordinates, and the lift of a meridian vector (s, t) back to 3D.
 struct Meridian {
@@ -79,180 +102,140 @@ struct Meridian {
 
 /// The answer for a centre outside the solid: the direction from the difference nearest - x,
 /// except within the touching band of the boundary, where that difference is rounding noise and
-/// `fallback` (a unit direction toward the solid in the normal cone of the nearest feature, local)
-/// is used instead.
-SignedDistanceResult outside(const Eigen::Vector3d& c, double r, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
-                             const Eigen::Vector3d& x, const Eigen::Vector3d& nearest, const Eigen::Vector3d& fallback,
-                             double scale) {
+/// `fallback` (a unit direction toward the solid in the normal cone of the nearest feature) is
+/// used instead. `scale`: the rounding scale other than the distance itself.
+LocalAnswer outside(const Eigen::Vector3d& x, const Eigen::Vector3d& nearest, const Eigen::Vector3d& fallback,
+                    double scale) {
   const Eigen::Vector3d diff = nearest - x;
   const double dist = diff.norm();
-  if (!(dist > tolerance::kCertificateRelativeBoundDouble * scale)) return finish(c, r, R, p, nearest, fallback, dist, scale);
-  return finish(c, r, R, p, nearest, diff / dist, dist, scale);
+  if (!(dist > tolerance::kCertificateRelativeBoundDouble * scale)) return {nearest, fallback, dist, scale + dist};
+  return {nearest, diff / dist, dist, scale + dist};
 }
 
-// The solids in their frames, x the centre there (validated by the callers).
+// The solids in their frames, scaled by unitScale(); x the centre there. The rounding scale of
+// each answer: |x| (its coordinates' rounding, that of R^T (c - p) included) plus the distance's
+// magnitude (of the subtraction that gives it), plus for the cone the terms of its slant-line
+// distance.
 
-SignedDistanceResult capsuleLocal(const Eigen::Vector3d& c, double r, double radius, double length,
-                                  const Eigen::Matrix3d& R, const Eigen::Vector3d& p, const Eigen::Vector3d& x,
-                                  double scale) {
-  const double h = 0.5 * length;
-  const Eigen::Vector3d on_axis(0.0, 0.0, std::clamp(x.z(), -h, h));
-  const Eigen::Vector3d from_axis = x - on_axis;
-  const double rho = from_axis.norm();
-  // Unit direction from the axis to the centre (any radial one when the centre is on the axis).
-  const Eigen::Vector3d out_dir = rho > 0.0 ? Eigen::Vector3d(from_axis / rho) : Eigen::Vector3d::UnitX();
-  return finish(c, r, R, p, on_axis + radius * out_dir, -out_dir, rho - radius, scale);
-}
-
-SignedDistanceResult cylinderLocal(const Eigen::Vector3d& c, double r, double radius, double length,
-                                   const Eigen::Matrix3d& R, const Eigen::Vector3d& p, const Eigen::Vector3d& x,
-                                   double scale) {
-  const Meridian m(x);
-  const double h = 0.5 * length;
-  const double zside = m.q[1] >= 0.0 ? 1.0 : -1.0;
-  const double side_excess = m.q[0] - radius;     // > 0 outside the side
-  const double cap_excess = std::fabs(m.q[1]) - h;  // > 0 beyond the cap on the centre's side
-  if (side_excess > 0.0 && cap_excess > 0.0) {    // nearest the rim circle
-    const Eigen::Vector3d fallback = m.lift(Eigen::Vector2d(-1.0, -zside)).normalized();
-    return outside(c, r, R, p, x, m.lift(Eigen::Vector2d(radius, zside * h)), fallback, scale);
+LocalAnswer boxLocal(const Eigen::Vector3d& half, const Eigen::Vector3d& x) {
+  const double scale = x.norm();
+  const Eigen::Vector3d excess = x.cwiseAbs() - half;  // > 0 on the outer side of a face
+  const int beyond = static_cast<int>((excess.array() > 0.0).count());
+  if (beyond == 1) {
+    // A face region: the distance and direction exact along the axis (no square root).
+    int k = 0;
+    excess.maxCoeff(&k);
+    Eigen::Vector3d nearest = x;
+    nearest[k] = x[k] > 0.0 ? half[k] : -half[k];
+    return {nearest, Eigen::Vector3d::Unit(k) * (x[k] > 0.0 ? -1.0 : 1.0), excess[k], scale + excess[k]};
   }
-  // A face: the side when outside it, or inside with the side the nearer face; else the cap.
-  if (side_excess > 0.0 || (cap_excess <= 0.0 && side_excess >= cap_excess)) {
-    return finish(c, r, R, p, m.lift(Eigen::Vector2d(radius, m.q[1])), m.lift(Eigen::Vector2d(-1.0, 0.0)), side_excess,
-                  scale);
-  }
-  return finish(c, r, R, p, m.lift(Eigen::Vector2d(m.q[0], zside * h)), Eigen::Vector3d(0.0, 0.0, -zside), cap_excess,
-                scale);
-}
-
-}  // namespace
-
-SignedDistanceResult signedDistanceSphereBox(const Eigen::Vector3d& c, double r, const Eigen::Vector3d& half_extents,
-                                             const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_WB) {
-  checkSphere(c, r);
-  for (int i = 0; i < 3; ++i) checkNonNegative(half_extents[i], "box half extent " + std::to_string(i));
-  const Eigen::Matrix3d R = detail::storedRotation(R_WB, "box rotation");
-  detail::checkPosition(p_WB, "box centre");
-  const Eigen::Vector3d x = R.transpose() * (c - p_WB);
-  const double scale = (c - p_WB).norm() + r + half_extents.sum();
-  const Eigen::Vector3d excess = x.cwiseAbs() - half_extents;  // > 0 on the outer side of a face
-  if ((excess.array() > 0.0).any()) {
-    const Eigen::Vector3d nearest = x.cwiseMax(-half_extents).cwiseMin(half_extents);
-    const Eigen::Vector3d diff = nearest - x;
-    if ((excess.array() > 0.0).count() == 1) {
-      // A face region: the distance and direction are exact along the axis (no square root).
-      int k = 0;
-      excess.maxCoeff(&k);
-      return finish(c, r, R, p_WB, nearest, Eigen::Vector3d::Unit(k) * (diff[k] > 0.0 ? 1.0 : -1.0), excess[k], scale);
-    }
-    // An edge or a vertex: the fallback is the sum of the outward normals of the faces beyond.
+  if (beyond > 1) {
+    // An edge or a vertex: the fallback is minus the sum of the outward normals of the faces beyond.
     Eigen::Vector3d fallback = Eigen::Vector3d::Zero();
     for (int i = 0; i < 3; ++i)
       if (excess[i] > 0.0) fallback[i] = x[i] > 0.0 ? -1.0 : 1.0;
-    return outside(c, r, R, p_WB, x, nearest, fallback.normalized(), scale);
+    return outside(x, x.cwiseMax(-half).cwiseMin(half), fallback.normalized(), scale);
   }
   // Inside: the nearest face is the one of largest excess (all <= 0).
   int k = 0;
   const double depth = excess.maxCoeff(&k);
   const double side = x[k] >= 0.0 ? 1.0 : -1.0;
   Eigen::Vector3d nearest = x;
-  nearest[k] = side * half_extents[k];
-  return finish(c, r, R, p_WB, nearest, -side * Eigen::Vector3d::Unit(k), depth, scale);
+  nearest[k] = side * half[k];
+  return {nearest, -side * Eigen::Vector3d::Unit(k), depth, scale - depth};
 }
 
-SignedDistanceResult signedDistanceSphereCapsule(const Eigen::Vector3d& c, double r, double radius, double length,
-                                                 const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
-  checkSphere(c, r);
-  checkNonNegative(radius, "capsule radius");
-  checkNonNegative(length, "capsule length");
-  const Eigen::Matrix3d R = detail::storedRotation(R_WC, "capsule rotation");
-  detail::checkPosition(p_WC, "capsule centre");
-  const Eigen::Vector3d x = R.transpose() * (c - p_WC);
-  const double scale = (c - p_WC).norm() + r + radius + length;
-  return capsuleLocal(c, r, radius, length, R, p_WC, x, scale);
+LocalAnswer capsuleLocal(double radius, double length, const Eigen::Vector3d& x) {
+  const double h = 0.5 * length;
+  const Eigen::Vector3d on_axis(0.0, 0.0, std::clamp(x.z(), -h, h));
+  const Eigen::Vector3d from_axis = x - on_axis;
+  const double rho = from_axis.norm();
+  // Unit direction from the axis to the centre (any radial one when the centre is on the axis).
+  const Eigen::Vector3d out_dir = rho > 0.0 ? Eigen::Vector3d(from_axis / rho) : Eigen::Vector3d::UnitX();
+  const double d = rho - radius;
+  return {on_axis + radius * out_dir, -out_dir, d, x.norm() + std::fabs(d)};
 }
 
-SignedDistanceResult signedDistanceSphereCylinder(const Eigen::Vector3d& c, double r, double radius, double length,
-                                                  const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
-  checkSphere(c, r);
-  checkNonNegative(radius, "cylinder radius");
-  checkNonNegative(length, "cylinder length");
-  const Eigen::Matrix3d R = detail::storedRotation(R_WC, "cylinder rotation");
-  detail::checkPosition(p_WC, "cylinder centre");
-  const Eigen::Vector3d x = R.transpose() * (c - p_WC);
-  const double scale = (c - p_WC).norm() + r + radius + length;
-  return cylinderLocal(c, r, radius, length, R, p_WC, x, scale);
+LocalAnswer cylinderLocal(double radius, double length, const Eigen::Vector3d& x) {
+  const Meridian m(x);
+  const double scale = x.norm();
+  const double h = 0.5 * length;
+  const double zside = m.q[1] >= 0.0 ? 1.0 : -1.0;
+  const double side_excess = m.q[0] - radius;       // > 0 outside the side
+  const double cap_excess = std::fabs(m.q[1]) - h;  // > 0 beyond the cap on the centre's side
+  if (side_excess > 0.0 && cap_excess > 0.0) {      // nearest the rim circle
+    const Eigen::Vector3d fallback = m.lift(Eigen::Vector2d(-1.0, -zside)).normalized();
+    return outside(x, m.lift(Eigen::Vector2d(radius, zside * h)), fallback, scale);
+  }
+  // A face: the side when outside it, or inside with the side the nearer face; else the cap.
+  if (side_excess > 0.0 || (cap_excess <= 0.0 && side_excess >= cap_excess)) {
+    return {m.lift(Eigen::Vector2d(radius, m.q[1])), m.lift(Eigen::Vector2d(-1.0, 0.0)), side_excess,
+            scale + std::fabs(side_excess)};
+  }
+  return {m.lift(Eigen::Vector2d(m.q[0], zside * h)), Eigen::Vector3d(0.0, 0.0, -zside), cap_excess,
+          scale + std::fabs(cap_excess)};
 }
 
-SignedDistanceResult signedDistanceSphereCone(const Eigen::Vector3d& c, double r, double radius, double length,
-                                              const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
-  checkSphere(c, r);
-  checkNonNegative(radius, "cone radius");
-  checkNonNegative(length, "cone length");
-  const Eigen::Matrix3d R = detail::storedRotation(R_WC, "cone rotation");
-  detail::checkPosition(p_WC, "cone centre");
-  const Eigen::Vector3d x = R.transpose() * (c - p_WC);
-  const double scale = (c - p_WC).norm() + r + radius + length;
+LocalAnswer coneLocal(double radius, double length, const Eigen::Vector3d& x) {
   // A cone of radius 0 is its axis segment, one of length 0 its base disk: no interior.
-  if (radius == 0.0) return capsuleLocal(c, r, 0.0, length, R, p_WC, x, scale);
-  if (length == 0.0) return cylinderLocal(c, r, radius, 0.0, R, p_WC, x, scale);
+  if (radius == 0.0) return capsuleLocal(0.0, length, x);
+  if (length == 0.0) return cylinderLocal(radius, 0.0, x);
   const Meridian m(x);
   const double h = 0.5 * length;
   // The meridian triangle: apex A, rim corner B, base centre (0, -h); the slant edge's outward
   // unit normal (2h, R) / |(2h, R)|, the base's (0, -1).
   const Eigen::Vector2d A(0.0, h), B(radius, -h);
-  const Eigen::Vector2d slant_normal = Eigen::Vector2d(length, radius).normalized();
+  const Eigen::Vector2d slant_normal = Eigen::Vector2d(length, radius) / std::hypot(length, radius);
   const double s_slant = (m.q - A).dot(slant_normal);  // signed distance to the slant line
+  // The rounding of s_slant is that of its two terms, rho n_0 and (z - h) n_1 (each of its
+  // differences exact to one rounding of itself), not of the cone's size: a flat cone (R = 1e155,
+  // L = 1) 9.5 above its apex was "touching" with the size in the scale (a session 36 audit).
+  const double scale = x.norm() + std::fabs(m.q[0] * slant_normal[0]) + std::fabs((m.q[1] - h) * slant_normal[1]);
   const double s_base = -h - m.q[1];                   // ... and to the base plane
   const Eigen::Vector3d to_base = Eigen::Vector3d::UnitZ();
+  auto slant = [&] {
+    return LocalAnswer{m.lift(m.q - s_slant * slant_normal), m.lift(-slant_normal), s_slant, scale + std::fabs(s_slant)};
+  };
+  auto base = [&] { return LocalAnswer{m.lift(Eigen::Vector2d(m.q[0], -h)), to_base, s_base, scale + std::fabs(s_base)}; };
   if (s_slant <= 0.0 && s_base <= 0.0) {
     // Inside: the nearer of the slant side and the base (from inside, the projection onto the
     // nearer edge's line lies on the edge).
-    if (s_slant >= s_base)
-      return finish(c, r, R, p_WC, m.lift(m.q - s_slant * slant_normal), m.lift(-slant_normal), s_slant, scale);
-    return finish(c, r, R, p_WC, m.lift(Eigen::Vector2d(m.q[0], -h)), to_base, s_base, scale);
+    return s_slant >= s_base ? slant() : base();
   }
   // Outside. Facing the base disk: the base is nearest, along the axis.
-  if (s_base > 0.0 && m.q[0] <= radius)
-    return finish(c, r, R, p_WC, m.lift(Eigen::Vector2d(m.q[0], -h)), to_base, s_base, scale);
+  if (s_base > 0.0 && m.q[0] <= radius) return base();
   // Facing the slant side (the projection inside the edge): nearest along its normal.
   const Eigen::Vector2d e = B - A;
   const double t = (m.q - A).dot(e) / e.squaredNorm();
-  if (s_slant > 0.0 && t > 0.0 && t < 1.0)
-    return finish(c, r, R, p_WC, m.lift(m.q - s_slant * slant_normal), m.lift(-slant_normal), s_slant, scale);
+  if (s_slant > 0.0 && t > 0.0 && t < 1.0) return slant();
   // Otherwise a vertex of the meridian triangle: the apex or the rim circle. Fallbacks: -e_z is
   // in the apex's normal cone, minus the bisector of the slant and base normals in the rim's.
-  if ((m.q - A).squaredNorm() <= (m.q - B).squaredNorm())
-    return outside(c, r, R, p_WC, x, m.lift(A), -Eigen::Vector3d::UnitZ(), scale);
+  if ((m.q - A).squaredNorm() <= (m.q - B).squaredNorm()) return outside(x, m.lift(A), -Eigen::Vector3d::UnitZ(), scale);
   const Eigen::Vector2d rim_cone = (slant_normal + Eigen::Vector2d(0.0, -1.0)).normalized();
-  return outside(c, r, R, p_WC, x, m.lift(B), m.lift(-rim_cone), scale);
+  return outside(x, m.lift(B), m.lift(-rim_cone), scale);
 }
 
-SignedDistanceResult signedDistanceSphereTriangle(const Eigen::Vector3d& c, double r, const Eigen::Vector3d& a,
-                                                  const Eigen::Vector3d& b, const Eigen::Vector3d& t) {
-  checkSphere(c, r);
-  detail::checkPosition(a, "triangle vertex a");
-  detail::checkPosition(b, "triangle vertex b");
-  detail::checkPosition(t, "triangle vertex c");
-  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+/// The triangle (0, u, v) (scaled) and the centre x relative to its first vertex.
+LocalAnswer triangleLocal(const Eigen::Vector3d& u, const Eigen::Vector3d& v, const Eigen::Vector3d& x) {
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-  // Work relative to a (the frame of finish(): identity rotation, origin a).
-  const Eigen::Vector3d x = c - a, u = b - a, v = t - a;
-  const double scale = x.norm() + r + u.norm() + v.norm();
-  const Eigen::Vector3d n = u.cross(v);
+  const double scale = x.norm();
+  // The normal from an accurate cross product: for a nearly degenerate triangle the plain one's
+  // direction is off by ~eps / sin(angle), and the height x.n with it (a session 36 audit: a
+  // centre 0.04 deep in a sliver was reported 0.5 away).
+  const Eigen::Vector3d n = accurateCross(u, v);
   const double nn = n.squaredNorm();
   if (nn > 0.0) {
-    // The projection onto the plane, if inside the triangle (all three sub-areas non-negative).
-    const double s = x.dot(n) / nn;
-    const Eigen::Vector3d proj = x - s * n;
-    const bool inside = (u.cross(proj)).dot(n) >= 0.0 && ((v - u).cross(proj - u)).dot(n) >= 0.0 &&
-                        ((-v).cross(proj - v)).dot(n) >= 0.0;
+    // The projection onto the plane is inside when the three sub-triangles it makes with the
+    // edges are oriented as the triangle: (e_i x (x - p_i)) . n >= 0 (the projection drops out of
+    // these triple products; each cross product accurate as above).
+    const bool inside = accurateCross(u, x).dot(n) >= 0.0 && accurateCross(v - u, x - u).dot(n) >= 0.0 &&
+                        accurateCross(-v, x - v).dot(n) >= 0.0;
     if (inside) {
       const Eigen::Vector3d unit_n = n / std::sqrt(nn);
       const double height = x.dot(unit_n);
       // Toward the triangle: against the side the centre is on (+n when on it).
       const Eigen::Vector3d toward = height > 0.0 ? Eigen::Vector3d(-unit_n) : unit_n;
-      return finish(c, r, I, a, proj, toward, std::fabs(height), scale);
+      return {x - height * unit_n, toward, std::fabs(height), scale + std::fabs(height)};
     }
   }
   // The nearest point of the three edges (a degenerate triangle is its edges).
@@ -270,7 +253,87 @@ SignedDistanceResult signedDistanceSphereTriangle(const Eigen::Vector3d& c, doub
     if ((v - u).squaredNorm() > e.squaredNorm()) e = v - u;
     across = e.squaredNorm() > 0.0 ? e.unitOrthogonal() : Eigen::Vector3d::UnitX();
   }
-  return outside(c, r, I, a, x, best, across, scale);
+  return outside(x, best, across, scale);
+}
+
+}  // namespace
+
+SignedDistanceResult signedDistanceSphereBox(const Eigen::Vector3d& c, double r, const Eigen::Vector3d& half_extents,
+                                             const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_WB) {
+  checkSphere(c, r);
+  for (int i = 0; i < 3; ++i) detail::checkLength(half_extents[i], "box half extent", nullptr, i);
+  const Eigen::Matrix3d R = detail::storedRotation(R_WB, "box rotation");
+  detail::checkPosition(p_WB, "box centre");
+  const Eigen::Vector3d x = R.transpose() * (c - p_WB);
+  const double unit = unitScale({x.cwiseAbs().maxCoeff(), half_extents.maxCoeff()});
+  return finish(c, r, R, p_WB, boxLocal(unit * half_extents, unit * x), unit);
+}
+
+SignedDistanceResult signedDistanceSphereCapsule(const Eigen::Vector3d& c, double r, double radius, double length,
+                                                 const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
+  checkSphere(c, r);
+  detail::checkLength(radius, "capsule radius");
+  detail::checkLength(length, "capsule length");
+  const Eigen::Matrix3d R = detail::storedRotation(R_WC, "capsule rotation");
+  detail::checkPosition(p_WC, "capsule centre");
+  const Eigen::Vector3d x = R.transpose() * (c - p_WC);
+  const double unit = unitScale({x.cwiseAbs().maxCoeff(), radius, length});
+  return finish(c, r, R, p_WC, capsuleLocal(unit * radius, unit * length, unit * x), unit);
+}
+
+SignedDistanceResult signedDistanceSphereCylinder(const Eigen::Vector3d& c, double r, double radius, double length,
+                                                  const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
+  checkSphere(c, r);
+  detail::checkLength(radius, "cylinder radius");
+  detail::checkLength(length, "cylinder length");
+  const Eigen::Matrix3d R = detail::storedRotation(R_WC, "cylinder rotation");
+  detail::checkPosition(p_WC, "cylinder centre");
+  const Eigen::Vector3d x = R.transpose() * (c - p_WC);
+  const double unit = unitScale({x.cwiseAbs().maxCoeff(), radius, length});
+  return finish(c, r, R, p_WC, cylinderLocal(unit * radius, unit * length, unit * x), unit);
+}
+
+SignedDistanceResult signedDistanceSphereCone(const Eigen::Vector3d& c, double r, double radius, double length,
+                                              const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
+  checkSphere(c, r);
+  detail::checkLength(radius, "cone radius");
+  detail::checkLength(length, "cone length");
+  const Eigen::Matrix3d R = detail::storedRotation(R_WC, "cone rotation");
+  detail::checkPosition(p_WC, "cone centre");
+  const Eigen::Vector3d x = R.transpose() * (c - p_WC);
+  const double unit = unitScale({x.cwiseAbs().maxCoeff(), radius, length});
+  return finish(c, r, R, p_WC, coneLocal(unit * radius, unit * length, unit * x), unit);
+}
+
+SignedDistanceResult signedDistanceSphereTriangle(const Eigen::Vector3d& c, double r, const Eigen::Vector3d& a,
+                                                  const Eigen::Vector3d& b, const Eigen::Vector3d& t) {
+  checkSphere(c, r);
+  detail::checkPosition(a, "triangle vertex a");
+  detail::checkPosition(b, "triangle vertex b");
+  detail::checkPosition(t, "triangle vertex c");
+  // Relative to a (the frame of finish(): identity rotation, origin a).
+  const Eigen::Vector3d x = c - a, u = b - a, v = t - a;
+  const double unit = unitScale({x.cwiseAbs().maxCoeff(), u.cwiseAbs().maxCoeff(), v.cwiseAbs().maxCoeff()});
+  return finish(c, r, Eigen::Matrix3d::Identity(), a, triangleLocal(unit * u, unit * v, unit * x), unit);
+}
+
+SignedDistanceResult signedDistanceSphereSphere(const Eigen::Vector3d& c_a, double r_a, const Eigen::Vector3d& c_b,
+                                                double r_b) {
+  checkSphere(c_a, r_a);
+  checkSphere(c_b, r_b);
+  const Eigen::Vector3d delta = c_b - c_a;
+  const double unit = unitScale({delta.cwiseAbs().maxCoeff()});
+  const double dist = (unit * delta).norm() / unit;  // (scaled: no underflow of the squares)
+  SignedDistanceResult out;
+  out.normal = dist > 0.0 ? Eigen::Vector3d(delta / dist) : Eigen::Vector3d::UnitX();
+  out.point_a = c_a + r_a * out.normal;
+  out.point_b = c_b - r_b * out.normal;
+  const double d = dist - (r_a + r_b);
+  const double band = tolerance::kCertificateRelativeBoundDouble * (dist + r_a + r_b);
+  out.status = d > band ? Separation::Separated : d < -band ? Separation::Overlapping : Separation::Touching;
+  out.distance = out.status == Separation::Touching ? 0.0 : d;
+  out.converged = true;
+  return out;
 }
 
 }  // namespace fcl_quadric

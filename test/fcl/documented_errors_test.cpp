@@ -11,6 +11,9 @@
 #include <vector>
 
 #include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/sphere.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/ellipsoid.h>
 #include <fcl/geometry/shape/halfspace.h>
@@ -93,6 +96,51 @@ TEST(DocumentedErrors, PartnersPosedOutOfRangeOrByNonRigidTransformsAreRejected)
   EXPECT_EQ(fcl_quadric::collide(elliptic.get(), I, ellipsoid.get(), near, creq, r), 0u);
   fcl::DistanceResultd d;
   EXPECT_NEAR(fcl_quadric::distance(elliptic.get(), I, ellipsoid.get(), near, dreq, d), 0.5, 1e-12);
+}
+
+// Session 36's audit of the sphere pairs: FCL's own closed forms (sphere against a box, capsule,
+// cylinder or sphere, collide and unsigned distance) took a NaN radius, a centre at 1e200 or a
+// scaled pose and answered NaN or DBL_MAX with unwritten points; a sphere's scaled pose was
+// ignored on the exact paths too. Now every sphere pair validates both operands.
+TEST(DocumentedErrors, SpherePairsValidateBothOperandsOnEveryPath) {
+  const auto nan_ball = std::make_shared<fcl::Sphered>(std::nan(""));
+  const auto ball = std::make_shared<fcl::Sphered>(0.5);
+  const auto box = std::make_shared<fcl::Boxd>(1.0, 1.0, 1.0);
+  const auto capsule = std::make_shared<fcl::Capsuled>(0.3, 1.0);
+  const auto cone = std::make_shared<fcl::Coned>(0.5, 1.0);
+  const fcl::Transform3d I = fcl::Transform3d::Identity();
+  fcl::Transform3d far = I, scaled = I, near = I;
+  far.translation() = Eigen::Vector3d(1e200, 0.0, 0.0);
+  scaled.linear() = 2.0 * Eigen::Matrix3d::Identity();
+  near.translation() = Eigen::Vector3d(2.0, 0.0, 0.0);
+  auto collide = [&](const fcl::CollisionGeometryd* a, const fcl::Transform3d& ta, const fcl::CollisionGeometryd* b,
+                     const fcl::Transform3d& tb) {
+    fcl::CollisionResultd r;
+    fcl_quadric::collide(a, ta, b, tb, fcl::CollisionRequestd(1, true), r);
+  };
+  auto distance = [&](const fcl::CollisionGeometryd* a, const fcl::Transform3d& ta, const fcl::CollisionGeometryd* b,
+                      const fcl::Transform3d& tb) {
+    fcl::DistanceResultd r;
+    fcl_quadric::distance(a, ta, b, tb, fcl::DistanceRequestd(true), r);
+  };
+  for (auto query : {std::function<void(const fcl::CollisionGeometryd*, const fcl::Transform3d&, const fcl::CollisionGeometryd*,
+                                        const fcl::Transform3d&)>(collide),
+                     std::function<void(const fcl::CollisionGeometryd*, const fcl::Transform3d&, const fcl::CollisionGeometryd*,
+                                        const fcl::Transform3d&)>(distance)}) {
+    expectInvalid([&] { query(nan_ball.get(), I, box.get(), near); }, "o1 (fcl::Sphere): sphere radius must be finite");
+    expectInvalid([&] { query(capsule.get(), near, nan_ball.get(), I); }, "o2 (fcl::Sphere): sphere radius");
+    expectInvalid([&] { query(ball.get(), far, ball.get(), I); }, "o1 (fcl::Sphere): sphere centre coordinates must be within");
+    expectInvalid([&] { query(ball.get(), I, box.get(), scaled); }, "box rotation");
+    expectInvalid([&] { query(ball.get(), scaled, cone.get(), near); }, "o1 (fcl::Sphere): sphere rotation");
+    expectInvalid([&] { query(ball.get(), scaled, box.get(), near); }, "sphere rotation");
+  }
+  // Rigid poses in range are answered, and a touching pair's unsigned distance on the exact paths
+  // is 0 (it was -1): a ball of radius 0.5 centred at z = 1 touches the cone's apex at z = 0.5.
+  // (FCL's own closed forms, sphere-box for one, keep their -1 for touching.)
+  fcl::DistanceResultd dc;
+  fcl::Transform3d above_apex = I;
+  above_apex.translation() = Eigen::Vector3d(0.0, 0.0, 1.0);  // the apex is at z = 0.5
+  EXPECT_EQ(fcl_quadric::distance(ball.get(), above_apex, cone.get(), I, fcl::DistanceRequestd(true), dc), 0.0);
 }
 
 }  // namespace

@@ -195,8 +195,9 @@ TEST(SphereSolid, TangentConstructionsGiveTheGapAndTheNearestPointToRounding) {
         ASSERT_NEAR(d.distance, d.status == Separation::Touching ? 0.0 : g, tol)
             << kindName(kind) << " case " << i << " gap " << g;
         // The status is certain outside the touching band (2^-40 of the scale).
-        if (std::fabs(g) > 1e-11 * scale)
+        if (std::fabs(g) > 1e-11 * scale) {
           ASSERT_EQ(d.status, g > 0 ? Separation::Separated : Separation::Overlapping) << kindName(kind) << " " << i;
+        }
         // The nearest point of a convex solid is unique: q; the normal is -m.
         ASSERT_LT((d.point_b - q).norm(), 1e-12 * scale) << kindName(kind) << " case " << i << " gap " << g;
         ASSERT_LT((d.normal + m).norm(), 1e-9) << kindName(kind) << " case " << i << " gap " << g;
@@ -298,7 +299,9 @@ TEST(SphereSolid, ConvexPolytopesAgreeWithTheBoxAndWithTheGeneralKernel) {
     const Ellipsoid near(Eigen::Vector3d(r, r, r * (1 + 1e-10)), test::randomRotation(rng), c);
     const SignedDistanceResult general = signedDistanceEllipsoidConvex(near, oct);
     ASSERT_NEAR(closed.distance, general.distance, 1e-10 * r + 1e-11 * scale) << "case " << i;
-    if (std::fabs(closed.distance) > 1e-8) ASSERT_EQ(closed.status, general.status) << "case " << i;
+    if (std::fabs(closed.distance) > 1e-8) {
+      ASSERT_EQ(closed.status, general.status) << "case " << i;
+    }
   }
   EXPECT_GT(counts[0], 100);
   EXPECT_GT(counts[2], 100);
@@ -342,6 +345,110 @@ TEST(SphereSolid, DegenerateSolidsAnswerAsTheSegmentOrDiskTheyAre) {
   const SignedDistanceResult on_triangle = signedDistanceSphereTriangle({0.2, 0.2, 0}, r, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
   EXPECT_NEAR(on_triangle.distance, -r, 1e-15);
   EXPECT_NEAR(std::fabs(on_triangle.normal.z()), 1.0, 1e-15);
+}
+
+// Cases of a session 36 audit (its own __float128 oracle), each wrong before the fix noted.
+TEST(SphereSolid, NearlyDegenerateTrianglesAndExtremeSizesAreExact) {
+  // A triangle whose vertices are collinear up to rounding: its plain cross product's direction
+  // was noise, and a centre 0.042 deep was reported 0.503 away. Oracle: the general kernel on a
+  // nearly spherical ellipsoid (radii r, r, r (1 + 1e-12)).
+  {
+    const Eigen::Vector3d a(0.13336951502944472, -0.010050575561086128, -0.73886592156309638),
+        b(0.072669759960608316, 0.063273615219133994, 0.49868894700716915),
+        t(0.08893068007870511, 0.043630721971062346, 0.16715909426292752),
+        c(0.11115009755407491, 0.016790073204988109, -0.18585341365008443);
+    const double r = 0.05;
+    const SignedDistanceResult d = signedDistanceSphereTriangle(c, r, a, b, t);
+    const Ellipsoid near(Eigen::Vector3d(r, r, r * (1 + 1e-12)), Eigen::Matrix3d::Identity(), c);
+    const SignedDistanceResult k = signedDistanceEllipsoidTriangle(near, a, b, t);
+    EXPECT_EQ(d.status, Separation::Overlapping);
+    EXPECT_NEAR(d.distance, k.distance, 1e-13);
+    EXPECT_NEAR(d.distance, -0.0423309734819364, 1e-13);
+  }
+  // A thin valid triangle (relative height ~1e-10): its status flipped (+2.4e-7 for -1.9e-7).
+  {
+    const Eigen::Vector3d a(-0.35879569367024289, 0.042299873466061788, 0.016030942890750355),
+        b(0.42560055255610219, 0.5466324881771778, -0.78685570579890785),
+        t(0.21687709370122071, 0.41243239711970131, -0.57321205430815425),
+        c(0.3300464962107712, 0.48639592805578913, -0.68805420491383718);
+    const double r = 0.0015515;
+    const SignedDistanceResult d = signedDistanceSphereTriangle(c, r, a, b, t);
+    const Ellipsoid near(Eigen::Vector3d(r, r, r * (1 + 1e-12)), Eigen::Matrix3d::Identity(), c);
+    EXPECT_EQ(d.status, Separation::Overlapping);
+    EXPECT_NEAR(d.distance, signedDistanceEllipsoidTriangle(near, a, b, t).distance, 1e-13);
+  }
+  // Triangles of 1e77 and 1e-85 (|u x v|^2 overflowed / underflowed), boxes and cones of 1e-170:
+  // every length scales exactly, so the answer is the unit problem's times the scale.
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  for (double s : {1e77, 1e90, 1e-85, 1e-140}) {
+    const SignedDistanceResult d = signedDistanceSphereTriangle(Eigen::Vector3d(0, 0, 0.1 * s), 0.0, Eigen::Vector3d(-s, -s, 0),
+                                                                Eigen::Vector3d(s, -s, 0), Eigen::Vector3d(0, s, 0));
+    EXPECT_EQ(d.status, Separation::Separated) << s;
+    EXPECT_NEAR(d.distance / s, 0.1, 1e-15) << s;
+    EXPECT_NEAR(d.normal.norm(), 1.0, 1e-15) << s;
+  }
+  for (double s : {1e-170, 1e-100, 1.0, 1e99}) {
+    // A cone of radius and length s, the centre at its middle: depth s / (2 sqrt 2) from the slant.
+    const SignedDistanceResult cone = signedDistanceSphereCone(Eigen::Vector3d::Zero(), 0.0, s, s, I, Eigen::Vector3d::Zero());
+    EXPECT_EQ(cone.status, Separation::Overlapping) << s;
+    EXPECT_NEAR(cone.distance / s, -1.0 / (2.0 * std::sqrt(2.0)), 1e-15) << s;
+    EXPECT_NEAR(cone.normal.norm(), 1.0, 1e-15) << s;
+  }
+  // The band follows the rounding, not the solid's size: a unit ball 1e-6 above a box 2e6 wide,
+  // and 8.5 above the apex of a flat cone 1e99 wide, are separated (both were "touching").
+  EXPECT_NEAR(signedDistanceSphereBox(Eigen::Vector3d(0, 0, 2 + 1e-6), 1.0, Eigen::Vector3d(1e6, 1e6, 1), I,
+                                      Eigen::Vector3d::Zero()).distance,
+              1e-6, 1e-15);
+  const SignedDistanceResult flat = signedDistanceSphereCone(Eigen::Vector3d(0, 0, 10), 1.0, 1e99, 1.0, I, Eigen::Vector3d::Zero());
+  EXPECT_EQ(flat.status, Separation::Separated);
+  EXPECT_NEAR(flat.distance, 8.5, 1e-14);
+  // A convex cube of half side 1e-6 at (1e6, 1e6, 1e6), a ball of 1e-9 at its centre: 1e-6 + 1e-9
+  // deep (the band was 2^-40 of the coordinates, 1e-6: "touching").
+  ConvexPolytope cube = boxPolytope(Eigen::Vector3d::Constant(1e-6), I, Eigen::Vector3d::Constant(1e6));
+  const SignedDistanceResult deep = signedDistanceEllipsoidConvex(Ellipsoid::sphere(1e-9, Eigen::Vector3d::Constant(1e6)), cube);
+  EXPECT_EQ(deep.status, Separation::Overlapping);
+  // (The vertices 1e6 +- 1e-6 are rounded to 1e6's ulp, 1.2e-10: the cube's faces are where they
+  // rounded to, and the exact differences give them.)
+  const volatile double big = 1e6, small = 1e-6;  // (no constant folding in another precision)
+  const double h_plus = (big + small) - big, h_minus = big - (big - small);
+  EXPECT_NEAR(deep.distance, -(std::min(h_plus, h_minus) + 1e-9), 1e-20);
+  // Lengths beyond 1e100 are refused, as radii are (a capsule 1.7e308 long was measured wrong).
+  EXPECT_THROW(signedDistanceSphereCapsule(Eigen::Vector3d(10, 0, 0), 1.0, 1.0, 1.7e308, I, Eigen::Vector3d::Zero()),
+               std::invalid_argument);
+  EXPECT_THROW(signedDistanceSphereBox(Eigen::Vector3d::Zero(), 1.0, Eigen::Vector3d(2e200, 1, 1), I, Eigen::Vector3d::Zero()),
+               std::invalid_argument);
+  EXPECT_THROW(signedDistanceEllipsoidCylinder(Ellipsoid({1, 2, 3}, I, Eigen::Vector3d::Zero()), 1e101, 1.0, I,
+                                               Eigen::Vector3d(0, 0, 10)),
+               std::invalid_argument);
+}
+
+// Two spheres: the distance in long double, and the exchanged arguments give the same distance
+// bit for bit with mirrored witnesses (the audit found them differing by an ulp when sphere-sphere
+// went through the capsule form).
+TEST(SphereSolid, TwoSpheresAreSymmetricAndExact) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-3.0, 3.0), ur(0.01, 2.0);
+  int counts[3] = {0, 0, 0};
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3d ca(u(rng), u(rng), u(rng));
+    const double ra = ur(rng), rb = ur(rng);
+    Eigen::Vector3d cb(u(rng), u(rng), u(rng));
+    if (i % 4 == 0) cb = ca + (ra + rb) * (1.0 + (i % 8 == 0 ? 1e-9 : -1e-9)) * test::randomUnitVector(rng);
+    const SignedDistanceResult ab = signedDistanceSphereSphere(ca, ra, cb, rb), ba = signedDistanceSphereSphere(cb, rb, ca, ra);
+    ++counts[static_cast<int>(ab.status)];
+    ASSERT_EQ(ab.distance, ba.distance) << i;
+    ASSERT_EQ(ab.status, ba.status) << i;
+    ASSERT_EQ(ab.point_a, ba.point_b) << i;
+    ASSERT_EQ(ab.normal, -ba.normal) << i;
+    const long double dx = static_cast<long double>(cb.x()) - ca.x(), dy = static_cast<long double>(cb.y()) - ca.y(),
+                      dz = static_cast<long double>(cb.z()) - ca.z();
+    const long double exact = std::sqrt(dx * dx + dy * dy + dz * dz) - ra - rb;
+    if (ab.status != Separation::Touching) {
+      ASSERT_NEAR(ab.distance, static_cast<double>(exact), 4e-16 * (std::fabs(static_cast<double>(exact)) + ra + rb + 6.0)) << i;
+    }
+  }
+  EXPECT_GT(counts[0], 100);
+  EXPECT_GT(counts[2], 100);
 }
 
 TEST(SphereSolid, BadInputNamesTheValue) {

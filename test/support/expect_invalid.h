@@ -15,7 +15,7 @@ void expectInvalid(F f, const std::string& needle) {
     f();
     ADD_FAILURE() << "no exception, expected one containing '" << needle << "'";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << "expected '" << needle << "' in: " << e.what();
   }
 }
 

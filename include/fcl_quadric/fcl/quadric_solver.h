@@ -234,7 +234,10 @@ struct ExactDistance {
 /// or a linear part that is not a rotation (|R^T R - I| > tolerance::kRotationOrthogonality).
 Ellipsoid ellipsoidFromFcl(const Eigen::Vector3d& radii, const Eigen::Matrix3d& R_WE,
                            const Eigen::Vector3d& p_WE, const char* which);
-Ellipsoid sphereFromFcl(double radius, const Eigen::Vector3d& p_WS, const char* which);
+/// A sphere's R_WS must be a rotation too (it does not move the sphere). checkSphereFromFcl: the
+/// same checks without the construction (std::invalid_argument naming `which`).
+Ellipsoid sphereFromFcl(double radius, const Eigen::Matrix3d& R_WS, const Eigen::Vector3d& p_WS, const char* which);
+void checkSphereFromFcl(double radius, const Eigen::Matrix3d& R_WS, const Eigen::Vector3d& p_WS, const char* which);
 
 /// Collision of a and b (touching counts, as everywhere in fcl_quadric): classifyEllipsoids.
 /// If colliding and `contact` is non-null, fills it from signedDistance(a, b).
@@ -247,8 +250,9 @@ bool distanceEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactDistance* o
 
 /// FCL's shapeSignedDistance convention: signedDistance(a, b) (negative = minus the penetration
 /// depth), p1 = point_a, p2 = point_b (for overlap: the deepest point of each inside the other,
-/// as libccd's EPA); returns false iff the distance is negative. Two spheres (equal radii each):
-/// the closed form of sphere_solid.h instead, with its 2^-40 touching band.
+/// as libccd's EPA); returns false iff the distance is negative.
+/// Two spheres (equal radii each): all three answer from the closed form of sphere_solid.h, with
+/// its 2^-40 touching band.
 bool signedDistanceEllipsoids(const Ellipsoid& a, const Ellipsoid& b, ExactDistance* out);
 
 /// Throws std::invalid_argument naming `which` and the offending transform.
@@ -270,7 +274,8 @@ Ellipsoid asEllipsoid(const fcl::Ellipsoid<S>& s, const fcl::Transform3<S>& tf, 
 }
 template <typename S>
 Ellipsoid asEllipsoid(const fcl::Sphere<S>& s, const fcl::Transform3<S>& tf, const char* which) {
-  return sphereFromFcl(static_cast<double>(s.radius), tf.translation().template cast<double>(), which);
+  return sphereFromFcl(static_cast<double>(s.radius), tf.linear().template cast<double>(),
+                       tf.translation().template cast<double>(), which);
 }
 
 template <typename S>
@@ -598,9 +603,11 @@ void appendContact(const ExactContact& c, std::vector<fcl::ContactPoint<S>>* con
 /// GJKSolver_libccd<S> (`libccd()`), whose tolerances and iteration limits are public.
 ///
 /// Bad input: a non-finite transform (any pair) throws std::invalid_argument naming "tf1"/"tf2";
-/// for the exact pairs a non-positive or non-finite radius, a negative box side, a zero plane
-/// normal, a non-finite triangle vertex, or a linear part that is not a rotation within
-/// tolerance::kRotationOrthogonality, throws std::invalid_argument naming o1/o2.
+/// for the exact pairs and the sphere pairs answered by FCL's closed forms (kSphereClosedForm) a
+/// non-positive or non-finite radius, a negative box side, a length beyond 1e100, a centre beyond
+/// 1e100, a zero plane normal, a non-finite triangle vertex, or a linear part that is not a
+/// rotation within tolerance::kRotationOrthogonality (a sphere's too), throws
+/// std::invalid_argument naming o1/o2.
 ///
 /// Stateless: the const members may be called concurrently from several threads.
 template <typename S_>
@@ -629,8 +636,29 @@ class QuadricSolver {
     detail::checkTransform(tf1, "tf1");
     detail::checkTransform(tf2, "tf2");
     using Pair = detail::QuadricPair<Shape1, Shape2>;
-    if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd || Pair::kind == detail::QuadricPairKind::kSupportPlane ||
-                  Pair::kind == detail::QuadricPairKind::kPlanePlane || Pair::kind == detail::QuadricPairKind::kSphereClosedForm) {
+    if constexpr (Pair::kind == detail::QuadricPairKind::kSphereClosedForm) {
+      validateOperands(s1, tf1, s2, tf2);
+      const std::size_t before = contacts ? contacts->size() : 0;
+      const bool hit = libccd_.shapeIntersect(s1, tf1, s2, tf2, contacts);  // FCL's closed forms
+      // FCL's sphere-sphere and sphere-capsule forms give a zero normal to a centre on the other
+      // centre or on the capsule's axis (session 36, an audit): the closed form's normal there.
+      if (hit && contacts) {
+        for (std::size_t i = before; i < contacts->size(); ++i) {
+          fcl::ContactPoint<S>& c = (*contacts)[i];
+          if (c.normal.norm() > 0.5) continue;
+          detail::ExactDistance d;
+          detail::exactPairDistance<Pair::swapped, true>(s1, tf1, s2, tf2, &d);
+          const Eigen::Vector3d n = d.p2 - d.p1;  // from s1's deepest point to s2's: along -normal
+          const double len = n.norm();
+          // p2 - p1 = distance * normal (distance < 0 here), so the normal is -(p2 - p1) / |.|.
+          if (len > 0.0) c.normal = (-n / len).template cast<S>();
+          else c.normal = fcl::Vector3<S>::UnitX();
+        }
+      }
+      return hit;
+    } else if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd ||
+                         Pair::kind == detail::QuadricPairKind::kSupportPlane ||
+                         Pair::kind == detail::QuadricPairKind::kPlanePlane) {
       return libccd_.shapeIntersect(s1, tf1, s2, tf2, contacts);  // FCL's closed forms
     } else if constexpr (Pair::kind == detail::QuadricPairKind::kSupportPlaneExact) {
       S dist = 0;
@@ -715,7 +743,10 @@ class QuadricSolver {
     detail::checkTransform(tf1, "tf1");
     detail::checkTransform(tf2, "tf2");
     using Pair = detail::QuadricPair<Shape1, Shape2>;
-    if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd || Pair::kind == detail::QuadricPairKind::kSphereClosedForm) {
+    if constexpr (Pair::kind == detail::QuadricPairKind::kSphereClosedForm) {
+      validateOperands(s1, tf1, s2, tf2);
+      return libccd_.shapeDistance(s1, tf1, s2, tf2, dist, p1, p2);
+    } else if constexpr (Pair::kind == detail::QuadricPairKind::kLibccd) {
       return libccd_.shapeDistance(s1, tf1, s2, tf2, dist, p1, p2);
     } else if constexpr (Pair::kind == detail::QuadricPairKind::kSupportPlane ||
                          Pair::kind == detail::QuadricPairKind::kSupportPlaneExact) {
@@ -831,6 +862,24 @@ class QuadricSolver {
   fcl::Vector3<S> getCachedGuess() const { return libccd_.getCachedGuess(); }
 
  private:
+  // The exact kernels' validation of both operands, for the pairs answered by FCL's own closed
+  // forms, which take a NaN radius, a centre at 1e200 or a scaled pose without a word (NaN or
+  // DBL_MAX answers with unwritten points: session 36, an audit). ~30 ns.
+  template <typename Shape1, typename Shape2>
+  static void validateOperands(const Shape1& s1, const fcl::Transform3<S>& tf1, const Shape2& s2,
+                               const fcl::Transform3<S>& tf2) {
+    validateOperand(s1, tf1, "o1");
+    validateOperand(s2, tf2, "o2");
+  }
+  template <typename Shape>
+  static void validateOperand(const Shape& s, const fcl::Transform3<S>& tf, const char* which) {
+    (void)detail::asExact(s, tf, which);
+  }
+  static void validateOperand(const fcl::Sphere<S>& s, const fcl::Transform3<S>& tf, const char* which) {
+    detail::checkSphereFromFcl(static_cast<double>(s.radius), tf.linear().template cast<double>(),
+                               tf.translation().template cast<double>(), which);
+  }
+
   static constexpr bool isShapePairKind(detail::QuadricPairKind k) {
     return k == detail::QuadricPairKind::kEllipsoidEllipsoid || k == detail::QuadricPairKind::kEllipsoidPlane ||
            k == detail::QuadricPairKind::kEllipsoidHalfspace || k == detail::QuadricPairKind::kEllipsoidBox ||

@@ -2,6 +2,8 @@
 /// \file ellipsoid.h
 /// An ellipsoid posed in the world frame W, the value type of the static narrow phase.
 
+#include <string>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -118,6 +120,12 @@ void checkFinite(const Eigen::Vector3d& v, const char* what);
 /// their products overflow; a box 1e300 away was reported colliding with an ellipsoid at the
 /// origin (session 35, an audit).
 void checkPosition(const Eigen::Vector3d& v, const char* what);
+/// Throws std::invalid_argument("<what>[ <name>][ <index>] must be finite and in [0, 1e+100], got
+/// <v>") unless v is finite, >= 0 and <= tolerance::kMaxLength: a length of a solid (a radius, a
+/// side, a height), in the range its tests are exact in (as the Ellipsoid's radii). A capsule
+/// 1.7e308 long was measured wrong otherwise (session 36, an audit). No allocation unless it
+/// throws (it runs for every posed solid of every query).
+void checkLength(double v, const char* what, const char* name = nullptr, int index = -1);
 }  // namespace detail
 
 }  // namespace fcl_quadric

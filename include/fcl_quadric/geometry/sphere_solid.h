@@ -15,12 +15,16 @@
 ///    symmetric about the axis lies in the point's own half-plane);
 ///  - triangle: the nearest point of the triangle (Voronoi regions of its vertices and edges), a
 ///    solid without interior: a centre on it is at depth r along either normal.
-/// Every quantity is a sum, product, square root or hypot of the inputs in the solid's frame, so
-/// the computed point distance is within a few eps of the scale |c - p| + r + size of the exact
-/// one (p the solid's centre, size its radius plus length, or the l1 norm of the box's half
-/// extents). The status is read with the touching band of the other exact kernels,
-/// tolerance::kCertificateRelativeBoundDouble (2^-40) times that scale: Separated above it,
-/// Overlapping below its negative, Touching (distance 0, counts as contact) within it.
+/// The problem is computed in the solid's frame x = R^T (c - p) (p its centre; a triangle's first
+/// vertex), with every length multiplied by the power of two that brings the largest into [1, 2)
+/// (exact; no square overflows or underflows at any size within the accepted ranges), and a
+/// triangle's normal and orientation tests from cross products accurate to one rounding (Kahan's
+/// difference of products), so that nearly degenerate triangles stay exact. Each computed
+/// distance is then within a few eps of the scale |x| + |d| + r of the exact one (d the centre's
+/// distance; for the cone plus the two terms of its slant-line distance). The status is read with
+/// the touching band of the other exact kernels, tolerance::kCertificateRelativeBoundDouble
+/// (2^-40) times that scale: Separated above it, Overlapping below its negative, Touching
+/// (distance 0, counts as contact) within it.
 ///
 /// Outputs follow SignedDistanceResult: normal unit, from the sphere (a) to the solid (b);
 /// point_a = c + r normal on the sphere (its deepest point in the solid when they overlap);
@@ -41,9 +45,9 @@
 namespace fcl_quadric {
 
 /// Sphere (centre c, radius r) against the box { p_WB + R_WB s : |s_i| <= h_i }.
-/// \throws std::invalid_argument for a negative or non-finite radius or half extent, a
-/// non-rotation R_WB, or a centre not finite or beyond tolerance::kMaxLength (the message names
-/// the value).
+/// \throws std::invalid_argument for a radius or half extent not finite or outside
+/// [0, tolerance::kMaxLength], a non-rotation R_WB, or a centre not finite or beyond kMaxLength
+/// (the message names the value).
 SignedDistanceResult signedDistanceSphereBox(const Eigen::Vector3d& c, double r, const Eigen::Vector3d& half_extents,
                                              const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& p_WB);
 
@@ -64,6 +68,12 @@ SignedDistanceResult signedDistanceSphereCone(const Eigen::Vector3d& c, double r
 /// \throws std::invalid_argument for a bad radius or a vertex not finite or beyond kMaxLength.
 SignedDistanceResult signedDistanceSphereTriangle(const Eigen::Vector3d& c, double r, const Eigen::Vector3d& a,
                                                   const Eigen::Vector3d& b, const Eigen::Vector3d& t);
+
+/// Two spheres: |c_b - c_a| - r_a - r_b, symmetric bit for bit (the arguments exchanged give the
+/// same distance and the mirrored witnesses and normal; coincident centres: normal +x either way).
+/// \throws std::invalid_argument for a bad radius or centre.
+SignedDistanceResult signedDistanceSphereSphere(const Eigen::Vector3d& c_a, double r_a, const Eigen::Vector3d& c_b,
+                                                double r_b);
 
 /// True if e is a sphere (three equal radii), whose pairs the closed forms above answer.
 inline bool isSphere(const Ellipsoid& e) {
