@@ -409,9 +409,10 @@ ConvexFeatures convexFeatures(const ConvexPolytope& P, bool want_edges = true) {
       const int lo = std::min(face[i], face[(i + 1) % face.size()]), hi = std::max(face[i], face[(i + 1) % face.size()]);
       if (want_edges && lo != hi && seen.insert({lo, hi}).second) f.edges.push_back({lo, hi});
     }
-    // stableNorm: |n| of a polytope of 1e78 overflowed and of 1e-90 underflowed with norm()
-    // (session 36, an audit).
-    const double len = n.stableNorm();
+    // |n| of a polytope of 1e78 overflowed and of 1e-90 underflowed with norm() (session 36, an
+    // audit): stableNorm() then, which is slower, only when the squares leave the normal range.
+    const double n2 = n.squaredNorm();
+    const double len = n2 > 1e-290 && n2 < 1e290 ? std::sqrt(n2) : n.stableNorm();
     if (len > 0.0) {
       n /= len;
       if (n.dot(P.vertices[face[0]] - mean) < 0.0) n = -n;
@@ -455,18 +456,27 @@ EllipsoidPolytopeResult classifyConvex(const Ellipsoid& e, const ConvexPolytope&
 
 /// A sphere (centre c, radius r) against P in closed form (docs/algorithms.md §12d): the centre's
 /// signed distance to P minus r. Inside every face plane, the nearest face plane (for a convex
-/// polytope, the distance of an interior point to its boundary); otherwise the nearest of the
-/// faces' fan triangles (signedDistanceSphereTriangle), or of the vertices when no face is given.
+/// polytope, the distance of an interior point to its boundary); otherwise the nearest of the fan
+/// triangles of the faces that see the centre (signedDistanceSphereTriangle), or of the vertices
+/// when no face is given. (The nearest point q of a convex polytope to an outside centre c lies
+/// on a face whose plane has c strictly outside: c - q is a non-negative combination of the
+/// normals of the faces through q, and (c - q).(c - q) > 0 makes one of their n.(c - q) positive.)
 SignedDistanceResult sphereConvex(const Eigen::Vector3d& c, double r, const ConvexPolytope& P, const ConvexFeatures& f) {
   bool inside = !P.faces.empty();
   double reach = 0.0;  // max |c - v| over the faces' first vertices: the plane tests' rounding scale
   int nearest_face = -1;
   double depth = -std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < P.faces.size() && inside; ++k) {
+  std::vector<char> sees(P.faces.size(), 1);  // the face's plane has the centre outside (or nearly)
+  for (std::size_t k = 0; k < P.faces.size(); ++k) {
     const Eigen::Vector3d w = c - P.vertices[P.faces[k][0]];
     const double s = f.normals[k].dot(w);
-    reach = std::max(reach, w.cwiseAbs().maxCoeff());
-    inside = f.normals[k].squaredNorm() > 0.0 && s <= 0.0;
+    const double w_max = w.cwiseAbs().maxCoeff();
+    reach = std::max(reach, w_max);
+    const bool oriented = f.normals[k].squaredNorm() > 0.0;
+    // (A margin far above the rounding of n.w, a few eps of 3 |w|_inf, so no face that may hold
+    // the nearest point is skipped.)
+    sees[k] = !oriented || s > -tolerance::kCertificateRelativeBoundDouble * (3.0 * w_max + r);
+    inside = inside && oriented && s <= 0.0;
     if (inside && s > depth) {
       depth = s;
       nearest_face = static_cast<int>(k);
@@ -499,9 +509,12 @@ SignedDistanceResult sphereConvex(const Eigen::Vector3d& c, double r, const Conv
       best = d;
     }
   };
-  for (const std::vector<int>& face : P.faces)
+  for (std::size_t k = 0; k < P.faces.size(); ++k) {
+    if (!sees[k]) continue;
+    const std::vector<int>& face = P.faces[k];
     for (std::size_t i = 1; i + 1 < face.size(); ++i)
       consider(P.vertices[face[0]], P.vertices[face[i]], P.vertices[face[i + 1]]);
+  }
   if (P.faces.empty())
     for (const Eigen::Vector3d& v : P.vertices) consider(v, v, v);
   return best;
