@@ -11,6 +11,8 @@
 ///  - result.nearest_points (request.enable_nearest_points): world frame, p[0] on o1, p[1] on o2.
 ///    For primitive pairs they lie on the surfaces (also when penetrating, with signed distance);
 ///    for BVH / OcTree operands FCL's workaround applies (both points = a contact position).
+///    Exception, as FCL 0.7 does it: an ellipsoid or sphere against a BVH mesh reports the mesh as
+///    result.o1 / b1 and p[0] on the mesh in either argument order (src/fcl/mesh_distance.h).
 ///  - the libccd fallback gets distance_tolerance = request.distance_tolerance, as fcl::distance
 ///    does for GST_LIBCCD; request.gjk_solver_type is ignored.
 ///  - bad input (null object / geometry, non-finite transform) throws std::invalid_argument;
