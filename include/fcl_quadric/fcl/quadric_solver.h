@@ -864,7 +864,7 @@ class QuadricSolver {
  private:
   // The exact kernels' validation of both operands, for the pairs answered by FCL's own closed
   // forms, which take a NaN radius, a centre at 1e200 or a scaled pose without a word (NaN or
-  // DBL_MAX answers with unwritten points: session 36, an audit). ~30 ns.
+  // DBL_MAX answers with unwritten points: session 36, an audit). ~40 ns measured.
   template <typename Shape1, typename Shape2>
   static void validateOperands(const Shape1& s1, const fcl::Transform3<S>& tf1, const Shape2& s2,
                                const fcl::Transform3<S>& tf2) {
