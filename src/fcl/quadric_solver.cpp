@@ -64,9 +64,9 @@ bool intersectFrom(const SignedDistanceResult& d, ExactContact* contact) {
 
 /// FCL's shapeDistance convention as distanceEllipsoids() keeps it: separated or touching, the
 /// distance (0 when touching) and the witnesses; overlapping, -1 and p1 = p2 = the witnesses'
-/// midpoint (in both solids when they are convex and each witness is in the other, as for a
-/// sphere whose centre is outside the solid; not certified otherwise). (Touching pairs got -1
-/// until session 36, an audit.)
+/// midpoint (in both solids when they are convex and each witness is in the other; not
+/// certified in general: a ball deeper than a thin plate is thick has its deepest point beyond
+/// it). (Touching pairs got -1 until session 36, an audit.)
 bool unsignedDistanceFrom(const SignedDistanceResult& d, ExactDistance* out) {
   if (d.status != Separation::Overlapping) {
     signedDistanceFrom(d, out);
