@@ -269,40 +269,47 @@ SignedDistanceResult signedDistanceSphereBox(const Eigen::Vector3d& c, double r,
   return finish(c, r, R, p_WB, boxLocal(unit * half_extents, unit * x), unit);
 }
 
+namespace {
+
+/// The names a round solid's checks give its values in their messages.
+struct RoundSolidNames {
+  const char* noun;      ///< "<noun> radius" / "<noun> length"
+  const char* rotation;  ///< "<noun> rotation"
+  const char* centre;    ///< "<noun> centre"
+};
+
+/// A round solid (capsule, cylinder, cone: a radius and a length about local z) checked, the
+/// centre brought into its frame and scaled, and `local`'s answer there turned into the sphere's.
+template <class Local>
+SignedDistanceResult roundSolid(const Eigen::Vector3d& c, double r, double radius, double length,
+                                const Eigen::Matrix3d& R_W, const Eigen::Vector3d& p_W, const RoundSolidNames& names,
+                                Local local) {
+  checkSphere(c, r);
+  detail::checkLength(radius, names.noun, "radius");
+  detail::checkLength(length, names.noun, "length");
+  const Eigen::Matrix3d R = detail::storedRotation(R_W, names.rotation);
+  detail::checkPosition(p_W, names.centre);
+  const Eigen::Vector3d x = R.transpose() * (c - p_W);
+  const double unit = unitScale({x.cwiseAbs().maxCoeff(), radius, length});
+  return finish(c, r, R, p_W, local(unit * radius, unit * length, unit * x), unit);
+}
+
+}  // namespace
+
 SignedDistanceResult signedDistanceSphereCapsule(const Eigen::Vector3d& c, double r, double radius, double length,
                                                  const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
-  checkSphere(c, r);
-  detail::checkLength(radius, "capsule radius");
-  detail::checkLength(length, "capsule length");
-  const Eigen::Matrix3d R = detail::storedRotation(R_WC, "capsule rotation");
-  detail::checkPosition(p_WC, "capsule centre");
-  const Eigen::Vector3d x = R.transpose() * (c - p_WC);
-  const double unit = unitScale({x.cwiseAbs().maxCoeff(), radius, length});
-  return finish(c, r, R, p_WC, capsuleLocal(unit * radius, unit * length, unit * x), unit);
+  return roundSolid(c, r, radius, length, R_WC, p_WC, {"capsule", "capsule rotation", "capsule centre"}, capsuleLocal);
 }
 
 SignedDistanceResult signedDistanceSphereCylinder(const Eigen::Vector3d& c, double r, double radius, double length,
                                                   const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
-  checkSphere(c, r);
-  detail::checkLength(radius, "cylinder radius");
-  detail::checkLength(length, "cylinder length");
-  const Eigen::Matrix3d R = detail::storedRotation(R_WC, "cylinder rotation");
-  detail::checkPosition(p_WC, "cylinder centre");
-  const Eigen::Vector3d x = R.transpose() * (c - p_WC);
-  const double unit = unitScale({x.cwiseAbs().maxCoeff(), radius, length});
-  return finish(c, r, R, p_WC, cylinderLocal(unit * radius, unit * length, unit * x), unit);
+  return roundSolid(c, r, radius, length, R_WC, p_WC, {"cylinder", "cylinder rotation", "cylinder centre"},
+                    cylinderLocal);
 }
 
 SignedDistanceResult signedDistanceSphereCone(const Eigen::Vector3d& c, double r, double radius, double length,
                                               const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC) {
-  checkSphere(c, r);
-  detail::checkLength(radius, "cone radius");
-  detail::checkLength(length, "cone length");
-  const Eigen::Matrix3d R = detail::storedRotation(R_WC, "cone rotation");
-  detail::checkPosition(p_WC, "cone centre");
-  const Eigen::Vector3d x = R.transpose() * (c - p_WC);
-  const double unit = unitScale({x.cwiseAbs().maxCoeff(), radius, length});
-  return finish(c, r, R, p_WC, coneLocal(unit * radius, unit * length, unit * x), unit);
+  return roundSolid(c, r, radius, length, R_WC, p_WC, {"cone", "cone rotation", "cone centre"}, coneLocal);
 }
 
 SignedDistanceResult signedDistanceSphereTriangle(const Eigen::Vector3d& c, double r, const Eigen::Vector3d& a,

@@ -28,6 +28,23 @@
 namespace fcl_quadric {
 namespace {
 
+/// The two front doors as queries whose answer is not looked at (collide with a contact, distance
+/// with nearest points): what the bad-input tests below call each input with.
+using Query = std::function<void(const fcl::CollisionGeometryd*, const fcl::Transform3d&, const fcl::CollisionGeometryd*,
+                                 const fcl::Transform3d&)>;
+std::vector<Query> frontDoorQueries() {
+  return {[](const fcl::CollisionGeometryd* a, const fcl::Transform3d& ta, const fcl::CollisionGeometryd* b,
+             const fcl::Transform3d& tb) {
+            fcl::CollisionResultd r;
+            fcl_quadric::collide(a, ta, b, tb, fcl::CollisionRequestd(1, true), r);
+          },
+          [](const fcl::CollisionGeometryd* a, const fcl::Transform3d& ta, const fcl::CollisionGeometryd* b,
+             const fcl::Transform3d& tb) {
+            fcl::DistanceResultd r;
+            fcl_quadric::distance(a, ta, b, tb, fcl::DistanceRequestd(true), r);
+          }};
+}
+
 using test::expectInvalid;
 
 TEST(DocumentedErrors, RationalMotionRejectsAnInvalidMatrixAndTimesOutsideTheInterval) {
@@ -69,20 +86,7 @@ TEST(DocumentedErrors, PartnersPosedOutOfRangeOrByNonRigidTransformsAreRejected)
   scaled.translation() = Eigen::Vector3d(2.5, 0.0, 0.0);
   const fcl::CollisionRequestd creq(1, true);
   fcl::DistanceRequestd dreq(true);
-  auto collide = [&](const fcl::CollisionGeometryd* a, const fcl::Transform3d& ta, const fcl::CollisionGeometryd* b,
-                     const fcl::Transform3d& tb) {
-    fcl::CollisionResultd r;
-    fcl_quadric::collide(a, ta, b, tb, creq, r);
-  };
-  auto distance = [&](const fcl::CollisionGeometryd* a, const fcl::Transform3d& ta, const fcl::CollisionGeometryd* b,
-                      const fcl::Transform3d& tb) {
-    fcl::DistanceResultd r;
-    fcl_quadric::distance(a, ta, b, tb, dreq, r);
-  };
-  for (auto query : {std::function<void(const fcl::CollisionGeometryd*, const fcl::Transform3d&, const fcl::CollisionGeometryd*,
-                                        const fcl::Transform3d&)>(collide),
-                     std::function<void(const fcl::CollisionGeometryd*, const fcl::Transform3d&, const fcl::CollisionGeometryd*,
-                                        const fcl::Transform3d&)>(distance)}) {
+  for (const Query& query : frontDoorQueries()) {
     expectInvalid([&] { query(ellipsoid.get(), I, box.get(), far); }, "box centre coordinates must be within +-1e+100");
     expectInvalid([&] { query(cylinder.get(), far, ellipsoid.get(), I); }, "cylinder centre coordinates must be within");
     expectInvalid([&] { query(ellipsoid.get(), I, halfspace.get(), scaled); }, "plane rotation");
@@ -113,20 +117,7 @@ TEST(DocumentedErrors, SpherePairsValidateBothOperandsOnEveryPath) {
   far.translation() = Eigen::Vector3d(1e200, 0.0, 0.0);
   scaled.linear() = 2.0 * Eigen::Matrix3d::Identity();
   near.translation() = Eigen::Vector3d(2.0, 0.0, 0.0);
-  auto collide = [&](const fcl::CollisionGeometryd* a, const fcl::Transform3d& ta, const fcl::CollisionGeometryd* b,
-                     const fcl::Transform3d& tb) {
-    fcl::CollisionResultd r;
-    fcl_quadric::collide(a, ta, b, tb, fcl::CollisionRequestd(1, true), r);
-  };
-  auto distance = [&](const fcl::CollisionGeometryd* a, const fcl::Transform3d& ta, const fcl::CollisionGeometryd* b,
-                      const fcl::Transform3d& tb) {
-    fcl::DistanceResultd r;
-    fcl_quadric::distance(a, ta, b, tb, fcl::DistanceRequestd(true), r);
-  };
-  for (auto query : {std::function<void(const fcl::CollisionGeometryd*, const fcl::Transform3d&, const fcl::CollisionGeometryd*,
-                                        const fcl::Transform3d&)>(collide),
-                     std::function<void(const fcl::CollisionGeometryd*, const fcl::Transform3d&, const fcl::CollisionGeometryd*,
-                                        const fcl::Transform3d&)>(distance)}) {
+  for (const Query& query : frontDoorQueries()) {
     expectInvalid([&] { query(nan_ball.get(), I, box.get(), near); }, "o1 (fcl::Sphere): sphere radius must be finite");
     expectInvalid([&] { query(capsule.get(), near, nan_ball.get(), I); }, "o2 (fcl::Sphere): sphere radius");
     expectInvalid([&] { query(ball.get(), far, ball.get(), I); }, "o1 (fcl::Sphere): sphere centre coordinates must be within");
