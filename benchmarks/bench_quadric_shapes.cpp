@@ -818,6 +818,16 @@ std::vector<ShapePairScene> makeShapePairScenes() {
   auto paraboloid = std::make_shared<Q>(Q::ellipticParaboloid(0.8, 0.5, {{Eigen::Vector3d::UnitZ(), 1.5}}));
   auto box = std::make_shared<fcl::Boxd>(0.8, 0.6, 1.0);
   auto sphere = std::make_shared<fcl::Sphered>(0.4);
+  // fcl::Cone(0.5, 1.2) as a quadric: x^2 + y^2 <= k^2 (h - z)^2, k = r / L, between its base
+  // z = -h and its apex z = h = L / 2 (the clip through the apex keeps one nappe: a convex shape
+  // since session 37, before which the branch and bound answered it).
+  const double cone_k = 0.5 / 1.2, cone_h = 0.6;
+  Eigen::Matrix4d cone_q = Eigen::Matrix4d::Zero();
+  cone_q(0, 0) = cone_q(1, 1) = 1.0;
+  cone_q(2, 2) = -cone_k * cone_k;
+  cone_q(2, 3) = cone_q(3, 2) = cone_k * cone_k * cone_h;
+  cone_q(3, 3) = -cone_k * cone_k * cone_h * cone_h;
+  auto cone = std::make_shared<Q>(cone_q, Q::Clips{{Eigen::Vector3d::UnitZ(), cone_h}, {-Eigen::Vector3d::UnitZ(), cone_h}});
   return {
       {"CylinderSphere", cylinder, sphere, fcl_cylinder},
       {"CylinderBox", cylinder, box, fcl_cylinder},
@@ -826,6 +836,7 @@ std::vector<ShapePairScene> makeShapePairScenes() {
       {"CylinderEllipsoid", cylinder, std::make_shared<fcl::Ellipsoidd>(0.3, 0.5, 0.7), fcl_cylinder},
       {"CylinderHalfspace", cylinder,
        std::make_shared<fcl::Halfspaced>(Eigen::Vector3d(0.3, 0.2, 1.0).normalized(), 0.1), fcl_cylinder},
+      {"ConeSphere", cone, sphere, std::make_shared<fcl::Coned>(0.5, 1.2)},
       {"ParaboloidBox", paraboloid, box, nullptr},
       {"TwoBallsBox", balls, box, nullptr},
       {"RingSphere", ring, sphere, nullptr},
@@ -854,9 +865,10 @@ double shapePairDistance(const fcl::CollisionGeometryd* a, const fcl::CollisionG
 }
 /// The pairs whose distance is timed: FCL's stand-ins against a sphere and a capsule (the solids
 /// GJK and EPA run as a grown core since session 31) and against a box (a solid that is its own
-/// core, for comparison).
+/// core, for comparison); a quadric cone (one nappe, convex since session 37) against a sphere.
 bool distanceTimed(const ShapePairScene& s) {
-  return s.theirs && (s.name == "CylinderSphere" || s.name == "CylinderCapsule" || s.name == "CylinderBox");
+  return s.theirs && (s.name == "CylinderSphere" || s.name == "CylinderCapsule" || s.name == "CylinderBox" ||
+                      s.name == "ConeSphere");
 }
 void registerShapePairBenchmarks() {
   for (std::size_t k = 0; k < shapePairScenes().size(); ++k) {

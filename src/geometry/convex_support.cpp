@@ -26,27 +26,33 @@ inline void requireSize(double v, const char* what, bool allow_zero) {
   if (!(std::isfinite(v) && (allow_zero ? v >= 0.0 : v > 0.0))) throwSize(v, what, allow_zero);  // (no FE_INVALID on NaN)
 }
 
-/// The point of {y^T A y + 2 b.y + c <= 0} (A positive semidefinite, K = 2 or 3 dimensions,
-/// given by its eigen-decomposition A = V diag(lam) V^T and bz = V^T b) where m.y is largest, when
-/// it is a single smooth point of the surface: the KKT condition m = 2 mu (A y + b), mu > 0, on
-/// the surface, solved in the eigenbasis. nullopt when the maximum is not attained at a unique
-/// smooth point (unbounded along a null direction, a line of maximisers as on a cylinder's
-/// ruling, or an empty / degenerate set): the other active sets of the enumeration then hold it.
-/// `b_tol` decides whether a null direction carries a linear term (a paraboloid).
+/// The point of {y^T A y + 2 b.y + c <= 0} (K = 2 or 3 dimensions, A given by its
+/// eigen-decomposition A = V diag(lam) V^T and bz = V^T b) where m.y is largest, when it is a
+/// single smooth point of the surface: the KKT condition m = 2 mu (A y + b), mu > 0, on the
+/// surface, solved in the eigenbasis. For A positive semidefinite that is the maximum over the
+/// set; for an indefinite A (a cone nappe's or a hyperboloid sheet's section, or a two-sheet
+/// hyperboloid) it is the maximum over the convex component it lies on, and the caller's
+/// feasibility test decides whether that is the solid's. nullopt when the maximum is not attained
+/// at a unique smooth point (unbounded along a null direction, a line of maximisers as on a
+/// cylinder's ruling, an apex, or an empty / degenerate set): the other active sets of the
+/// enumeration then hold it. `b_tol` decides whether a null direction carries a linear term (a
+/// paraboloid); `r_given`, if not NaN, replaces r = b^T A^-1 b - c (a cone's sections, formed
+/// without cancellation).
 template <int K>
 std::optional<Eigen::Matrix<double, K, 1>> smoothMax(const Eigen::Matrix<double, K, 1>& lam,
                                                      const Eigen::Matrix<double, K, K>& V,
                                                      const Eigen::Matrix<double, K, 1>& bz, double c,
-                                                     const Eigen::Matrix<double, K, 1>& m, double b_tol) {
+                                                     const Eigen::Matrix<double, K, 1>& m, double b_tol,
+                                                     double r_given = std::numeric_limits<double>::quiet_NaN()) {
   using Vec = Eigen::Matrix<double, K, 1>;
   const double lmax = lam.cwiseAbs().maxCoeff();
   if (!(lmax > 0.0)) return std::nullopt;
   const double null_tol = tolerance_support::kSupportNullEigenRelative * lmax;
-  if (lam.minCoeff() < -null_tol) return std::nullopt;
+  const bool indefinite = lam.minCoeff() < -null_tol;
   const Vec mz = V.transpose() * m;
   int nulls = 0, i0 = -1;
   for (int i = 0; i < K; ++i)
-    if (lam[i] <= null_tol) {
+    if (std::abs(lam[i]) <= null_tol) {
       ++nulls;
       i0 = i;
     }
@@ -57,8 +63,19 @@ std::optional<Eigen::Matrix<double, K, 1>> smoothMax(const Eigen::Matrix<double,
       r += bz[i] * bz[i] / lam[i];
       s += mz[i] * mz[i] / lam[i];
     }
-    if (!(r > 0.0)) return std::nullopt;
-    const double k = s > 0.0 ? std::sqrt(r / s) : 0.0;
+    if (!std::isnan(r_given)) r = r_given;
+    double k = 0.0;
+    if (!indefinite) {
+      if (!(r > 0.0)) return std::nullopt;
+      k = s > 0.0 ? std::sqrt(r / s) : 0.0;
+    } else {
+      // An indefinite form (a cone nappe's or a two-sheet hyperboloid's, or a section of one):
+      // f(y) = 0 at mu = k / 2 needs r / s > 0; then the point is the only candidate with mu > 0.
+      // r = 0 (a cone's apex, where the gradient vanishes) or r / s <= 0 (n outside the
+      // asymptotic cone): no smooth maximiser; the apex is a candidate of its own.
+      if (!(r * s > 0.0)) return std::nullopt;
+      k = std::sqrt(r / s);
+    }
     for (int i = 0; i < K; ++i) z[i] = (-bz[i] + mz[i] * k) / lam[i];
   } else {
     // A paraboloid: exactly one null direction, carrying a linear term.
@@ -201,9 +218,77 @@ struct ConvexSupport::RegionData {
     Eigen::Vector2d lam = Eigen::Vector2d::Zero(), bz = Eigen::Vector2d::Zero();
     Eigen::Matrix2d V = Eigen::Matrix2d::Identity();
     double c = 0.0, b_tol = 0.0;
+    /// A cone's section: r = b^T A^-1 b - c of the section's conic, formed as delta^2 sigma from
+    /// the apex's offset delta from the plane (smoothMax's `r_given`); NaN otherwise.
+    double r = std::numeric_limits<double>::quiet_NaN();
   };
   std::vector<Section> sections;
+  /// An indefinite curved atom (acceptIndefinite()): a cone nappe (`cone`, whose `apex` is a
+  /// support candidate) or a two-sheet hyperboloid's sheet.
+  bool cone = false;
+  Eigen::Vector3d apex = Eigen::Vector3d::Zero();
 };
+
+namespace {
+
+/// The vertices of the polytope {h_k.x <= d_k} (every vertex where three planes meet, kept when
+/// it satisfies the others to kSupportFeasibilityRelative of the size). The planes include the
+/// region's bounding box, so the polytope is bounded.
+std::vector<Eigen::Vector3d> polytopeVertices(const std::vector<Eigen::Vector3d>& h, const std::vector<double>& d,
+                                              double length) {
+  std::vector<Eigen::Vector3d> out;
+  const std::size_t np = h.size();
+  for (std::size_t i = 0; i < np; ++i)
+    for (std::size_t j = i + 1; j < np; ++j)
+      for (std::size_t k = j + 1; k < np; ++k) {
+        Eigen::Matrix3d M;
+        M << h[i].transpose(), h[j].transpose(), h[k].transpose();
+        const double det = M.determinant();
+        if (!(std::abs(det) > 1e-12)) continue;  // unit normals: nearly dependent planes
+        const Eigen::Vector3d x = M.inverse() * Eigen::Vector3d(d[i], d[j], d[k]);
+        bool inside = x.allFinite();
+        for (std::size_t m = 0; m < np && inside; ++m)
+          inside = h[m].dot(x) - d[m] <= tolerance_support::kSupportFeasibilityRelative * (x.norm() + std::abs(d[m]) + length);
+        if (inside) out.push_back(x);
+      }
+  return out;
+}
+
+}  // namespace
+
+/// An indefinite curved atom (lam[0] < 0 < lam[1] <= lam[2], A normalised) is convex on the
+/// region's side only as one nappe of the cone r = 0 or one sheet of the two-sheet hyperboloid
+/// r < 0, where f(x) = (x - x0)^T A (x - x0) - r, x0 = -A^-1 b, r = b^T A^-1 b - c: {f <= 0} is
+/// then two convex components, one on each side of the plane v.(x - x0) = 0 (v the negative
+/// eigenvector). The region is convex when its planes (the box included) keep it on one side:
+/// every vertex of their polytope has v.(x - x0) of one sign, up to kSupportFeasibilityRelative
+/// of the size (a cone clipped through its apex). r > 0 (a one-sheet hyperboloid, connected and
+/// not convex) or vertices on both sides: false. Sets `cone` and `apex` for r = 0 to 1e-12 of
+/// r's magnitude: the apex is a candidate of its own (the gradient vanishes there).
+bool ConvexSupport::acceptIndefinite(RegionData* g, double length) {
+  const RegionData::Curved& cv = g->curved;
+  double r = -g->c, r_mag = std::abs(g->c);
+  Eigen::Vector3d z0;
+  for (int i = 0; i < 3; ++i) {
+    r += cv.bz[i] * cv.bz[i] / cv.lam[i];
+    r_mag += cv.bz[i] * cv.bz[i] / std::abs(cv.lam[i]);
+    z0[i] = -cv.bz[i] / cv.lam[i];
+  }
+  if (!std::isfinite(r) || r > 1e-12 * r_mag) return false;  // one sheet: not convex
+  const Eigen::Vector3d x0 = cv.V * z0;
+  const Eigen::Vector3d v = cv.V.col(0);
+  bool below = false, above = false;
+  const double tol = tolerance_support::kSupportFeasibilityRelative * (length + x0.norm());
+  for (const Eigen::Vector3d& x : polytopeVertices(g->plane_h, g->plane_d, length)) {
+    const double side = v.dot(x - x0);
+    below = below || side < -tol;
+    above = above || side > tol;
+  }
+  if (below && above) return false;  // both components: not convex
+  g->cone = r >= -1e-12 * r_mag;
+  g->apex = x0;
+  return true;
+}
 
 std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& region, const Box3& box) {
   if (box.empty() || !box.lo.allFinite() || !box.hi.allFinite())
@@ -240,8 +325,12 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
     }
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A, Eigen::EigenvaluesOnly);
     const double lmax = es.eigenvalues().cwiseAbs().maxCoeff();
-    if (es.eigenvalues().minCoeff() < -tolerance_support::kSupportNullEigenRelative * lmax) return std::nullopt;
     if (g->has_curved) return std::nullopt;  // two curved atoms: no closed-form support here
+    // An indefinite quadratic part is accepted only as one nappe of a cone or one sheet of a
+    // two-sheet hyperboloid, checked below once the planes are known (indefiniteSide()).
+    if (es.eigenvalues().minCoeff() < -tolerance_support::kSupportNullEigenRelative * lmax &&
+        !(es.eigenvalues()[1] > tolerance_support::kSupportNullEigenRelative * lmax))
+      return std::nullopt;  // two negative or null eigenvalues with a negative one: never convex
     g->has_curved = true;
     g->A = A / lmax;
     g->b = b / lmax;
@@ -261,6 +350,9 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
     g->curved.V = es.eigenvectors();
     g->curved.bz = es.eigenvectors().transpose() * g->b;
     g->curved.b_tol = 1e-12 * (g->b.norm() + g->curved.lam.cwiseAbs().maxCoeff() * length);
+    if (g->curved.lam[0] < -tolerance_support::kSupportNullEigenRelative * g->curved.lam.cwiseAbs().maxCoeff() &&
+        !acceptIndefinite(g.get(), length))
+      return std::nullopt;
     for (std::size_t i = 0; i < g->plane_h.size(); ++i) {
       // The plane h.x = d as x0 + U y (U orthonormal, h unit).
       const Eigen::Vector3d& h = g->plane_h[i];
@@ -277,6 +369,18 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
       sec.bz = es2.eigenvectors().transpose() * b2;
       sec.c = sec.x0.dot(g->A * sec.x0) + 2.0 * g->b.dot(sec.x0) + g->c;
       sec.b_tol = 1e-12 * (b2.norm() + sec.lam.cwiseAbs().maxCoeff() * length);
+      if (g->cone && sec.lam.cwiseAbs().minCoeff() > tolerance_support::kSupportNullEigenRelative * sec.lam.cwiseAbs().maxCoeff()) {
+        // With the apex a = x0 + U y_a + delta h, the cone f(x) = (x - a)^T A (x - a) restricted to
+        // the plane is (y - y_a)^T A2 (y - y_a) - 2 delta (y - y_a)^T g + delta^2 h^T A h, g = U^T A h,
+        // whose r is delta^2 (g^T A2^-1 g - h^T A h): no cancellation, and exactly 0 for a plane
+        // through the apex. Formed from b2 and c, r would carry the rounding of c (~eps |x0|^2 |A|),
+        // and near a plane through the apex (the clip that selects a nappe) k = sqrt(r / s) would
+        // turn it into a spurious section point ~sqrt(eps) of the size away from the apex.
+        const double delta = h.dot(g->apex) - g->plane_d[i];
+        const Eigen::Vector2d gz = sec.V.transpose() * (sec.U.transpose() * (g->A * h));
+        const double sigma = gz[0] * gz[0] / sec.lam[0] + gz[1] * gz[1] / sec.lam[1] - h.dot(g->A * h);
+        sec.r = delta * delta * sigma;
+      }
       g->sections.push_back(sec);
     }
   }
@@ -388,13 +492,16 @@ Eigen::Vector3d ConvexSupport::regionSupport(const Eigen::Vector3d& n) const {
     }
   };
   if (g.has_curved) {
-    if (auto x = smoothMax<3>(g.curved.lam, g.curved.V, g.curved.bz, g.c, n, g.curved.b_tol)) {
-      // The maximum over the curved atom alone: if the planes keep it, it is the maximum over the
-      // whole solid (which it bounds), and no other candidate can beat it.
+    if (g.cone) {
+      consider(g.apex);  // a vertex of the solid when the planes keep it
+    } else if (auto x = smoothMax<3>(g.curved.lam, g.curved.V, g.curved.bz, g.c, n, g.curved.b_tol)) {
+      // The maximum over the curved atom alone (over its convex component, for a two-sheet
+      // hyperboloid: the point with outward normal n): if the planes keep it, it is the maximum
+      // over the whole solid (which it bounds), and no other candidate can beat it.
       if (feasible(*x)) return *x;
     }
     for (const RegionData::Section& sec : g.sections)
-      if (auto y = smoothMax<2>(sec.lam, sec.V, sec.bz, sec.c, Eigen::Vector2d(sec.U.transpose() * n), sec.b_tol))
+      if (auto y = smoothMax<2>(sec.lam, sec.V, sec.bz, sec.c, Eigen::Vector2d(sec.U.transpose() * n), sec.b_tol, sec.r))
         consider(sec.x0 + sec.U * *y);
   }
   for (std::size_t i = 0; i < np; ++i) {
@@ -437,6 +544,28 @@ Eigen::Vector3d ConvexSupport::regionSupport(const Eigen::Vector3d& n) const {
           if (t1 > t2) std::swap(t1, t2);
           lo = std::max(lo, t1);
           hiT = std::min(hiT, t2);
+        } else if (qa < -qa_tol) {
+          // An indefinite atom (a cone nappe, a hyperboloid sheet): f <= 0 outside the roots,
+          // (-inf, t1] and [t2, inf). The planes keep the solid in one of them (acceptIndefinite),
+          // but which one depends on the line: the ends of both pieces within [lo, hiT] are
+          // candidates, and feasibility rejects those of the other component.
+          const double disc = qb * qb - qa * qc;
+          if (disc > 0.0 && lo <= hiT) {
+            const double sq = std::sqrt(disc);
+            const double q = -(qb + std::copysign(sq, qb));
+            double t1 = q / qa, t2 = q != 0.0 ? qc / q : t1;
+            if (t1 > t2) std::swap(t1, t2);
+            const double s = n.dot(u);
+            auto piece = [&](double a, double b) {  // the piece [a, b] of the line, if not empty
+              if (!(a <= b)) return;
+              if (s >= 0.0 && std::isfinite(b)) consider(x0 + b * u);
+              if (s <= 0.0 && std::isfinite(a)) consider(x0 + a * u);
+            };
+            piece(lo, std::min(hiT, t1));
+            piece(std::max(lo, t2), hiT);
+            continue;
+          }
+          // disc <= 0: f <= 0 along the whole line; [lo, hiT] stands.
         } else if (std::abs(qb) > 1e-14 * (std::sqrt(un2) * (x0.norm() + length) + std::abs(qc))) {
           const double t0 = -qc / (2.0 * qb);
           if (qb > 0) hiT = std::min(hiT, t0);

@@ -60,6 +60,29 @@ std::optional<double> surfaceOffset(const Eigen::Matrix4d& Q, const Eigen::Vecto
   return X.dot(Q * X) / gn;
 }
 
+/// True when x is within `band` of an apex of one of `atoms`: a point of the surface where the
+/// gradient vanishes (the centre -A^-1 b of a curved atom with g(centre) = 0 to rounding: a
+/// cone's). Near it g / |grad g| is no distance (g is second-order there), and neither Newton's
+/// steps on the atom nor the membership test of the answer can be trusted: the caller keeps its
+/// own pair, which GJK gets exact at an apex (a vertex of the support mapping).
+bool nearApex(const std::vector<Eigen::Matrix4d>& atoms, const Eigen::Vector3d& x, double band) {
+  for (const Eigen::Matrix4d& Q : atoms) {
+    const Eigen::Matrix3d A = Q.topLeftCorner<3, 3>();
+    const Eigen::Vector3d b = Q.topRightCorner<3, 1>();
+    const double a_max = A.cwiseAbs().maxCoeff();
+    if (!(a_max > 0.0)) continue;  // a plane
+    const Eigen::FullPivLU<Eigen::Matrix3d> lu(A / a_max);
+    if (lu.rank() < 3) continue;  // cylinders, paraboloids: no isolated singular point
+    const Eigen::Vector3d centre = lu.solve(-b / a_max);
+    if (!centre.allFinite() || (x - centre).norm() > band) continue;
+    const Eigen::Vector3d c_abs = centre.cwiseAbs();
+    const double mag = c_abs.dot(A.cwiseAbs() * c_abs) + 2.0 * b.cwiseAbs().dot(c_abs) + std::abs(Q(3, 3));
+    const double g = centre.dot(A * centre) + 2.0 * b.dot(centre) + Q(3, 3);
+    if (std::abs(g) <= 1e-12 * mag) return true;
+  }
+  return false;
+}
+
 /// The atoms whose surfaces pass within `band` of x, nearest first, at most three.
 std::vector<int> activeAtoms(const std::vector<Eigen::Matrix4d>& atoms, const Eigen::Vector3d& x, double band) {
   std::vector<std::pair<double, int>> near;
@@ -288,6 +311,7 @@ std::optional<NearestPoints> refineNearestPoints(const QuadricRegion& a, const Q
   if (!std::isfinite(start) || !std::isfinite(scale) || !(start > 0.0) || !(scale > 0.0)) return std::nullopt;
   const std::vector<Eigen::Matrix4d> atoms_a = a.signedAtoms(), atoms_b = b.signedAtoms();
   const double band = kActiveRelative * scale;
+  if (nearApex(atoms_a, start_a, band) || nearApex(atoms_b, start_b, band)) return std::nullopt;
   std::vector<int> act_a = activeAtoms(atoms_a, start_a, band), act_b = activeAtoms(atoms_b, start_b, band);
   Eigen::Vector3d x = start_a, y = start_b;
   NearestPoints out;

@@ -54,7 +54,8 @@ class QuadricShape : public fcl::ShapeBase<S> {
   const MassProperties& massProperties() const;
   /// The solid as a support mapping (local frame), made once at construction: the closed form
   /// for an EllipticCylinder, ConvexSupport::fromRegion for another convex region (half-spaces and
-  /// at most one convex curved atom); none for an unbounded or a non-convex shape. The front
+  /// at most one curved atom, convex or a cone's or two-sheet hyperboloid's and clipped to one
+  /// nappe or sheet); none for an unbounded or a non-convex shape. The front
   /// doors' GJK (screening, distance; docs/algorithms.md section 12) runs on it. No failure mode.
   const std::optional<ConvexSupport>& convexSupport() const { return convex_; }
   /// Convex pieces whose union contains the solid (convexCover(); exact for a union of convex

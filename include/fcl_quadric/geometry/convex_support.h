@@ -13,10 +13,13 @@
 ///  - `fromRegion`: a CSG formula (quadric_region.h) that is a conjunction of half-spaces and at
 ///    most one curved atom {x^T A x + 2 b.x + c <= 0} with A positive semidefinite (ellipsoid,
 ///    elliptic paraboloid, elliptic or parabolic cylinder, slab): such a set is convex (a sublevel
-///    set of a convex function cut by half-spaces). Its support is found by enumerating the
-///    Karush-Kuhn-Tucker active sets of max n.x: the smooth point of the curved atom with normal
-///    n, the smooth point of each planar section (a conic) of it, and the ends of each line where
-///    two planes meet, clipped by every other constraint (vertices included). The region's
+///    set of a convex function cut by half-spaces). Also an indefinite atom (one negative
+///    eigenvalue) that is a cone or a two-sheet hyperboloid, when the half-spaces keep one of its
+///    two convex components (one nappe, one sheet; docs/algorithms.md section 12). Its support is
+///    found by enumerating the Karush-Kuhn-Tucker active sets of max n.x: the smooth point of the
+///    curved atom with normal n, the smooth point of each planar section (a conic) of it, the
+///    ends of each line where two planes meet, clipped by every other constraint (vertices
+///    included), and a cone's apex. The region's
 ///    certified bounding box is added as six more half-spaces, so every maximum is attained at a
 ///    finite candidate. A candidate is accepted when it satisfies the other constraints to
 ///    kSupportFeasibilityRelative; the support value is then exact to about that fraction of the
@@ -115,6 +118,7 @@ class ConvexSupport {
   // once by fromRegion() and shared by copies (convex_support.cpp). A copy of any support
   // mapping is then a few words: the front doors make and copy them per query.
   struct RegionData;
+  static bool acceptIndefinite(RegionData* g, double length);
   std::shared_ptr<const RegionData> region_;
   Eigen::Vector3d center_ = Eigen::Vector3d::Zero();
   double size_ = 0.0;
