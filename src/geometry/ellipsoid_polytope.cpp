@@ -386,6 +386,7 @@ ConvexFeatures convexFeatures(const ConvexPolytope& P, bool want_edges = true) {
     f.scale = std::max(f.scale, v.cwiseAbs().maxCoeff());
   }
   mean /= nv;  // strictly inside a solid convex polytope (the mean of its vertices)
+  f.normals.reserve(P.faces.size());
   std::set<std::pair<int, int>> seen;
   for (std::size_t k = 0; k < P.faces.size(); ++k) {
     const std::vector<int>& face = P.faces[k];
