@@ -983,7 +983,7 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
   };
 
   // The distance from one convex piece of the shape to the partner.
-  std::optional<QuadricRegion> shape_world;  // the shape's region posed by tfs (made on first use)
+  std::optional<QuadricRegion> shape_local;  // the shape's region in its frame tfs (made on first use)
   std::vector<PosedConvex> partner_pieces;  // a convex partner's pieces (never empty once computed)
   auto fromShapePiece = [&](const PosedConvex& shape) {
     if (gp->getNodeType() == fcl::GEOM_HALFSPACE && !shape.model) {
@@ -1076,12 +1076,20 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
                             !(d.distance - kRefineRelative * scale > result.min_distance);
       if (d.status == Separation::Separated && d.distance > 0.0 && worth_refining) {
         if (const std::optional<LocalSolid> b = pieceSolid()) {
-          if (!shape_world) shape_world = localSolid(gs, "o1", where).region.transformed(tfs.linear(), tfs.translation());
-          const QuadricRegion piece_world = b->region.transformed(tfp.linear(), tfp.translation());
-          const std::optional<NearestPoints> n = refineNearestPoints(*shape_world, piece_world, d.point_a, d.point_b, scale);
+          // In the shape's frame, where its atoms were written: posed far from the origin
+          // (|t| = 2e4 of the size, an audit of session 37) the world-frame atoms carry |t|^2
+          // terms, and a refined witness 3.4e-7 outside a thin cone passed their membership band
+          // (a distance 2e-4 reported as 6.9e-5 to 1.99656e-4).
+          if (!shape_local) shape_local = localSolid(gs, "o1", where).region;
+          const Eigen::Matrix3d Rt = tfs.linear().transpose();
+          const QuadricRegion piece_local =
+              b->region.transformed(Rt * tfp.linear(), Rt * (tfp.translation() - tfs.translation()));
+          const std::optional<NearestPoints> n =
+              refineNearestPoints(*shape_local, piece_local, Rt * (d.point_a - tfs.translation()),
+                                  Rt * (d.point_b - tfs.translation()), scale);
           if (n && n->distance < d.distance) {
-            d.point_a = n->point_a;
-            d.point_b = n->point_b;
+            d.point_a = tfs.linear() * n->point_a + tfs.translation();
+            d.point_b = tfs.linear() * n->point_b + tfs.translation();
             d.distance = n->distance;
           }
         }

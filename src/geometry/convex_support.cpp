@@ -227,6 +227,8 @@ struct ConvexSupport::RegionData {
   /// support candidate) or a two-sheet hyperboloid's sheet.
   bool cone = false;
   Eigen::Vector3d apex = Eigen::Vector3d::Zero();
+  /// A two-sheet hyperboloid's r = -f(x0) (acceptIndefinite(), smoothMax's `r_given`); NaN else.
+  double r = std::numeric_limits<double>::quiet_NaN();
 };
 
 namespace {
@@ -267,26 +269,40 @@ std::vector<Eigen::Vector3d> polytopeVertices(const std::vector<Eigen::Vector3d>
 /// r's magnitude: the apex is a candidate of its own (the gradient vanishes there).
 bool ConvexSupport::acceptIndefinite(RegionData* g, double length) {
   const RegionData::Curved& cv = g->curved;
-  double r = -g->c, r_mag = std::abs(g->c);
-  Eigen::Vector3d z0;
-  for (int i = 0; i < 3; ++i) {
-    r += cv.bz[i] * cv.bz[i] / cv.lam[i];
-    r_mag += cv.bz[i] * cv.bz[i] / std::abs(cv.lam[i]);
-    z0[i] = -cv.bz[i] / cv.lam[i];
-  }
-  if (!std::isfinite(r) || r > 1e-12 * r_mag) return false;  // one sheet: not convex
-  const Eigen::Vector3d x0 = cv.V * z0;
+  // The centre x0 = -A^-1 b in the eigenbasis, refined by one Newton step; then r = -f(x0).
+  // f is stationary at x0, so x0's error enters r only to second order, and r carries just the
+  // rounding of f's evaluation, ~eps times its terms (`mag`). Formed as b^T A^-1 b - c instead,
+  // r would carry A's conditioning times eps |x0|^2: a cone whose apex sits off the frame's
+  // origin could pass for a hyperboloid, and a waist or a sheet's gap of 1e-6 |x0| for a cone
+  // (an audit of session 37: support values 6.7e-7 of the size off).
+  auto centreStep = [&](const Eigen::Vector3d& residual) {
+    const Eigen::Vector3d z = cv.V.transpose() * residual;
+    return Eigen::Vector3d(cv.V * Eigen::Vector3d(z[0] / cv.lam[0], z[1] / cv.lam[1], z[2] / cv.lam[2]));
+  };
+  Eigen::Vector3d x0 = centreStep(-g->b);
+  x0 += centreStep(-(g->A * x0 + g->b));
+  const Eigen::Vector3d x_abs = x0.cwiseAbs();
+  const double mag = x_abs.dot(g->A.cwiseAbs() * x_abs) + 2.0 * g->b.cwiseAbs().dot(x_abs) + std::abs(g->c);
+  const double r = -(x0.dot(g->A * x0) + 2.0 * g->b.dot(x0) + g->c);
+  // A cone when r is within 16 eps of its terms (the input's own resolution: a waist below
+  // ~1e-7 |x0| cannot be told from an apex in double); above, a one-sheet hyperboloid (not convex).
+  const double r_tol = 16.0 * std::numeric_limits<double>::epsilon() * mag;
+  if (!std::isfinite(r) || !x0.allFinite() || r > r_tol) return false;
   const Eigen::Vector3d v = cv.V.col(0);
+  // The side test's band: 1e-12 of the size (a sliver of the other nappe no larger is
+  // accepted), plus the rounding of v.(x - x0), a few eps of |x| + |x0|.
+  const double tol = tolerance_support::kSupportFeasibilityRelative * length + 1e-15 * x0.norm();
   bool below = false, above = false;
-  const double tol = tolerance_support::kSupportFeasibilityRelative * (length + x0.norm());
   for (const Eigen::Vector3d& x : polytopeVertices(g->plane_h, g->plane_d, length)) {
     const double side = v.dot(x - x0);
-    below = below || side < -tol;
-    above = above || side > tol;
+    const double band = tol + 1e-15 * x.norm();
+    below = below || side < -band;
+    above = above || side > band;
   }
   if (below && above) return false;  // both components: not convex
-  g->cone = r >= -1e-12 * r_mag;
+  g->cone = r >= -r_tol;
   g->apex = x0;
+  g->r = g->cone ? 0.0 : r;
   return true;
 }
 
@@ -326,11 +342,16 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A, Eigen::EigenvaluesOnly);
     const double lmax = es.eigenvalues().cwiseAbs().maxCoeff();
     if (g->has_curved) return std::nullopt;  // two curved atoms: no closed-form support here
-    // An indefinite quadratic part is accepted only as one nappe of a cone or one sheet of a
-    // two-sheet hyperboloid, checked below once the planes are known (indefiniteSide()).
-    if (es.eigenvalues().minCoeff() < -tolerance_support::kSupportNullEigenRelative * lmax &&
-        !(es.eigenvalues()[1] > tolerance_support::kSupportNullEigenRelative * lmax))
-      return std::nullopt;  // two negative or null eigenvalues with a negative one: never convex
+    // Positive semidefinite up to rounding, or clearly indefinite with two clearly positive
+    // eigenvalues: one nappe of a cone or one sheet of a two-sheet hyperboloid, checked below once
+    // the planes are known (acceptIndefinite()). Anything between (a negative eigenvalue within
+    // kSupportNullEigenRelative of the largest but beyond rounding: a cone of aspect >= 1e6, which
+    // passed as a slab and got a support outside the solid, an audit of session 37) is refused.
+    const double null_tol = tolerance_support::kSupportNullEigenRelative * lmax;
+    const double lmin = es.eigenvalues()[0];
+    if (lmin < -tolerance_support::kSupportIndefiniteRelative * lmax &&
+        !(lmin < -null_tol && es.eigenvalues()[1] > null_tol))
+      return std::nullopt;
     g->has_curved = true;
     g->A = A / lmax;
     g->b = b / lmax;
@@ -385,6 +406,23 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
     }
   }
   s.region_ = g;
+  // A probe: every direction of the 3 x 3 x 3 stencil must find a feasible candidate. None is
+  // found when the atom is beyond the enumeration's resolution (a cone of aspect ratio 1e7, whose
+  // eigenvalues +-1e-14 of the largest pass for a positive semidefinite slab: the support was
+  // the box centre, outside the solid, and a sphere inside it was reported apart; an audit of
+  // session 37); such a region is refused, and answered as a non-convex shape. Only for a
+  // curved atom with two near-null eigenvalues (a slab's, or beyond resolution) or an indefinite
+  // one: the branch and bound makes the other kinds per node.
+  int near_null = 0;
+  for (int i = 0; i < 3 && g->has_curved; ++i)
+    near_null += std::abs(g->curved.lam[i]) <= tolerance_support::kSupportNullEigenRelative * g->curved.lam.cwiseAbs().maxCoeff();
+  const bool probe = g->has_curved && (near_null >= 2 || g->curved.lam[0] < 0.0);
+  for (int i = 0; i < 27 && probe; ++i) {
+    const Eigen::Vector3d n(i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1);
+    bool found = false;
+    if (i != 13) s.regionSupport(n, &found);
+    if (i != 13 && !found) return std::nullopt;
+  }
   return s;
 }
 
@@ -462,7 +500,8 @@ Eigen::Vector3d ConvexSupport::coreSupport(const Eigen::Vector3d& n) const {
 // KKT enumeration (file comment): every extreme point of the region is the unique smooth maximum
 // of the curved atom, of one of its planar sections, or an end of a line where two planes meet,
 // clipped by all other constraints; the best feasible candidate is the support.
-Eigen::Vector3d ConvexSupport::regionSupport(const Eigen::Vector3d& n) const {
+Eigen::Vector3d ConvexSupport::regionSupport(const Eigen::Vector3d& n, bool* found) const {
+  if (found) *found = true;
   constexpr double kFeas = tolerance_support::kSupportFeasibilityRelative;
   const RegionData& g = *region_;
   const double length = size_ + center_.norm();
@@ -494,7 +533,7 @@ Eigen::Vector3d ConvexSupport::regionSupport(const Eigen::Vector3d& n) const {
   if (g.has_curved) {
     if (g.cone) {
       consider(g.apex);  // a vertex of the solid when the planes keep it
-    } else if (auto x = smoothMax<3>(g.curved.lam, g.curved.V, g.curved.bz, g.c, n, g.curved.b_tol)) {
+    } else if (auto x = smoothMax<3>(g.curved.lam, g.curved.V, g.curved.bz, g.c, n, g.curved.b_tol, g.r)) {
       // The maximum over the curved atom alone (over its convex component, for a two-sheet
       // hyperboloid: the point with outward normal n): if the planes keep it, it is the maximum
       // over the whole solid (which it bounds), and no other candidate can beat it.
@@ -586,6 +625,7 @@ Eigen::Vector3d ConvexSupport::regionSupport(const Eigen::Vector3d& n) const {
       if (s == 0.0 && std::isfinite(lo)) consider(x0 + lo * u);
     }
   }
+  if (found) *found = best > -std::numeric_limits<double>::infinity();
   return best_x;
 }
 

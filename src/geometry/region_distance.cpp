@@ -81,9 +81,10 @@ class Side {
       }
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(Q.topLeftCorner<3, 3>(), Eigen::EigenvaluesOnly);
       const double lmax = es.eigenvalues().cwiseAbs().maxCoeff();
-      // Positive semidefinite: a convex atom (ConvexSupport::fromRegion's class; its tangent
-      // planes bound it, so its relaxation needs no slack).
-      const bool psd = es.eigenvalues().minCoeff() >= -tolerance_support::kSupportNullEigenRelative * lmax;
+      // Positive semidefinite: a convex atom (ConvexSupport::fromRegion's class, with its gate:
+      // a piece fromRegion refused would be dropped; its tangent planes bound it, so its
+      // relaxation needs no slack).
+      const bool psd = es.eigenvalues().minCoeff() >= -tolerance_support::kSupportIndefiniteRelative * lmax;
       exact_[k] = psd;
       concave_slack_[k] = !psd;
     }

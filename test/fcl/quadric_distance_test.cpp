@@ -488,5 +488,33 @@ TEST(QuadricShapeDistance, ConeNappesAndHyperboloidSheetsAreConvexAndExactNearCo
   }
 }
 
+// An audit of session 37: a thin cone (x^2 + y^2 / 1e-6 <= 4 z^2, 0 <= z <= 1) posed 2e4 from
+// the origin, a ball 2e-4 from its rim. GJK alone gave 2.000000001e-4; the refinement of its
+// witnesses, run on the world-frame atoms (whose |t|^2 terms widen the membership band), moved a
+// witness 3.4e-7 outside the cone and reported 1.99656e-4 (6.9e-5 at other poses). It now runs in
+// the shape's frame.
+TEST(QuadricShapeDistance, RefinementFarFromTheOriginStaysOnTheShape) {
+  using Clip = HalfspaceClip<double>;
+  const Quadric<double> cone = Quadric<double>::ellipticCone(1.0, 1e-3, 0.5, {Clip{{0, 0, -1}, 0.0}, Clip{{0, 0, 1}, 1.0}});
+  const fcl::Sphere<double> s(0.2);
+  std::mt19937_64 rng(371);
+  // The rim point (2, 0, 1); its normal cone spans the side's normal (1, 0, -2) / sqrt(5) and +z.
+  const Eigen::Vector3d foot(2.0, 0.0, 1.0);
+  const Eigen::Vector3d n = (Eigen::Vector3d(1, 0, -2).normalized() + 2.5 * Eigen::Vector3d::UnitZ()).normalized();
+  for (int i = 0; i < 4; ++i) {
+    const Transform X = pose(test::randomRotation(rng), Eigen::Vector3d(12000, -9600, 12800));
+    for (double gap : {2e-4, 1e-6}) {
+      const Transform Y = pose(Eigen::Matrix3d::Identity(), X * (foot + (0.2 + gap) * n));
+      // The placement rounds by ~eps |t| = 5e-12.
+      SCOPED_TRACE(testing::Message() << "pose " << i << " gap " << gap);
+      fcl::DistanceResult<double> r;
+      EXPECT_NEAR(dist(cone, X, s, Y, false, &r), gap, 1e-10);
+      EXPECT_NEAR(dist(s, Y, cone, X, true), gap, 1e-10);
+      const Eigen::Vector3d local = X.inverse() * r.nearest_points[0];
+      EXPECT_NEAR((local - foot).norm(), 0.0, 1e-6);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fcl_quadric

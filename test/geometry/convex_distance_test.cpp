@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -179,6 +180,49 @@ TEST(ConvexSupport, ConeNappesAndHyperboloidSheetsAgreeWithClosedForms) {
         EXPECT_NEAR(n.dot(s->support(n)), n.dot(p) + k.exact(R.transpose() * n), 1e-12) << pose << " " << i;
       }
     }
+  }
+}
+
+// An audit of session 37: a cone of aspect ratio >= 1e6 has eigenvalues within 1e-12 of the
+// largest of both signs; it passed as a positive semidefinite slab and no support candidate was
+// feasible (the box centre came back, and a sphere inside the cone was reported apart). A
+// two-sheet hyperboloid whose vertex is 1e-6 above its centre, posed 8 from its frame's origin,
+// passed for a cone (support 6.7e-7 of the size off), and a one-sheet hyperboloid of waist 1e-5
+// posed 64 away for convex. Now: refused, or exact, to the resolution of the input matrix.
+TEST(ConvexSupport, AtomsAtTheLimitOfResolutionAreExactOrRefused) {
+  const QuadricRegion clips = QuadricRegion::combine(
+      Op::Intersection, {QuadricRegion::halfspace({0, 0, -1}, 0.0), QuadricRegion::halfspace({0, 0, 1}, 1.0)});
+  for (double a : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
+    SCOPED_TRACE(testing::Message() << "cone x^2/a^2 + y^2 <= z^2, a = " << a);
+    const QuadricRegion cone =
+        QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticCone(a, 1.0, 1.0)), clips});
+    const Box3 box = regionAabb(cone);
+    if (!box.lo.allFinite() || !box.hi.allFinite() || (box.hi - box.lo).maxCoeff() > 10.0) continue;  // beyond the engine
+    if (const auto s = ConvexSupport::fromRegion(cone, box)) {
+      // The farthest point along y is the rim's (0, 1, 1); along -z the apex.
+      EXPECT_NEAR((s->support({0, 1, 0}) - Eigen::Vector3d(0, 1, 1)).norm(), 0.0, 1e-9);
+      EXPECT_NEAR(s->support({0, 0, -1}).z(), 0.0, 1e-9);
+    }
+  }
+  // (x - T)^2 + y^2 - z^2 + sign g^2 <= 0 between z = 0 and 1 (exact in double for these T, g).
+  auto hyperboloid = [&](double T, double g, int sign) {
+    Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
+    Q(0, 0) = Q(1, 1) = 1.0;
+    Q(2, 2) = -1.0;
+    Q(0, 3) = Q(3, 0) = -T;
+    Q(3, 3) = T * T + sign * g * g;
+    return QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(Q), clips});
+  };
+  for (const auto& [T, g] : {std::pair{1.0, 1e-6}, std::pair{8.0, 1e-6}, std::pair{8.0, 1e-5}, std::pair{64.0, 1e-5}}) {
+    SCOPED_TRACE(testing::Message() << "T = " << T << ", g = " << g);
+    const QuadricRegion sheet = hyperboloid(T, g, +1);
+    const auto s = ConvexSupport::fromRegion(sheet, regionAabb(sheet));
+    ASSERT_TRUE(s.has_value());
+    // The vertex (T, 0, g), to the input's resolution: Q(3, 3) = T^2 + g^2 is stored to eps T^2,
+    // so g is known to about eps T^2 / g (2.6e-9 off at T = 8, g = 1e-6, measured).
+    EXPECT_NEAR(s->support({0, 0, -1}).z(), g, 2.0 * std::numeric_limits<double>::epsilon() * T * T / g + 1e-12);
+    const QuadricRegion waist = hyperboloid(T, g, -1);
+    EXPECT_FALSE(ConvexSupport::fromRegion(waist, regionAabb(waist)).has_value());
   }
 }
 

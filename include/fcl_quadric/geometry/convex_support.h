@@ -46,6 +46,12 @@ constexpr double kSupportFeasibilityRelative = 1e-12;
 /// Eigenvalues of the curved atom's quadratic part (or of a section's) below this fraction of the
 /// largest are treated as zero (null directions of cylinders and paraboloids).
 constexpr double kSupportNullEigenRelative = 1e-12;
+/// A quadratic part counts as positive semidefinite only when no eigenvalue is below -this times
+/// the largest (a posed atom's null eigenvalue rounds to ~1e-16 of the largest). An atom with a
+/// negative eigenvalue between -kSupportNullEigenRelative and -this times the largest is neither
+/// (a cone or a two-sheet hyperboloid of aspect ratio >= 1e6, whose support the enumeration
+/// cannot resolve): it is refused as convex, and answered as a non-convex shape.
+constexpr double kSupportIndefiniteRelative = 1e-14;
 }  // namespace tolerance_support
 
 class ConvexSupport {
@@ -108,7 +114,9 @@ class ConvexSupport {
   double size() const { return size_; }
 
  private:
-  Eigen::Vector3d regionSupport(const Eigen::Vector3d& n) const;
+  /// `found`, if given, receives whether any candidate was feasible (else the bounding-box
+  /// centre is returned: fromRegion() refuses regions where that happens).
+  Eigen::Vector3d regionSupport(const Eigen::Vector3d& n, bool* found = nullptr) const;
 
   Kind kind_ = Kind::Points;
   double radius_ = 0.0;  // radius(): the ball the core is grown by (a sphere's or a capsule's)
