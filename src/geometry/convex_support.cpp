@@ -264,9 +264,10 @@ std::vector<Eigen::Vector3d> polytopeVertices(const std::vector<Eigen::Vector3d>
 /// then two convex components, one on each side of the plane v.(x - x0) = 0 (v the negative
 /// eigenvector). The region is convex when its planes (the box included) keep it on one side:
 /// every vertex of their polytope has v.(x - x0) of one sign, up to kSupportFeasibilityRelative
-/// of the size (a cone clipped through its apex). r > 0 (a one-sheet hyperboloid, connected and
-/// not convex) or vertices on both sides: false. Sets `cone` and `apex` for r = 0 to 1e-12 of
-/// r's magnitude: the apex is a candidate of its own (the gradient vanishes there).
+/// of the size plus that product's rounding (a cone clipped through its apex). r > 0 (a one-sheet
+/// hyperboloid, connected and not convex) or vertices on both sides: false. Sets `cone` and
+/// `apex` for r = 0 to 16 eps of f's terms (the apex is a candidate of its own: the gradient
+/// vanishes there), else `r` for the sheet's smooth point.
 bool ConvexSupport::acceptIndefinite(RegionData* g, double length) {
   const RegionData::Curved& cv = g->curved;
   // The centre x0 = -A^-1 b in the eigenbasis, refined by one Newton step; then r = -f(x0).
@@ -418,10 +419,10 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
     near_null += std::abs(g->curved.lam[i]) <= tolerance_support::kSupportNullEigenRelative * g->curved.lam.cwiseAbs().maxCoeff();
   const bool probe = g->has_curved && (near_null >= 2 || g->curved.lam[0] < 0.0);
   for (int i = 0; i < 27 && probe; ++i) {
-    const Eigen::Vector3d n(i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1);
+    if (i == 13) continue;  // the stencil's centre, (0, 0, 0)
     bool found = false;
-    if (i != 13) s.regionSupport(n, &found);
-    if (i != 13 && !found) return std::nullopt;
+    s.regionSupport(Eigen::Vector3d(i % 3 - 1, (i / 3) % 3 - 1, i / 9 - 1), &found);
+    if (!found) return std::nullopt;
   }
   return s;
 }
