@@ -192,7 +192,9 @@ TEST(ConvexSupport, ConeNappesAndHyperboloidSheetsAgreeWithClosedForms) {
 TEST(ConvexSupport, AtomsAtTheLimitOfResolutionAreExactOrRefused) {
   const QuadricRegion clips = QuadricRegion::combine(
       Op::Intersection, {QuadricRegion::halfspace({0, 0, -1}, 0.0), QuadricRegion::halfspace({0, 0, 1}, 1.0)});
-  for (double a : {1e-4, 1e-5, 1e-6, 1e-7, 1e-8}) {
+  // (The engine's bounding box of a cone this thin takes 1-2.6 s: three cases, the accepted
+  // 1e-5 and the audit's 1e-6 and 1e-7.)
+  for (double a : {1e-5, 1e-6, 1e-7}) {
     SCOPED_TRACE(testing::Message() << "cone x^2/a^2 + y^2 <= z^2, a = " << a);
     const QuadricRegion cone =
         QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticCone(a, 1.0, 1.0)), clips});
