@@ -514,6 +514,19 @@ TEST(QuadricShapeDistance, RefinementFarFromTheOriginStaysOnTheShape) {
       EXPECT_NEAR((local - foot).norm(), 0.0, 1e-6);
     }
   }
+  // The audit's own case (its poses, printed to 17 digits): a box's vertex 2e-4 from the rim
+  // point along a direction of its normal cone. The ball cases above pass with the world-frame
+  // refinement too (checked); this one gave 1.99656e-4 with it.
+  Transform X, Y;
+  X.matrix() << 0.8251233534762803, -0.15745805384104644, 0.54256650544301699, 12000, 0.1995422538999686,
+      0.97970226726581211, -0.019140439460674813, -9600, -0.52853981917787218, 0.12405816698153094, 0.83979475513282698,
+      12800, 0, 0, 0, 1;
+  Y.matrix() << 0.64584261516419628, 0.27435381159425132, 0.71247266789791885, 11999.890138379104, 0.51519529004291187,
+      0.53208611708869158, -0.67190637526301189, -9600.922200971916, -0.56343689048150913, 0.80100833333067478,
+      0.20229809781444452, 12801.517428704083, 0, 0, 0, 1;
+  const fcl::Box<double> box(0.8, 0.4, 1.2);
+  EXPECT_NEAR(dist(cone, X, box, Y, true), 2e-4, 1e-10);
+  EXPECT_NEAR(dist(box, Y, cone, X, false), 2e-4, 1e-10);
 }
 
 }  // namespace
