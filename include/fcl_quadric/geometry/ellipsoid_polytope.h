@@ -83,13 +83,13 @@ struct ConvexPolytope {
 /// classifyEllipsoidTriangle (certified). Overlapping if the centre is in P or a triangle
 /// overlaps; Touching if a triangle touches; otherwise Separated, with the nearest triangle's
 /// unit distance and point. \pre P is convex and its faces are its boundary (as fcl::Convex
-/// assumes; not checked). 	hrows std::invalid_argument for no vertices, a vertex not finite or
+/// assumes; not checked). \throws std::invalid_argument for no vertices, a vertex not finite or
 /// beyond kMaxLength, a face with fewer than three vertices or an index out of range.
 EllipsoidPolytopeResult classifyEllipsoidConvex(const Ellipsoid& e, const ConvexPolytope& P);
 
 /// Signed distance between e and P, as signedDistanceEllipsoidBox (the same feature candidates:
 /// P's faces, vertices and edges), with the status of classifyEllipsoidConvex.
-/// 	hrows std::invalid_argument as classifyEllipsoidConvex.
+/// \throws std::invalid_argument as classifyEllipsoidConvex.
 SignedDistanceResult signedDistanceEllipsoidConvex(const Ellipsoid& e, const ConvexPolytope& P);
 
 }  // namespace fcl_quadric

@@ -65,7 +65,7 @@ double regionConvexDistanceLowerBound(const QuadricRegion& a, const Box3& a_box,
 using OffsetSuperset = std::function<std::pair<QuadricRegion, Box3>(double delta)>;
 
 /// The box c +- h grown to c +- (h + delta): contains the box's delta-neighbourhood.
-/// 	hrows std::invalid_argument if c or h is not finite or h has a negative component.
+/// \throws std::invalid_argument if c or h is not finite or h has a negative component.
 OffsetSuperset boxOffsetSuperset(const Eigen::Vector3d& c, const Eigen::Vector3d& h);
 
 /// The triangle's delta-prism: the slab |n.(x - p0)| <= delta cut by its three edge half-spaces
@@ -83,7 +83,7 @@ std::optional<OffsetSuperset> triangleOffsetSuperset(const Eigen::Vector3d& p0, 
 /// diagonal + reach))] (to 2^-kRegionDistanceBisections of itself) for which collideRegions
 /// certifies a Separated from grown(delta); 0 when grown(0) is not certified separate. `reach`
 /// bounds |x| over the piece (piece frame): it sets the search range.
-/// 	hrows std::invalid_argument if cap is negative or NaN, reach is not finite and >= 0, a_box
+/// \throws std::invalid_argument if cap is negative or NaN, reach is not finite and >= 0, a_box
 /// is empty or not finite, or (R_AB, p_AB) is not a finite rigid transform.
 double regionOffsetDistanceLowerBound(const QuadricRegion& a, const Box3& a_box, const OffsetSuperset& grown,
                                       double reach, const Eigen::Matrix3d& R_AB, const Eigen::Vector3d& p_AB,
