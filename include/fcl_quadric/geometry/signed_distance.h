@@ -11,8 +11,11 @@ namespace fcl_quadric {
 
 struct SignedDistanceResult {
   /// > 0: Euclidean distance; < 0: minus the penetration depth (length of the shortest translation
-  /// of b that removes the overlap); 0 within the touching band. Its sign always agrees with
-  /// `status` (the algebraic classification decides the sign).
+  /// of b that removes the overlap); 0 within the touching band. Its sign never contradicts
+  /// `status` (the algebraic classification decides it): > 0 only when Separated, < 0 only when
+  /// Overlapping. It is also 0 for a Separated or Overlapping pair whose distance or depth is
+  /// below the rounding of its own evaluation (~1e-16 of the scale |p_b - p_a| + r_a,max +
+  /// r_b,max), where the computed value has the other sign (docs/tolerances.md, item 5).
   double distance = 0.0;
   Eigen::Vector3d point_a = Eigen::Vector3d::Zero();  ///< on the surface of a (world frame)
   Eigen::Vector3d point_b = Eigen::Vector3d::Zero();  ///< on the surface of b (world frame)
