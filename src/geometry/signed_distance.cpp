@@ -94,10 +94,9 @@ LocalMax ascend(const Objective& obj, Eigen::Vector3d n, double scale) {
     const double hd = 0.5 * (h11 - h22);
     const double mean = 0.5 * (h11 + h22), half = std::sqrt(hd * hd + h12 * h12);
     double l1 = mean - half, l2 = mean + half;  // l1 <= l2
-    const double floor = 1e-3 * std::max(std::fabs(l1), std::fabs(l2)) + 1e-300;
+    const double det = h11 * h22 - h12 * h12;
     Eigen::Vector2d xi;
-    if (l2 < -1e-12 * std::fabs(l1) && h11 * h22 - h12 * h12 > 0.0) {
-      const double det = h11 * h22 - h12 * h12;  // Newton step -H^-1 g
+    if (l2 < -1e-12 * std::fabs(l1) && det > 0.0) {  // Newton step -H^-1 g
       xi = Eigen::Vector2d(-(h22 * g[0] - h12 * g[1]) / det, -(-h12 * g[0] + h11 * g[1]) / det);
     } else {
       // eigenvector of l1: (h12, l1 - h11) or (l1 - h22, h12), whichever is better conditioned.
@@ -106,6 +105,7 @@ LocalMax ascend(const Objective& obj, Eigen::Vector3d n, double scale) {
       if (v1.squaredNorm() == 0.0) v1 = Eigen::Vector2d(1.0, 0.0);
       v1.normalize();
       const Eigen::Vector2d v2(-v1[1], v1[0]);
+      const double floor = 1e-3 * std::max(std::fabs(l1), std::fabs(l2)) + 1e-300;
       l1 = -std::max(std::fabs(l1), floor);
       l2 = -std::max(std::fabs(l2), floor);
       xi = -(v1 * (v1.dot(g) / l1) + v2 * (v2.dot(g) / l2));
@@ -163,7 +163,8 @@ SignedDistanceResult signedDistance(const Ellipsoid& a, const Ellipsoid& b, cons
   // 100 and ~0.5% of deep overlaps up to 1000 (3% too deep at aspect 5 and 19; the two argument
   // orders disagreed); SignedDistance.PenetrationDepthOfTheAuditsPairsIsTheGlobalOptimum.
   constexpr int kDepthStarts = 6;
-  std::array<Eigen::Vector3d, 2 * kGridDirections + 24> seeds;
+  constexpr int kMaxSeeds = 2 * kGridDirections + 24;  // the grid and at most 21 other directions
+  std::array<Eigen::Vector3d, kMaxSeeds> seeds;
   int nseeds = 0;
   auto add = [&](const Eigen::Vector3d& v) { seeds[nseeds++] = v; };
   if (warm_normal && warm_normal->squaredNorm() > 0.0 && warm_normal->allFinite()) add(*warm_normal);
@@ -187,7 +188,7 @@ SignedDistanceResult signedDistance(const Ellipsoid& a, const Ellipsoid& b, cons
   }
   if (nseeds == 0) add(Eigen::Vector3d::UnitX());
   // Rank the seeds by phi and ascend from the best `starts` distinct ones (selection, no sort).
-  std::array<double, 2 * kGridDirections + 24> value;
+  std::array<double, kMaxSeeds> value;
   for (int i = 0; i < nseeds; ++i) {
     seeds[i].normalize();
     value[i] = obj.value(seeds[i]);

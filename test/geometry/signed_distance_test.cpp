@@ -94,6 +94,12 @@ TEST(SignedDistance, SeparatedPairsSatisfyTheOptimalityConditions) {
   EXPECT_EQ(separated, 5000);
 }
 
+/// An ellipsoid from its radii, its rotation's rows and its centre (the audit's printed inputs).
+Ellipsoid ellipsoidFromRows(const double* radii, const double* R_rows, const double* p) {
+  return Ellipsoid(Eigen::Vector3d(radii[0], radii[1], radii[2]),
+                   Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R_rows), Eigen::Vector3d(p[0], p[1], p[2]));
+}
+
 /// Separated pairs of session 38's audit (thin ellipsoids, aspect ratios up to 1e4) where the ascent
 /// used to stop at its iteration cap 2.1% and 2.6e-4 short of the distance: its step along the flat
 /// direction of a concave Hessian (eigenvalues -1.07e5 and -1.52) was floored to 1/70 of Newton's.
@@ -123,10 +129,7 @@ TEST(SignedDistance, ThinSeparatedPairsOfTheAuditConvergeToTheDistance) {
        {0.8509437369314421, 1.2293877566864049, 0.84553316678432711}},
   };
   for (const Case& c : cases) {
-    const Ellipsoid a(Eigen::Vector3d(c.ra[0], c.ra[1], c.ra[2]), Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(c.Ra),
-                      Eigen::Vector3d(c.pa[0], c.pa[1], c.pa[2]));
-    const Ellipsoid b(Eigen::Vector3d(c.rb[0], c.rb[1], c.rb[2]), Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(c.Rb),
-                      Eigen::Vector3d(c.pb[0], c.pb[1], c.pb[2]));
+    const Ellipsoid a = ellipsoidFromRows(c.ra, c.Ra, c.pa), b = ellipsoidFromRows(c.rb, c.Rb, c.pb);
     for (const bool swap : {false, true}) {
       const Ellipsoid& x = swap ? b : a;
       const Ellipsoid& y = swap ? a : b;
@@ -184,10 +187,7 @@ TEST(SignedDistance, PenetrationDepthOfTheAuditsPairsIsTheGlobalOptimum) {
         -0.622234658219164, -0.3958796058655061, -0.044348651380974095, -0.11152765427484775, -0.09687964877104814},
        {-0.45563140429191146, 0.4129007553189884, 0.7886146014879446}},
   };
-  auto make = [](const double* v) {
-    return Ellipsoid(Eigen::Vector3d(v[0], v[1], v[2]), Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(v + 3),
-                     Eigen::Vector3d(v[12], v[13], v[14]));
-  };
+  auto make = [](const double* v) { return ellipsoidFromRows(v, v + 3, v + 12); };
   for (const Case& c : cases) {
     const Ellipsoid a = make(c.a), b = make(c.b);
     const double scale = (b.center() - a.center()).norm() + a.maxRadius() + b.maxRadius();
