@@ -1,6 +1,7 @@
 // Environment: FCL collision objects in a dynamic AABB tree manager.
 #include "fcl_quadric/ompl/environment.h"
 #include "finite.h"
+#include "geometry_checks.h"
 
 #include <stdexcept>
 #include <string>
@@ -42,6 +43,7 @@ void Environment::registerObject(std::shared_ptr<fcl::CollisionGeometry<double>>
 
 void Environment::add(std::shared_ptr<fcl::CollisionGeometry<double>> geometry, const Eigen::Isometry3d& pose) {
   if (!geometry) throw std::invalid_argument("Environment::add: null geometry");
+  detail::checkSupportedGeometry(*geometry, "Environment::add");
   checkPose(pose, "Environment::add");
   registerObject(std::move(geometry), pose);
   manager_->setup();

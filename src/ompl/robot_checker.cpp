@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -115,7 +116,8 @@ bool distanceCallback(fcl::CollisionObject<double>* o1, fcl::CollisionObject<dou
   // Quadric shapes (quadric_shapes.h) and FCL's box / cylinder / cone / capsule: a certified lower bound
   // (fcl_quadric::distanceLowerBound), capped at the running minimum; 0 when the two may touch or
   // overlap (no penetration depth). Both the advancement and clearance() only need a lower bound.
-  const double cap = std::min(d->base.result.min_distance, d->upper);
+  // (The cap is negative once a signed query has met an overlap: a bound, >= 0, cannot lower it.)
+  const double cap = std::max(0.0, std::min(d->base.result.min_distance, d->upper));
   if (const std::optional<double> bound = fcl_quadric::distanceLowerBound(g1, o1->getTransform(), g2, o2->getTransform(), cap)) {
     if (*bound < d->base.result.min_distance) {
       d->base.result.min_distance = *bound;
@@ -175,9 +177,46 @@ double environmentDistance(const Environment& env, const Body& body, const Eigen
     if (data.base.result.min_distance <= 0.0 || p.bound - 1e-12 >= data.base.result.min_distance) break;
     fcl_quadric::distance(p.o1, p.o2, data.base.request, data.base.result);
   }
+  if (signed_distance && data.base.result.min_distance <= 0.0) {
+    // The broad phase stops at the first pair at distance <= 0 (FCL's DefaultDistanceFunction), so
+    // with several overlaps the value was that of whichever the traversal met first
+    // (reliability.md finding 33). Every obstacle overlapping the body has a box that meets the
+    // body's: each of those gets its signed distance, each in a fresh result (FCL leaves a result
+    // at <= 0 unchanged, DistanceRequest::isSatisfied), and the smallest is kept.
+    double smallest = data.base.result.min_distance;
+    env.manager().collide(&obj, &smallest, [](fcl::CollisionObject<double>* o1, fcl::CollisionObject<double>* o2, void* p) {
+      DistanceData pair;
+      pair.base.request.enable_signed_distance = true;
+      double dist = 0.0;
+      distanceCallback(o1, o2, &pair, dist);
+      double& m = *static_cast<double*>(p);
+      m = std::min(m, pair.base.result.min_distance);
+      return false;  // visit every candidate
+    });
+    return smallest;
+  }
   const double d = data.base.result.min_distance;
   return d >= std::numeric_limits<double>::max() ? kInf : d;
 }
+
+/// A body or obstacle whose contacts FCL's libccd decides in fcl_quadric::collide (no closed form
+/// or exact kernel: box, cylinder, cone, capsule against each other, meshes, octrees and
+/// half-spaces). libccd's MPR stops at a tolerance and misses overlaps of 1e-12 to 3e-7 of such
+/// shapes (reliability.md finding 33); their static checks use the certified lower bound of
+/// distanceLowerBound instead (GJK's, 0 when they may touch).
+bool isGjkPrimitive(const fcl::CollisionGeometry<double>* g) {
+  switch (g->getNodeType()) {
+    case fcl::GEOM_BOX:
+    case fcl::GEOM_CYLINDER:
+    case fcl::GEOM_CONE:
+    case fcl::GEOM_CAPSULE: return true;
+    default: return false;
+  }
+}
+
+/// The smallest positive cap: a lower-bound query with it returns 0 exactly when some pair may
+/// touch or overlap, and prunes every obstacle whose box does not meet the body's.
+constexpr double kContactCap = std::numeric_limits<double>::min();
 
 bool environmentCollides(const Environment& env, const Body& body, const Eigen::Isometry3d& X) {
   if (env.size() == 0) return false;
@@ -185,7 +224,11 @@ bool environmentCollides(const Environment& env, const Body& body, const Eigen::
   obj.computeAABB();
   fcl::DefaultCollisionData<double> data;
   env.manager().collide(&obj, &data, fcl_quadric::defaultCollisionFunction<double>);
-  return data.result.isCollision();
+  if (data.result.isCollision()) return true;
+  // Touching counts as collision: a GJK-primitive body is in contact when no obstacle is
+  // certified separate from it (errs toward contact within GJK's certified error, ~1e-10 of the
+  // size; pairs with an exact kernel, such as its contacts with ellipsoids and spheres, stay exact).
+  return isGjkPrimitive(body.geometry.get()) && environmentDistance(env, body, X, false, false, kContactCap) <= 0.0;
 }
 
 double pairDistance(const Body& a, const Eigen::Isometry3d& Xa, const Body& b, const Eigen::Isometry3d& Xb,
@@ -201,18 +244,64 @@ double pairDistance(const Body& a, const Eigen::Isometry3d& Xa, const Body& b, c
 }
 
 bool pairCollides(const Body& a, const Eigen::Isometry3d& Xa, const Body& b, const Eigen::Isometry3d& Xb) {
+  if (isGjkPrimitive(a.geometry.get()) && isGjkPrimitive(b.geometry.get())) {
+    // As in environmentCollides: GJK's certified bound, not libccd's collide (touching counts).
+    if (const std::optional<double> bound =
+            fcl_quadric::distanceLowerBound(a.geometry.get(), toFcl(Xa), b.geometry.get(), toFcl(Xb), kContactCap))
+      return *bound <= 0.0;
+  }
   fcl::CollisionRequest<double> request;
   fcl::CollisionResult<double> result;
   return fcl_quadric::collide(a.geometry.get(), toFcl(Xa), b.geometry.get(), toFcl(Xb), request, result) > 0;
 }
 
-void checkConfiguration(const Configuration& q, const char* which) {
-  if (!detail::allFinite(q.base.matrix()))
-    throw std::invalid_argument(std::string("RobotCollisionChecker::checkMotion: base pose of ") + which + " is not finite");
-  for (std::size_t i = 0; i < q.joints.size(); ++i)
+/// The end configurations of a motion: finite, and for a Fixed-base robot one value per joint
+/// within the joint's limits (the speed bound of a prismatic joint's chain assumes its limits,
+/// RobotModel::chainLength).
+void checkConfiguration(const RobotModel& r, const Configuration& q, const char* which) {
+  const std::string where = std::string("RobotCollisionChecker::checkMotion: ");
+  if (!detail::allFinite(q.base.matrix())) throw std::invalid_argument(where + "base pose of " + which + " is not finite");
+  if (r.base() == RobotModel::Base::Fixed && q.joints.size() != r.jointCount())
+    throw std::invalid_argument(where + which + " has " + std::to_string(q.joints.size()) + " joint values, the robot has " +
+                                std::to_string(r.jointCount()) + " joints");
+  for (std::size_t i = 0; i < q.joints.size(); ++i) {
     if (!std::isfinite(q.joints[i]))
-      throw std::invalid_argument(std::string("RobotCollisionChecker::checkMotion: joint ") + std::to_string(i) + " of " +
-                                  which + " is not finite");
+      throw std::invalid_argument(where + "joint " + std::to_string(i) + " of " + which + " is not finite");
+    if (r.base() != RobotModel::Base::Fixed) continue;
+    const Joint& j = r.joint(i);
+    if (q.joints[i] < j.lower || q.joints[i] > j.upper) {
+      std::ostringstream os;
+      os.precision(17);
+      os << where << "joint " << i << " (\"" << j.name << "\") of " << which << " is " << q.joints[i]
+         << ", outside its limits [" << j.lower << ", " << j.upper << "]";
+      throw std::invalid_argument(os.str());
+    }
+  }
+}
+
+/// The obstacles whose boxes meet the ball of radius r about (c0 + c1) / 2: with c0, c1 the
+/// positions of a body's ball centre at t = 0 and 1 and r = ball radius + V / 2 (V the body's
+/// speed bound), the ball holds the body for every t in [0, 1] (the centre c(t) is within V t of
+/// c0 and V (1 - t) of c1, so |c(t) - (c0 + c1) / 2| <= V / 2). The broad phase of the exact
+/// ellipsoid pairs, which otherwise solved the CCD against every ellipsoid obstacle.
+std::vector<fcl::CollisionObject<double>*> sweptCandidates(const Environment& env, const Eigen::Vector3d& c0,
+                                                           const Eigen::Vector3d& c1, double r) {
+  std::vector<fcl::CollisionObject<double>*> out;
+  if (env.size() == 0) return out;
+  fcl::Transform3<double> tf = fcl::Transform3<double>::Identity();
+  tf.translation() = 0.5 * (c0 + c1);
+  fcl::CollisionObject<double> probe(std::make_shared<fcl::Sphere<double>>(r), tf);
+  probe.computeAABB();
+  struct Data {
+    const fcl::CollisionObject<double>* probe;
+    std::vector<fcl::CollisionObject<double>*>* out;
+  } data{&probe, &out};
+  env.manager().collide(&probe, &data, [](fcl::CollisionObject<double>* o1, fcl::CollisionObject<double>* o2, void* p) {
+    auto* d = static_cast<Data*>(p);
+    d->out->push_back(o1 == d->probe ? o2 : o1);
+    return false;
+  });
+  return out;
 }
 
 double yawOf(const Eigen::Isometry3d& X) { return std::atan2(X.linear()(1, 0), X.linear()(0, 0)); }
@@ -301,8 +390,8 @@ MotionCheckResult RobotCollisionChecker::checkMotion(const Configuration& from, 
                                                      Interpolation kind,
                                                      const std::function<void(double, Configuration&)>& at,
                                                      const MotionCheckOptions& options, bool stop_at_first) const {
-  checkConfiguration(from, "the start");
-  checkConfiguration(to, "the goal");
+  checkConfiguration(*robot_, from, "the start");
+  checkConfiguration(*robot_, to, "the goal");
   if (!at) throw std::invalid_argument("RobotCollisionChecker::checkMotion: null interpolation callback");
   if (!(options.contact_distance >= 0.0) || !std::isfinite(options.contact_distance))
     throw std::invalid_argument("RobotCollisionChecker::checkMotion: contact_distance must be finite and >= 0, got " +
@@ -366,12 +455,15 @@ MotionCheckResult RobotCollisionChecker::checkMotion(const Configuration& from, 
   // 1. Exact ellipsoid pairs (QuaternionLerp only: the base motion is MotionMatrix::fromPoses).
   if (exact) {
     const MotionMatrix base = MotionMatrix::fromPoses(from.base, to.base);
-    for (const Ref& ref : bodies) {
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const Ref& ref = bodies[i];
       if (!isEllipsoidal(ref.body->geometry.get())) continue;
       const Eigen::Isometry3d& off = ref.body->offset;
       MovingEllipsoid a{ellipsoidOf(ref.body->geometry.get(), Eigen::Isometry3d::Identity()),
                         PiecewiseMotion(MotionMatrix::compose(base, MotionMatrix::constant(off.linear(), off.translation())))};
-      for (const auto& obj : env_->objects()) {
+      for (fcl::CollisionObject<double>* obj : sweptCandidates(*env_, from.base * ref.body->ball_centre,
+                                                               to.base * ref.body->ball_centre,
+                                                               ref.body->ball_radius + 0.5 * V[i])) {
         if (!isEllipsoidal(obj->collisionGeometry().get())) continue;
         if (found && T <= 0.0) break;
         Eigen::Isometry3d Xo = Eigen::Isometry3d::Identity();

@@ -1,6 +1,7 @@
 // RobotModel: builder, forward kinematics, reach bounds; robotModelFromJson.
 #include "fcl_quadric/ompl/robot_model.h"
 #include "finite.h"
+#include "geometry_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -80,6 +81,7 @@ void RobotModel::addBody(std::size_t link, std::shared_ptr<fcl::CollisionGeometr
     throw std::invalid_argument("RobotModel::addBody: link " + std::to_string(link) + " out of range (robot has " +
                                 std::to_string(bodies_.size()) + " links)");
   if (!geometry) throw std::invalid_argument("RobotModel::addBody: null geometry for link " + std::to_string(link));
+  detail::checkSupportedGeometry(*geometry, "RobotModel::addBody: body on link " + std::to_string(link));
   checkPose(offset, "body offset on link " + std::to_string(link));
   // A sphere body is stored as the ellipsoid with equal radii: QuadricSolver then answers it with
   // the exact ellipsoid algorithms against every shape (FCL's signed sphere-box distance, for
@@ -241,6 +243,8 @@ RobotModel robotModelFromJson(const std::string& json_text) {
     doc = json::parse(json_text);
   } catch (const json::parse_error& e) {
     throw std::invalid_argument(std::string("robot JSON: parse error: ") + e.what());
+  } catch (const json::exception& e) {  // e.g. out_of_range 406: a number such as 1e999 overflows a double
+    throw std::invalid_argument(std::string("robot JSON: ") + e.what());
   }
   if (!doc.is_object()) bad("", "the document must be an object");
   RobotModel::Base base = RobotModel::Base::Free;

@@ -37,8 +37,10 @@ class Environment {
   Environment(const Environment&) = delete;
   Environment& operator=(const Environment&) = delete;
 
-  /// Adds an obstacle at `pose`. \throws std::invalid_argument for a null geometry or a pose
-  /// that is not finite or not rigid.
+  /// Adds an obstacle at `pose`. \throws std::invalid_argument for a null geometry, a pose that
+  /// is not finite or not rigid, a shape parameter that is not finite or not positive (named), an
+  /// unfinished BVH mesh, or an unsupported geometry (fcl::TriangleP, which FCL 0.7 never finds
+  /// in contact with most shapes: use a one-triangle BVH mesh).
   void add(std::shared_ptr<fcl::CollisionGeometry<double>> geometry,
            const Eigen::Isometry3d& pose = Eigen::Isometry3d::Identity());
   /// How addOcTree registers an octomap.

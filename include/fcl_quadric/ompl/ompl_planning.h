@@ -35,8 +35,8 @@ namespace fcl_quadric {
 namespace planning {
 
 /// SE(3) with the rational interpolation of MotionMatrix::fromPoses: translation (1-t) p0 + t p1,
-/// rotation by the normalised linear interpolation of the unit quaternions (q1 negated first if
-/// q0 . q1 < 0). Same path of orientations as slerp (the great arc), traversed at a different
+/// rotation by the normalised linear interpolation of the quaternions, each normalised first (q1
+/// negated first if q0 . q1 < 0). Same path of orientations as slerp (the great arc), traversed at a different
 /// speed; the exact ellipsoid CCD solves exactly this motion.
 class RationalSE3StateSpace : public ompl::base::SE3StateSpace {
  public:
@@ -79,7 +79,12 @@ class StateValidityChecker : public ompl::base::StateValidityChecker {
 /// RationalSE3StateSpace the direct motion from s1 to that state (which planners such as PRM add
 /// as an edge) is certified too: the quaternion lerp is not sub-path consistent, so the direct
 /// motion is not the prefix of s1 -> s2; f is halved until the direct motion is valid.
-/// s2 outside the space's bounds is rejected (lastValid = s1, 0).
+/// As OMPL's DiscreteMotionValidator, a motion is valid only if si->isValid(s2); s1 must lie within
+/// the space's bounds (else rejected, lastValid = s1, 0: outside them the interpolation is not the
+/// one the speed bound describes). s2 outside the bounds, or invalid for a reason other than a
+/// collision the certificate finds, gives lastValid = (s1, 0). Where OMPL's SE3 slerp does not
+/// reach s2 (it keeps the start rotation when |q1 . q2| > 1 - 1e-9), the remaining rotation to s2
+/// is certified as well.
 class ContinuousMotionValidator : public ompl::base::MotionValidator {
  public:
   /// \throws std::invalid_argument for a null si or checker, or an unsupported state space.
@@ -89,7 +94,11 @@ class ContinuousMotionValidator : public ompl::base::MotionValidator {
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                    std::pair<ompl::base::State*, double>& lastValid) const override;
 
-  /// The full result of the last check (for tests and statistics).
+  /// The full result of the continuous check of s1 -> s2 (for tests and statistics; no bounds or
+  /// isValid(s2) test, unlike checkMotion). \throws std::invalid_argument for states the
+  /// interpolation cannot certify: an SE(2) yaw outside [-pi, pi], an SE3StateSpace quaternion
+  /// with |norm - 1| >= 1e-9 (OMPL's interpolate() asserts on it), a zero quaternion, or as
+  /// RobotCollisionChecker::checkMotion.
   MotionCheckResult check(const ompl::base::State* s1, const ompl::base::State* s2, bool stop_at_first) const;
   /// Advancement steps and exact solves summed over all checks. Atomic: planners such as PRM call
   /// checkMotion from several threads (OMPL's own valid/invalid counters are not atomic).
@@ -97,6 +106,8 @@ class ContinuousMotionValidator : public ompl::base::MotionValidator {
   std::size_t totalExactSolves() const { return total_exact_.load(std::memory_order_relaxed); }
 
  private:
+  /// s1 within the space's bounds and si->isValid(s2).
+  bool endsAreValid(const ompl::base::State* s1, const ompl::base::State* s2) const;
   std::shared_ptr<const RobotCollisionChecker> checker_;
   MotionCheckOptions options_;
   Interpolation kind_;

@@ -89,8 +89,10 @@ class RobotModel {
                        const Eigen::Vector3d& axis, double lower, double upper);
 
   /// Attaches a collision geometry to a link. An fcl::Sphere is stored as the fcl::Ellipsoid with
-  /// equal radii (so that every pair with it takes the exact ellipsoid path of QuadricSolver). \throws std::invalid_argument for a link index
-  /// out of range, a null geometry, or a non-finite / non-rigid offset.
+  /// equal radii (so that every pair with it takes the exact ellipsoid path of QuadricSolver).
+  /// \throws std::invalid_argument for a link index out of range, a null geometry, a non-finite /
+  /// non-rigid offset, a shape parameter that is not finite or not positive (the message names it),
+  /// an unfinished BVH mesh, or an unsupported geometry (fcl::TriangleP: use a one-triangle mesh).
   void addBody(std::size_t link, std::shared_ptr<fcl::CollisionGeometry<double>> geometry,
                const Eigen::Isometry3d& offset = Eigen::Isometry3d::Identity());
 
