@@ -249,6 +249,34 @@ TEST(StateValidityChecker, CapsuleCylinderAndBoxBodiesTouchingAFloorByAsLittleAs
     }
 }
 
+TEST(StateValidityChecker, SelfPairsOfCapsuleAndBoxLinksTouchingByAsLittleAs1e12AreInCollision) {
+  // Base link: a box of side 0.4 at the origin (top face z = 0.2). Two prismatic joints (x, then
+  // z) carry link 2: a capsule (r = 0.05) lying along x, so its lowest point is at z = q_z - 0.05.
+  // Links 0 and 2 are not adjacent: a self-collision pair. Link 1 has no body.
+  for (bool cylinder : {false, true}) {
+    auto arm = std::make_shared<RobotModel>(RobotModel::Base::Fixed);
+    arm->addBody(0, std::make_shared<fcl::Box<double>>(0.4, 0.4, 0.4));
+    const std::size_t l1 =
+        arm->addJoint("x", JointType::Prismatic, Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitX(), -1, 1);
+    const std::size_t l2 =
+        arm->addJoint("z", JointType::Prismatic, Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitZ(), -1, 1);
+    (void)l1;
+    Eigen::Isometry3d along_x = Eigen::Isometry3d::Identity();
+    along_x.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    if (cylinder)
+      arm->addBody(l2, std::make_shared<fcl::Cylinder<double>>(0.05, 0.3), along_x);
+    else
+      arm->addBody(l2, std::make_shared<fcl::Capsule<double>>(0.05, 0.3), along_x);
+    ASSERT_EQ(arm->selfCollisionPairs().size(), 1u);
+    RobotCollisionChecker checker(arm, std::make_shared<Environment>());
+    for (double height : {-1e-5, -1e-9, -1e-12, 0.0, 1e-7, 1e-5}) {
+      Configuration q;
+      q.joints = {0.03, 0.2 + 0.05 + height};
+      EXPECT_EQ(checker.isValid(q), height > 0.0) << (cylinder ? "cylinder" : "capsule") << " at " << height;
+    }
+  }
+}
+
 // (4) The start state was never checked: out of bounds it breaks the speed bound.
 TEST(ContinuousMotionValidator, RejectsMotionsFromAStartOutsideTheBoundsAndNamesItInCheck) {
   // SE(2): from a yaw of 10 (not in [-pi, pi]) OMPL turns 6.2 rad to reach -2.5, through a box
