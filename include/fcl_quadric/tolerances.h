@@ -90,6 +90,12 @@ constexpr double kPencilNewtonStep = 1e-10;
 /// Convergence of the signed-distance Newton iteration: stop when the Riemannian gradient norm
 /// is <= this times the scale (sum of the largest radii and the centre distance).
 constexpr double kDistanceGradientTolerance = 1e-14;
+/// ... or after this many accepted steps in a row that each raise the support gap by at most its
+/// rounding (16 u times the scale): phi no longer resolves the gradient there, and near-tangent
+/// thin pairs otherwise ran to kMaxDistanceNewtonIterations (docs/reliability.md finding 33).
+/// 3 steps left the witnesses of a needle 2e-9 of the scale apart beyond the distance; 6 keep
+/// them as close as the 100 iterations did (1.6e-11 of the scale).
+constexpr int kDistanceStallSteps = 6;
 
 
 // --- Continuous collision of ellipsoids (thesis ch.5; docs/algorithms.md section 8) ----------

@@ -76,6 +76,7 @@ LocalMax ascend(const Objective& obj, Eigen::Vector3d n, double scale) {
   Eigen::Matrix3d hess;
   double phi = obj.evaluate(n, &grad, &hess);
   const double gtol = tolerance::kDistanceGradientTolerance * scale;
+  int stalled = 0;  // accepted steps in a row that gained at most `noise`
   for (int it = 0; it < tolerance::kMaxDistanceNewtonIterations; ++it) {
     Eigen::Vector3d e1, e2;
     tangentBasis(n, &e1, &e2);
@@ -116,6 +117,7 @@ LocalMax ascend(const Objective& obj, Eigen::Vector3d n, double scale) {
     // Accept by Armijo, or - near the optimum where phi no longer resolves the increase - by a
     // halved Riemannian gradient at a value no worse than phi up to rounding.
     const double noise = 16.0 * tolerance::kUnitRoundoff * scale;
+    const double phi_before = phi;
     bool accepted = false;
     for (int bt = 0; bt < 40 && xi.norm() > 1e-17; ++bt, xi *= 0.5) {
       const Eigen::Vector3d cand = (n + xi[0] * e1 + xi[1] * e2).normalized();
@@ -133,6 +135,13 @@ LocalMax ascend(const Objective& obj, Eigen::Vector3d n, double scale) {
       }
     }
     if (!accepted) return {n, phi, it + 1, g.norm() <= 1e3 * gtol};
+    // At the rounding floor phi no longer resolves the gradient: steps are accepted as "no worse up
+    // to rounding" and the ascent ran to its cap (near-tangent thin pairs, ~25 us each; finding
+    // 33). tolerance::kDistanceStallSteps steps in a row that gain at most `noise` each end it,
+    // converged as at a failed backtracking. Measured on the signed distance audit's sets: the
+    // same errors, worst times 450-610 us -> 44-88 us.
+    stalled = phi - phi_before <= noise ? stalled + 1 : 0;
+    if (stalled >= tolerance::kDistanceStallSteps) return {n, phi, it + 1, g.norm() <= 1e3 * gtol};
   }
   return {n, phi, tolerance::kMaxDistanceNewtonIterations, false};
 }

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "fcl_quadric/geometry/signed_distance.h"
+#include "fcl_quadric/tolerances.h"
 #include "support/exact_oracle.h"
 #include "support/random_ellipsoids.h"
 
@@ -145,6 +146,44 @@ TEST(SignedDistance, ThinSeparatedPairsOfTheAuditConvergeToTheDistance) {
       EXPECT_NEAR(d.distance, lower, 1e-12 * scale);
     }
   }
+}
+
+/// A thin ellipsoid (0.5, 5e-4, 6.5e-4) turning by slerp past a sphere it grazes at 5e-9 (the OMPL
+/// audit's slow motion, docs/reliability.md finding 33): near tangency phi no longer resolves the
+/// gradient, and the ascent ran to its 100-iteration cap on most instants (~25 us each, 97,717 of
+/// them per motion check). It must stop at the rounding floor instead, with the duality gap at the
+/// returned normal within 1e-10 of the scale (the needle's support point moves ~500 times the
+/// normal's error: the 100 iterations reached 1.6e-11 of the scale, 3 stall steps 2e-9).
+TEST(SignedDistance, NearTangentThinPairsStopAtTheRoundingFloorNotTheIterationCap) {
+  const Eigen::Quaterniond q0(0.39351122477608025, -0.66634236362779009, 0.50942091001436041, -0.37633377054192224);
+  const Eigen::Quaterniond q1(0.23200498318672691, 0.59643159657204425, -0.68440564155125072, 0.349330726103316);
+  const Eigen::Vector3d p(0.38969137442655716, -0.87153992663187374, -1.2390397949217991);
+  Eigen::Isometry3d Xs = Eigen::Isometry3d::Identity();
+  Xs.translation() = Eigen::Vector3d(0.27591577925155027, -0.98745790205916347, -1.2439859152365624);
+  const Ellipsoid sphere(Eigen::Vector3d::Constant(0.11530835475480349), Xs);
+  int capped = 0, total_iterations = 0, frames = 0;
+  double closest = 1.0;
+  for (double t = 0.50; t < 0.53; t += 3e-4, ++frames) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.linear() = q0.normalized().slerp(t, q1.normalized()).toRotationMatrix();
+    X.translation() = p;
+    const Ellipsoid needle(Eigen::Vector3d(0.5, 5e-4, 6.5e-4), X);
+    const SignedDistanceResult d = signedDistance(needle, sphere);
+    ASSERT_EQ(d.status, Separation::Separated) << t;
+    closest = std::min(closest, d.distance);
+    capped += d.iterations >= tolerance::kMaxDistanceNewtonIterations;
+    total_iterations += d.iterations;
+    const Eigen::Vector3d n = d.normal.normalized();
+    const double lower = n.dot(sphere.center() - needle.center()) - needle.support(n) + needle.center().dot(n) -
+                         sphere.support(-n) - sphere.center().dot(n);
+    const double upper = (sphere.supportPoint(-n) - needle.supportPoint(n)).norm();
+    const double scale = (sphere.center() - needle.center()).norm() + needle.maxRadius() + sphere.maxRadius();
+    EXPECT_LE(upper - lower, 1e-10 * scale) << "duality gap at t = " << t;
+    EXPECT_NEAR(d.distance, lower, 1e-12 * scale) << t;
+  }
+  EXPECT_LT(closest, 1e-6);  // the frames pass near tangency
+  EXPECT_EQ(capped, 0);      // the code before this test capped 25 of the 101 frames
+  EXPECT_LT(total_iterations, 15 * frames);
 }
 
 /// Overlapping pairs of the same audit where the ascent stopped in a local optimum of the support

@@ -31,8 +31,10 @@ struct SignedDistanceResult {
 /// penetration depth). Riemannian Newton on the unit sphere with backtracking, warm-started from
 /// `warm_normal` (if non-null and non-zero), from the separating plane of Theorem 4.6 for
 /// separated pairs, and for overlapping pairs from several seeds (penetration depth can have
-/// local optima) of which the best is kept. Iterations capped at
-/// tolerance::kMaxDistanceNewtonIterations; on reaching the cap the best iterate is returned with
+/// local optima) of which the best is kept. Each ascent stops at a gradient of at most
+/// tolerance::kDistanceGradientTolerance of the scale, at its rounding floor
+/// (tolerance::kDistanceStallSteps steps that gain no more than rounding), or at
+/// tolerance::kMaxDistanceNewtonIterations, where the best iterate is returned with
 /// converged = false.
 SignedDistanceResult signedDistance(const Ellipsoid& a, const Ellipsoid& b,
                                     const Eigen::Vector3d* warm_normal = nullptr);
