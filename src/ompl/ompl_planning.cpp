@@ -67,7 +67,9 @@ Configuration toConfiguration(const ob::StateSpace& space, const ob::State* stat
       const auto& r = s->rotation();
       const Eigen::Quaterniond quat(r.w, r.x, r.y, r.z);
       const double n = quat.norm();
-      if (!std::isfinite(n) || !(n > 1e-6))  // Eigen would return the zero quaternion's matrix, I
+      // (Eigen's normalized() leaves a zero quaternion as it is, and its matrix is I: a silent
+      // identity rotation.)
+      if (!std::isfinite(n) || !(n > 1e-6))
         throw std::invalid_argument("toConfiguration: the state's quaternion (" + std::to_string(r.w) + ", " +
                                     std::to_string(r.x) + ", " + std::to_string(r.y) + ", " + std::to_string(r.z) +
                                     ") is zero or not finite");
@@ -148,7 +150,7 @@ namespace {
 void checkUnitQuaternion(const ob::State* state, const char* which) {
   const auto& r = state->as<ob::SE3StateSpace::StateType>()->rotation();
   const double n = std::sqrt(r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z);
-  if (!(std::abs(n - 1.0) < 1e-9))
+  if (!std::isfinite(n) || std::abs(n - 1.0) >= 1e-9)  // (no comparison with a NaN: FE_INVALID)
     throw std::invalid_argument(std::string("ContinuousMotionValidator: the quaternion of ") + which + " has norm " +
                                 std::to_string(n) + "; SE3StateSpace's interpolation needs |norm - 1| < 1e-9");
 }
@@ -158,7 +160,7 @@ void checkUnitQuaternion(const ob::State* state, const char* which) {
 /// the bound allowed 0.07 (reliability.md finding 33).
 void checkYaw(const ob::State* state, const char* which) {
   const double yaw = state->as<ob::SE2StateSpace::StateType>()->getYaw();
-  if (!(std::abs(yaw) <= M_PI))
+  if (!std::isfinite(yaw) || std::abs(yaw) > M_PI)
     throw std::invalid_argument(std::string("ContinuousMotionValidator: the yaw of ") + which + " is " +
                                 std::to_string(yaw) + ", outside [-pi, pi] (SE2StateSpace's bounds)");
 }

@@ -36,8 +36,8 @@ namespace planning {
 
 /// SE(3) with the rational interpolation of MotionMatrix::fromPoses: translation (1-t) p0 + t p1,
 /// rotation by the normalised linear interpolation of the quaternions, each normalised first (q1
-/// negated first if q0 . q1 < 0). Same path of orientations as slerp (the great arc), traversed at a different
-/// speed; the exact ellipsoid CCD solves exactly this motion.
+/// negated first if q0 . q1 < 0). Same path of orientations as slerp (the great arc), traversed
+/// at a different speed; the exact ellipsoid CCD solves exactly this motion.
 class RationalSE3StateSpace : public ompl::base::SE3StateSpace {
  public:
   RationalSE3StateSpace();
