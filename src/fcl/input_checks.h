@@ -7,14 +7,48 @@
 #include <string>
 
 #include <fcl/common/types.h>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/AABB.h>
+#include <fcl/math/bv/OBB.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/math/bv/RSS.h>
+#include <fcl/math/bv/kDOP.h>
+#include <fcl/math/bv/kIOS.h>
 #include <fcl/narrowphase/collision_object.h>
 
 namespace fcl_quadric {
 namespace detail {
 
+template <typename S, typename BV>
+void checkMeshModel(const fcl::CollisionGeometry<S>* g, const char* where, const char* which) {
+  const auto& m = static_cast<const fcl::BVHModel<BV>&>(*g);
+  const bool built = m.build_state == fcl::BVH_BUILD_STATE_PROCESSED || m.build_state == fcl::BVH_BUILD_STATE_UPDATED;
+  if (built && m.getModelType() == fcl::BVH_MODEL_TRIANGLES && m.num_tris > 0) return;
+  std::ostringstream os;
+  os << where << ": " << which << " is a BVH model that is not a finished triangle mesh (" << m.num_tris
+     << " triangles, model type " << int(m.getModelType()) << ", build state " << int(m.build_state)
+     << "): FCL's traversal would read past it; add triangles and call endModel()";
+  throw std::invalid_argument(os.str());
+}
+
+/// A null geometry, or a BVH model that is empty, unfinished (no endModel()) or a point cloud:
+/// FCL's traversals read its missing BV tree and crash (an audit found SIGSEGV in collide and
+/// distance for all three, as with stock fcl::collide; docs/reliability.md finding 34).
 template <typename S>
 void checkGeometry(const fcl::CollisionGeometry<S>* g, const char* where, const char* which) {
   if (g == nullptr) throw std::invalid_argument(std::string(where) + ": " + which + " is a null collision geometry");
+  if (g->getObjectType() != fcl::OT_BVH) return;
+  switch (g->getNodeType()) {
+    case fcl::BV_AABB: return checkMeshModel<S, fcl::AABB<S>>(g, where, which);
+    case fcl::BV_OBB: return checkMeshModel<S, fcl::OBB<S>>(g, where, which);
+    case fcl::BV_RSS: return checkMeshModel<S, fcl::RSS<S>>(g, where, which);
+    case fcl::BV_kIOS: return checkMeshModel<S, fcl::kIOS<S>>(g, where, which);
+    case fcl::BV_OBBRSS: return checkMeshModel<S, fcl::OBBRSS<S>>(g, where, which);
+    case fcl::BV_KDOP16: return checkMeshModel<S, fcl::KDOP<S, 16>>(g, where, which);
+    case fcl::BV_KDOP18: return checkMeshModel<S, fcl::KDOP<S, 18>>(g, where, which);
+    case fcl::BV_KDOP24: return checkMeshModel<S, fcl::KDOP<S, 24>>(g, where, which);
+    default: return;
+  }
 }
 
 template <typename S>
@@ -51,6 +85,7 @@ void checkObject(const fcl::CollisionObject<S>* o, const char* where, const char
   if (o == nullptr) throw std::invalid_argument(std::string(where) + ": " + which + " is a null collision object");
   if (!o->collisionGeometry())
     throw std::invalid_argument(std::string(where) + ": " + which + " has no collision geometry (null)");
+  checkGeometry(o->collisionGeometry().get(), where, which);
 }
 
 }  // namespace detail

@@ -17,6 +17,7 @@
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/triangle_p.h>
+#include <fcl/math/bv/AABB.h>
 #include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
@@ -224,6 +225,58 @@ TEST(FrontDoorsBadInput, NullGeometryOrObjectThrowsInvalidArgument) {
                        }),
                        "o1 is a null collision geometry"));
   EXPECT_EQ(cresult.numContacts(), 0u);
+}
+
+/// Empty, unfinished (no endModel()) and point-cloud BVH models: FCL's traversals read their
+/// missing BV tree and crashed with SIGSEGV, as stock fcl::collide / fcl::distance do
+/// (docs/reliability.md finding 34). They throw, naming the operand; a finished mesh still works.
+template <typename BV>
+void expectUnfinishedMeshesRejected() {
+  auto make = [](int kind) {
+    auto m = std::make_shared<fcl::BVHModel<BV>>();
+    m->beginModel();
+    if (kind == 1) m->addTriangle(fcl::Vector3d(0, 0, 0), fcl::Vector3d(1, 0, 0), fcl::Vector3d(0, 1, 0));
+    if (kind == 2) {
+      m->addVertex(fcl::Vector3d(0, 0, 0));
+      m->addVertex(fcl::Vector3d(0.1, 0, 0));
+    }
+    if (kind != 1) m->endModel();  // kind 0: no triangles; kind 1: never finished
+    return m;
+  };
+  const fcl::Transform3d I = fcl::Transform3d::Identity();
+  const GeometryPtr partners[] = {std::make_shared<fcl::Ellipsoidd>(0.3, 0.2, 0.1), std::make_shared<fcl::Sphered>(0.2),
+                                  std::make_shared<fcl::Boxd>(0.2, 0.2, 0.2)};
+  for (int kind = 0; kind < 3; ++kind)
+    for (const GeometryPtr& partner : partners) {
+      const GeometryPtr mesh = make(kind);
+      fcl::CollisionRequestd crequest;
+      fcl::CollisionResultd cresult;
+      fcl::DistanceRequestd drequest;
+      fcl::DistanceResultd dresult;
+      const std::string expected = "is a BVH model that is not a finished triangle mesh";
+      EXPECT_TRUE(contains(
+          invalidArgumentMessage([&] { fcl_quadric::collide(mesh.get(), I, partner.get(), I, crequest, cresult); }),
+          "fcl_quadric::collide: o1 " + expected))
+          << kind;
+      EXPECT_TRUE(contains(
+          invalidArgumentMessage([&] { fcl_quadric::distance(partner.get(), I, mesh.get(), I, drequest, dresult); }),
+          "fcl_quadric::distance: o2 " + expected))
+          << kind;
+      const fcl::CollisionObjectd a(mesh, I), b(partner, I);
+      EXPECT_TRUE(contains(invalidArgumentMessage([&] { fcl_quadric::collide(&b, &a, crequest, cresult); }), expected));
+    }
+  auto finished = std::make_shared<fcl::BVHModel<BV>>();
+  finished->beginModel();
+  finished->addTriangle(fcl::Vector3d(-1, -1, 0), fcl::Vector3d(1, -1, 0), fcl::Vector3d(0, 1, 0));
+  finished->endModel();
+  fcl::CollisionRequestd crequest;
+  fcl::CollisionResultd cresult;
+  EXPECT_EQ(fcl_quadric::collide(finished.get(), I, partners[0].get(), I, crequest, cresult), 1u);
+}
+
+TEST(FrontDoorsBadInput, EmptyUnfinishedOrPointCloudMeshesThrowInsteadOfCrashing) {
+  expectUnfinishedMeshesRejected<fcl::OBBRSSd>();
+  expectUnfinishedMeshesRejected<fcl::AABBd>();
 }
 
 TEST(FrontDoorsBadInput, NonFiniteTransformThrowsInvalidArgument) {
