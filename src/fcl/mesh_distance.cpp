@@ -14,6 +14,7 @@
 #include <fcl/geometry/shape/sphere.h>
 
 #include "fcl/mesh_node_box.h"
+#include "fcl/shape_pieces.h"
 #include "fcl/distance_fix_up.h"
 #include "fcl/traversal_bound.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
@@ -136,38 +137,9 @@ class MeshShapeDistance {
       gap = std::max(gap, std::max(lo - (sp + h), (sp - h) - hi) / n);
     };
     along((v2 - v1).cross(v3 - v1));
-    along(closestOnTriangle(placed_.p, v1, v2, v3) - placed_.p);
+    along(closestPointOnTriangle(placed_.p, v1, v2, v3) - placed_.p);
     const double size = std::max({v1.cwiseAbs().maxCoeff(), v2.cwiseAbs().maxCoeff(), v3.cwiseAbs().maxCoeff()});
     return std::max(0.0, gap - tolerance::kTraversalPruningPadding * (placed_.scale + size));
-  }
-
-  /// The point of the triangle a b c nearest to x (Ericson, Real-Time Collision Detection §5.1.5),
-  /// up to rounding. It only picks a direction for triangleBound(), whose gap is a lower bound
-  /// along any direction: a degenerate triangle (a repeated vertex) returns one of its vertices
-  /// where a division would be 0 / 0.
-  static Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                           const Eigen::Vector3d& c) {
-    const Eigen::Vector3d ab = b - a, ac = c - a, ax = x - a;
-    const double d1 = ab.dot(ax), d2 = ac.dot(ax);
-    if (d1 <= 0.0 && d2 <= 0.0) return a;
-    const Eigen::Vector3d bx = x - b;
-    const double d3 = ab.dot(bx), d4 = ac.dot(bx);
-    if (d3 >= 0.0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return d1 - d3 > 0.0 ? Eigen::Vector3d(a + (d1 / (d1 - d3)) * ab) : a;
-    const Eigen::Vector3d cx = x - c;
-    const double d5 = ab.dot(cx), d6 = ac.dot(cx);
-    if (d6 >= 0.0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return d2 - d6 > 0.0 ? Eigen::Vector3d(a + (d2 / (d2 - d6)) * ac) : a;
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
-      const double den = (d4 - d3) + (d5 - d6);
-      return den > 0.0 ? Eigen::Vector3d(b + ((d4 - d3) / den) * (c - b)) : b;
-    }
-    const double denom = va + vb + vc;
-    if (!(denom > 0.0)) return a;
-    return a + (vb / denom) * ab + (vc / denom) * ac;
   }
 
   /// meshShapeDistanceOrientedNodeLeafTesting, and for AABB / k-DOP meshes the same on the world

@@ -64,6 +64,74 @@ bool collides(const fcl::CollisionGeometry<double>& a, const Transform& ta, cons
   return fcl_quadric::collide(&a, ta, &b, tb, req, res) > 0;
 }
 
+/// Distance from x to the triangle a b c: to its plane where the projection lies inside (signs of
+/// the three edge cross products), else to the nearest edge segment.
+double pointTriangleDistance(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                             const Eigen::Vector3d& c) {
+  const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+  const Eigen::Vector3d q = x - n.dot(x - a) * n;
+  const bool inside = (b - a).cross(q - a).dot(n) >= 0.0 && (c - b).cross(q - b).dot(n) >= 0.0 &&
+                      (a - c).cross(q - c).dot(n) >= 0.0;
+  if (inside) return (x - q).norm();
+  auto segment = [&](const Eigen::Vector3d& p0, const Eigen::Vector3d& p1) {
+    const double t = std::clamp((x - p0).dot(p1 - p0) / (p1 - p0).squaredNorm(), 0.0, 1.0);
+    return (x - (p0 + t * (p1 - p0))).norm();
+  };
+  return std::min({segment(a, b), segment(b, c), segment(c, a)});
+}
+
+/// An elliptic cylinder near a sliver triangle (edges 0.54 / 0.34 / 0.20, height 3.6e-7) of a
+/// rotated and translated mesh, at gaps of 3.8e-7, 3.8e-9 and 3.8e-11 (docs/reliability.md finding
+/// 34 (3)). The witness refinement returned a mesh point 1.14 times the gap off the triangle and a
+/// distance ~4,000 times too small (8.9e-11 for 3.8e-7). Checked: the mesh witness lies on the
+/// triangle, the distance is the witnesses' distance, and it equals the distance to the same
+/// triangle given in world coordinates on an unposed mesh (a path the audit's long-double oracle
+/// confirmed) to 1e-14 of the scale, in both argument orders.
+TEST(QuadricShapeDistance, PosedSliverTriangleGivesItsOwnWitnessAndTheUnposedDistance) {
+  Eigen::Matrix3d R, TR;
+  R << 0.4133184690498094, -0.038260885743602494, 0.90978236285632441, -0.21509878167035679, 0.96673907030122219,
+      0.13837660234684493, -0.88481656701615274, -0.25288668326988606, 0.39134124259845959;
+  TR << 0.096273714534469867, 0.41345750754173016, -0.90541938423424284, -0.53493052957328846, -0.74562066555178586,
+      -0.39736526223684088, -0.83939305478433446, 0.52259230051684868, 0.14938737235901545;
+  Transform T = Transform::Identity();
+  T.linear() = TR;
+  T.translation() = Eigen::Vector3d(1.3787408736671551, -1.0069062898683185, 0.19619295288773975);
+  const Eigen::Vector3d v[3] = {Eigen::Vector3d(0.49856544231859268, 0.53449225458017557, -1.1092860562720752),
+                                Eigen::Vector3d(0.46271257712077751, 0.42033316355663286, -0.58429247941899065),
+                                Eigen::Vector3d(0.48529998219540105, 0.49225319090146474, -0.91503813283643398)};
+  auto posed = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
+  posed->beginModel();
+  posed->addTriangle(v[0], v[1], v[2]);
+  posed->endModel();
+  Eigen::Vector3d w[3];
+  for (int k = 0; k < 3; ++k) w[k] = T * v[k];
+  auto world = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
+  world->beginModel();
+  world->addTriangle(w[0], w[1], w[2]);
+  world->endModel();
+  const EllipticCylinder<double> cylinder(0.45572243593694611, 0.55126050757025358, 0.63946530401256163);
+  const double centres[3][3] = {{3.0658708825632588, -1.6809445666841452, -0.094624471000806967},
+                                {3.0658704261359446, -1.6809441314779305, -0.09462452621047146},
+                                {3.0658704215716718, -1.680944127125868, -0.094624526762573}};
+  for (const auto& c : centres) {
+    Transform tc = Transform::Identity();
+    tc.linear() = R;
+    tc.translation() = Eigen::Vector3d(c[0], c[1], c[2]);
+    const double scale = 3.0;  // the sizes and positions are O(1)
+    const double unposed = dist(*world, Transform::Identity(), cylinder, tc, false);
+    ASSERT_GT(unposed, 0.0);
+    for (bool mesh_first : {true, false}) {
+      fcl::DistanceResult<double> r;
+      const double d = mesh_first ? dist(*posed, T, cylinder, tc, false, &r) : dist(cylinder, tc, *posed, T, false, &r);
+      EXPECT_NEAR(d, unposed, 1e-14 * scale) << "gap " << unposed << ", mesh first " << mesh_first;
+      const Eigen::Vector3d p_mesh = r.nearest_points[mesh_first ? 0 : 1], p_cyl = r.nearest_points[mesh_first ? 1 : 0];
+      const Eigen::Vector3d y = T.inverse() * p_mesh;
+      EXPECT_LE(pointTriangleDistance(y, v[0], v[1], v[2]), 1e-12 * scale);
+      EXPECT_NEAR((p_cyl - p_mesh).norm(), d, 1e-14 * scale);
+    }
+  }
+}
+
 TEST(QuadricShapeDistance, CircularCylinderAgainstAnEllipsoidMatchesTheClosedFormKernelInBothOrders) {
   std::mt19937_64 rng(21);
   std::uniform_real_distribution<double> u(0.3, 1.2);
