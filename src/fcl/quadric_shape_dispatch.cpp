@@ -1094,7 +1094,8 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
           bool on_piece = true;
           if (n && piece.kind == PosedConvex::Triangle) {
             const Eigen::Vector3d y = tfp.linear().transpose() * (tfs.linear() * n->point_b + tfs.translation() - tfp.translation());
-            on_piece = (closestPointOnTriangle(y, piece.v[0], piece.v[1], piece.v[2]) - y).norm() <= 1e-12 * scale;
+            // (relative to |y| too: far from the mesh's origin the frame change rounds y by ~u |y|)
+            on_piece = (closestPointOnTriangle(y, piece.v[0], piece.v[1], piece.v[2]) - y).norm() <= 1e-12 * (scale + y.norm());
           }
           if (n && on_piece && n->distance < d.distance) {
             d.point_a = tfs.linear() * n->point_a + tfs.translation();
