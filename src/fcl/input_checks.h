@@ -85,7 +85,6 @@ void checkObject(const fcl::CollisionObject<S>* o, const char* where, const char
   if (o == nullptr) throw std::invalid_argument(std::string(where) + ": " + which + " is a null collision object");
   if (!o->collisionGeometry())
     throw std::invalid_argument(std::string(where) + ": " + which + " has no collision geometry (null)");
-  checkGeometry(o->collisionGeometry().get(), where, which);
 }
 
 }  // namespace detail
