@@ -932,6 +932,94 @@ struct PosedConvex {
   }
 };
 
+/// Features of a triangle refined by triangleNearestPoints() before it tries them all.
+constexpr int kTriangleFeatureRounds = 3;
+
+/// The nearest points of a quadric shape (its region `shape`, in its own frame tfs) and a mesh
+/// triangle (`piece`, vertices in the mesh frame tfp), refined feature by feature from the shape
+/// witness x0 (GJK's; shape frame, as the result). nullopt if no feature gives a pair.
+///
+/// As an intersection of half-spaces (triangleSolid) the triangle's vertices are poorly
+/// conditioned where an angle is small: the KKT system pins a sliver's sharp vertex only to about
+/// u |x| / angle. On a sliver of height 3.6e-7 the refined mesh witness lay 2e-11 off the triangle
+/// (audit finding 34 (3); 4.3e-7 off, with a distance 4,000 times too small, while the triangle's
+/// plane was two opposite inequalities, before nearest_points.cpp's twinAtoms made it one
+/// equality), and at points inside a sliver near its apex the distance came out up to 1e-4
+/// relative too large. GJK alone stalls near a vertex (finding 34 (2): 1e-3 relative too far at a
+/// gap of 3e-9; on slivers up to 1e-6 of the scale). So a feature is refined on its own, with
+/// well-conditioned equality constraints (refineNearestPoints; opposite half-space pairs are
+/// equalities there): the face as its plane, an edge as its line (the triangle's plane and the
+/// plane through the edge normal to it), a vertex as a point (three coordinate planes). The first
+/// is the feature of the triangle's nearest point to x0 (Ericson's Voronoi regions); then that of
+/// the nearest point to the refined shape witness, until it no longer changes: the pair is then
+/// the nearest one (for a convex shape: each point is the other's nearest). After
+/// kTriangleFeatureRounds without that, or where a refinement fails, all seven features are tried.
+/// A feature's pair counts only when its mesh point lies on the triangle (Ericson's closest point,
+/// to 4 u (scale + |y|), the rounding of the frame change); its two points are then members of
+/// their solids, so its distance bounds the distance from above: the smallest is returned (and
+/// the caller keeps GJK's where that is smaller).
+std::optional<NearestPoints> triangleNearestPoints(const QuadricRegion& shape, const Eigen::Vector3d& x0,
+                                                   const fcl::Transform3<double>& tfs, const fcl::Transform3<double>& tfp,
+                                                   const PosedConvex& piece, double scale) {
+  const Eigen::Matrix3d Rt = tfs.linear().transpose();
+  const Eigen::Matrix3d to_shape = Rt * tfp.linear();
+  const Eigen::Vector3d to_shape_t = Rt * (tfp.translation() - tfs.translation());
+  std::array<Eigen::Vector3d, 3> w;
+  for (int k = 0; k < 3; ++k) w[k] = to_shape * piece.v[k] + to_shape_t;
+  const Eigen::Vector3d u = (w[1] - w[0]).cross(w[2] - w[0]).normalized();
+  auto plane = [](const Eigen::Vector3d& n, const Eigen::Vector3d& through, std::vector<QuadricRegion>* out) {
+    out->push_back(QuadricRegion::halfspace(n, n.dot(through)));
+    out->push_back(QuadricRegion::halfspace(-n, -n.dot(through)));
+  };
+  // The pair refined on feature f from the shape point x, if its mesh point is on the triangle.
+  auto refineOn = [&](TriangleFeature f, const Eigen::Vector3d& x) -> std::optional<NearestPoints> {
+    std::vector<QuadricRegion> planes;
+    Eigen::Vector3d y0;
+    const int k = static_cast<int>(f);
+    if (f == TriangleFeature::Face) {
+      plane(u, w[0], &planes);
+      y0 = x - u.dot(x - w[0]) * u;
+    } else if (k >= static_cast<int>(TriangleFeature::EdgeAB)) {
+      const Eigen::Vector3d& a = w[k - 3];
+      const Eigen::Vector3d e = w[(k - 2) % 3] - a;
+      plane(u, a, &planes);
+      plane(u.cross(e).normalized(), a, &planes);
+      y0 = a + (x - a).dot(e) / e.squaredNorm() * e;
+    } else {
+      planes.push_back(boxRegion(w[k], Eigen::Vector3d::Zero()));
+      y0 = w[k];
+    }
+    std::optional<NearestPoints> p =
+        refineNearestPoints(shape, QuadricRegion::combine(QuadricRegion::Op::Intersection, planes), x, y0, scale);
+    const double eps = std::numeric_limits<double>::epsilon();
+    if (p && (closestPointOnTriangle(p->point_b, w[0], w[1], w[2]) - p->point_b).norm() > 4.0 * eps * (scale + p->point_b.norm()))
+      p.reset();
+    return p;
+  };
+  std::optional<NearestPoints> best;
+  auto keep = [&](const std::optional<NearestPoints>& p) {
+    if (p && (!best || p->distance < best->distance)) best = p;
+  };
+  TriangleFeature f;
+  closestPointOnTriangle(x0, w[0], w[1], w[2], &f);
+  Eigen::Vector3d x = x0;
+  bool tried[7] = {false, false, false, false, false, false, false};
+  for (int round = 0; round < kTriangleFeatureRounds; ++round) {
+    const std::optional<NearestPoints> p = refineOn(f, x);
+    tried[static_cast<int>(f)] = true;
+    if (!p) break;
+    keep(p);
+    TriangleFeature next;
+    closestPointOnTriangle(p->point_a, w[0], w[1], w[2], &next);
+    if (next == f) return best;  // settled
+    f = next;
+    x = p->point_a;
+  }
+  for (int k = 0; k < 7; ++k)
+    if (!tried[k]) keep(refineOn(static_cast<TriangleFeature>(k), x0));
+  return best;
+}
+
 }  // namespace
 
 double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
@@ -1081,23 +1169,17 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
           // terms, and a refined witness 3.4e-7 outside a thin cone passed their membership band
           // (a distance 2e-4 reported as 6.9e-5 to 1.99656e-4).
           if (!shape_local) shape_local = localSolid(gs, "o1", where).region;
+          // (A triangle feature by feature, triangleNearestPoints; a zero-area one has no region
+          // and keeps GJK's answer.)
           const Eigen::Matrix3d Rt = tfs.linear().transpose();
-          const QuadricRegion piece_local =
-              b->region.transformed(Rt * tfp.linear(), Rt * (tfp.translation() - tfs.translation()));
+          const Eigen::Vector3d start_a = Rt * (d.point_a - tfs.translation());
           const std::optional<NearestPoints> n =
-              refineNearestPoints(*shape_local, piece_local, Rt * (d.point_a - tfs.translation()),
-                                  Rt * (d.point_b - tfs.translation()), scale);
-          // A refined witness must lie on its triangle: on a sliver (height 3.6e-7 against edges of
-          // 0.5) of a posed mesh the refinement returned a point 1.14 times the gap off it, and a
-          // distance 4,000 times too small (audit finding 34 (3); GJK's answer was right). Checked
-          // here in the mesh frame, against the triangle itself; the refinement is dropped if not.
-          bool on_piece = true;
-          if (n && piece.kind == PosedConvex::Triangle) {
-            const Eigen::Vector3d y = tfp.linear().transpose() * (tfs.linear() * n->point_b + tfs.translation() - tfp.translation());
-            // (relative to |y| too: far from the mesh's origin the frame change rounds y by ~u |y|)
-            on_piece = (closestPointOnTriangle(y, piece.v[0], piece.v[1], piece.v[2]) - y).norm() <= 1e-12 * (scale + y.norm());
-          }
-          if (n && on_piece && n->distance < d.distance) {
+              piece.kind == PosedConvex::Triangle
+                  ? triangleNearestPoints(*shape_local, start_a, tfs, tfp, piece, scale)
+                  : refineNearestPoints(*shape_local,
+                                        b->region.transformed(Rt * tfp.linear(), Rt * (tfp.translation() - tfs.translation())),
+                                        start_a, Rt * (d.point_b - tfs.translation()), scale);
+          if (n && n->distance < d.distance) {
             d.point_a = tfs.linear() * n->point_a + tfs.translation();
             d.point_b = tfs.linear() * n->point_b + tfs.translation();
             d.distance = n->distance;

@@ -91,31 +91,48 @@ bool withMesh(const fcl::CollisionGeometry<double>* g, F&& f) {
   }
 }
 
+/// The feature of a triangle a b c whose relative interior holds a point (closestPointOnTriangle).
+enum class TriangleFeature { VertexA, VertexB, VertexC, EdgeAB, EdgeBC, EdgeCA, Face };
+
 /// The point of the triangle a b c nearest to x (Ericson, Real-Time Collision Detection §5.1.5),
-/// up to rounding. A degenerate triangle (a repeated vertex) returns one of its vertices where a
+/// up to rounding, and (if `feature` is given) the feature it lies on, by Ericson's Voronoi
+/// regions. A degenerate triangle (a repeated vertex) returns one of its vertices where a
 /// division would be 0 / 0. (Used to pick a direction for a traversal's lower bound, and to
-/// check that a refined witness lies on its triangle.)
+/// place and check the refined witnesses of a triangle.)
 inline Eigen::Vector3d closestPointOnTriangle(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                              const Eigen::Vector3d& c) {
+                                              const Eigen::Vector3d& c, TriangleFeature* feature = nullptr) {
+  TriangleFeature unused;
+  TriangleFeature& f = feature ? *feature : unused;
   const Eigen::Vector3d ab = b - a, ac = c - a, ax = x - a;
   const double d1 = ab.dot(ax), d2 = ac.dot(ax);
+  f = TriangleFeature::VertexA;
   if (d1 <= 0.0 && d2 <= 0.0) return a;
   const Eigen::Vector3d bx = x - b;
   const double d3 = ab.dot(bx), d4 = ac.dot(bx);
+  f = TriangleFeature::VertexB;
   if (d3 >= 0.0 && d4 <= d3) return b;
   const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return d1 - d3 > 0.0 ? Eigen::Vector3d(a + (d1 / (d1 - d3)) * ab) : a;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    f = d1 - d3 > 0.0 ? TriangleFeature::EdgeAB : TriangleFeature::VertexA;
+    return d1 - d3 > 0.0 ? Eigen::Vector3d(a + (d1 / (d1 - d3)) * ab) : a;
+  }
   const Eigen::Vector3d cx = x - c;
   const double d5 = ab.dot(cx), d6 = ac.dot(cx);
+  f = TriangleFeature::VertexC;
   if (d6 >= 0.0 && d5 <= d6) return c;
   const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return d2 - d6 > 0.0 ? Eigen::Vector3d(a + (d2 / (d2 - d6)) * ac) : a;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    f = d2 - d6 > 0.0 ? TriangleFeature::EdgeCA : TriangleFeature::VertexA;
+    return d2 - d6 > 0.0 ? Eigen::Vector3d(a + (d2 / (d2 - d6)) * ac) : a;
+  }
   const double va = d3 * d6 - d5 * d4;
   if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
     const double den = (d4 - d3) + (d5 - d6);
+    f = den > 0.0 ? TriangleFeature::EdgeBC : TriangleFeature::VertexB;
     return den > 0.0 ? Eigen::Vector3d(b + ((d4 - d3) / den) * (c - b)) : b;
   }
   const double denom = va + vb + vc;
+  f = denom > 0.0 ? TriangleFeature::Face : TriangleFeature::VertexA;
   if (!(denom > 0.0)) return a;
   return a + (vb / denom) * ab + (vc / denom) * ac;
 }

@@ -83,24 +83,56 @@ bool nearApex(const std::vector<Eigen::Matrix4d>& atoms, const Eigen::Vector3d& 
   return false;
 }
 
-/// The atoms whose surfaces pass within `band` of x, nearest first, at most three.
-std::vector<int> activeAtoms(const std::vector<Eigen::Matrix4d>& atoms, const Eigen::Vector3d& x, double band) {
+/// For each atom, the index of its twin: another atom that is its exact negation (to 1e-14 of its
+/// largest entry), -1 if none. A model holding both g <= 0 and -g <= 0 lies on the surface g = 0:
+/// a mesh triangle is its plane as two opposite half-spaces (triangleSolid in the FCL layer).
+/// Taken as two inequality constraints the pair has opposite gradients, the KKT system is singular,
+/// and at a triangle's vertex the plane pair and one edge fill the three active places, so the
+/// vertex could not be reached (audit finding 34 (2): an elliptic cylinder's distance to a mesh
+/// vertex 1e-3 relative too large at a gap of 3e-9). The pair is one equality constraint instead:
+/// one atom of it in the active set, with a multiplier of either sign.
+std::vector<int> twinAtoms(const std::vector<Eigen::Matrix4d>& atoms) {
+  std::vector<int> twin(atoms.size(), -1);
+  for (std::size_t k = 0; k < atoms.size(); ++k)
+    for (std::size_t j = k + 1; j < atoms.size() && twin[k] < 0; ++j) {
+      if (twin[j] >= 0) continue;
+      const double m = atoms[k].cwiseAbs().maxCoeff();
+      if (m > 0.0 && (atoms[k] + atoms[j]).cwiseAbs().maxCoeff() <= 1e-14 * m) {
+        twin[k] = static_cast<int>(j);
+        twin[j] = static_cast<int>(k);
+      }
+    }
+  return twin;
+}
+
+bool contains(const std::vector<int>& v, int k) { return std::find(v.begin(), v.end(), k) != v.end(); }
+
+/// The atoms whose surfaces pass within `band` of x, nearest first, at most three; of twins
+/// (twinAtoms) only the nearer.
+std::vector<int> activeAtoms(const std::vector<Eigen::Matrix4d>& atoms, const std::vector<int>& twin,
+                             const Eigen::Vector3d& x, double band) {
   std::vector<std::pair<double, int>> near;
   for (std::size_t k = 0; k < atoms.size(); ++k)
     if (const std::optional<double> o = surfaceOffset(atoms[k], x); o && std::fabs(*o) <= band)
       near.emplace_back(std::fabs(*o), static_cast<int>(k));
   std::sort(near.begin(), near.end());
   std::vector<int> out;
-  for (std::size_t i = 0; i < near.size() && i < 3; ++i) out.push_back(near[i].second);
+  for (std::size_t i = 0; i < near.size() && out.size() < 3; ++i) {
+    const int k = near[i].second;
+    if (twin[k] < 0 || !contains(out, twin[k])) out.push_back(k);
+  }
   return out;
 }
 
-/// The atom of `atoms` (not in `active`) that x violates most, by g / |grad g| > 0; -1 if none.
-int mostViolated(const std::vector<Eigen::Matrix4d>& atoms, const std::vector<int>& active, const Eigen::Vector3d& x) {
+/// The atom of `atoms` (not in `active`, nor the twin of an active one: that surface is held as
+/// an equality, and its twin's excess is rounding) that x violates most, by g / |grad g| > 0; -1
+/// if none.
+int mostViolated(const std::vector<Eigen::Matrix4d>& atoms, const std::vector<int>& twin, const std::vector<int>& active,
+                 const Eigen::Vector3d& x) {
   int worst = -1;
   double excess = 0.0;
   for (std::size_t k = 0; k < atoms.size(); ++k) {
-    if (std::find(active.begin(), active.end(), static_cast<int>(k)) != active.end()) continue;
+    if (contains(active, static_cast<int>(k)) || (twin[k] >= 0 && contains(active, twin[k]))) continue;
     if (const std::optional<double> o = surfaceOffset(atoms[k], x); o && *o > excess) {
       excess = *o;
       worst = static_cast<int>(k);
@@ -312,7 +344,8 @@ std::optional<NearestPoints> refineNearestPoints(const QuadricRegion& a, const Q
   const std::vector<Eigen::Matrix4d> atoms_a = a.signedAtoms(), atoms_b = b.signedAtoms();
   const double band = kActiveRelative * scale;
   if (nearApex(atoms_a, start_a, band) || nearApex(atoms_b, start_b, band)) return std::nullopt;
-  std::vector<int> act_a = activeAtoms(atoms_a, start_a, band), act_b = activeAtoms(atoms_b, start_b, band);
+  const std::vector<int> twin_a = twinAtoms(atoms_a), twin_b = twinAtoms(atoms_b);
+  std::vector<int> act_a = activeAtoms(atoms_a, twin_a, start_a, band), act_b = activeAtoms(atoms_b, twin_b, start_b, band);
   Eigen::Vector3d x = start_a, y = start_b;
   NearestPoints out;
   for (int round = 0; round < kMaxActiveSetRounds; ++round) {
@@ -341,7 +374,7 @@ std::optional<NearestPoints> refineNearestPoints(const QuadricRegion& a, const Q
         const bool on_a = run.outcome == Outcome::LeftA;
         std::vector<int>& act = on_a ? act_a : act_b;
         if (act.size() >= 3) return std::nullopt;
-        const int k = mostViolated(on_a ? atoms_a : atoms_b, act, run.exit);
+        const int k = mostViolated(on_a ? atoms_a : atoms_b, on_a ? twin_a : twin_b, act, run.exit);
         if (k < 0) return std::nullopt;
         act.push_back(k);
         continue;
@@ -349,13 +382,19 @@ std::optional<NearestPoints> refineNearestPoints(const QuadricRegion& a, const Q
       case Outcome::Converged: break;
     }
     // A negative multiplier: the minimum lies off that surface, on the model's side of it; the
-    // surface leaves the active set and the next run starts from this solution.
-    auto mostNegative = [](const Multipliers& m) {
-      Eigen::Index i = 0;
-      const double v = m.minCoeff(&i);
-      return v < -kNegativeMultiplier ? static_cast<int>(i) : -1;
+    // surface leaves the active set and the next run starts from this solution. (Not an equality,
+    // an atom with a twin: its multiplier has either sign.)
+    auto mostNegative = [](const Multipliers& m, const std::vector<int>& act, const std::vector<int>& twin) {
+      int worst = -1;
+      double v = -kNegativeMultiplier;
+      for (int i = 0; i < static_cast<int>(act.size()); ++i)
+        if (twin[act[i]] < 0 && m[i] < v) {
+          v = m[i];
+          worst = i;
+        }
+      return worst;
     };
-    const int neg_a = mostNegative(run.lambda), neg_b = mostNegative(run.mu);
+    const int neg_a = mostNegative(run.lambda, act_a, twin_a), neg_b = mostNegative(run.mu, act_b, twin_b);
     if (neg_a >= 0 && act_a.size() > 1) {
       act_a.erase(act_a.begin() + neg_a);
       continue;

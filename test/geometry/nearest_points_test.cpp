@@ -109,6 +109,22 @@ std::vector<Model> models() {
     out.push_back({"box corner", QuadricRegion::combine(Op::Intersection, planes), p, Eigen::Vector3d(1.0, 0.7, 0.4).normalized(),
                    planeAtom(Eigen::Vector3d::UnitX(), 0.5), 0.9});
   }
+  {  // A vertex (angle 120 degrees) of a mesh triangle, as the FCL layer builds it: its plane as two
+     // opposite half-spaces and three edge half-spaces, a region of zero thickness. The plane pair
+     // is one equality constraint (twinAtoms); as two inequalities it filled two of the three
+     // active places, and the vertex was never reached (refinement failed; finding 34 (2)).
+    const Eigen::Vector3d v1(1.0, 0.0, 0.0), v2(-0.5, std::sqrt(0.75), 0.0);
+    std::vector<QuadricRegion> parts{QuadricRegion::halfspace(ez, 0.0), QuadricRegion::halfspace(-ez, 0.0)};
+    const Eigen::Vector3d pts[3] = {Eigen::Vector3d::Zero(), v1, v2};
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d inward = ez.cross(pts[(i + 1) % 3] - pts[i]);
+      parts.push_back(QuadricRegion::halfspace(-inward, -inward.dot(pts[i])));
+    }
+    // The normal: up, tilted away from both edges at the vertex (into the polar of its angle).
+    const Eigen::Vector3d n = (0.8 * ez - 0.6 * (v1 + v2).normalized()).normalized();
+    out.push_back({"triangle vertex", QuadricRegion::combine(Op::Intersection, parts), Eigen::Vector3d::Zero(), n,
+                   planeAtom(ez, 0.0), 1.2});
+  }
   return out;
 }
 
@@ -207,7 +223,7 @@ TEST(NearestPoints, ReachTheConstructedDistanceToRoundingAtEveryGap) {
       }
     }
   }
-  EXPECT_EQ(cases, 7 * 4 * 6);
+  EXPECT_EQ(cases, 8 * 4 * 6);
 }
 
 TEST(NearestPoints, NeverReturnsAPairFartherThanTheStartOrOutsideTheModels) {
@@ -229,7 +245,7 @@ TEST(NearestPoints, NeverReturnsAPairFartherThanTheStartOrOutsideTheModels) {
       EXPECT_GE(s.model.classifyPoint(r->point_b), 0);
       EXPECT_GE(s.ball.classifyPoint(r->point_a), 0);
     }
-  EXPECT_GT(refined, 7 * 40 / 2);
+  EXPECT_GT(refined, 8 * 40 / 2);
 }
 
 TEST(NearestPoints, GivesNothingForCoincidentStartsInteriorPointsOrABadScale) {

@@ -17,10 +17,9 @@
 ///    does for GST_LIBCCD; request.gjk_solver_type is ignored.
 ///  - bad input (null object / geometry, non-finite transform) throws std::invalid_argument;
 ///  - quadric shapes (EllipticCylinder, Quadric, QuadricCSG): convex ones are answered by GJK / EPA
-///    on support mappings (docs/algorithms.md section 12; relative accuracy 1e-10, except near
-///    contact with a mesh vertex, where the witness refinement fails and GJK's error stays: up to
-///    1.8e-9 absolute measured at a gap of 3e-11, docs/reliability.md finding 34 (2); against
-///    another convex quadric shape, FCL's convex primitives, half-spaces, meshes and octrees, whose
+///    on support mappings, their witnesses refined near contact (docs/algorithms.md section 12,
+///    12c; relative accuracy 1e-10 plus 1e-14 of the pair's scale; a mesh triangle is refined
+///    feature by feature, docs/reliability.md finding 34); against another convex quadric shape, FCL's convex primitives, half-spaces, meshes and octrees, whose
 ///    triangle / leaf index goes to b1 / b2); near contact the sign is fcl_quadric::collide's. A
 ///    union of convex solids (an exact convex cover, convex_cover.h) is answered piece by piece
 ///    (nearest piece; deepest piece's penetration depth). Any other (non-convex) quadric shape by
