@@ -196,6 +196,177 @@ LocalSolid localSolid(const fcl::CollisionGeometry<double>* g, const char* which
 
 namespace {
 
+/// Features of a triangle refined by triangleNearestPoints() before it tries them all.
+constexpr int kTriangleFeatureRounds = 3;
+
+/// The nearest points of a quadric shape (its region `shape`, in its own frame tfs) and a mesh
+/// triangle (vertices v in the mesh frame tfp), refined feature by feature from the shape
+/// witness x0 (GJK's; shape frame, as the result). nullopt if no feature gives a pair.
+///
+/// As an intersection of half-spaces (triangleSolid) the triangle's vertices are poorly
+/// conditioned where an angle is small: the KKT system pins a sliver's sharp vertex only to about
+/// u |x| / angle. On a sliver of height 3.6e-7 the refined mesh witness lay 2e-11 off the triangle
+/// (audit finding 34 (3); 4.3e-7 off, with a distance 4,000 times too small, while the triangle's
+/// plane was two opposite inequalities, before nearest_points.cpp's twinAtoms made it one
+/// equality), and at points inside a sliver near its apex the distance came out up to 1e-4
+/// relative too large. GJK alone stalls near a vertex (finding 34 (2): 1e-3 relative too far at a
+/// gap of 3e-9; on slivers up to 1e-6 of the scale). So a feature is refined on its own, with
+/// well-conditioned equality constraints (refineNearestPoints; opposite half-space pairs are
+/// equalities there): the face as its plane, an edge as its line (the triangle's plane and the
+/// plane through the edge normal to it), a vertex as a point (three coordinate planes). The first
+/// is the feature of the triangle's nearest point to x0 (Ericson's Voronoi regions); then that of
+/// the nearest point to the refined shape witness, until it no longer changes: the pair is then
+/// the nearest one (for a convex shape: each point is the other's nearest). After
+/// kTriangleFeatureRounds without that, or where a refinement fails, all seven features are tried.
+/// A feature's pair counts only when its mesh point lies on the triangle (Ericson's closest point,
+/// to 4 u (scale + |y|), the rounding of the frame change); its two points are then members of
+/// their solids, so its distance bounds the distance from above: the smallest is returned (and
+/// the caller keeps GJK's where that is smaller).
+std::optional<NearestPoints> triangleNearestPoints(const QuadricRegion& shape, const Eigen::Vector3d& x0,
+                                                   const fcl::Transform3<double>& tfs, const fcl::Transform3<double>& tfp,
+                                                   const std::array<Eigen::Vector3d, 3>& v, double scale) {
+  const Eigen::Matrix3d Rt = tfs.linear().transpose();
+  const Eigen::Matrix3d to_shape = Rt * tfp.linear();
+  const Eigen::Vector3d to_shape_t = Rt * (tfp.translation() - tfs.translation());
+  std::array<Eigen::Vector3d, 3> w;
+  for (int k = 0; k < 3; ++k) w[k] = to_shape * v[k] + to_shape_t;
+  const Eigen::Vector3d u = (w[1] - w[0]).cross(w[2] - w[0]).normalized();
+  auto plane = [](const Eigen::Vector3d& n, const Eigen::Vector3d& through, std::vector<QuadricRegion>* out) {
+    out->push_back(QuadricRegion::halfspace(n, n.dot(through)));
+    out->push_back(QuadricRegion::halfspace(-n, -n.dot(through)));
+  };
+  // The pair refined on feature f from the shape point x, if its mesh point is on the triangle.
+  auto refineOn = [&](TriangleFeature f, const Eigen::Vector3d& x) -> std::optional<NearestPoints> {
+    std::vector<QuadricRegion> planes;
+    Eigen::Vector3d y0;
+    const int k = static_cast<int>(f);
+    if (f == TriangleFeature::Face) {
+      plane(u, w[0], &planes);
+      y0 = x - u.dot(x - w[0]) * u;
+    } else if (k >= static_cast<int>(TriangleFeature::EdgeAB)) {
+      const Eigen::Vector3d& a = w[k - 3];
+      const Eigen::Vector3d e = w[(k - 2) % 3] - a;
+      plane(u, a, &planes);
+      plane(u.cross(e).normalized(), a, &planes);
+      y0 = a + (x - a).dot(e) / e.squaredNorm() * e;
+    } else {
+      planes.push_back(boxRegion(w[k], Eigen::Vector3d::Zero()));
+      y0 = w[k];
+    }
+    std::optional<NearestPoints> p =
+        refineNearestPoints(shape, QuadricRegion::combine(QuadricRegion::Op::Intersection, planes), x, y0, scale);
+    const double eps = std::numeric_limits<double>::epsilon();
+    if (p && (closestPointOnTriangle(p->point_b, w[0], w[1], w[2]) - p->point_b).norm() > 4.0 * eps * (scale + p->point_b.norm()))
+      p.reset();
+    return p;
+  };
+  std::optional<NearestPoints> best;
+  auto keep = [&](const std::optional<NearestPoints>& p) {
+    if (p && (!best || p->distance < best->distance)) best = p;
+  };
+  TriangleFeature f;
+  closestPointOnTriangle(x0, w[0], w[1], w[2], &f);
+  Eigen::Vector3d x = x0;
+  bool tried[7] = {false, false, false, false, false, false, false};
+  for (int round = 0; round < kTriangleFeatureRounds; ++round) {
+    const std::optional<NearestPoints> p = refineOn(f, x);
+    tried[static_cast<int>(f)] = true;
+    if (!p) break;
+    keep(p);
+    TriangleFeature next;
+    closestPointOnTriangle(p->point_a, w[0], w[1], w[2], &next);
+    if (next == f) return best;  // settled
+    f = next;
+    x = p->point_a;
+  }
+  for (int k = 0; k < 7; ++k)
+    if (!tried[k]) keep(refineOn(static_cast<TriangleFeature>(k), x0));
+  return best;
+}
+
+
+/// A convex quadric shape with a closed-form support mapping (`support`, not a Region kind; its
+/// region `shape_region` in its own frame tfs) and a mesh triangle (vertices v, mesh frame tfp) or
+/// an OcTree leaf (centre v[0], half widths v[1], tree frame tfp) certified apart near contact, where
+/// GJK's screening leaves them undecided (docs/algorithms.md section 12c, session 40). GJK's
+/// witnesses, refined to rounding (triangleNearestPoints for a triangle, refineNearestPoints for a
+/// leaf), give a direction n from the shape to the piece, and the pair is apart when the piece's
+/// support towards -n lies beyond the shape's support towards n by more than the rounding of the
+/// two support points, 64 u (|s_shape| + |s_piece| + both sizes): the plane normal to n between
+/// them separates the solids. Both support mappings are exact up to that rounding (closed forms:
+/// an ellipsoid, box, elliptic cylinder, cone, capsule; a triangle's vertices; a Region's
+/// enumeration is only exact to 1e-12 of its size, and is left to the region engine). Returns
+/// the refined pair (shape's frame), their distance, or nullopt when not certified (the region
+/// engine decides, and reports contact within its touching band). The same test in collide's
+/// mesh and OcTree walk and in distance's near-contact sign, so the two agree.
+std::optional<NearestPoints> certifiedApart(const QuadricRegion& shape_region, const ConvexSupport& support,
+                                            const fcl::Transform3<double>& tfs, bool triangle,
+                                            const std::array<Eigen::Vector3d, 3>& v, const fcl::Transform3<double>& tfp) {
+  if (support.kind() == ConvexSupport::Kind::Region || (triangle && zeroAreaTriangle(v[0], v[1], v[2]))) return std::nullopt;
+  const ConvexSupport piece = triangle ? ConvexSupport::points({v[0], v[1], v[2]}) : ConvexSupport::box(v[1]);
+  const Eigen::Vector3d p_piece = triangle ? Eigen::Vector3d(tfp.translation()) : Eigen::Vector3d(tfp * v[0]);
+  const Eigen::Matrix3d& R_piece = tfp.linear();
+  const SignedDistanceResult d =
+      convexSignedDistance(support, tfs.linear(), tfs.translation(), piece, R_piece, p_piece, false);
+  if (d.status == Separation::Overlapping) return std::nullopt;  // (Touching: GJK within its band of contact)
+  const double scale = support.size() + piece.size() + (tfs.translation() - p_piece).norm();
+  const Eigen::Matrix3d Rt = tfs.linear().transpose();
+  const Eigen::Vector3d start_a = Rt * (d.point_a - tfs.translation());
+  const std::optional<NearestPoints> refined =
+      triangle ? triangleNearestPoints(shape_region, start_a, tfs, tfp, v, scale)
+               : refineNearestPoints(shape_region, boxRegion(v[0], v[1]).transformed(Rt * tfp.linear(), Rt * (tfp.translation() - tfs.translation())),
+                                     start_a, Rt * (d.point_b - tfs.translation()), scale);
+  const NearestPoints* pair = nullptr;
+  const NearestPoints gjk{start_a, Rt * (d.point_b - tfs.translation()), d.distance, 0};
+  pair = refined && (!(d.distance > 0.0) || refined->distance < d.distance) ? &*refined : &gjk;
+  // Candidate directions (world frame): the witnesses' difference, whose direction is only known
+  // to ~u |x| / |y - x| (at a gap of 3e-9, 3e-8: a triangle lying flat in the tangent plane then
+  // seems to reach back 1e-8 across it); the shape's normal at its witness where one surface
+  // passes through it (known to ~u, and the nearest pair's direction wherever the shape's
+  // witness is on a smooth part); the piece's normal: the triangle's plane's, or the leaf's axis
+  // nearest to the witnesses' difference, towards the piece.
+  const Eigen::Vector3d x = tfs.linear() * pair->point_a + tfs.translation(), y = tfs.linear() * pair->point_b + tfs.translation();
+  const Eigen::Vector3d diff = y - x;
+  std::array<Eigen::Vector3d, 3> candidates{diff, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  {
+    int through = 0;
+    Eigen::Vector3d grad = Eigen::Vector3d::Zero();
+    for (const Eigen::Matrix4d& Q : shape_region.signedAtoms()) {
+      const Eigen::Vector3d g = 2.0 * (Q.topLeftCorner<3, 3>() * pair->point_a + Q.topRightCorner<3, 1>());
+      const Eigen::Vector4d X(pair->point_a[0], pair->point_a[1], pair->point_a[2], 1.0);
+      const double gn = g.norm();
+      if (gn > 0.0 && std::abs(X.dot(Q * X)) <= 1e-9 * scale * gn) {
+        ++through;
+        grad = g;
+      }
+    }
+    if (through == 1) candidates[1] = tfs.linear() * grad;
+  }
+  if (triangle) {
+    candidates[2] = tfp.linear() * (v[1] - v[0]).cross(v[2] - v[0]);
+  } else {
+    Eigen::Index axis = 0;
+    (R_piece.transpose() * diff).cwiseAbs().maxCoeff(&axis);
+    candidates[2] = R_piece.col(axis);
+  }
+  for (Eigen::Vector3d n : candidates) {
+    if (!(n.norm() > 0.0) || !n.allFinite()) continue;
+    n.normalize();
+    if (n.dot(diff) < 0.0) n = -n;  // from the shape towards the piece
+    const Eigen::Vector3d s_shape = tfs.linear() * support.support(Rt * n) + tfs.translation();
+    const Eigen::Vector3d s_piece = R_piece * piece.support(-(R_piece.transpose() * n)) + p_piece;
+    const double margin = 64.0 * std::numeric_limits<double>::epsilon() *
+                          (s_shape.norm() + s_piece.norm() + support.size() + piece.size());
+    if (n.dot(s_piece - s_shape) > margin) {
+      // Apart. The witnesses: the refined pair, else GJK's if apart, else the two support points
+      // (members of the solids, at least the certified gap apart).
+      if (pair->distance > 0.0) return *pair;
+      return NearestPoints{Rt * (s_shape - tfs.translation()), Rt * (s_piece - tfs.translation()), (s_piece - s_shape).norm(), 0};
+    }
+  }
+  return std::nullopt;
+}
+
 /// GJK's screening of one piece of a mesh or octree (a triangle, an occupied leaf's box) against a
 /// convex shape (docs/algorithms.md section 12), the same for the front doors' mesh walk and for
 /// QuadricSolver's triangle kernel. Far: GJK certifies the pair farther apart than 2e-8 of its
@@ -280,6 +451,9 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
             if (g == ConvexScreening::Verdict::Far) return false;
             const std::optional<LocalSolid> t = triangleSolid(p0, p1, p2);
             if (!t) return false;
+            if (g == ConvexScreening::Verdict::Undecided && convex &&
+                certifiedApart(shape.region, *convex, tfs, true, {p0, p1, p2}, tfp))
+              return false;
             return g == ConvexScreening::Verdict::Overlapping ? contactAt(t->region, x) : piece(*t);
           });
         }) &&
@@ -290,6 +464,9 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
                           const ConvexScreening::Verdict g =
                               gjk(ConvexSupport::box(h), tfp.linear() * c + tfp.translation(), &x);
                           if (g == ConvexScreening::Verdict::Far) return false;
+                          if (g == ConvexScreening::Verdict::Undecided && convex &&
+                              certifiedApart(shape.region, *convex, tfs, false, {c, h, Eigen::Vector3d::Zero()}, tfp))
+                            return false;
                           const LocalSolid leaf{boxRegion(c, h), Box3{c - h, c + h}, false};
                           return g == ConvexScreening::Verdict::Overlapping ? contactAt(leaf.region, x) : piece(leaf);
                         });
@@ -932,94 +1109,6 @@ struct PosedConvex {
   }
 };
 
-/// Features of a triangle refined by triangleNearestPoints() before it tries them all.
-constexpr int kTriangleFeatureRounds = 3;
-
-/// The nearest points of a quadric shape (its region `shape`, in its own frame tfs) and a mesh
-/// triangle (`piece`, vertices in the mesh frame tfp), refined feature by feature from the shape
-/// witness x0 (GJK's; shape frame, as the result). nullopt if no feature gives a pair.
-///
-/// As an intersection of half-spaces (triangleSolid) the triangle's vertices are poorly
-/// conditioned where an angle is small: the KKT system pins a sliver's sharp vertex only to about
-/// u |x| / angle. On a sliver of height 3.6e-7 the refined mesh witness lay 2e-11 off the triangle
-/// (audit finding 34 (3); 4.3e-7 off, with a distance 4,000 times too small, while the triangle's
-/// plane was two opposite inequalities, before nearest_points.cpp's twinAtoms made it one
-/// equality), and at points inside a sliver near its apex the distance came out up to 1e-4
-/// relative too large. GJK alone stalls near a vertex (finding 34 (2): 1e-3 relative too far at a
-/// gap of 3e-9; on slivers up to 1e-6 of the scale). So a feature is refined on its own, with
-/// well-conditioned equality constraints (refineNearestPoints; opposite half-space pairs are
-/// equalities there): the face as its plane, an edge as its line (the triangle's plane and the
-/// plane through the edge normal to it), a vertex as a point (three coordinate planes). The first
-/// is the feature of the triangle's nearest point to x0 (Ericson's Voronoi regions); then that of
-/// the nearest point to the refined shape witness, until it no longer changes: the pair is then
-/// the nearest one (for a convex shape: each point is the other's nearest). After
-/// kTriangleFeatureRounds without that, or where a refinement fails, all seven features are tried.
-/// A feature's pair counts only when its mesh point lies on the triangle (Ericson's closest point,
-/// to 4 u (scale + |y|), the rounding of the frame change); its two points are then members of
-/// their solids, so its distance bounds the distance from above: the smallest is returned (and
-/// the caller keeps GJK's where that is smaller).
-std::optional<NearestPoints> triangleNearestPoints(const QuadricRegion& shape, const Eigen::Vector3d& x0,
-                                                   const fcl::Transform3<double>& tfs, const fcl::Transform3<double>& tfp,
-                                                   const PosedConvex& piece, double scale) {
-  const Eigen::Matrix3d Rt = tfs.linear().transpose();
-  const Eigen::Matrix3d to_shape = Rt * tfp.linear();
-  const Eigen::Vector3d to_shape_t = Rt * (tfp.translation() - tfs.translation());
-  std::array<Eigen::Vector3d, 3> w;
-  for (int k = 0; k < 3; ++k) w[k] = to_shape * piece.v[k] + to_shape_t;
-  const Eigen::Vector3d u = (w[1] - w[0]).cross(w[2] - w[0]).normalized();
-  auto plane = [](const Eigen::Vector3d& n, const Eigen::Vector3d& through, std::vector<QuadricRegion>* out) {
-    out->push_back(QuadricRegion::halfspace(n, n.dot(through)));
-    out->push_back(QuadricRegion::halfspace(-n, -n.dot(through)));
-  };
-  // The pair refined on feature f from the shape point x, if its mesh point is on the triangle.
-  auto refineOn = [&](TriangleFeature f, const Eigen::Vector3d& x) -> std::optional<NearestPoints> {
-    std::vector<QuadricRegion> planes;
-    Eigen::Vector3d y0;
-    const int k = static_cast<int>(f);
-    if (f == TriangleFeature::Face) {
-      plane(u, w[0], &planes);
-      y0 = x - u.dot(x - w[0]) * u;
-    } else if (k >= static_cast<int>(TriangleFeature::EdgeAB)) {
-      const Eigen::Vector3d& a = w[k - 3];
-      const Eigen::Vector3d e = w[(k - 2) % 3] - a;
-      plane(u, a, &planes);
-      plane(u.cross(e).normalized(), a, &planes);
-      y0 = a + (x - a).dot(e) / e.squaredNorm() * e;
-    } else {
-      planes.push_back(boxRegion(w[k], Eigen::Vector3d::Zero()));
-      y0 = w[k];
-    }
-    std::optional<NearestPoints> p =
-        refineNearestPoints(shape, QuadricRegion::combine(QuadricRegion::Op::Intersection, planes), x, y0, scale);
-    const double eps = std::numeric_limits<double>::epsilon();
-    if (p && (closestPointOnTriangle(p->point_b, w[0], w[1], w[2]) - p->point_b).norm() > 4.0 * eps * (scale + p->point_b.norm()))
-      p.reset();
-    return p;
-  };
-  std::optional<NearestPoints> best;
-  auto keep = [&](const std::optional<NearestPoints>& p) {
-    if (p && (!best || p->distance < best->distance)) best = p;
-  };
-  TriangleFeature f;
-  closestPointOnTriangle(x0, w[0], w[1], w[2], &f);
-  Eigen::Vector3d x = x0;
-  bool tried[7] = {false, false, false, false, false, false, false};
-  for (int round = 0; round < kTriangleFeatureRounds; ++round) {
-    const std::optional<NearestPoints> p = refineOn(f, x);
-    tried[static_cast<int>(f)] = true;
-    if (!p) break;
-    keep(p);
-    TriangleFeature next;
-    closestPointOnTriangle(p->point_a, w[0], w[1], w[2], &next);
-    if (next == f) return best;  // settled
-    f = next;
-    x = p->point_a;
-  }
-  for (int k = 0; k < 7; ++k)
-    if (!tried[k]) keep(refineOn(static_cast<TriangleFeature>(k), x0));
-  return best;
-}
-
 }  // namespace
 
 double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl::Transform3<double>& tf1,
@@ -1062,6 +1151,8 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
   const fcl::Transform3<double>& tfs = swap ? tf2 : tf1;
   const fcl::Transform3<double>& tfp = swap ? tf1 : tf2;
   const std::vector<PosedConvex> shape_pieces = piecesOf(gs, tfs, swap ? "o2" : "o1");
+  // The shape's support when it is convex as a whole (as collide's mesh walk screens it).
+  const std::optional<ConvexSupport> shape_whole = convexSupportOf(gs, swap ? "o2" : "o1");
 
   // Reports d with witnesses (x on the shape, y on the partner) in FCL's argument order.
   auto report = [&](double d, const Eigen::Vector3d& x, const Eigen::Vector3d& y, int partner_index) {
@@ -1128,7 +1219,24 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
       };
       // (An overlap certified without its depth, want_depth = false, reports distance 0: not near.)
       const bool depth_unknown = d.status == Separation::Overlapping && !request.enable_signed_distance;
-      if (!depth_unknown && std::abs(d.distance) <= 1e-8 * scale) {
+      // A convex shape (one piece, as collide's walk sees it) and a triangle or leaf: certified
+      // apart by the same test as collide's walk (certifiedApart), then no collide is needed.
+      bool certified = false;
+      if (d.status != Separation::Overlapping && std::abs(d.distance) <= 1e-8 * scale && shape_whole &&
+          piece.kind != PosedConvex::Primitive) {
+        if (!shape_local) shape_local = localSolid(gs, "o1", where).region;
+        if (const std::optional<NearestPoints> c =
+                certifiedApart(*shape_local, *shape_whole, tfs, piece.kind == PosedConvex::Triangle, piece.v, tfp)) {
+          certified = true;
+          if (!(d.status == Separation::Separated && d.distance > 0.0) || c->distance < d.distance) {
+            d.status = Separation::Separated;
+            d.point_a = tfs.linear() * c->point_a + tfs.translation();
+            d.point_b = tfs.linear() * c->point_b + tfs.translation();
+            d.distance = c->distance;
+          }
+        }
+      }
+      if (!depth_unknown && !certified && std::abs(d.distance) <= 1e-8 * scale) {
         fcl::CollisionRequest<double> creq(1);
         fcl::CollisionResult<double> cres;
         const std::optional<LocalSolid> b = pieceSolid();
@@ -1162,7 +1270,7 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
                             !(region_lower_bound > result.min_distance)
                       : d.distance <= kRefineConvexRelative * scale &&
                             !(d.distance - kRefineRelative * scale > result.min_distance);
-      if (d.status == Separation::Separated && d.distance > 0.0 && worth_refining) {
+      if (d.status == Separation::Separated && d.distance > 0.0 && worth_refining && !certified) {
         if (const std::optional<LocalSolid> b = pieceSolid()) {
           // In the shape's frame, where its atoms were written: posed far from the origin
           // (|t| = 2e4 of the size, an audit of session 37) the world-frame atoms carry |t|^2
@@ -1175,7 +1283,7 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
           const Eigen::Vector3d start_a = Rt * (d.point_a - tfs.translation());
           const std::optional<NearestPoints> n =
               piece.kind == PosedConvex::Triangle
-                  ? triangleNearestPoints(*shape_local, start_a, tfs, tfp, piece, scale)
+                  ? triangleNearestPoints(*shape_local, start_a, tfs, tfp, piece.v, scale)
                   : refineNearestPoints(*shape_local,
                                         b->region.transformed(Rt * tfp.linear(), Rt * (tfp.translation() - tfs.translation())),
                                         start_a, Rt * (d.point_b - tfs.translation()), scale);

@@ -60,7 +60,9 @@ struct NearestPoints {
 ///   g_i(x) = 0,   h_j(y) = 0
 /// (g_i the active atoms of a, h_j of b, each scaled to a unit gradient at the start). A surface
 /// whose multiplier comes out negative is dropped, and one a Newton step crosses out of its model
-/// is added (at most kMaxActiveSetRounds sets). Each step is retracted onto the active surfaces
+/// is added (at most kMaxActiveSetRounds sets). Two atoms of a model that are exact negations of
+/// each other (a plane as two opposite half-spaces: a mesh triangle's, or a point as three such
+/// pairs) are one equality constraint: one of them is active, its multiplier of either sign. Each step is retracted onto the active surfaces
 /// and damped so that the points never cross.
 ///
 /// \return the refined pair only when it is certain to be at least as good as the start: both
