@@ -507,7 +507,9 @@ TEST(FclTraversalNodes, SolverTriangleKernelsAnswerAtClosedFormsAndRejectBadInpu
     // Exact since session 40: a gap of 6e-13 is certified apart (certifiedApart), no longer
     // within the region engine's touching band.
     EXPECT_EQ(d > 0.0, z > 0.6) << z << " " << d;
-    if (d > 0.0) EXPECT_NEAR(d, z - 0.6, 1e-15) << z;
+    if (d > 0.0) {
+      EXPECT_NEAR(d, z - 0.6, 1e-15) << z;
+    }
   }
 }
 
