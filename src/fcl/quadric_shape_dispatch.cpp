@@ -320,8 +320,8 @@ std::optional<NearestPoints> certifiedApart(const QuadricRegion& shape_region, c
   const NearestPoints gjk{start_a, Rt * (d.point_b - tfs.translation()), d.distance, 0};
   pair = refined && (!(d.distance > 0.0) || refined->distance < d.distance) ? &*refined : &gjk;
   // Candidate directions (world frame): the witnesses' difference, whose direction is only known
-  // to ~u |x| / |y - x| (at a gap of 3e-9, 3e-8: a triangle lying flat in the tangent plane then
-  // seems to reach back 1e-8 across it); the shape's normal at its witness where one surface
+  // to ~u |x| / |y - x| (at a gap of 3e-9, ~3e-8: a triangle lying flat in the tangent plane then
+  // seemed to reach back 4e-8 across it); the shape's normal at its witness where one surface
   // passes through it (known to ~u, and the nearest pair's direction wherever the shape's
   // witness is on a smooth part); the piece's normal: the triangle's plane's, or the leaf's axis
   // nearest to the witnesses' difference, towards the piece.
