@@ -2,6 +2,7 @@
 // collisionRecurse over a mesh-shape node without cost sources, with a cheaper node test, and for
 // AABB and k-DOP meshes without FCL's per-query copy of the model.
 #include "fcl/mesh_collision.h"
+#include "fcl/input_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -216,6 +217,7 @@ bool collideMeshShape(const fcl::CollisionGeometry<double>* o1, const fcl::Trans
   if (mesh->getObjectType() != fcl::OT_BVH) return false;
   const fcl::NODE_TYPE kind = shape->getNodeType();
   if (kind != fcl::GEOM_ELLIPSOID && kind != fcl::GEOM_SPHERE) return false;
+  checkTranslations(tf1, tf2, "fcl_quadric::collide");  // (input_checks.h)
   const fcl::Transform3<double>& tf_mesh = mesh_first ? tf1 : tf2;
   const fcl::Transform3<double>& tf_shape = mesh_first ? tf2 : tf1;
   const bool handled = withTriangleModel(mesh, [&](const auto& model) {

@@ -2,6 +2,7 @@
 // mesh-shape distance node (leaf call, result, canStop) searched best first with lower bounds that
 // need no fitted BV, for every BV type (FCL's distance has only RSS, kIOS and OBBRSS meshes).
 #include "fcl/mesh_distance.h"
+#include "fcl/input_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -189,6 +190,7 @@ bool distanceMeshShape(const fcl::CollisionGeometry<double>* o1, const fcl::Tran
   if (mesh->getObjectType() != fcl::OT_BVH) return false;
   const fcl::NODE_TYPE kind = shape->getNodeType();
   if (kind != fcl::GEOM_ELLIPSOID && kind != fcl::GEOM_SPHERE) return false;
+  checkTranslations(tf1, tf2, "fcl_quadric::distance");  // (input_checks.h)
   const fcl::Transform3<double>& tf_mesh = mesh_first ? tf1 : tf2;
   const fcl::Transform3<double>& tf_shape = mesh_first ? tf2 : tf1;
   const bool handled = withTriangleModel(mesh, [&](const auto& model) {

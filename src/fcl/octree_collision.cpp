@@ -1,6 +1,7 @@
 // fcl_quadric::collide's traversal of an OcTree against an Ellipsoid or a Sphere: FCL 0.7's
 // OcTreeShapeIntersectRecurse without cost sources, with a cheaper, tighter pruning test.
 #include "fcl/octree_collision.h"
+#include "fcl/input_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -146,6 +147,7 @@ bool collideOcTreeShape(const fcl::CollisionGeometry<double>* o1, const fcl::Tra
   if (tree->getNodeType() != fcl::GEOM_OCTREE) return false;
   const fcl::NODE_TYPE kind = shape->getNodeType();
   if (kind != fcl::GEOM_ELLIPSOID && kind != fcl::GEOM_SPHERE) return false;
+  checkTranslations(tf1, tf2, "fcl_quadric::collide");  // (input_checks.h)
   // FCL's OcTreeShapeCollide / ShapeOcTreeCollide return at once when the result is already full.
   if (!request.isSatisfied(result)) {
     const fcl::Transform3<double>& tf_tree = tree_first ? tf1 : tf2;

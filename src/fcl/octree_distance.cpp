@@ -1,6 +1,7 @@
 // fcl_quadric::distance's traversal of an OcTree against an Ellipsoid or a Sphere: FCL 0.7's
 // OcTreeShapeDistanceRecurse with its leaf test, best first with padded lower bounds.
 #include "fcl/octree_distance.h"
+#include "fcl/input_checks.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -124,6 +125,7 @@ bool distanceOcTreeShape(const fcl::CollisionGeometry<double>* o1, const fcl::Tr
   if (tree->getNodeType() != fcl::GEOM_OCTREE) return false;
   const bool ellipsoid = shape->getNodeType() == fcl::GEOM_ELLIPSOID;
   if (!ellipsoid && shape->getNodeType() != fcl::GEOM_SPHERE) return false;
+  checkTranslations(tf1, tf2, "fcl_quadric::distance");  // (input_checks.h)
   // FCL's OcTreeShapeDistance / ShapeOcTreeDistance return at once when the result is satisfied.
   if (!request.isSatisfied(result)) {
     const auto& t = *static_cast<const fcl::OcTree<double>*>(tree);

@@ -16,6 +16,7 @@
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/capsule.h>
 #include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
 #include <fcl/geometry/shape/triangle_p.h>
 #include <fcl/math/bv/AABB.h>
 #include <fcl/math/bv/OBBRSS.h>
@@ -30,6 +31,7 @@
 #include "fcl_quadric/fcl/distance.h"
 #include "fcl_quadric/fcl/quadric_solver.h"
 #include "fcl/fcl_test_support.h"
+#include "support/expect_invalid.h"
 #include "support/random_ellipsoids.h"
 
 namespace fcl_quadric {
@@ -277,6 +279,44 @@ void expectUnfinishedMeshesRejected() {
 TEST(FrontDoorsBadInput, EmptyUnfinishedOrPointCloudMeshesThrowInsteadOfCrashing) {
   expectUnfinishedMeshesRejected<fcl::OBBRSSd>();
   expectUnfinishedMeshesRejected<fcl::AABBd>();
+}
+
+/// A mesh or an OcTree posed beyond kMaxLength (1e100) against an ellipsoid or a sphere: collide
+/// returned 0 (no triangle or leaf was reached) while distance threw for its first triangle
+/// (docs/reliability.md finding 34 (4)). Both now throw, naming the translation, as the quadric
+/// shapes' front doors do; and within the limit both answer.
+TEST(FrontDoorsBadInput, MeshesAndOcTreesPosedBeyondTheLengthLimitThrowInBothFrontDoors) {
+  auto mesh = std::make_shared<fcl::BVHModel<fcl::OBBRSSd>>();
+  mesh->beginModel();
+  mesh->addTriangle(fcl::Vector3d(0, 0, 0), fcl::Vector3d(1, 0, 0), fcl::Vector3d(0, 1, 0));
+  mesh->endModel();
+  auto octo = std::make_shared<octomap::OcTree>(0.5);
+  octo->updateNode(octomap::point3d(0.1f, 0.1f, 0.1f), true);
+  const GeometryPtr tree = std::make_shared<fcl::OcTreed>(octo);
+  const GeometryPtr ellipsoid = std::make_shared<fcl::Ellipsoidd>(1.0, 2.0, 0.5);
+  const GeometryPtr sphere = std::make_shared<fcl::Sphered>(1.0);
+  const fcl::Transform3d I = fcl::Transform3d::Identity();
+  for (const double x : {1e200, 1e100 * 1.0000001, 1e99}) {
+    fcl::Transform3d far = fcl::Transform3d::Identity();
+    far.translation() = Eigen::Vector3d(x, 0.0, 0.0);
+    for (const GeometryPtr& pieces : {GeometryPtr(mesh), tree}) {
+      for (const GeometryPtr& shape : {ellipsoid, sphere}) {
+        fcl::CollisionRequestd crequest;
+        fcl::CollisionResultd cresult;
+        fcl::DistanceRequestd drequest;
+        fcl::DistanceResultd dresult;
+        if (x > 1e100) {
+          test::expectInvalid([&] { fcl_quadric::collide(shape.get(), I, pieces.get(), far, crequest, cresult); },
+                        "fcl_quadric::collide: the translation of tf2");
+          test::expectInvalid([&] { fcl_quadric::distance(pieces.get(), far, shape.get(), I, drequest, dresult); },
+                        "fcl_quadric::distance: the translation of tf1");
+        } else {
+          EXPECT_EQ(fcl_quadric::collide(shape.get(), I, pieces.get(), far, crequest, cresult), 0u);
+          EXPECT_GT(fcl_quadric::distance(pieces.get(), far, shape.get(), I, drequest, dresult), 0.5 * x);
+        }
+      }
+    }
+  }
 }
 
 TEST(FrontDoorsBadInput, NonFiniteTransformThrowsInvalidArgument) {
