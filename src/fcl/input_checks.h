@@ -17,6 +17,7 @@
 #include <fcl/narrowphase/collision_object.h>
 
 #include "fcl_quadric/geometry/ellipsoid.h"
+#include "fcl_quadric/tolerances.h"
 
 namespace fcl_quadric {
 namespace detail {
@@ -86,10 +87,14 @@ void checkPosedPair(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S
 /// require: for an ellipsoid or a sphere against a mesh or an OcTree, collide used to return 0
 /// for a mesh posed at x = 1e200 (its triangles were never reached) while distance threw for its
 /// first triangle (docs/reliability.md finding 34 (4)); both now throw here, naming the pose.
+/// (The message is built only for a translation out of range: this runs once per query.)
 inline void checkTranslations(const fcl::Transform3<double>& tf1, const fcl::Transform3<double>& tf2, const char* where) {
-  const std::string w(where);
-  checkPosition(tf1.translation(), (w + ": the translation of tf1").c_str());
-  checkPosition(tf2.translation(), (w + ": the translation of tf2").c_str());
+  auto inRange = [](const Eigen::Vector3d& t) {  // (checkPosition's test; the poses are finite)
+    return std::fabs(t[0]) <= tolerance::kMaxLength && std::fabs(t[1]) <= tolerance::kMaxLength &&
+           std::fabs(t[2]) <= tolerance::kMaxLength;
+  };
+  if (!inRange(tf1.translation())) checkPosition(tf1.translation(), (std::string(where) + ": the translation of tf1").c_str());
+  if (!inRange(tf2.translation())) checkPosition(tf2.translation(), (std::string(where) + ": the translation of tf2").c_str());
 }
 
 template <typename S>
