@@ -1271,27 +1271,28 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
                       : d.distance <= kRefineConvexRelative * scale &&
                             !(d.distance - kRefineRelative * scale > result.min_distance);
       if (d.status == Separation::Separated && d.distance > 0.0 && worth_refining && !certified) {
-        if (const std::optional<LocalSolid> b = pieceSolid()) {
-          // In the shape's frame, where its atoms were written: posed far from the origin
-          // (|t| = 2e4 of the size, an audit of session 37) the world-frame atoms carry |t|^2
-          // terms, and a refined witness 3.4e-7 outside a thin cone passed their membership band
-          // (a distance 2e-4 reported as 6.9e-5 to 1.99656e-4).
-          if (!shape_local) shape_local = localSolid(gs, "o1", where).region;
-          // (A triangle feature by feature, triangleNearestPoints; a zero-area one has no region
-          // and keeps GJK's answer.)
-          const Eigen::Matrix3d Rt = tfs.linear().transpose();
-          const Eigen::Vector3d start_a = Rt * (d.point_a - tfs.translation());
-          const std::optional<NearestPoints> n =
-              piece.kind == PosedConvex::Triangle
-                  ? triangleNearestPoints(*shape_local, start_a, tfs, tfp, piece.v, scale)
-                  : refineNearestPoints(*shape_local,
-                                        b->region.transformed(Rt * tfp.linear(), Rt * (tfp.translation() - tfs.translation())),
-                                        start_a, Rt * (d.point_b - tfs.translation()), scale);
-          if (n && n->distance < d.distance) {
-            d.point_a = tfs.linear() * n->point_a + tfs.translation();
-            d.point_b = tfs.linear() * n->point_b + tfs.translation();
-            d.distance = n->distance;
-          }
+        // In the shape's frame, where its atoms were written: posed far from the origin
+        // (|t| = 2e4 of the size, an audit of session 37) the world-frame atoms carry |t|^2
+        // terms, and a refined witness 3.4e-7 outside a thin cone passed their membership band
+        // (a distance 2e-4 reported as 6.9e-5 to 1.99656e-4). A triangle is refined feature by
+        // feature from its vertices (triangleNearestPoints; a zero-area one keeps GJK's answer),
+        // any other piece against its region.
+        const Eigen::Matrix3d Rt = tfs.linear().transpose();
+        const Eigen::Vector3d start_a = Rt * (d.point_a - tfs.translation());
+        if (!shape_local) shape_local = localSolid(gs, "o1", where).region;
+        std::optional<NearestPoints> n;
+        if (piece.kind == PosedConvex::Triangle) {
+          if (!zeroAreaTriangle(piece.v[0], piece.v[1], piece.v[2]))
+            n = triangleNearestPoints(*shape_local, start_a, tfs, tfp, piece.v, scale);
+        } else if (const std::optional<LocalSolid> b = pieceSolid()) {
+          n = refineNearestPoints(*shape_local,
+                                  b->region.transformed(Rt * tfp.linear(), Rt * (tfp.translation() - tfs.translation())),
+                                  start_a, Rt * (d.point_b - tfs.translation()), scale);
+        }
+        if (n && n->distance < d.distance) {
+          d.point_a = tfs.linear() * n->point_a + tfs.translation();
+          d.point_b = tfs.linear() * n->point_b + tfs.translation();
+          d.distance = n->distance;
         }
       }
       const double value = d.status == Separation::Overlapping && !request.enable_signed_distance ? -1.0 : d.distance;
