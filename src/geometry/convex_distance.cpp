@@ -324,11 +324,19 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
       out.converged = vn - lower <= accuracy(vn);
       break;
     }
-    W.push_back(w);
+    // The next simplex is committed only with its point v_new: a step that fails or does not
+    // descend leaves W and lambda those of v, so the witnesses below (lambda's combination of W's
+    // points) are always v's. (Before session 41 a stalled step kept v but not its simplex: a box
+    // face parallel to a quadric's tangent plane got the distance 3e-7 and witnesses 0.25 apart.)
+    Simplex W_next = W;
+    W_next.push_back(w);
+    std::array<double, 4> lambda_next = lambda;
     Eigen::Vector3d v_new = Eigen::Vector3d::Zero();
-    if (!closestPoint(&W, &lambda, &v_new)) break;
-    if (W.size() == 4) {
+    if (!closestPoint(&W_next, &lambda_next, &v_new)) break;
+    if (W_next.size() == 4) {
       origin_in_hull = true;
+      W = W_next;
+      lambda = lambda_next;
       v = v_new;
       break;
     }
@@ -336,6 +344,8 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
       out.converged = vn - lower <= accuracy(vn);
       break;
     }
+    W = W_next;
+    lambda = lambda_next;
     v = v_new;
   }
   out.iterations = it;
