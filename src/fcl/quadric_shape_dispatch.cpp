@@ -285,69 +285,199 @@ std::optional<NearestPoints> triangleNearestPoints(const QuadricRegion& shape, c
 }
 
 
-/// A convex quadric shape with a closed-form support mapping (`support`, not a Region kind; its
-/// region `shape_region` in its own frame tfs) and a mesh triangle (vertices v, mesh frame tfp) or
-/// an OcTree leaf (centre v[0], half widths v[1], tree frame tfp) certified apart near contact, where
-/// GJK's screening leaves them undecided (docs/algorithms.md section 12c, session 40). GJK's
-/// witnesses, refined to rounding (triangleNearestPoints for a triangle, refineNearestPoints for a
-/// leaf), give a direction n from the shape to the piece, and the pair is apart when the piece's
-/// support towards -n lies beyond the shape's support towards n by more than the rounding of the
-/// two support points, 64 u (|s_shape| + |s_piece| + both sizes): the plane normal to n between
-/// them separates the solids. Both support mappings are exact up to that rounding (closed forms:
-/// an ellipsoid, box, elliptic cylinder, cone, capsule; a triangle's vertices; a Region's
-/// enumeration is only exact to 1e-12 of its size, and is left to the region engine). Returns
-/// the refined pair (shape's frame), their distance, or nullopt when not certified (the region
-/// engine decides, and reports contact within its touching band). The same test in collide's
-/// mesh and OcTree walk and in distance's near-contact sign, so the two agree.
+/// A convex support mapping posed in a common frame: x = R x_local + p.
+struct FramedSupport {
+  const ConvexSupport& s;
+  Eigen::Matrix3d R;
+  Eigen::Vector3d p;
+  Eigen::Vector3d support(const Eigen::Vector3d& n) const { return R * s.support(R.transpose() * n) + p; }
+  std::optional<Eigen::Vector3d> apex() const {
+    const std::optional<Eigen::Vector3d> a = s.apex();
+    if (!a) return std::nullopt;
+    return Eigen::Vector3d(R * *a + p);
+  }
+};
+
+/// How far a support mapping's support value can fall below the true one: rounding for the closed
+/// forms (supportRounding()), and for a Region's enumeration the
+/// feasibility tolerance its candidates are accepted with, kSupportFeasibilityRelative of the
+/// solid's extent in its own frame (convex_support.h), taken four times over.
+double supportSlack(const ConvexSupport& s) {
+  return s.kind() == ConvexSupport::Kind::Region
+             ? 4.0 * tolerance_support::kSupportFeasibilityRelative * (s.size() + s.center().norm())
+             : 0.0;
+}
+
+/// The rounding of a support gap n.(s_b - s_a) computed from support points s_a, s_b of two convex
+/// solids a, b: 64 u (|s_a| + |s_b| + both sizes).
+double supportRounding(const ConvexSupport& a, const ConvexSupport& b, const Eigen::Vector3d& s_a,
+                       const Eigen::Vector3d& s_b) {
+  return 64.0 * std::numeric_limits<double>::epsilon() * (s_a.norm() + s_b.norm() + a.size() + b.size());
+}
+
+/// The nearest pair of two convex solids (regions a, b and support mappings sa, sb, all in one
+/// frame), refined from start points on their boundaries (refineNearestPoints), with a cone's apex
+/// (ConvexSupport::apex()) also tried as a vertex of its own, and each pair checked against the
+/// support functions.
+///
+/// Apexes: refineNearestPoints keeps a curved atom's surface through a point near the apex
+/// active, and its gradient vanishes there, so a nearest pair at the apex of an fcl::Cone or of a
+/// cone-nappe Quadric was never reached (session 41: GJK's pair stood, 3.8e-4 relative too far at
+/// a gap of 3e-7, and inside the region engine's contact band at 3e-11). An apex is tried as the
+/// other solid's pair with that point (an equality of three planes, as a triangle's vertex), and
+/// both apexes as a pair, where the apex belongs to its solid (exact-sign classification, >= 0).
+///
+/// The check: near an apex the cone atom's value is ~|x - apex|^2, below its rounding band within
+/// ~1e-8 of the scale, so the exact-sign classification accepts points there that lie outside
+/// the cone (a refined pair 1.3e-9 outside an fcl::Cone's tip, 1.9e-9 apart where the solids
+/// were 3e-9 apart). For convex solids every unit n gives the lower bound n.(sb(-n) - sa(n)) of
+/// their distance (support functions), equal to it along the nearest pair's direction. The best
+/// such bound over the directions of the start pair and of every candidate pair, less its
+/// rounding (supportRounding()), is a floor: a pair closer than it has a point outside its solid and is
+/// dropped (the pair above, refined from an apex to the other cone's tip, was 0.3 rad off the
+/// true direction, where its own direction's bound was lower still; the apexes' pair's direction
+/// gave the floor). Every pair kept is then two members up to the support values' rounding, whose
+/// distance bounds the true one from above; the closest is returned, nullopt when none is kept.
+std::optional<NearestPoints> refineConvexPair(const QuadricRegion& a, const FramedSupport& sa, const QuadricRegion& b,
+                                              const FramedSupport& sb, const Eigen::Vector3d& start_a,
+                                              const Eigen::Vector3d& start_b, double scale) {
+  std::vector<NearestPoints> pairs;
+  auto add = [&](const std::optional<NearestPoints>& p) {
+    if (p) pairs.push_back(*p);
+  };
+  add(refineNearestPoints(a, b, start_a, start_b, scale));
+  const std::optional<Eigen::Vector3d> apex_a = sa.apex(), apex_b = sb.apex();
+  const bool in_b = apex_b && b.classifyPoint(*apex_b) >= 0, in_a = apex_a && a.classifyPoint(*apex_a) >= 0;
+  if (in_b) add(refineNearestPoints(a, boxRegion(*apex_b, Eigen::Vector3d::Zero()), start_a, *apex_b, scale));
+  if (in_a) add(refineNearestPoints(boxRegion(*apex_a, Eigen::Vector3d::Zero()), b, *apex_a, start_b, scale));
+  if (in_a && in_b) add(NearestPoints{*apex_a, *apex_b, (*apex_b - *apex_a).norm(), 0});  // (apex to apex)
+  // The best lower bound along the pairs' directions and the start's, less its rounding (not a
+  // Region's enumeration tolerance, supportSlack(): an accepted candidate outside the solid only
+  // raises a support value, which lowers the bound; and a floor too high by the rounding of an
+  // ill-conditioned candidate would only drop the true pair, leaving the caller an upper bound).
+  double floor = -std::numeric_limits<double>::infinity();
+  auto bound = [&](const Eigen::Vector3d& d) {
+    if (!(d.norm() > 0.0) || !d.allFinite()) return;
+    const Eigen::Vector3d n = d.normalized();
+    const Eigen::Vector3d s_a = sa.support(n), s_b = sb.support(-n);
+    floor = std::max(floor, n.dot(s_b - s_a) - supportRounding(sa.s, sb.s, s_a, s_b));
+  };
+  bound(start_b - start_a);
+  for (const NearestPoints& p : pairs) bound(p.point_b - p.point_a);
+  std::optional<NearestPoints> best;
+  for (const NearestPoints& p : pairs)
+    if (!(p.distance < floor) && (!best || p.distance < best->distance)) best = p;
+  return best;
+}
+
+/// What certifiedApart() tests a convex quadric shape against: a mesh triangle (vertices v in the
+/// partner's frame tfp), an OcTree leaf (centre v[0], half widths v[1], tree frame tfp), or a convex
+/// solid (an FCL primitive or another convex quadric shape: its support mapping and its region, both
+/// in its frame tfp).
+struct CertifiedPiece {
+  enum Kind { Triangle, Leaf, Solid };
+  Kind kind = Triangle;
+  std::array<Eigen::Vector3d, 3> v{};
+  const ConvexSupport* support = nullptr;  // (Solid)
+  const QuadricRegion* region = nullptr;   // (Solid)
+
+  static CertifiedPiece triangle(const std::array<Eigen::Vector3d, 3>& v) { return {Triangle, v, nullptr, nullptr}; }
+  static CertifiedPiece leaf(const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
+    return {Leaf, {c, h, Eigen::Vector3d::Zero()}, nullptr, nullptr};
+  }
+  static CertifiedPiece solid(const ConvexSupport& s, const QuadricRegion& r) { return {Solid, {}, &s, &r}; }
+};
+
+/// The outward normal (unnormalised gradient, the region's frame) of the one surface of `region`
+/// through x, when exactly one atom's surface passes through it to 1e-9 of the scale; none at an
+/// edge, a vertex or off the boundary.
+std::optional<Eigen::Vector3d> singleSurfaceNormal(const QuadricRegion& region, const Eigen::Vector3d& x, double scale) {
+  int through = 0;
+  Eigen::Vector3d grad = Eigen::Vector3d::Zero();
+  const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
+  for (const Eigen::Matrix4d& Q : region.signedAtoms()) {
+    const Eigen::Vector3d g = 2.0 * (Q.topLeftCorner<3, 3>() * x + Q.topRightCorner<3, 1>());
+    const double gn = g.norm();
+    if (gn > 0.0 && std::abs(X.dot(Q * X)) <= 1e-9 * scale * gn) {
+      ++through;
+      grad = g;
+    }
+  }
+  if (through == 1) return grad;
+  return std::nullopt;
+}
+
+/// A convex quadric shape (its support mapping `support` and its region `shape_region`, both in its
+/// frame tfs) and a piece (a mesh triangle, an OcTree leaf, or a convex solid: an FCL primitive or
+/// another convex quadric shape; frame tfp) certified apart near contact, where GJK's screening
+/// leaves them undecided (docs/algorithms.md section 12, "Certified apart near contact"; sessions
+/// 40 and 41). GJK's witnesses, refined to rounding (triangleNearestPoints for a triangle,
+/// refineConvexPair otherwise), give candidate directions n from the shape to the piece, and
+/// the pair is apart when the piece's support towards -n lies beyond the shape's support towards
+/// n by more than the two support values' error: their rounding (supportRounding()) and a
+/// Region's enumeration tolerance (supportSlack()). The plane normal to n between them then
+/// separates the solids. Returns the refined pair (shape's frame), their distance, or nullopt when
+/// not certified (the region engine decides, and reports contact within its touching band). The
+/// same test in the front doors' collide (mesh and OcTree walk, convex pairs) and in distance's
+/// near-contact sign, so the two agree.
 std::optional<NearestPoints> certifiedApart(const QuadricRegion& shape_region, const ConvexSupport& support,
-                                            const fcl::Transform3<double>& tfs, bool triangle,
-                                            const std::array<Eigen::Vector3d, 3>& v, const fcl::Transform3<double>& tfp) {
-  if (support.kind() == ConvexSupport::Kind::Region || (triangle && zeroAreaTriangle(v[0], v[1], v[2]))) return std::nullopt;
-  const ConvexSupport piece = triangle ? ConvexSupport::points({v[0], v[1], v[2]}) : ConvexSupport::box(v[1]);
-  const Eigen::Vector3d p_piece = triangle ? Eigen::Vector3d(tfp.translation()) : Eigen::Vector3d(tfp * v[0]);
+                                            const fcl::Transform3<double>& tfs, const CertifiedPiece& cp,
+                                            const fcl::Transform3<double>& tfp) {
+  const std::array<Eigen::Vector3d, 3>& v = cp.v;
+  if (cp.kind == CertifiedPiece::Triangle && zeroAreaTriangle(v[0], v[1], v[2])) return std::nullopt;
+  const ConvexSupport piece = cp.kind == CertifiedPiece::Triangle ? ConvexSupport::points({v[0], v[1], v[2]})
+                              : cp.kind == CertifiedPiece::Leaf   ? ConvexSupport::box(v[1])
+                                                                  : *cp.support;
+  const Eigen::Vector3d p_piece =
+      cp.kind == CertifiedPiece::Leaf ? Eigen::Vector3d(tfp * v[0]) : Eigen::Vector3d(tfp.translation());
   const Eigen::Matrix3d& R_piece = tfp.linear();
   const SignedDistanceResult d =
       convexSignedDistance(support, tfs.linear(), tfs.translation(), piece, R_piece, p_piece, false);
   if (d.status == Separation::Overlapping) return std::nullopt;  // (Touching: GJK within its band of contact)
   const double scale = support.size() + piece.size() + (tfs.translation() - p_piece).norm();
   const Eigen::Matrix3d Rt = tfs.linear().transpose();
+  const Eigen::Matrix3d to_shape = Rt * tfp.linear();
+  const Eigen::Vector3d to_shape_t = Rt * (tfp.translation() - tfs.translation());
   const Eigen::Vector3d start_a = Rt * (d.point_a - tfs.translation());
-  const std::optional<NearestPoints> refined =
-      triangle ? triangleNearestPoints(shape_region, start_a, tfs, tfp, v, scale)
-               : refineNearestPoints(shape_region, boxRegion(v[0], v[1]).transformed(Rt * tfp.linear(), Rt * (tfp.translation() - tfs.translation())),
-                                     start_a, Rt * (d.point_b - tfs.translation()), scale);
-  const NearestPoints* pair = nullptr;
-  const NearestPoints gjk{start_a, Rt * (d.point_b - tfs.translation()), d.distance, 0};
-  pair = refined && (!(d.distance > 0.0) || refined->distance < d.distance) ? &*refined : &gjk;
+  const Eigen::Vector3d start_b = Rt * (d.point_b - tfs.translation());
+  std::optional<NearestPoints> refined;
+  if (cp.kind == CertifiedPiece::Triangle) {
+    refined = triangleNearestPoints(shape_region, start_a, tfs, tfp, v, scale);
+  } else {
+    const QuadricRegion piece_region = cp.kind == CertifiedPiece::Leaf ? boxRegion(v[0], v[1]) : *cp.region;
+    refined = refineConvexPair(shape_region, FramedSupport{support, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()},
+                               piece_region.transformed(to_shape, to_shape_t),
+                               FramedSupport{piece, Rt * R_piece, Rt * (p_piece - tfs.translation())}, start_a, start_b, scale);
+  }
+  // GJK's witnesses are points of the solids (combinations of support points) also within its
+  // touching band, where it reports distance 0: their distance bounds the distance from above.
+  const NearestPoints gjk{start_a, start_b, (start_b - start_a).norm(), 0};
+  const NearestPoints* pair = refined && (!(gjk.distance > 0.0) || refined->distance < gjk.distance) ? &*refined : &gjk;
   // Candidate directions (world frame): the witnesses' difference, whose direction is only known
   // to ~u |x| / |y - x| (at a gap of 3e-9, ~3e-8: a triangle lying flat in the tangent plane then
   // seemed to reach back 4e-8 across it); the shape's normal at its witness where one surface
   // passes through it (known to ~u, and the nearest pair's direction wherever the shape's
-  // witness is on a smooth part); the piece's normal: the triangle's plane's, or the leaf's axis
-  // nearest to the witnesses' difference, towards the piece.
+  // witness is on a smooth part); the piece's: a triangle's plane's, a box's (a leaf's, an
+  // fcl::Box's) axis nearest to the witnesses' difference, another solid's normal at its witness
+  // where one surface passes through it (the direction when the shape's witness is on an edge).
   const Eigen::Vector3d x = tfs.linear() * pair->point_a + tfs.translation(), y = tfs.linear() * pair->point_b + tfs.translation();
   const Eigen::Vector3d diff = y - x;
-  std::array<Eigen::Vector3d, 3> candidates{diff, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
-  {
-    int through = 0;
-    Eigen::Vector3d grad = Eigen::Vector3d::Zero();
-    for (const Eigen::Matrix4d& Q : shape_region.signedAtoms()) {
-      const Eigen::Vector3d g = 2.0 * (Q.topLeftCorner<3, 3>() * pair->point_a + Q.topRightCorner<3, 1>());
-      const Eigen::Vector4d X(pair->point_a[0], pair->point_a[1], pair->point_a[2], 1.0);
-      const double gn = g.norm();
-      if (gn > 0.0 && std::abs(X.dot(Q * X)) <= 1e-9 * scale * gn) {
-        ++through;
-        grad = g;
-      }
-    }
-    if (through == 1) candidates[1] = tfs.linear() * grad;
-  }
-  if (triangle) {
+  std::array<Eigen::Vector3d, 4> candidates{diff, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  if (const std::optional<Eigen::Vector3d> g = singleSurfaceNormal(shape_region, pair->point_a, scale))
+    candidates[1] = tfs.linear() * *g;
+  if (cp.kind == CertifiedPiece::Triangle) {
     candidates[2] = tfp.linear() * (v[1] - v[0]).cross(v[2] - v[0]);
   } else {
-    Eigen::Index axis = 0;
-    (R_piece.transpose() * diff).cwiseAbs().maxCoeff(&axis);
-    candidates[2] = R_piece.col(axis);
+    if (piece.kind() == ConvexSupport::Kind::Box) {
+      Eigen::Index axis = 0;
+      (R_piece.transpose() * diff).cwiseAbs().maxCoeff(&axis);
+      candidates[2] = R_piece.col(axis);
+    }
+    if (cp.kind == CertifiedPiece::Solid) {
+      const Eigen::Vector3d y_piece = tfp.linear().transpose() * (y - tfp.translation());
+      if (const std::optional<Eigen::Vector3d> g = singleSurfaceNormal(*cp.region, y_piece, scale))
+        candidates[3] = -(tfp.linear() * *g);
+    }
   }
   for (Eigen::Vector3d n : candidates) {
     if (!(n.norm() > 0.0) || !n.allFinite()) continue;
@@ -355,13 +485,17 @@ std::optional<NearestPoints> certifiedApart(const QuadricRegion& shape_region, c
     if (n.dot(diff) < 0.0) n = -n;  // from the shape towards the piece
     const Eigen::Vector3d s_shape = tfs.linear() * support.support(Rt * n) + tfs.translation();
     const Eigen::Vector3d s_piece = R_piece * piece.support(-(R_piece.transpose() * n)) + p_piece;
-    const double margin = 64.0 * std::numeric_limits<double>::epsilon() *
-                          (s_shape.norm() + s_piece.norm() + support.size() + piece.size());
-    if (n.dot(s_piece - s_shape) > margin) {
-      // Apart. The witnesses: the refined pair, else GJK's if apart, else the two support points
-      // (members of the solids, at least the certified gap apart).
+    if (n.dot(s_piece - s_shape) >
+        supportRounding(support, piece, s_shape, s_piece) + supportSlack(support) + supportSlack(piece)) {
+      // Apart. The witnesses: the refined pair, else GJK's (members of the solids, so their
+      // distance is an upper bound, within GJK's touching band of the truth). Where GJK's two
+      // witnesses coincide (rounding inside its band), the certified gap n.(s_piece - s_shape), a
+      // lower bound, is reported, between the shape's witness and that point moved by it along n:
+      // the support points themselves can be far from the nearest pair (a box's vertex for a
+      // face lying parallel to the shape's tangent plane).
       if (pair->distance > 0.0) return *pair;
-      return NearestPoints{Rt * (s_shape - tfs.translation()), Rt * (s_piece - tfs.translation()), (s_piece - s_shape).norm(), 0};
+      const double gap = n.dot(s_piece - s_shape);
+      return NearestPoints{pair->point_a, pair->point_a + gap * (Rt * n), gap, 0};
     }
   }
   return std::nullopt;
@@ -452,7 +586,7 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
             const std::optional<LocalSolid> t = triangleSolid(p0, p1, p2);
             if (!t) return false;
             if (g == ConvexScreening::Verdict::Undecided && convex &&
-                certifiedApart(shape.region, *convex, tfs, true, {p0, p1, p2}, tfp))
+                certifiedApart(shape.region, *convex, tfs, CertifiedPiece::triangle({p0, p1, p2}), tfp))
               return false;
             return g == ConvexScreening::Verdict::Overlapping ? contactAt(t->region, x) : piece(*t);
           });
@@ -465,7 +599,7 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
                               gjk(ConvexSupport::box(h), tfp.linear() * c + tfp.translation(), &x);
                           if (g == ConvexScreening::Verdict::Far) return false;
                           if (g == ConvexScreening::Verdict::Undecided && convex &&
-                              certifiedApart(shape.region, *convex, tfs, false, {c, h, Eigen::Vector3d::Zero()}, tfp))
+                              certifiedApart(shape.region, *convex, tfs, CertifiedPiece::leaf(c, h), tfp))
                             return false;
                           const LocalSolid leaf{boxRegion(c, h), Box3{c - h, c + h}, false};
                           return g == ConvexScreening::Verdict::Overlapping ? contactAt(leaf.region, x) : piece(leaf);
@@ -584,6 +718,24 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
         addRegionContact(localSolid(o1, "o1").region, tf1, *common, o1, o2, request, result);
       }
       return result.numContacts();
+    }
+    // Two solids convex as a whole (a convex quadric shape and an FCL primitive or another convex
+    // quadric shape) that the screening left undecided: certified apart by the same test as
+    // distance's near-contact sign (certifiedApart, the quadric shape first as there), else the
+    // region engine decides.
+    const bool whole1 = op1.convex || op1.own, whole2 = op2.convex || op2.own;
+    if (!plane && whole1 && whole2) {
+      const bool shape_first = quadric1;
+      const Operand& shape_op = shape_first ? op1 : op2;
+      const Operand& piece_op = shape_first ? op2 : op1;
+      const fcl::CollisionGeometry<double>* gs = shape_first ? o1 : o2;
+      const fcl::CollisionGeometry<double>* gq = shape_first ? o2 : o1;
+      const QuadricRegion piece_region = localSolid(gq, shape_first ? "o2" : "o1").region;
+      const ConvexSupport& piece_support = piece_op.convex ? *piece_op.convex : *piece_op.own;
+      if (certifiedApart(static_cast<const QuadricShape<double>&>(*gs).region(), *shape_op.convex,
+                         shape_first ? tf1 : tf2, CertifiedPiece::solid(piece_support, piece_region),
+                         shape_first ? tf2 : tf1))
+        return result.numContacts();
     }
   }
   collidePair(localSolid(o1, "o1"), tf1, localSolid(o2, "o2"), tf2, o1, o2, request, result);
@@ -1164,6 +1316,17 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
   // The distance from one convex piece of the shape to the partner.
   std::optional<QuadricRegion> shape_local;  // the shape's region in its frame tfs (made on first use)
   std::vector<PosedConvex> partner_pieces;  // a convex partner's pieces (never empty once computed)
+  // A partner convex as a whole (an FCL primitive, a convex quadric shape): its support and region
+  // in its frame tfp, for certifiedApart (made on first use; not for meshes, octrees, half-spaces).
+  std::optional<ConvexSupport> partner_whole;
+  std::optional<QuadricRegion> partner_local;
+  auto partnerWhole = [&]() {
+    if (!partner_local) {
+      partner_whole = convexSupportOf(gp, swap ? "o1" : "o2");
+      partner_local = localSolid(gp, "o2", where).region;
+    }
+    return partner_whole.has_value();
+  };
   auto fromShapePiece = [&](const PosedConvex& shape) {
     if (gp->getNodeType() == fcl::GEOM_HALFSPACE && !shape.model) {
       // min over the shape of n.x - d is reached at its support point towards -n.
@@ -1221,12 +1384,16 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
       const bool depth_unknown = d.status == Separation::Overlapping && !request.enable_signed_distance;
       // A convex shape (one piece, as collide's walk sees it) and a triangle or leaf: certified
       // apart by the same test as collide's walk (certifiedApart), then no collide is needed.
+      // So is a convex shape against a partner convex as a whole (an FCL primitive, another convex
+      // quadric shape), as collide's screening of convex pairs.
       bool certified = false;
       if (d.status != Separation::Overlapping && std::abs(d.distance) <= 1e-8 * scale && shape_whole &&
-          piece.kind != PosedConvex::Primitive) {
+          (piece.kind != PosedConvex::Primitive || partnerWhole())) {
         if (!shape_local) shape_local = localSolid(gs, "o1", where).region;
-        if (const std::optional<NearestPoints> c =
-                certifiedApart(*shape_local, *shape_whole, tfs, piece.kind == PosedConvex::Triangle, piece.v, tfp)) {
+        const CertifiedPiece cp = piece.kind == PosedConvex::Triangle ? CertifiedPiece::triangle(piece.v)
+                                  : piece.kind == PosedConvex::Leaf   ? CertifiedPiece::leaf(piece.v[0], piece.v[1])
+                                                                      : CertifiedPiece::solid(*partner_whole, *partner_local);
+        if (const std::optional<NearestPoints> c = certifiedApart(*shape_local, *shape_whole, tfs, cp, tfp)) {
           certified = true;
           if (!(d.status == Separation::Separated && d.distance > 0.0) || c->distance < d.distance) {
             d.status = Separation::Separated;
@@ -1285,9 +1452,16 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
           if (!zeroAreaTriangle(piece.v[0], piece.v[1], piece.v[2]))
             n = triangleNearestPoints(*shape_local, start_a, tfs, tfp, piece.v, scale);
         } else if (const std::optional<LocalSolid> b = pieceSolid()) {
-          n = refineNearestPoints(*shape_local,
-                                  b->region.transformed(Rt * tfp.linear(), Rt * (tfp.translation() - tfs.translation())),
-                                  start_a, Rt * (d.point_b - tfs.translation()), scale);
+          const QuadricRegion piece_region =
+              b->region.transformed(Rt * tfp.linear(), Rt * (tfp.translation() - tfs.translation()));
+          const Eigen::Vector3d start_b = Rt * (d.point_b - tfs.translation());
+          if (region_pair) {
+            n = refineNearestPoints(*shape_local, piece_region, start_a, start_b, scale);
+          } else {  // two convex pieces: cones' apexes and the support functions' check (refineConvexPair)
+            n = refineConvexPair(*shape_local, FramedSupport{shape.support, Rt * shape.R, Rt * (shape.p - tfs.translation())},
+                                 piece_region, FramedSupport{piece.support, Rt * piece.R, Rt * (piece.p - tfs.translation())},
+                                 start_a, start_b, scale);
+          }
         }
         if (n && n->distance < d.distance) {
           d.point_a = tfs.linear() * n->point_a + tfs.translation();

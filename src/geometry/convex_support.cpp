@@ -437,6 +437,12 @@ inline double planarLength(double x, double y) {
 }
 }  // namespace
 
+std::optional<Eigen::Vector3d> ConvexSupport::apex() const {
+  if (kind_ == Kind::Cone) return Eigen::Vector3d(0, 0, dims_.z());
+  if (kind_ == Kind::Region && region_->cone) return region_->apex;
+  return std::nullopt;
+}
+
 Eigen::Vector3d ConvexSupport::support(const Eigen::Vector3d& n) const {
   switch (kind_) {
     case Kind::Ellipsoid: {

@@ -112,6 +112,13 @@ class ConvexSupport {
   Eigen::Vector3d center() const { return center_; }
   /// Half the diagonal of a bounding box: the length scale of the tolerances.
   double size() const { return size_; }
+  /// A cone's apex (local frame): (0, 0, h) for the Cone kind, the apex of a Region whose curved
+  /// atom is one nappe of a cone. The one point of the curved surface where its gradient
+  /// vanishes, so a vertex that a Newton refinement through the curved atom cannot settle on
+  /// (nearest_points.h); refined as a point of its own instead (docs/algorithms.md section 12c).
+  /// A Region's planes may cut the apex off: callers check membership. None for the other kinds.
+  /// No failure mode.
+  std::optional<Eigen::Vector3d> apex() const;
 
  private:
   /// `found`, if given, receives whether any candidate was feasible (else the bounding-box
