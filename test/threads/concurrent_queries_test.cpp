@@ -26,6 +26,8 @@
 #include "fcl_quadric/fcl/collision.h"
 #include "fcl_quadric/fcl/distance.h"
 #include "fcl_quadric/fcl/pair_cache.h"
+#include "fcl_quadric/fcl/quadric_shapes.h"
+#include "fcl_quadric/geometry/quadric_region.h"
 #include "support/random_ellipsoids.h"
 
 namespace fcl_quadric {
@@ -222,6 +224,29 @@ TEST(ConcurrentQueries, TwoThreadsSolveTheSameMovingPairs) {
     EXPECT_EQ(results[k][0], rigid) << "thread " << k;
     EXPECT_EQ(results[k][1], affine) << "thread " << k;
   }
+}
+
+/// A Quadric's mass properties are computed on first use (session 41: they took 2.5-29 ms of its
+/// construction). Two threads asking at once, one through the shape and one through a copy
+/// (which shares the computation), get the same values, those of regionMassProperties on the
+/// same region and box; under TSan (scripts/ci-sanitizers.sh) the lazy computation is checked
+/// for races.
+TEST(ConcurrentQueries, TwoThreadsAskingAQuadricsMassPropertiesGetTheSameValues) {
+  const Quadric<double> shape = Quadric<double>::ellipsoid(0.5, 0.7, 1.1, {{Eigen::Vector3d(0, 0, 1), 0.5}});
+  const Quadric<double> copy = shape;
+  double volume[2] = {0.0, 0.0};
+  Eigen::Vector3d com[2];
+  onTwoThreads([&](int k) {
+    const Quadric<double>& q = k == 0 ? shape : copy;
+    volume[k] = q.computeVolume();
+    com[k] = q.computeCOM();
+  });
+  const MassProperties direct = regionMassProperties(shape.region(), shape.localBox());
+  EXPECT_EQ(volume[0], direct.volume);
+  EXPECT_EQ(volume[1], direct.volume);
+  EXPECT_EQ(com[0], direct.centroid);
+  EXPECT_EQ(com[1], direct.centroid);
+  EXPECT_EQ(&shape.massProperties(), &copy.massProperties());  // one computation, shared
 }
 
 }  // namespace

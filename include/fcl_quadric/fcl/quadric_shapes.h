@@ -50,7 +50,10 @@ class QuadricShape : public fcl::ShapeBase<S> {
   /// it): the continuous solver by dimension reduction needs them on every query.
   /// \throws std::invalid_argument if unbounded.
   std::shared_ptr<const BoundaryElements> sharedBoundaryElements() const;
-  /// Mass properties with the volume's error estimate. \throws std::invalid_argument if unbounded.
+  /// Mass properties with the volume's error estimate: in closed form for an EllipticCylinder,
+  /// else by certified cell classification (regionMassProperties), computed once per shape on
+  /// first use (thread-safe; copies of the shape share it). \throws std::invalid_argument if
+  /// unbounded.
   const MassProperties& massProperties() const;
   /// The solid as a support mapping (local frame), made once at construction: the closed form
   /// for an EllipticCylinder, ConvexSupport::fromRegion for another convex region (half-spaces and
@@ -90,13 +93,12 @@ class QuadricShape : public fcl::ShapeBase<S> {
  private:
   void requireBounded(const char* what) const;
 
-  struct ElementsCache;  // once_flag + elements (quadric_shapes.cpp)
+  struct ElementsCache;  // once_flags + elements, convex cover, mass properties (quadric_shapes.cpp)
 
   QuadricRegion region_;
   std::shared_ptr<ElementsCache> elements_;
   bool bounded_ = true;
   Box3 box_;
-  MassProperties mass_;
   std::optional<ConvexSupport> convex_;
 };
 
