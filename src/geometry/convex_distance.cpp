@@ -32,6 +32,14 @@ class Simplex {
   std::size_t size() const { return n_; }
   const Vertex& operator[](std::size_t i) const { return v_[i]; }
   void push_back(const Vertex& v) { v_[n_++] = v; }  // callers keep n_ <= 4
+  void pop_back() { --n_; }                           // callers keep n_ >= 1
+  /// Keeps the vertices of `mask` (bit i: vertex i), in order.
+  void keep(int mask) {
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < n_; ++i)
+      if (mask & (1 << i)) v_[m++] = v_[i];
+    n_ = m;
+  }
   const Vertex* begin() const { return v_.data(); }
   const Vertex* end() const { return v_.data() + n_; }
 
@@ -135,10 +143,13 @@ using SubsetMask = std::integral_constant<int, N>;
 /// skipped). A subset is not tried when a larger one that contains it has a valid projection:
 /// that projection is the nearest point of the larger subset's affine hull, so no point of the
 /// smaller one is nearer (Johnson's sub-algorithm, pruned: the same minimum; the distance of two
-/// capped cylinders took 13% less time in session 30, with the same steps). On return W is
-/// reduced to the subset and lambda holds its coordinates. False if no subset qualifies (only
-/// possible for a fully degenerate W).
-bool closestPoint(Simplex* W, std::array<double, 4>* lambda, Eigen::Vector3d* v) {
+/// capped cylinders took 13% less time in session 30, with the same steps). Returns the subset
+/// as a mask (bit i: W[i]; Simplex::keep() reduces W to it), with lambda its coordinates in order
+/// and v the point; W itself is unchanged, so that a caller can still drop the newest point
+/// (gjkEpa: a step that does not descend). 0 if no subset qualifies (only possible for a fully
+/// degenerate W).
+int closestPoint(const Simplex& Wref, std::array<double, 4>* lambda, Eigen::Vector3d* v) {
+  const Simplex* W = &Wref;
   const int k = static_cast<int>(W->size());
   double best = std::numeric_limits<double>::infinity();
   int best_mask = 0;
@@ -202,17 +213,8 @@ bool closestPoint(Simplex* W, std::array<double, 4>* lambda, Eigen::Vector3d* v)
       if (!any) consider(SubsetMask<8>{});
     }
   }
-  if (best_mask == 0) return false;
-  Simplex reduced;
-  int s = 0;
-  for (int i = 0; i < k; ++i)
-    if (best_mask & (1 << i)) {
-      reduced.push_back((*W)[i]);
-      (*lambda)[s] = best_l[s];
-      ++s;
-    }
-  *W = reduced;
-  return true;
+  if (best_mask != 0) *lambda = best_l;
+  return best_mask;
 }
 
 /// Distance of p from the affine hull of W (1..3 points).
@@ -325,28 +327,26 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
       break;
     }
     // The next simplex is committed only with its point v_new: a step that fails or does not
-    // descend leaves W and lambda those of v, so the witnesses below (lambda's combination of W's
-    // points) are always v's. (Before session 41 a stalled step kept v but not its simplex: a box
-    // face parallel to a quadric's tangent plane got the distance 3e-7 and witnesses 0.25 apart.)
-    Simplex W_next = W;
-    W_next.push_back(w);
-    std::array<double, 4> lambda_next = lambda;
+    // descend drops w again and leaves lambda, so the witnesses below (lambda's combination of
+    // W's points) are always v's. (Before session 41 a stalled step kept v but not its simplex: a
+    // cone's apex 3e-5 from a parallel box face got witnesses 0.2-0.4 apart.)
+    W.push_back(w);
+    std::array<double, 4> lambda_next{};
     Eigen::Vector3d v_new = Eigen::Vector3d::Zero();
-    if (!closestPoint(&W_next, &lambda_next, &v_new)) break;
-    if (W_next.size() == 4) {
-      origin_in_hull = true;
-      W = W_next;
-      lambda = lambda_next;
-      v = v_new;
+    const int mask = closestPoint(W, &lambda_next, &v_new);
+    const bool descends = mask != 0 && (mask == 15 || v_new.norm() < vn);
+    if (!descends) {
+      W.pop_back();
+      if (mask != 0) out.converged = vn - lower <= accuracy(vn);  // rounding stalled the descent
       break;
     }
-    if (!(v_new.norm() < vn)) {  // rounding stalled the descent
-      out.converged = vn - lower <= accuracy(vn);
-      break;
-    }
-    W = W_next;
+    W.keep(mask);
     lambda = lambda_next;
     v = v_new;
+    if (mask == 15) {  // the tetrahedron holds the origin
+      origin_in_hull = true;
+      break;
+    }
   }
   out.iterations = it;
 
