@@ -218,6 +218,68 @@ TEST(QuadricShapeDistance, MeshVerticesEdgesFacesAndSliverTipsNearAnEllipticCyli
   EXPECT_EQ(checked, 4 * 8 * 4 * 2);
 }
 
+/// One nappe of a cone (a `Quadric`, whose support mapping is enumerated: a Region support) by its
+/// apex against a mesh's vertex (a pyramid's apex) and a face (a triangle in the plane through
+/// s + g n), with n in the cone's polar cone and -n inside it, as in the tests around this one:
+/// the distance is g. Before session 41 the certificate of docs/algorithms.md section 12 left
+/// Region supports to the region engine, whose touching band made these contact at gaps of 3e-9
+/// and 3e-11 (on a scratch driver 30 of 120 vertex and 60 of 120 face answers; this test: 72 failed checks with
+/// the code before the session). Both argument
+/// orders: no contact and the distance to 1e-10 relative plus 1e-13 at +g, a contact at -g.
+TEST(QuadricShapeDistance, AConesApexNearMeshVerticesAndFacesGivesTheConstructedGap) {
+  std::mt19937_64 rng(411);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double a = 0.6, b = 0.9, lz = 1.2;
+  const Quadric<double> cone =
+      Quadric<double>::ellipticCone(a, b, 1.0, {{Eigen::Vector3d(0, 0, -1), 0.0}, {Eigen::Vector3d(0, 0, 1), lz}});
+  int checked = 0;
+  for (int kind = 0; kind < 2; ++kind) {
+    for (int trial = 0; trial < 4; ++trial) {
+      const double th = 2.0 * M_PI * unit(rng), c = std::cos(th), si = std::sin(th);
+      const double limit = std::min(1.0 / std::hypot(a * c, b * si), 1.0 / std::hypot(c / a, si / b));
+      const double al = std::atan(0.9 * limit) * unit(rng);
+      const Eigen::Vector3d n(std::sin(al) * c, std::sin(al) * si, -std::cos(al));  // unit
+      const Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+      const Transform tc = pose(test::randomRotation(rng), test::randomUnitVector(rng));
+      const Transform tm = pose(test::randomRotation(rng), test::randomUnitVector(rng));
+      const double H = 0.3 + 0.5 * unit(rng), r = 0.2 + 0.3 * unit(rng), phi = 2.0 * M_PI * unit(rng);
+      for (double g : {3e-5, 3e-7, 3e-9, 3e-11, -3e-5, -3e-7, -3e-9, -3e-11}) {
+        const Eigen::Vector3d p = g * n;  // the apex is the origin of the cone's frame
+        std::vector<Eigen::Vector3d> w;
+        std::vector<fcl::Triangle> tris;
+        for (int k = 0; k < 3; ++k) {
+          const double f = phi + 2.0 * M_PI * k / 3.0;
+          w.push_back(p + (kind == 0 ? H : 0.0) * n + r * (std::cos(f) * t1 + std::sin(f) * t2));
+        }
+        if (kind == 0) {  // a pyramid: apex p, base H above it
+          w.insert(w.begin(), p);
+          tris = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}};
+        } else {  // a tetrahedron whose face lies in the plane, around p
+          w.push_back(p + H * n);
+          tris = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
+        }
+        std::vector<Eigen::Vector3d> in_mesh_frame;
+        for (const Eigen::Vector3d& x : w) in_mesh_frame.push_back(tm.inverse() * (tc * x));
+        fcl::BVHModel<fcl::OBBRSS<double>> mesh;
+        mesh.beginModel();
+        mesh.addSubModel(in_mesh_frame, tris);
+        mesh.endModel();
+        for (bool mesh_first : {false, true}) {
+          const bool hit = mesh_first ? collides(mesh, tm, cone, tc) : collides(cone, tc, mesh, tm);
+          EXPECT_EQ(hit, g < 0.0) << "kind " << kind << " trial " << trial << " gap " << g;
+          if (g < 0.0) continue;
+          fcl::DistanceResult<double> res;
+          const double d = mesh_first ? dist(mesh, tm, cone, tc, false, &res) : dist(cone, tc, mesh, tm, false, &res);
+          EXPECT_NEAR(d, g, 1e-10 * g + 1e-13) << "kind " << kind << " trial " << trial << " gap " << g;
+          EXPECT_NEAR((res.nearest_points[1] - res.nearest_points[0]).norm(), d, 3e-14);
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(checked, 2 * 4 * 4 * 2);
+}
+
 /// Convex quadric shapes against FCL primitives and another convex quadric shape, at a gap known by
 /// construction as in the mesh test above: s on the shape's boundary with outward unit normal n
 /// such that the shape lies in (x - s).n <= 0, and the partner posed so that its support point
