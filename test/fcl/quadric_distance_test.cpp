@@ -223,9 +223,9 @@ TEST(QuadricShapeDistance, MeshVerticesEdgesFacesAndSliverTipsNearAnEllipticCyli
 /// s + g n), with n in the cone's polar cone and -n inside it, as in the tests around this one:
 /// the distance is g. Before session 41 the certificate of docs/algorithms.md section 12 left
 /// Region supports to the region engine, whose touching band made these contact at gaps of 3e-9
-/// and 3e-11 (on a scratch driver 30 of 120 vertex and 60 of 120 face answers; this test: 72 failed checks with
-/// the code before the session). Both argument
-/// orders: no contact and the distance to 1e-10 relative plus 1e-13 at +g, a contact at -g.
+/// and 3e-11 (on a scratch driver 30 of 120 vertex and 60 of 120 face answers; this test: 72
+/// failed checks with the code before the session). Both argument orders: no contact and the
+/// distance to 1e-10 relative plus 1e-13 at +g, a contact at -g.
 TEST(QuadricShapeDistance, AConesApexNearMeshVerticesAndFacesGivesTheConstructedGap) {
   std::mt19937_64 rng(411);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
