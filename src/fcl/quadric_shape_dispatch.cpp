@@ -341,9 +341,10 @@ double supportRounding(const ConvexSupport& a, const ConvexSupport& b, const Eig
 std::optional<NearestPoints> refineConvexPair(const QuadricRegion& a, const FramedSupport& sa, const QuadricRegion& b,
                                               const FramedSupport& sb, const Eigen::Vector3d& start_a,
                                               const Eigen::Vector3d& start_b, double scale) {
-  std::vector<NearestPoints> pairs;
+  std::array<NearestPoints, 4> pairs;  // (at most four candidates: no allocation per query)
+  std::size_t count = 0;
   auto add = [&](const std::optional<NearestPoints>& p) {
-    if (p) pairs.push_back(*p);
+    if (p) pairs[count++] = *p;
   };
   add(refineNearestPoints(a, b, start_a, start_b, scale));
   const std::optional<Eigen::Vector3d> apex_a = sa.apex(), apex_b = sb.apex();
@@ -363,10 +364,10 @@ std::optional<NearestPoints> refineConvexPair(const QuadricRegion& a, const Fram
     floor = std::max(floor, n.dot(s_b - s_a) - supportRounding(sa.s, sb.s, s_a, s_b));
   };
   bound(start_b - start_a);
-  for (const NearestPoints& p : pairs) bound(p.point_b - p.point_a);
+  for (std::size_t i = 0; i < count; ++i) bound(pairs[i].point_b - pairs[i].point_a);
   std::optional<NearestPoints> best;
-  for (const NearestPoints& p : pairs)
-    if (!(p.distance < floor) && (!best || p.distance < best->distance)) best = p;
+  for (std::size_t i = 0; i < count; ++i)
+    if (!(pairs[i].distance < floor) && (!best || pairs[i].distance < best->distance)) best = pairs[i];
   return best;
 }
 

@@ -148,9 +148,8 @@ using SubsetMask = std::integral_constant<int, N>;
 /// and v the point; W itself is unchanged, so that a caller can still drop the newest point
 /// (gjkEpa: a step that does not descend). 0 if no subset qualifies (only possible for a fully
 /// degenerate W).
-int closestPoint(const Simplex& Wref, std::array<double, 4>* lambda, Eigen::Vector3d* v) {
-  const Simplex* W = &Wref;
-  const int k = static_cast<int>(W->size());
+int closestPoint(const Simplex& W, std::array<double, 4>* lambda, Eigen::Vector3d* v) {
+  const int k = static_cast<int>(W.size());
   double best = std::numeric_limits<double>::infinity();
   int best_mask = 0;
   std::array<double, 4> best_l{};
@@ -168,8 +167,8 @@ int closestPoint(const Simplex& Wref, std::array<double, 4>* lambda, Eigen::Vect
     Eigen::Vector3d p;
     if constexpr (s == 1) {
       l[0] = 1.0;
-      p = (*W)[idx[0]].w;
-    } else if (!affineProjectionK<s - 1>(*W, idx, &l, &p)) {
+      p = W[idx[0]].w;
+    } else if (!affineProjectionK<s - 1>(W, idx, &l, &p)) {
       return false;
     }
     const double d = p.squaredNorm();
@@ -196,7 +195,7 @@ int closestPoint(const Simplex& Wref, std::array<double, 4>* lambda, Eigen::Vect
     default: {
       // The tetrahedron: the origin inside it (all coordinates > 0) is the answer.
       std::array<double, 4> l{};
-      if (tetrahedronCoordinates(*W, &l) && l[0] > 0.0 && l[1] > 0.0 && l[2] > 0.0 && l[3] > 0.0) {
+      if (tetrahedronCoordinates(W, &l) && l[0] > 0.0 && l[1] > 0.0 && l[2] > 0.0 && l[3] > 0.0) {
         best_mask = 15;
         best_l = l;
         *v = Eigen::Vector3d::Zero();
