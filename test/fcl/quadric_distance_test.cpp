@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
@@ -81,6 +82,39 @@ double pointTriangleDistance(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
     return (x - (p0 + t * (p1 - p0))).norm();
   };
   return std::min({segment(a, b), segment(b, c), segment(c, a)});
+}
+
+/// The checks of the constructed-gap tests below: a shape (pose ts) and a partner (pose tp) at the
+/// constructed signed gap g, in both argument orders: collide reports a contact exactly when
+/// g < 0; for g > 0 the distance is g within `tol` and the witnesses lie at that distance within
+/// `witness_tol`. Returns the number of distances checked (two for g > 0, else none).
+int expectConstructedGap(const fcl::CollisionGeometry<double>& shape, const Transform& ts,
+                         const fcl::CollisionGeometry<double>& partner, const Transform& tp, double g, double tol,
+                         double witness_tol, const std::string& where) {
+  int checked = 0;
+  for (bool shape_first : {true, false}) {
+    const std::string at = where + " gap " + std::to_string(g) + (shape_first ? ", shape first" : ", partner first");
+    const bool hit = shape_first ? collides(shape, ts, partner, tp) : collides(partner, tp, shape, ts);
+    EXPECT_EQ(hit, g < 0.0) << at;
+    if (g < 0.0) continue;
+    fcl::DistanceResult<double> res;
+    const double d = shape_first ? dist(shape, ts, partner, tp, false, &res) : dist(partner, tp, shape, ts, false, &res);
+    EXPECT_NEAR(d, g, tol) << at;
+    EXPECT_NEAR((res.nearest_points[1] - res.nearest_points[0]).norm(), d, witness_tol) << at;
+    ++checked;
+  }
+  return checked;
+}
+
+/// A unit normal n at the apex of the nappe x^2/a^2 + y^2/b^2 <= z^2, z >= 0, at azimuth th, in
+/// the nappe's polar cone (the nappe lies in x.n <= 0: tan(al) <= 1 / |(a cos th, b sin th)|) with
+/// -n inside the nappe (tan(al) <= 1 / |(cos th / a, sin th / b)|), so that -g n overlaps it;
+/// u in [0, 1) picks the angle al from the axis, up to 0.9 of the tighter limit.
+Eigen::Vector3d coneApexNormal(double a, double b, double th, double u) {
+  const double c = std::cos(th), si = std::sin(th);
+  const double limit = std::min(1.0 / std::hypot(a * c, b * si), 1.0 / std::hypot(c / a, si / b));
+  const double al = std::atan(0.9 * limit) * u;
+  return Eigen::Vector3d(std::sin(al) * c, std::sin(al) * si, -std::cos(al));
 }
 
 /// An elliptic cylinder near a sliver triangle (edges 0.54 / 0.34 / 0.20, height 3.6e-7) of a
@@ -202,16 +236,8 @@ TEST(QuadricShapeDistance, MeshVerticesEdgesFacesAndSliverTipsNearAnEllipticCyli
         mesh.addSubModel(in_mesh_frame, tris);
         mesh.endModel();
         const double scale = a + b + lz + H + r + (tc.translation() - tm.translation()).norm();
-        for (bool mesh_first : {false, true}) {
-          const bool hit = mesh_first ? collides(mesh, tm, cylinder, tc) : collides(cylinder, tc, mesh, tm);
-          EXPECT_EQ(hit, g < 0.0) << "kind " << kind << " trial " << trial << " gap " << g;
-          if (g < 0.0) continue;
-          fcl::DistanceResult<double> res;
-          const double d = mesh_first ? dist(mesh, tm, cylinder, tc, false, &res) : dist(cylinder, tc, mesh, tm, false, &res);
-          EXPECT_NEAR(d, g, 1e-10 * g + 1e-14 * scale) << "kind " << kind << " trial " << trial << " gap " << g;
-          EXPECT_NEAR((res.nearest_points[1] - res.nearest_points[0]).norm(), d, 1e-14 * scale);
-          ++checked;
-        }
+        checked += expectConstructedGap(cylinder, tc, mesh, tm, g, 1e-10 * g + 1e-14 * scale, 1e-14 * scale,
+                                        "kind " + std::to_string(kind) + " trial " + std::to_string(trial));
       }
     }
   }
@@ -235,10 +261,8 @@ TEST(QuadricShapeDistance, AConesApexNearMeshVerticesAndFacesGivesTheConstructed
   int checked = 0;
   for (int kind = 0; kind < 2; ++kind) {
     for (int trial = 0; trial < 4; ++trial) {
-      const double th = 2.0 * M_PI * unit(rng), c = std::cos(th), si = std::sin(th);
-      const double limit = std::min(1.0 / std::hypot(a * c, b * si), 1.0 / std::hypot(c / a, si / b));
-      const double al = std::atan(0.9 * limit) * unit(rng);
-      const Eigen::Vector3d n(std::sin(al) * c, std::sin(al) * si, -std::cos(al));  // unit
+      const double th = 2.0 * M_PI * unit(rng);
+      const Eigen::Vector3d n = coneApexNormal(a, b, th, unit(rng));
       const Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
       const Transform tc = pose(test::randomRotation(rng), test::randomUnitVector(rng));
       const Transform tm = pose(test::randomRotation(rng), test::randomUnitVector(rng));
@@ -264,16 +288,8 @@ TEST(QuadricShapeDistance, AConesApexNearMeshVerticesAndFacesGivesTheConstructed
         mesh.beginModel();
         mesh.addSubModel(in_mesh_frame, tris);
         mesh.endModel();
-        for (bool mesh_first : {false, true}) {
-          const bool hit = mesh_first ? collides(mesh, tm, cone, tc) : collides(cone, tc, mesh, tm);
-          EXPECT_EQ(hit, g < 0.0) << "kind " << kind << " trial " << trial << " gap " << g;
-          if (g < 0.0) continue;
-          fcl::DistanceResult<double> res;
-          const double d = mesh_first ? dist(mesh, tm, cone, tc, false, &res) : dist(cone, tc, mesh, tm, false, &res);
-          EXPECT_NEAR(d, g, 1e-10 * g + 1e-13) << "kind " << kind << " trial " << trial << " gap " << g;
-          EXPECT_NEAR((res.nearest_points[1] - res.nearest_points[0]).norm(), d, 3e-14);
-          ++checked;
-        }
+        checked += expectConstructedGap(cone, tc, mesh, tm, g, 1e-10 * g + 1e-13, 3e-14,
+                                        "kind " + std::to_string(kind) + " trial " + std::to_string(trial));
       }
     }
   }
@@ -359,12 +375,9 @@ TEST(QuadricShapeDistance, ConvexShapesNearPrimitivesGiveTheConstructedGapAndCol
           const double z = lz * (0.1 + 0.8 * unit(rng));
           s = Eigen::Vector3d(a * z * std::cos(th), b * z * std::sin(th), z);
           n = Eigen::Vector3d(2.0 * s.x() / (a * a), 2.0 * s.y() / (b * b), -2.0 * z);
-        } else {  // its apex: tan(al) below both 1 / |(a cos, b sin)| (polar) and 1 / |(cos / a, sin / b)| (inside)
-          const double c = std::cos(th), si = std::sin(th);
-          const double limit = std::min(1.0 / std::hypot(a * c, b * si), 1.0 / std::hypot(c / a, si / b));
-          const double al = std::atan(0.9 * limit) * unit(rng);
+        } else {  // its apex
           s = Eigen::Vector3d::Zero();
-          n = Eigen::Vector3d(std::sin(al) * c, std::sin(al) * si, -std::cos(al));
+          n = coneApexNormal(a, b, th, unit(rng));
         }
         n.normalize();
         Eigen::Matrix3d Rp = test::randomRotation(rng);
@@ -380,21 +393,10 @@ TEST(QuadricShapeDistance, ConvexShapesNearPrimitivesGiveTheConstructedGapAndCol
         for (double g : {3e-5, 3e-7, 3e-9, 3e-11, -3e-5, -3e-7, -3e-9, -3e-11}) {
           const Eigen::Vector3d p = s + g * n;  // the shape's frame
           const Transform tp = pose(tc.linear() * Rp, tc * (p - Rp * local));
-          const fcl::CollisionGeometry<double>& partner = *partners[kind];
           const double scale = 3.0;
-          for (bool shape_first : {true, false}) {
-            const bool hit = shape_first ? collides(shape, tc, partner, tp) : collides(partner, tp, shape, tc);
-            EXPECT_EQ(hit, g < 0.0) << "shape " << shape_kind << " partner " << kind << " trial " << trial << " gap " << g;
-            if (g < 0.0) continue;
-            fcl::DistanceResult<double> res;
-            const double d = shape_first ? dist(shape, tc, partner, tp, false, &res) : dist(partner, tp, shape, tc, false, &res);
-            EXPECT_NEAR(d, g, 1e-10 * g + 1e-13) << "shape " << shape_kind << " partner " << kind << " trial " << trial
-                                                  << " gap " << g;
-            EXPECT_NEAR((res.nearest_points[1] - res.nearest_points[0]).norm(), d, 1e-14 * scale)
-                << "shape " << shape_kind << " partner " << kind << " trial " << trial << " gap " << g << " shape first "
-                << shape_first;
-            ++checked;
-          }
+          checked += expectConstructedGap(shape, tc, *partners[kind], tp, g, 1e-10 * g + 1e-13, 1e-14 * scale,
+                                          "shape " + std::to_string(shape_kind) + " partner " + std::to_string(kind) +
+                                              " trial " + std::to_string(trial));
         }
       }
     }
