@@ -52,7 +52,14 @@ QuadricShape<S>::QuadricShape(QuadricRegion region, const std::optional<Box3>& b
     box_ = *box;
   } else {
     try {
-      box_ = regionAabb(region_, hint ? &*hint : nullptr);
+      // A convex region's box from its support mapping, certified face by face (milliseconds);
+      // else, and for the cases it leaves (unbounded, empty, an ellipsoid atom), regionAabb's
+      // bisections (10 ms to seconds for paraboloids and cones; docs/algorithms.md section 12).
+      const Box3* h = hint ? &*hint : nullptr;
+      if (std::optional<Box3> fast = ConvexSupport::regionBox(region_, h))
+        box_ = *fast;
+      else
+        box_ = regionAabb(region_, h);
     } catch (const std::invalid_argument& e) {
       if (!allow_unbounded || !isUnboundedError(e)) throw;
       bounded_ = false;
