@@ -43,10 +43,20 @@
 // Non-convex distance (geometry/region_distance.h): a CSG ring against a ball at 64 separated
 // poses, fcl_quadric::distance against fcl::distance on the ring tessellated (6,144 triangles);
 // afterwards the certified bracket of ours and the mesh's error against it.
+//
+// Construction (session 42): the certified local box of four convex quadric solids (a clipped
+// ellipsoid, a paraboloid cap, a cone nappe, a two-sheet hyperboloid's capped sheet), as built
+// (Quadric's named constructors, unposed) and posed by a fixed rotation and offset (the region
+// transformed, as a CSG child's is): ConvexSupport::regionBox (the support mapping's box,
+// certified face by face by the engine: what a QuadricShape's constructor uses for a convex
+// region since session 42) against regionAabb (the engine's bisections: what it used before, and
+// still uses for the other regions); and the whole Quadric construction (box, support mapping).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -870,6 +880,58 @@ bool distanceTimed(const ShapePairScene& s) {
   return s.theirs && (s.name == "CylinderSphere" || s.name == "CylinderCapsule" || s.name == "CylinderBox" ||
                       s.name == "ConeSphere");
 }
+/// The convex solids of the construction rows: each as a Quadric (unposed) and its region posed.
+struct ConstructionCase {
+  std::string name;
+  std::function<fcl_quadric::Quadric<double>()> make;
+  QuadricRegion posed;
+};
+std::vector<ConstructionCase> makeConstructionCases() {
+  using Q = fcl_quadric::Quadric<double>;
+  const Eigen::Vector3d ez(0, 0, 1);
+  std::vector<ConstructionCase> out;
+  out.push_back({"ClippedEllipsoid", [ez] { return Q::ellipsoid(0.5, 0.7, 1.1, {{ez, 0.5}}); }, QuadricRegion()});
+  out.push_back({"ParaboloidCap", [ez] { return Q::ellipticParaboloid(0.5, 0.7, {{ez, 1.0}}); }, QuadricRegion()});
+  out.push_back({"ConeNappe", [ez] { return Q::ellipticCone(0.5, 0.7, 1.0, {{-ez, 0.0}, {ez, 1.1}}); }, QuadricRegion()});
+  out.push_back(
+      {"TwoSheetCap", [ez] { return Q::hyperboloidTwoSheets(1.0, 1.0, 1.0, {{-ez, 0.0}, {ez, 2.0}}); }, QuadricRegion()});
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  for (ConstructionCase& c : out) c.posed = c.make().region().transformed(R, Eigen::Vector3d(1.5, -2.0, 3.0));
+  return out;
+}
+std::vector<ConstructionCase>& constructionCases() {
+  static std::vector<ConstructionCase> cases;
+  return cases;
+}
+void registerConstructionBenchmarks() {
+  for (std::size_t k = 0; k < constructionCases().size(); ++k) {
+    const std::string& name = constructionCases()[k].name;
+    benchmark::RegisterBenchmark(("QuadricShapes/Construction/" + name + "/fcl_quadric").c_str(),
+                                 [k](benchmark::State& state) {
+                                   for (auto _ : state) benchmark::DoNotOptimize(constructionCases()[k].make());
+                                 })
+        ->Unit(benchmark::kMillisecond);
+    for (const bool support : {true, false}) {
+      benchmark::RegisterBenchmark(
+          ("QuadricShapes/ConstructionBox/" + name + "Posed/" + (support ? "SupportCertified" : "RegionEngineBisection"))
+              .c_str(),
+          [k, support](benchmark::State& state) {
+            const QuadricRegion& r = constructionCases()[k].posed;
+            for (auto _ : state) {
+              if (support) {
+                const std::optional<Box3> b = fcl_quadric::ConvexSupport::regionBox(r);
+                if (!b) state.SkipWithError("regionBox refused a convex region");
+                benchmark::DoNotOptimize(b);
+              } else {
+                benchmark::DoNotOptimize(fcl_quadric::regionAabb(r));
+              }
+            }
+          })
+          ->Unit(benchmark::kMillisecond);
+    }
+  }
+}
+
 void registerShapePairBenchmarks() {
   for (std::size_t k = 0; k < shapePairScenes().size(); ++k) {
     const ShapePairScene& s = shapePairScenes()[k];
@@ -926,6 +988,8 @@ int main(int argc, char** argv) {
   octreeTerrain() = makeOcTreeTerrain();
   shapePairScenes() = makeShapePairScenes();
   registerShapePairBenchmarks();
+  constructionCases() = makeConstructionCases();
+  registerConstructionBenchmarks();
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   {
