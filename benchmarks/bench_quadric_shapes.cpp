@@ -47,7 +47,7 @@
 // Construction (session 42): the certified local box of four convex quadric solids (a clipped
 // ellipsoid, a paraboloid cap, a cone nappe, a two-sheet hyperboloid's capped sheet), as built
 // (Quadric's named constructors, unposed) and posed by a fixed rotation and offset (the region
-// transformed, as a CSG child's is): ConvexSupport::regionBox (the support mapping's box,
+// transformed, as a CSG child's is), each unposed and posed: ConvexSupport::regionBox (the support mapping's box,
 // certified face by face by the engine: what a QuadricShape's constructor uses for a convex
 // region since session 42) against regionAabb (the engine's bisections: what it used before, and
 // still uses for the other regions); and the whole Quadric construction (box, support mapping).
@@ -880,23 +880,27 @@ bool distanceTimed(const ShapePairScene& s) {
   return s.theirs && (s.name == "CylinderSphere" || s.name == "CylinderCapsule" || s.name == "CylinderBox" ||
                       s.name == "ConeSphere");
 }
-/// The convex solids of the construction rows: each as a Quadric (unposed) and its region posed.
+/// The convex solids of the construction rows: each as a Quadric (unposed), its region, and that
+/// region posed.
 struct ConstructionCase {
   std::string name;
   std::function<fcl_quadric::Quadric<double>()> make;
-  QuadricRegion posed;
+  QuadricRegion local, posed;
 };
 std::vector<ConstructionCase> makeConstructionCases() {
   using Q = fcl_quadric::Quadric<double>;
   const Eigen::Vector3d ez(0, 0, 1);
   std::vector<ConstructionCase> out;
-  out.push_back({"ClippedEllipsoid", [ez] { return Q::ellipsoid(0.5, 0.7, 1.1, {{ez, 0.5}}); }, QuadricRegion()});
-  out.push_back({"ParaboloidCap", [ez] { return Q::ellipticParaboloid(0.5, 0.7, {{ez, 1.0}}); }, QuadricRegion()});
-  out.push_back({"ConeNappe", [ez] { return Q::ellipticCone(0.5, 0.7, 1.0, {{-ez, 0.0}, {ez, 1.1}}); }, QuadricRegion()});
+  out.push_back({"ClippedEllipsoid", [ez] { return Q::ellipsoid(0.5, 0.7, 1.1, {{ez, 0.5}}); }, {}, {}});
+  out.push_back({"ParaboloidCap", [ez] { return Q::ellipticParaboloid(0.5, 0.7, {{ez, 1.0}}); }, {}, {}});
+  out.push_back({"ConeNappe", [ez] { return Q::ellipticCone(0.5, 0.7, 1.0, {{-ez, 0.0}, {ez, 1.1}}); }, {}, {}});
   out.push_back(
-      {"TwoSheetCap", [ez] { return Q::hyperboloidTwoSheets(1.0, 1.0, 1.0, {{-ez, 0.0}, {ez, 2.0}}); }, QuadricRegion()});
+      {"TwoSheetCap", [ez] { return Q::hyperboloidTwoSheets(1.0, 1.0, 1.0, {{-ez, 0.0}, {ez, 2.0}}); }, {}, {}});
   const Eigen::Matrix3d R = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
-  for (ConstructionCase& c : out) c.posed = c.make().region().transformed(R, Eigen::Vector3d(1.5, -2.0, 3.0));
+  for (ConstructionCase& c : out) {
+    c.local = c.make().region();
+    c.posed = c.local.transformed(R, Eigen::Vector3d(1.5, -2.0, 3.0));
+  }
   return out;
 }
 std::vector<ConstructionCase>& constructionCases() {
@@ -911,23 +915,26 @@ void registerConstructionBenchmarks() {
                                    for (auto _ : state) benchmark::DoNotOptimize(constructionCases()[k].make());
                                  })
         ->Unit(benchmark::kMillisecond);
-    for (const bool support : {true, false}) {
-      benchmark::RegisterBenchmark(
-          ("QuadricShapes/ConstructionBox/" + name + "Posed/" + (support ? "SupportCertified" : "RegionEngineBisection"))
-              .c_str(),
-          [k, support](benchmark::State& state) {
-            const QuadricRegion& r = constructionCases()[k].posed;
-            for (auto _ : state) {
-              if (support) {
-                const std::optional<Box3> b = fcl_quadric::ConvexSupport::regionBox(r);
-                if (!b) state.SkipWithError("regionBox refused a convex region");
-                benchmark::DoNotOptimize(b);
-              } else {
-                benchmark::DoNotOptimize(fcl_quadric::regionAabb(r));
-              }
-            }
-          })
-          ->Unit(benchmark::kMillisecond);
+    for (const bool posed : {false, true}) {
+      for (const bool support : {true, false}) {
+        const std::string row = "QuadricShapes/ConstructionBox/" + name + (posed ? "Posed/" : "/") +
+                                (support ? "SupportCertified" : "RegionEngineBisection");
+        benchmark::RegisterBenchmark(row.c_str(),
+                                     [k, posed, support](benchmark::State& state) {
+                                       const ConstructionCase& c = constructionCases()[k];
+                                       const QuadricRegion& r = posed ? c.posed : c.local;
+                                       for (auto _ : state) {
+                                         if (support) {
+                                           const std::optional<Box3> b = fcl_quadric::ConvexSupport::regionBox(r);
+                                           if (!b) state.SkipWithError("regionBox refused a convex region");
+                                           benchmark::DoNotOptimize(b);
+                                         } else {
+                                           benchmark::DoNotOptimize(fcl_quadric::regionAabb(r));
+                                         }
+                                       }
+                                     })
+            ->Unit(benchmark::kMillisecond);
+      }
     }
   }
 }
