@@ -1,10 +1,14 @@
 // The certified bounding box of a convex region from its support mapping (convex_support.h,
 // ConvexSupport::regionBox; docs/algorithms.md section 12, "Bounding boxes of convex regions").
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Dense>
+
 #include "fcl_quadric/geometry/convex_support.h"
+#include "geometry/convex_support_region.h"
 
 namespace fcl_quadric {
 
@@ -20,8 +24,111 @@ constexpr int kBoxStages = 8;
 /// it: the atom's gradient vanishes there, and no pencil excludes a plane from a cone) moves out
 /// by doubling steps up to this fraction of the box, then the caller falls back to regionAabb.
 constexpr double kMaxFacePadRelative = 1e-3;
+/// The rounding unit of the duality bound's terms: a generous multiple of the double's epsilon
+/// (each term is a short sum of products; docs/algorithms.md section 12).
+constexpr double kDualRounding = 64.0 * std::numeric_limits<double>::epsilon();
+/// At most this many constraints enter the multiplier search (those with the smallest slack);
+/// subsets of up to three of them are tried (three normals span the space: Caratheodory).
+constexpr int kDualMaxConstraints = 6;
 
 }  // namespace
+
+// dualSupportBound: weak duality (docs/algorithms.md section 12, "Bounding boxes of convex regions"). With
+// multipliers lambda >= 0 (the curved atom f) and mu_k >= 0 (the planes h_k.y <= d_k), write
+// e = lambda grad f(x) + sum mu_k h_k + r. For y in the region and in `outer`:
+//   grad f(x).(y - x) = f(y) - f(x) - (y - x)^T A (y - x) <= rho_f - f(x) + nu |y - x|^2,
+//   h_k.(y - x) <= d_k - h_k.x + rho_k,
+// with rho the rounding of the stored (normalised) constraints against the region's own, and nu
+// A's most negative eigenvalue (0 up to rounding: A is positive semidefinite). Hence
+//   e.y <= e.x + lambda (rho_f - f(x) + nu D^2) + sum mu_k (d_k - h_k.x + rho_k) + |r| D,
+// D the diameter of `outer`. Any non-negative multipliers give a valid bound; those of the
+// support point's KKT system make it tight.
+std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, const Eigen::Vector3d& x,
+                                                     const Box3& outer) const {
+  constexpr double u = kDualRounding;
+  if (kind_ != Kind::Region || !e.allFinite()) return std::nullopt;
+  const RegionData& g = *region_;
+  const double e_norm = e.norm();
+  // The tangent-plane inequality of f needs f convex: not for a cone nappe or a hyperboloid
+  // sheet (convex only on one component), which the engine certifies instead.
+  // (fromRegion accepts a curved atom otherwise only as positive semidefinite, its smallest
+  // eigenvalue >= -kSupportIndefiniteRelative of the largest: `nu` below.)
+  if (g.has_curved && (g.cone || std::isfinite(g.r))) return std::nullopt;
+  if (!x.allFinite() || (x.array() < outer.lo.array()).any() || (x.array() > outer.hi.array()).any())
+    return std::nullopt;
+  const double D = (outer.hi - outer.lo).norm();
+  const double X = outer.lo.cwiseAbs().cwiseMax(outer.hi.cwiseAbs()).norm();  // |y| <= X in outer
+  const Eigen::Vector3d xa = x.cwiseAbs();
+  struct Constraint {
+    Eigen::Vector3d grad;  // computed gradient
+    double grad_err;       // bound of its rounding
+    double slack;          // upper bound of grad_exact.(y - x) over the region in outer
+  };
+  std::array<Constraint, 1 + kDualMaxConstraints> all;
+  int n = 0;
+  auto add = [&](const Constraint& c) {
+    if (!(c.slack >= 0.0) || !std::isfinite(c.slack) || !c.grad.allFinite()) return;
+    if (n < kDualMaxConstraints) {
+      all[n++] = c;
+      return;
+    }
+    // Keep the kDualMaxConstraints of smallest slack.
+    int worst = 0;
+    for (int i = 1; i < n; ++i)
+      if (all[i].slack > all[worst].slack) worst = i;
+    if (c.slack < all[worst].slack) all[worst] = c;
+  };
+  if (g.has_curved) {
+    const Eigen::Matrix3d absA = g.A.cwiseAbs();
+    const Eigen::Vector3d absb = g.b.cwiseAbs();
+    const double mag_x = xa.dot(absA * xa) + 2.0 * absb.dot(xa) + std::abs(g.c);
+    const double mag_outer = X * X * absA.norm() + 2.0 * absb.norm() * X + std::abs(g.c);
+    const double fx = x.dot(g.A * x) + 2.0 * g.b.dot(x) + g.c;
+    const double nu = std::max(0.0, -g.curved.lam[0]) + u;  // A normalised: largest |eigenvalue| 1
+    Constraint c;
+    c.grad = 2.0 * (g.A * x + g.b);
+    c.grad_err = 2.0 * u * (absA * xa + absb).norm();
+    c.slack = (u * mag_outer) + (-fx + u * mag_x) + nu * D * D;
+    add(c);
+  }
+  for (std::size_t k = 0; k < g.own_planes; ++k) {
+    const Eigen::Vector3d& h = g.plane_h[k];
+    const double d = g.plane_d[k];
+    Constraint c;
+    c.grad = h;
+    c.grad_err = 0.0;
+    c.slack = (d - h.dot(x)) + u * (x.norm() + std::abs(d)) + u * (X + std::abs(d));
+    add(c);
+  }
+  std::optional<double> best;
+  // Every subset of one to three constraints: least-squares multipliers, kept when non-negative.
+  for (int mask = 1; mask < (1 << n); ++mask) {
+    int idx[3], k = 0;
+    for (int i = 0; i < n && k <= 3; ++i)
+      if (mask & (1 << i)) {
+        if (k < 3) idx[k] = i;
+        ++k;
+      }
+    if (k > 3) continue;
+    Eigen::Matrix<double, 3, Eigen::Dynamic> G(3, k);
+    for (int j = 0; j < k; ++j) G.col(j) = all[idx[j]].grad;
+    const Eigen::VectorXd mu = G.colPivHouseholderQr().solve(e);
+    if (!mu.allFinite() || (mu.array() < 0.0).any()) continue;
+    const Eigen::Vector3d r = e - G * mu;
+    double r_bound = r.norm() + u * e_norm;
+    double gain = 0.0;
+    for (int j = 0; j < k; ++j) {
+      const Constraint& c = all[idx[j]];
+      r_bound += mu[j] * (c.grad_err + u * c.grad.norm());
+      gain += mu[j] * c.slack;
+    }
+    const double rest = gain + r_bound * D;
+    const double ex = e.dot(x);
+    const double bound = ex + rest + u * (e_norm * x.norm() + rest);
+    if (std::isfinite(bound) && (!best || bound < *best)) best = bound;
+  }
+  return best;
+}
 
 std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const Box3* hint) {
   using namespace tolerance_region;
@@ -30,26 +137,23 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
   const bool have_hint = hint != nullptr && !hint->empty() && hint->lo.allFinite() && hint->hi.allFinite();
   Box3 search = have_hint ? *hint
                           : Box3{Eigen::Vector3d::Constant(-kRegionMaxExtent), Eigen::Vector3d::Constant(kRegionMaxExtent)};
-  // The support value towards sign * e_axis: the support point's coordinate, or nullopt when no
-  // candidate was feasible.
-  auto extent = [](const ConvexSupport& s, int axis, double sign) -> std::optional<double> {
-    Eigen::Vector3d e = Eigen::Vector3d::Zero();
-    e[axis] = sign;
-    bool found = false;
-    const Eigen::Vector3d x = s.regionSupport(e, &found);
-    if (!found || !std::isfinite(x[axis])) return std::nullopt;
-    return x[axis];
-  };
+  // The last stage's support mapping and its support points towards +e_i (row 0) and -e_i (row 1).
+  std::optional<ConvexSupport> last;
+  std::array<std::array<Eigen::Vector3d, 3>, 2> points;
   for (int stage = 0; stage < kBoxStages; ++stage) {
-    const std::optional<ConvexSupport> s = fromRegion(region, search);
-    if (!s || s->kind() != Kind::Region) return std::nullopt;  // not convex in fromRegion's sense
+    last = fromRegion(region, search);
+    if (!last || last->kind() != Kind::Region) return std::nullopt;  // not convex in fromRegion's sense
     Box3 next;
     for (int i = 0; i < 3; ++i) {
-      const std::optional<double> up = extent(*s, i, 1.0);
-      const std::optional<double> down = extent(*s, i, -1.0);
-      if (!up || !down) return std::nullopt;
-      next.hi[i] = std::min(*up, search.hi[i]);
-      next.lo[i] = std::max(*down, search.lo[i]);
+      for (int side = 0; side < 2; ++side) {
+        Eigen::Vector3d e = Eigen::Vector3d::Zero();
+        e[i] = side == 0 ? 1.0 : -1.0;
+        bool found = false;
+        points[side][i] = last->regionSupport(e, &found);
+        if (!found || !points[side][i].allFinite()) return std::nullopt;
+      }
+      next.hi[i] = std::min(points[0][i][i], search.hi[i]);
+      next.lo[i] = std::max(points[1][i][i], search.lo[i]);
     }
     if (next.empty()) return std::nullopt;
     if (!have_hint && stage == 0) {
@@ -66,11 +170,13 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
     if (!shrunk) break;
   }
 
-  // The certificate, by the region engine (independent of the enumeration above): a point of the
-  // region inside the box, and none in the shell between the box and the box grown by its own
-  // half-widths. The region is convex, hence connected, so it lies in the box. A face the engine
-  // leaves undecided moves out by doubling steps; a point found beyond a face means the support
-  // was wrong: either way regionAabb decides instead.
+  // The certificate, independent of the enumeration above: a point of the region inside the box
+  // (the engine's findPoint), and none in the shell between the box and the box grown by its own
+  // half-widths (`outer`). The region is convex, hence connected, so it lies in the box. Each
+  // face is certified by weak duality at its support point where the curved atom is convex
+  // (dualSupportBound), else by the engine: region AND {e.x >= face} has no point in `outer`. A face
+  // the engine leaves undecided moves out by doubling steps; a point found beyond a face means
+  // the support was wrong: either way regionAabb decides instead.
   if (maxEdge(search) <= 0.0) return std::nullopt;
   if (findPoint(region, search, 0).status != PointSearch::Found) return std::nullopt;
   const Eigen::Vector3d c = search.center(), h = search.halfWidth();
@@ -78,10 +184,13 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
   const double edge = maxEdge(search);
   Box3 out = search;
   for (int i = 0; i < 3; ++i) {
-    for (const double sign : {1.0, -1.0}) {
+    for (int side = 0; side < 2; ++side) {
+      const double sign = side == 0 ? 1.0 : -1.0;
       Eigen::Vector3d e = Eigen::Vector3d::Zero();
       e[i] = sign;
       const double face = sign > 0.0 ? search.hi[i] : -search.lo[i];  // e.x <= face on the box
+      const std::optional<double> dual = last->dualSupportBound(e, points[side][i], outer);
+      if (dual && *dual <= face) continue;
       bool certified = false;
       for (double p = 0.0; p <= kMaxFacePadRelative * edge; p = p == 0.0 ? kRegionAabbRelative * edge : 2.0 * p) {
         // The slab e.x >= face + p, i.e. -e.x <= -(face + p), within the outer box.

@@ -8,6 +8,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "geometry/convex_support_region.h"
 #include "geometry/region_formula.h"
 
 namespace fcl_quadric {
@@ -196,41 +197,6 @@ ConvexSupport ConvexSupport::points(const std::vector<Eigen::Vector3d>& pts) {
   return s;
 }
 
-/// What fromRegion() computes once (convex_support.h, region_): the curved atom {x^T A x + 2 b.x +
-/// c <= 0} if any (normalised by its largest eigenvalue), the planes h.x <= d (unit h), and the
-/// eigen-decompositions of the curved atom and of its section by each plane (x = x0 + U y), so
-/// that a support query costs only arithmetic.
-struct ConvexSupport::RegionData {
-  bool has_curved = false;
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
-  double c = 0.0;
-  std::vector<Eigen::Vector3d> plane_h;
-  std::vector<double> plane_d;
-  struct Curved {
-    Eigen::Vector3d lam = Eigen::Vector3d::Zero(), bz = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d V = Eigen::Matrix3d::Identity();
-    double b_tol = 0.0;
-  } curved;
-  struct Section {
-    Eigen::Matrix<double, 3, 2> U = Eigen::Matrix<double, 3, 2>::Zero();
-    Eigen::Vector3d x0 = Eigen::Vector3d::Zero();
-    Eigen::Vector2d lam = Eigen::Vector2d::Zero(), bz = Eigen::Vector2d::Zero();
-    Eigen::Matrix2d V = Eigen::Matrix2d::Identity();
-    double c = 0.0, b_tol = 0.0;
-    /// A cone's section: r = b^T A^-1 b - c of the section's conic, formed as delta^2 sigma from
-    /// the apex's offset delta from the plane (smoothMax's `r_given`); NaN otherwise.
-    double r = std::numeric_limits<double>::quiet_NaN();
-  };
-  std::vector<Section> sections;
-  /// An indefinite curved atom (acceptIndefinite()): a cone nappe (`cone`, whose `apex` is a
-  /// support candidate) or a two-sheet hyperboloid's sheet.
-  bool cone = false;
-  Eigen::Vector3d apex = Eigen::Vector3d::Zero();
-  /// A two-sheet hyperboloid's r = -f(x0) (acceptIndefinite(), smoothMax's `r_given`); NaN else.
-  double r = std::numeric_limits<double>::quiet_NaN();
-};
-
 namespace {
 
 /// The vertices of the polytope {h_k.x <= d_k} (every vertex where three planes meet, kept when
@@ -358,6 +324,7 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
     g->b = b / lmax;
     g->c = c / lmax;
   }
+  g->own_planes = g->plane_h.size();
   for (int i = 0; i < 3; ++i) {
     Eigen::Vector3d e = Eigen::Vector3d::Zero();
     e[i] = 1.0;

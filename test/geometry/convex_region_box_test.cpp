@@ -1,6 +1,8 @@
 // ConvexSupport::regionBox (the bounding box of a convex region from its support mapping,
-// certified by the region engine) against closed-form support functions derived here by hand,
-// independently of the library's KKT enumeration: a box must contain the region and be tight.
+// certified by weak duality or by the region engine) and ConvexSupport::dualSupportBound against
+// closed-form support functions derived here by hand, independently of the library's KKT
+// enumeration: a box must contain the region and be tight, a duality bound must never fall below
+// the support.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -149,6 +151,71 @@ TEST(ConvexRegionBox, ContainsTheRegionAndIsTightAgainstClosedFormSupports) {
   EXPECT_GT(apex_faces, 0);  // the exception was exercised
   RecordProperty("apex_faces", apex_faces);
   RecordProperty("loose_apex_faces", loose_apex_faces);
+}
+
+// The duality bound must never fall below the true support, whatever point it is fitted at (its
+// soundness does not depend on the enumeration), and must be tight at the support point.
+TEST(ConvexRegionBox, DualSupportBoundIsNeverBelowTheSupportAndTightAtTheSupportPoint) {
+  std::mt19937_64 rng(977);
+  std::uniform_real_distribution<double> size(0.3, 2.0), unit(-1.0, 1.0), frac(0.0, 1.0);
+  int tight = 0, fitted_elsewhere = 0, checks = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const double a = size(rng), b = size(rng), c = size(rng);
+    const std::vector<ClosedFormSolid> convex{clippedEllipsoid(a, b, c, c * unit(rng) * 0.9),
+                                              paraboloidCap(a, b, size(rng))};
+    for (const ClosedFormSolid& solid : convex) {
+      for (const double scale : {1e-3, 1.0, 1e3}) {
+        const Eigen::Matrix3d R = test::randomRotation(rng);
+        const Eigen::Vector3d p = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 10.0 * scale;
+        const QuadricRegion world = solid.region.transformedAffine(scale * R, p);
+        const std::string what = solid.name + " trial " + std::to_string(trial) + " scale " + std::to_string(scale);
+        const std::optional<Box3> box = ConvexSupport::regionBox(world);
+        ASSERT_TRUE(box.has_value()) << what;
+        const std::optional<ConvexSupport> s = ConvexSupport::fromRegion(world, *box);
+        ASSERT_TRUE(s.has_value()) << what;
+        const Eigen::Vector3d mid = box->center(), half = box->halfWidth();
+        const Box3 outer{mid - 2.0 * half, mid + 2.0 * half};
+        const double edge = (box->hi - box->lo).maxCoeff();
+        for (int k = 0; k < 40; ++k) {
+          const Eigen::Vector3d n = test::randomUnitVector(rng);
+          bool apex = false;
+          const double truth = n.dot(p) + scale * solid.support(R.transpose() * n, &apex);
+          const double rounding = 1e-13 * (edge + p.norm());
+          // At the support point: a bound, within 1e-10 of the box above the truth (the rounding
+          // charged for points of the outer box, up to ten sizes from the origin: up to 3.3e-11
+          // measured).
+          const std::optional<double> at_support = s->dualSupportBound(n, s->support(n), outer);
+          ASSERT_TRUE(at_support.has_value()) << what;
+          EXPECT_GE(*at_support, truth - rounding) << what;
+          EXPECT_LE(*at_support, truth + 1e-10 * edge) << what << " slack/edge " << (*at_support - truth) / edge;
+          tight += *at_support <= truth + 1e-10 * edge;
+          // Fitted at another direction's support point and at a random point of `outer`: never
+          // below the truth.
+          const Eigen::Vector3d elsewhere[2] = {
+              s->support(test::randomUnitVector(rng)),
+              outer.lo + Eigen::Vector3d(frac(rng), frac(rng), frac(rng)).cwiseProduct(outer.hi - outer.lo)};
+          for (const Eigen::Vector3d& x : elsewhere) {
+            const std::optional<double> bound = s->dualSupportBound(n, x, outer);
+            ++checks;
+            if (!bound) continue;
+            ++fitted_elsewhere;
+            EXPECT_GE(*bound, truth - rounding) << what << " at " << x.transpose();
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(tight, 6 * 2 * 3 * 40);
+  EXPECT_GT(fitted_elsewhere, checks / 4);  // the soundness check was exercised
+  // A cone nappe or a hyperboloid sheet: no duality bound (convex on one component only).
+  for (const ClosedFormSolid& solid : {coneNappe(0.5, 0.7, 1.0), sheetCap(1.0, 1.0, 1.0, 2.0)}) {
+    const std::optional<Box3> box = ConvexSupport::regionBox(solid.region);
+    ASSERT_TRUE(box.has_value()) << solid.name;
+    const std::optional<ConvexSupport> s = ConvexSupport::fromRegion(solid.region, *box);
+    ASSERT_TRUE(s.has_value()) << solid.name;
+    const Eigen::Vector3d n(0.3, -0.2, 0.9);
+    EXPECT_FALSE(s->dualSupportBound(n, s->support(n), *box).has_value()) << solid.name;
+  }
 }
 
 TEST(ConvexRegionBox, LeavesAtomsNonConvexUnboundedAndEmptyRegionsToTheRegionEngine) {

@@ -90,6 +90,15 @@ class ConvexSupport {
   /// sense, unbounded or empty, or when a face is not certified: the caller then uses regionAabb,
   /// which also names the unbounded or empty case. No failure mode.
   static std::optional<Box3> regionBox(const QuadricRegion& region, const Box3* hint = nullptr);
+  /// A certified upper bound of max n.y over the solid's points y inside `outer`, by weak
+  /// duality: non-negative multipliers of the region's own constraints (not the bounding box's)
+  /// fitted at the point x, the fit's residual and every rounding charged to the bound
+  /// (docs/algorithms.md section 12, "Bounding boxes of convex regions"). Valid for any x inside
+  /// `outer`; tight (to ~1e-11 of the box) when x is the support point towards n. regionBox()
+  /// certifies its faces with it. nullopt unless the kind is Region with a convex curved atom
+  /// (a cone nappe or a hyperboloid sheet is convex only on one component: their faces are left
+  /// to the region engine), or when x is outside `outer` or no multipliers fit. No failure mode.
+  std::optional<double> dualSupportBound(const Eigen::Vector3d& n, const Eigen::Vector3d& x, const Box3& outer) const;
 
   Kind kind() const { return kind_; }
   /// A point of the solid maximising n.x (local frame). n need not be unit; for n = 0 a point
@@ -147,6 +156,7 @@ class ConvexSupport {
   // mapping is then a few words: the front doors make and copy them per query.
   struct RegionData;
   static bool acceptIndefinite(RegionData* g, double length);
+
   std::shared_ptr<const RegionData> region_;
   Eigen::Vector3d center_ = Eigen::Vector3d::Zero();
   double size_ = 0.0;
