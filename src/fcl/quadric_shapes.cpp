@@ -52,11 +52,12 @@ QuadricShape<S>::QuadricShape(QuadricRegion region, const std::optional<Box3>& b
     box_ = *box;
   } else {
     try {
-      // A convex region's box from its support mapping, certified face by face (milliseconds);
-      // else, and for the cases it leaves (unbounded, empty, an ellipsoid atom), regionAabb's
-      // bisections (10 ms to seconds for paraboloids and cones; docs/algorithms.md section 12).
+      // A convex region's box from its support mapping, certified face by face (microseconds to
+      // milliseconds), a union's from its operands'; else, and for the cases it leaves (unbounded,
+      // empty), regionAabb's bisections (10 ms to seconds for paraboloids and cones;
+      // docs/algorithms.md section 12).
       const Box3* h = hint ? &*hint : nullptr;
-      if (std::optional<Box3> fast = ConvexSupport::regionBox(region_, h))
+      if (std::optional<Box3> fast = ConvexSupport::treeBox(region_, h))
         box_ = *fast;
       else
         box_ = regionAabb(region_, h);

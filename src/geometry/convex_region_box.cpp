@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <Eigen/Dense>
 
@@ -208,6 +209,39 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
     }
   }
   return out;
+}
+
+std::optional<Box3> ConvexSupport::treeBox(const QuadricRegion& region, const Box3* hint) {
+  switch (region.op()) {
+    case QuadricRegion::Op::Union: {
+      std::optional<Box3> out;
+      for (const QuadricRegion& child : region.children()) {
+        const std::optional<Box3> b = treeBox(child);
+        if (!b) return std::nullopt;
+        if (!out) {
+          out = b;
+        } else {
+          out->lo = out->lo.cwiseMin(b->lo);
+          out->hi = out->hi.cwiseMax(b->hi);
+        }
+      }
+      return out;
+    }
+    case QuadricRegion::Op::Atom: {
+      // An ellipsoid (3x3 part positive definite): regionAabb's closed form, which is immediate.
+      // Any other atom alone is unbounded or empty, which regionAabb names for the whole region.
+      if (Eigen::LLT<Eigen::Matrix3d>(region.matrix().topLeftCorner<3, 3>()).info() != Eigen::Success)
+        return std::nullopt;
+      try {
+        return regionAabb(region);
+      } catch (const std::invalid_argument&) {
+        return std::nullopt;
+      }
+    }
+    case QuadricRegion::Op::Intersection:
+    case QuadricRegion::Op::Difference: return regionBox(region, hint);
+  }
+  return std::nullopt;
 }
 
 }  // namespace fcl_quadric

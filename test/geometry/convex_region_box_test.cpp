@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <random>
 #include <string>
@@ -215,6 +216,54 @@ TEST(ConvexRegionBox, DualSupportBoundIsNeverBelowTheSupportAndTightAtTheSupport
     ASSERT_TRUE(s.has_value()) << solid.name;
     const Eigen::Vector3d n(0.3, -0.2, 0.9);
     EXPECT_FALSE(s->dualSupportBound(n, s->support(n), *box).has_value()) << solid.name;
+  }
+}
+
+// A union's box is the union of its operands' extents (closed forms, as above), nested unions and
+// an ellipsoid atom included; an operand left to regionAabb leaves the whole union to it.
+TEST(ConvexRegionBox, TreeBoxOfAUnionIsTheUnionOfItsOperandsExtents) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> size(0.3, 2.0), unit(-1.0, 1.0);
+  constexpr double kRel = tolerance_region::kRegionAabbRelative;
+  for (int trial = 0; trial < 6; ++trial) {
+    const double a = size(rng), b = size(rng), c = size(rng);
+    std::vector<ClosedFormSolid> solids{clippedEllipsoid(a, b, c, c * unit(rng) * 0.9), paraboloidCap(b, c, size(rng)),
+                                        sheetCap(c, a, b, b * (1.2 + size(rng)))};
+    // An ellipsoid atom alone, its support in closed form: |D d| (D the radii).
+    const double ea = size(rng), eb = size(rng), ec = size(rng);
+    solids.push_back({"ellipsoid atom", QuadricRegion::atom(diagonalQuadric(1 / (ea * ea), 1 / (eb * eb), 1 / (ec * ec), -1)),
+                      [=](const Eigen::Vector3d& d, bool* apex) {
+                        *apex = false;
+                        return Eigen::Vector3d(ea * d.x(), eb * d.y(), ec * d.z()).norm();
+                      }});
+    std::vector<QuadricRegion> posed;
+    std::vector<std::pair<Eigen::Matrix3d, Eigen::Vector3d>> poses;
+    for (const ClosedFormSolid& solid : solids) {
+      poses.emplace_back(test::randomRotation(rng), Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 3.0);
+      posed.push_back(solid.region.transformed(poses.back().first, poses.back().second));
+    }
+    // ((0 u 1) u 2) u 3: a nested union.
+    const QuadricRegion u = QuadricRegion::combine(
+        Op::Union, {QuadricRegion::combine(Op::Union, {posed[0], posed[1]}), posed[2], posed[3]});
+    const std::optional<Box3> box = ConvexSupport::treeBox(u);
+    ASSERT_TRUE(box.has_value()) << "trial " << trial;
+    const double edge = (box->hi - box->lo).maxCoeff();
+    for (int i = 0; i < 3; ++i) {
+      for (const double sign : {1.0, -1.0}) {
+        double truth = -std::numeric_limits<double>::infinity();
+        for (std::size_t k = 0; k < solids.size(); ++k) {
+          bool apex = false;
+          truth = std::max(truth, sign * poses[k].second[i] +
+                                      solids[k].support(sign * poses[k].first.transpose().col(i), &apex));
+        }
+        const double face = sign > 0 ? box->hi[i] : -box->lo[i];
+        EXPECT_GE(face, truth - 1e-12 * (edge + std::abs(truth))) << "trial " << trial << " axis " << i;
+        EXPECT_LE(face, truth + 2 * kRel * edge + 1e-12 * (edge + std::abs(truth))) << "trial " << trial << " axis " << i;
+      }
+    }
+    // With a one-sheet hyperboloid between two planes as an operand (not convex): none.
+    const QuadricRegion waist = clippedAtom(diagonalQuadric(1, 1, -1, -1), {{{0, 0, 1}, 1.0}, {{0, 0, -1}, 1.0}});
+    EXPECT_FALSE(ConvexSupport::treeBox(QuadricRegion::combine(Op::Union, {posed[0], waist})).has_value());
   }
 }
 

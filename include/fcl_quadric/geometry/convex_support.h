@@ -90,6 +90,12 @@ class ConvexSupport {
   /// sense, unbounded or empty, or when a face is not certified: the caller then uses regionAabb,
   /// which also names the unbounded or empty case. No failure mode.
   static std::optional<Box3> regionBox(const QuadricRegion& region, const Box3* hint = nullptr);
+  /// regionBox() extended over unions: a union's box is the union of its operands' (exact: the
+  /// maximum of a linear function over a union is the largest of its operands'), each operand
+  /// boxed by this function again, an ellipsoid atom by regionAabb's closed form. Any other
+  /// region: regionBox(region, hint). nullopt when some operand is left to regionAabb (the
+  /// caller then boxes the whole region with it). No failure mode.
+  static std::optional<Box3> treeBox(const QuadricRegion& region, const Box3* hint = nullptr);
   /// A certified upper bound of max n.y over the solid's points y inside `outer`, by weak
   /// duality: non-negative multipliers of the region's own constraints (not the bounding box's)
   /// fitted at the point x, the fit's residual and every rounding charged to the bound
