@@ -31,7 +31,8 @@
 namespace fcl_quadric {
 
 /// Common base: a bounded (or, for CSG building blocks, unbounded) quadric region in the shape's
-/// local frame, with its certified local AABB and mass properties computed at construction.
+/// local frame, with its certified local AABB computed at construction (mass properties on first
+/// use).
 template <typename S>
 class QuadricShape : public fcl::ShapeBase<S> {
  public:
@@ -41,7 +42,10 @@ class QuadricShape : public fcl::ShapeBase<S> {
   /// and the mass properties throw std::invalid_argument).
   bool bounded() const { return bounded_; }
   /// Certified local AABB (outward; tight to tolerance_region::kRegionAabbRelative, exact for
-  /// EllipticCylinder). \throws std::invalid_argument if unbounded.
+  /// EllipticCylinder; a face through a cone's apex up to 1e-3 of the box, measured ~1e-5).
+  /// From the support mapping where the region is convex, a union's from its operands'
+  /// (ConvexSupport::treeBox: microseconds to milliseconds), else by regionAabb's bisections
+  /// (milliseconds to seconds). \throws std::invalid_argument if unbounded.
   const Box3& localBox() const;
   /// Boundary elements (thesis §6.1-6.2, Definition 6.1). \throws std::invalid_argument if
   /// unbounded.
