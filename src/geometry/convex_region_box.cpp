@@ -17,6 +17,15 @@ namespace {
 
 double maxEdge(const Box3& b) { return (b.hi - b.lo).maxCoeff(); }
 
+/// Every coefficient finite, by std::isfinite (Eigen's allFinite() computes x - x, which raises
+/// FE_INVALID on an infinity; the test binaries trap it).
+template <typename Derived>
+bool finite(const Eigen::MatrixBase<Derived>& v) {
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    if (!std::isfinite(v(i))) return false;
+  return true;
+}
+
 /// Stages of the support box: each stage's box bounds the next stage's enumeration, so that the
 /// feasibility tolerance (relative to the box) ends up relative to the region's own size. From
 /// the +-kRegionMaxExtent cube a region of size 1e-6 needs three.
@@ -47,7 +56,7 @@ constexpr int kDualMaxConstraints = 6;
 std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, const Eigen::Vector3d& x,
                                                      const Box3& outer) const {
   constexpr double u = kDualRounding;
-  if (kind_ != Kind::Region || !e.allFinite()) return std::nullopt;
+  if (kind_ != Kind::Region || !finite(e)) return std::nullopt;
   const RegionData& g = *region_;
   const double e_norm = e.norm();
   // The tangent-plane inequality of f needs f convex: not for a cone nappe or a hyperboloid
@@ -55,7 +64,8 @@ std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, 
   // (fromRegion accepts a curved atom otherwise only as positive semidefinite, its smallest
   // eigenvalue >= -kSupportIndefiniteRelative of the largest: `nu` below.)
   if (g.has_curved && (g.cone || std::isfinite(g.r))) return std::nullopt;
-  if (!x.allFinite() || (x.array() < outer.lo.array()).any() || (x.array() > outer.hi.array()).any())
+  if (!finite(x) || !finite(outer.lo) || !finite(outer.hi) || (x.array() < outer.lo.array()).any() ||
+      (x.array() > outer.hi.array()).any())
     return std::nullopt;
   const double D = (outer.hi - outer.lo).norm();
   const double X = outer.lo.cwiseAbs().cwiseMax(outer.hi.cwiseAbs()).norm();  // |y| <= X in outer
@@ -68,7 +78,8 @@ std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, 
   std::array<Constraint, 1 + kDualMaxConstraints> all;
   int n = 0;
   auto add = [&](const Constraint& c) {
-    if (!(c.slack >= 0.0) || !std::isfinite(c.slack) || !c.grad.allFinite()) return;
+    // A vanishing gradient (the centre of a slab or a ball) cannot carry a multiplier.
+    if (!(c.slack >= 0.0) || !std::isfinite(c.slack) || !finite(c.grad) || !(c.grad.norm() > 0.0)) return;
     if (n < kDualMaxConstraints) {
       all[n++] = c;
       return;
@@ -98,7 +109,7 @@ std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, 
     Constraint c;
     c.grad = h;
     c.grad_err = 0.0;
-    c.slack = (d - h.dot(x)) + u * (x.norm() + std::abs(d)) + u * (X + std::abs(d));
+    c.slack = (d - h.dot(x)) + u * (x.norm() + std::abs(d)) + u * (X + std::abs(d)) + g.plane_quad[k] * X * X;
     add(c);
   }
   std::optional<double> best;
@@ -113,8 +124,10 @@ std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, 
     if (k > 3) continue;
     Eigen::Matrix<double, 3, Eigen::Dynamic> G(3, k);
     for (int j = 0; j < k; ++j) G.col(j) = all[idx[j]].grad;
-    const Eigen::VectorXd mu = G.colPivHouseholderQr().solve(e);
-    if (!mu.allFinite() || (mu.array() < 0.0).any()) continue;
+    const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 3, Eigen::Dynamic>> qr(G);
+    if (qr.rank() < k) continue;  // dependent gradients: a smaller subset covers them
+    const Eigen::VectorXd mu = qr.solve(e);
+    if (!finite(mu) || (mu.array() < 0.0).any()) continue;
     const Eigen::Vector3d r = e - G * mu;
     double r_bound = r.norm() + u * e_norm;
     double gain = 0.0;
@@ -135,7 +148,7 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
   using namespace tolerance_region;
   // An atom alone is bounded only as an ellipsoid, which regionAabb boxes in closed form.
   if (region.op() == QuadricRegion::Op::Atom) return std::nullopt;
-  const bool have_hint = hint != nullptr && !hint->empty() && hint->lo.allFinite() && hint->hi.allFinite();
+  const bool have_hint = hint != nullptr && finite(hint->lo) && finite(hint->hi) && !hint->empty();
   Box3 search = have_hint ? *hint
                           : Box3{Eigen::Vector3d::Constant(-kRegionMaxExtent), Eigen::Vector3d::Constant(kRegionMaxExtent)};
   // The last stage's support mapping and its support points towards +e_i (row 0) and -e_i (row 1).
@@ -151,7 +164,7 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
         e[i] = side == 0 ? 1.0 : -1.0;
         bool found = false;
         points[side][i] = last->regionSupport(e, &found);
-        if (!found || !points[side][i].allFinite()) return std::nullopt;
+        if (!found || !finite(points[side][i])) return std::nullopt;
       }
       next.hi[i] = std::min(points[0][i][i], search.hi[i]);
       next.lo[i] = std::max(points[1][i][i], search.lo[i]);

@@ -283,7 +283,7 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
   const auto g = std::make_shared<RegionData>();
   s.center_ = box.center();
   s.size_ = box.halfWidth().norm();
-  auto addPlane = [&s, &g](Eigen::Vector3d h, double d) {
+  auto addPlane = [&s, &g](Eigen::Vector3d h, double d, double quad) {
     const double n = h.norm();
     h /= n;
     d /= n;
@@ -293,17 +293,26 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
         return;
     g->plane_h.push_back(h);
     g->plane_d.push_back(d);
+    g->plane_quad.push_back(quad / n);
   };
+  const double reach = box.lo.cwiseAbs().cwiseMax(box.hi.cwiseAbs()).norm();  // |x| over the box
   for (const Eigen::Matrix4d& M : atoms) {
     const Eigen::Matrix3d A = M.topLeftCorner<3, 3>();
     const Eigen::Vector3d b = M.topRightCorner<3, 1>();
     const double c = M(3, 3);
-    if (detail::isPlanarAtom(M)) {
+    // isPlanarAtom drops a quadratic part up to 1e-14 |b|, relative to b alone: over the box it
+    // moves the surface by up to 3 max|A_ij| |x|^2 / |2 b|. Where that exceeds the feasibility
+    // tolerance the atom stays curved (a paraboloid of radius 2e7 clipped 1e5 from the origin,
+    // planar by the relative test, reached 4e-5 beyond its plane: an audit of session 42).
+    const double amax = A.cwiseAbs().maxCoeff();
+    if (detail::isPlanarAtom(M) &&
+        (amax == 0.0 || 3.0 * amax * reach * reach <= tolerance_support::kSupportFeasibilityRelative *
+                                                          (s.size_ + s.center_.norm()) * 2.0 * b.norm())) {
       if (b.norm() == 0.0) {
         if (c <= 0.0) continue;  // the whole space
         return std::nullopt;     // empty (the shapes' constructors reject empty regions)
       }
-      addPlane(2.0 * b, -c);  // 2 b.x + c <= 0
+      addPlane(2.0 * b, -c, 3.0 * amax);  // 2 b.x + c <= 0, up to the dropped x^T A x
       continue;
     }
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A, Eigen::EigenvaluesOnly);
@@ -328,8 +337,8 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
   for (int i = 0; i < 3; ++i) {
     Eigen::Vector3d e = Eigen::Vector3d::Zero();
     e[i] = 1.0;
-    addPlane(e, box.hi[i]);
-    addPlane(-e, -box.lo[i]);
+    addPlane(e, box.hi[i], 0.0);
+    addPlane(-e, -box.lo[i], 0.0);
   }
   if (g->has_curved) {
     // Everything about the curved atom and its planar sections that does not depend on n.

@@ -23,6 +23,10 @@ struct ConvexSupport::RegionData {
   double c = 0.0;
   std::vector<Eigen::Vector3d> plane_h;
   std::vector<double> plane_d;
+  /// For each plane, a bound q on the quadratic part its atom carried (isPlanarAtom's relative
+  /// tolerance, kept only where it is negligible over the box): the atom is h.x - d + e(x) <= 0
+  /// with |e(x)| <= q |x|^2. 0 for the box's faces.
+  std::vector<double> plane_quad;
   /// The first `own_planes` planes are the region's own half-spaces; the rest are the bounding
   /// box's faces (ConvexSupport::regionBox certifies with the region's own constraints only).
   std::size_t own_planes = 0;

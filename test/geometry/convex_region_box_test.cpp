@@ -267,6 +267,63 @@ TEST(ConvexRegionBox, TreeBoxOfAUnionIsTheUnionOfItsOperandsExtents) {
   }
 }
 
+// An audit of session 42: a face whose support point sits where the curved atom's gradient
+// vanishes (the mid-plane of a slab z^2 <= w^2, inactive there) made the multiplier fit infinite,
+// and Eigen's finiteness test raised FE_INVALID (which this binary traps).
+TEST(ConvexRegionBox, ASupportPointWhereTheCurvedAtomsGradientVanishesRaisesNoFloatingPointError) {
+  for (const double w : {0.5, 1.0, 2.0}) {
+    Eigen::Matrix4d slab = Eigen::Matrix4d::Zero();
+    slab(2, 2) = 1.0;
+    slab(3, 3) = -w * w;
+    // |z| <= w, x + z <= 1, x - z <= 1, x >= -1, |y| <= 1: x in [-1, 1], |z| <= min(w, 2).
+    const QuadricRegion region = clippedAtom(
+        slab, {{{1, 0, 1}, 1.0}, {{1, 0, -1}, 1.0}, {{-1, 0, 0}, 1.0}, {{0, 1, 0}, 1.0}, {{0, -1, 0}, 1.0}});
+    const std::optional<Box3> box = ConvexSupport::regionBox(region);
+    ASSERT_TRUE(box.has_value()) << "w " << w;
+    const Eigen::Vector3d truth(1.0, 1.0, std::min(w, 2.0));
+    const double edge = (box->hi - box->lo).maxCoeff();
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_GE(box->hi[i], truth[i]) << "w " << w << " axis " << i;
+      EXPECT_LE(box->lo[i], -truth[i]) << "w " << w << " axis " << i;
+      EXPECT_LE(box->hi[i], truth[i] + 2 * tolerance_region::kRegionAabbRelative * edge) << "w " << w;
+      EXPECT_GE(box->lo[i], -truth[i] - 2 * tolerance_region::kRegionAabbRelative * edge) << "w " << w;
+    }
+    // The duality bound fitted at the slab's centre (zero gradient): a value or none, no error.
+    const std::optional<ConvexSupport> s = ConvexSupport::fromRegion(region, *box);
+    ASSERT_TRUE(s.has_value());
+    const std::optional<double> at_centre = s->dualSupportBound(Eigen::Vector3d(0, 0, 1), Eigen::Vector3d::Zero(), *box);
+    if (at_centre) {
+      EXPECT_GE(*at_centre, std::min(w, 2.0) - 1e-12);
+    }
+  }
+}
+
+// An audit of session 42: isPlanarAtom's relative test (quadratic part <= 1e-14 |b|) took a
+// hyperbolic paraboloid of radii 2e7 for its tangent plane; clipped 1e5 from the origin the solid
+// reaches 2.5e-5 below that plane, and the box left out interior points. The atom is curved
+// wherever its quadratic part matters over the box (then not convex here: regionAabb boxes it).
+TEST(ConvexRegionBox, ANearlyPlanarAtomFarFromTheOriginKeepsItsCurvature) {
+  const double a = 2e7, y0 = 1e5;
+  Eigen::Matrix4d saddle = Eigen::Matrix4d::Zero();  // x^2/a^2 - y^2/a^2 - z <= 0
+  saddle(0, 0) = 1 / (a * a);
+  saddle(1, 1) = -1 / (a * a);
+  saddle(2, 3) = saddle(3, 2) = -0.5;
+  const QuadricRegion region = clippedAtom(saddle, {{{1, 0, 0}, 10.0},
+                                                    {{-1, 0, 0}, 0.0},
+                                                    {{0, 1, 0}, y0 + 10.0},
+                                                    {{0, -1, 0}, -y0},
+                                                    {{0, 0, 1}, 10.0}});
+  // z >= x^2/a^2 - y^2/a^2, down to -(y0 + 10)^2 / a^2 = -2.5e-5 at x = 0.
+  const Eigen::Vector3d deep(0.5, y0 + 0.5, -1e-5);
+  ASSERT_EQ(region.classifyPoint(deep), 1);
+  for (const std::optional<Box3>& box : {ConvexSupport::regionBox(region), ConvexSupport::treeBox(region)}) {
+    if (!box) continue;  // left to regionAabb
+    EXPECT_LE(box->lo.z(), deep.z());
+  }
+  const Box3 engine = regionAabb(region);
+  EXPECT_LE(engine.lo.z(), -(y0 + 10.0) * (y0 + 10.0) / (a * a));
+}
+
 TEST(ConvexRegionBox, LeavesAtomsNonConvexUnboundedAndEmptyRegionsToTheRegionEngine) {
   const Eigen::Vector3d ez(0, 0, 1);
   // An ellipsoid atom alone: regionAabb's closed form.
