@@ -42,7 +42,8 @@ class QuadricShape : public fcl::ShapeBase<S> {
   /// and the mass properties throw std::invalid_argument).
   bool bounded() const { return bounded_; }
   /// Certified local AABB (outward; tight to tolerance_region::kRegionAabbRelative, exact for
-  /// EllipticCylinder; a face through a cone's apex up to 1e-3 of the box, measured ~1e-5).
+  /// EllipticCylinder; a face through a cone's apex up to 1e-3 of the box, measured to 8e-4;
+  /// far from the origin the rounding of the atoms loosens it, as for regionAabb).
   /// From the support mapping where the region is convex, a union's from its operands'
   /// (ConvexSupport::treeBox: microseconds to milliseconds), else by regionAabb's bisections
   /// (milliseconds to seconds). \throws std::invalid_argument if unbounded.
