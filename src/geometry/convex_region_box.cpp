@@ -210,7 +210,10 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
         // The slab e.x >= face + p, i.e. -e.x <= -(face + p), within the outer box.
         const QuadricRegion beyond =
             QuadricRegion::combine(QuadricRegion::Op::Intersection, {region, QuadricRegion::halfspace(-e, -(face + p))});
-        const PointSearch status = findPoint(beyond, outer, 0).status;
+        // Searched in the part of `outer` beyond the face only (the rest is excluded anyway).
+        Box3 shell = outer;
+        (sign > 0.0 ? shell.lo[i] : shell.hi[i]) = sign * (face + p);
+        const PointSearch status = findPoint(beyond, shell, 0).status;
         if (status == PointSearch::Found) return std::nullopt;
         if (status == PointSearch::Empty) {
           (sign > 0.0 ? out.hi[i] : out.lo[i]) = sign * (face + p);
