@@ -43,18 +43,19 @@ constexpr int kDualMaxConstraints = 6;
 
 }  // namespace
 
-// dualSupportBound: weak duality (docs/algorithms.md section 12, "Bounding boxes of convex regions"). With
-// multipliers lambda >= 0 (the curved atom f) and mu_k >= 0 (the planes h_k.y <= d_k), write
-// e = lambda grad f(x) + sum mu_k h_k + r. For y in the region and in `outer`:
+// dualSupportBound: weak duality (docs/algorithms.md section 12, "Bounding boxes of convex
+// regions"). With multipliers lambda >= 0 (the curved atom f) and mu_k >= 0 (the planes
+// h_k.y <= d_k), write e = lambda grad f(x) + sum mu_k h_k + r. For y in the region and in
+// `outer`:
 //   grad f(x).(y - x) = f(y) - f(x) - (y - x)^T A (y - x) <= rho_f - f(x) + nu |y - x|^2,
-//   h_k.(y - x) <= d_k - h_k.x + rho_k,
+//   h_k.(y - x) <= d_k - h_k.x + rho_k + q_k X^2 (q_k: a dropped quadratic part, plane_quad),
 // with rho the rounding of the stored (normalised) constraints against the region's own, and nu
 // A's most negative eigenvalue (0 up to rounding: A is positive semidefinite). Hence
 //   e.y <= e.x + lambda (rho_f - f(x) + nu D^2) + sum mu_k (d_k - h_k.x + rho_k) + |r| D,
 // D the diameter of `outer`. Any non-negative multipliers give a valid bound; those of the
 // support point's KKT system make it tight.
 std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, const Eigen::Vector3d& x,
-                                                     const Box3& outer) const {
+                                                      const Box3& outer) const {
   constexpr double u = kDualRounding;
   if (kind_ != Kind::Region || !finite(e)) return std::nullopt;
   const RegionData& g = *region_;
@@ -75,7 +76,7 @@ std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, 
     double grad_err;       // bound of its rounding
     double slack;          // upper bound of grad_exact.(y - x) over the region in outer
   };
-  std::array<Constraint, 1 + kDualMaxConstraints> all;
+  std::array<Constraint, kDualMaxConstraints> all;
   int n = 0;
   auto add = [&](const Constraint& c) {
     // A vanishing gradient (the centre of a slab or a ball) cannot carry a multiplier.
@@ -149,8 +150,9 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
   // An atom alone is bounded only as an ellipsoid, which regionAabb boxes in closed form.
   if (region.op() == QuadricRegion::Op::Atom) return std::nullopt;
   const bool have_hint = hint != nullptr && finite(hint->lo) && finite(hint->hi) && !hint->empty();
-  Box3 search = have_hint ? *hint
-                          : Box3{Eigen::Vector3d::Constant(-kRegionMaxExtent), Eigen::Vector3d::Constant(kRegionMaxExtent)};
+  Box3 search = have_hint
+                    ? *hint
+                    : Box3{Eigen::Vector3d::Constant(-kRegionMaxExtent), Eigen::Vector3d::Constant(kRegionMaxExtent)};
   // The last stage's support mapping and its support points towards +e_i (row 0) and -e_i (row 1).
   std::optional<ConvexSupport> last;
   std::array<std::array<Eigen::Vector3d, 3>, 2> points;
@@ -178,8 +180,8 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
     const bool shrunk = maxEdge(next) < 0.5 * maxEdge(search);
     // Outward by kRegionAabbRelative of the box, plus the rounding of its coordinates.
     const double magnitude = std::max(next.lo.cwiseAbs().maxCoeff(), next.hi.cwiseAbs().maxCoeff());
-    const Eigen::Vector3d pad = Eigen::Vector3d::Constant(
-        kRegionAabbRelative * maxEdge(next) + 16.0 * std::numeric_limits<double>::epsilon() * magnitude);
+    const Eigen::Vector3d pad = Eigen::Vector3d::Constant(kRegionAabbRelative * maxEdge(next) +
+                                                          16.0 * std::numeric_limits<double>::epsilon() * magnitude);
     search = Box3{next.lo - pad, next.hi + pad};
     if (!shrunk) break;
   }
@@ -208,8 +210,8 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
       bool certified = false;
       for (double p = 0.0; p <= kMaxFacePadRelative * edge; p = p == 0.0 ? kRegionAabbRelative * edge : 2.0 * p) {
         // The slab e.x >= face + p, i.e. -e.x <= -(face + p), within the outer box.
-        const QuadricRegion beyond =
-            QuadricRegion::combine(QuadricRegion::Op::Intersection, {region, QuadricRegion::halfspace(-e, -(face + p))});
+        const QuadricRegion beyond = QuadricRegion::combine(QuadricRegion::Op::Intersection,
+                                                            {region, QuadricRegion::halfspace(-e, -(face + p))});
         // Searched in the part of `outer` beyond the face only (the rest is excluded anyway).
         Box3 shell = outer;
         (sign > 0.0 ? shell.lo[i] : shell.hi[i]) = sign * (face + p);

@@ -51,7 +51,8 @@ double ellipseSupport(double a, double b, const Eigen::Vector3d& d) { return std
 /// D^2 d / |D d| when it satisfies z <= h; else the maximum lies on the cut, a filled ellipse of
 /// radii a rho, b rho (rho = sqrt(1 - h^2/c^2)).
 ClosedFormSolid clippedEllipsoid(double a, double b, double c, double h) {
-  return {"clipped ellipsoid", clippedAtom(diagonalQuadric(1 / (a * a), 1 / (b * b), 1 / (c * c), -1), {{{0, 0, 1}, h}}),
+  return {"clipped ellipsoid",
+          clippedAtom(diagonalQuadric(1 / (a * a), 1 / (b * b), 1 / (c * c), -1), {{{0, 0, 1}, h}}),
           [=](const Eigen::Vector3d& d, bool* apex) {
             *apex = false;
             const double len = Eigen::Vector3d(a * d.x(), b * d.y(), c * d.z()).norm();
@@ -78,7 +79,8 @@ ClosedFormSolid paraboloidCap(double a, double b, double H) {
 /// { x^2/a^2 + y^2/b^2 <= z^2, 0 <= z <= H }: the convex hull of the apex (the origin) and the
 /// filled ellipse of radii a H, b H at z = H.
 ClosedFormSolid coneNappe(double a, double b, double H) {
-  return {"cone nappe", clippedAtom(diagonalQuadric(1 / (a * a), 1 / (b * b), -1, 0), {{{0, 0, -1}, 0.0}, {{0, 0, 1}, H}}),
+  return {"cone nappe",
+          clippedAtom(diagonalQuadric(1 / (a * a), 1 / (b * b), -1, 0), {{{0, 0, -1}, 0.0}, {{0, 0, 1}, H}}),
           [=](const Eigen::Vector3d& d, bool* apex) {
             const double rim = d.z() * H + H * ellipseSupport(a, b, d);
             *apex = rim < 0.0;
@@ -91,7 +93,8 @@ ClosedFormSolid coneNappe(double a, double b, double H) {
 /// -sqrt(c^2 d_z^2 - p^2) at height c^2 |d_z| / sqrt(c^2 d_z^2 - p^2) (the hyperbola
 /// z = c sqrt(1 + u^2)); beyond H, or otherwise, the cap disk of radii a rho, b rho, rho = sqrt(H^2/c^2 - 1).
 ClosedFormSolid sheetCap(double a, double b, double c, double H) {
-  return {"two-sheet cap", clippedAtom(diagonalQuadric(1 / (a * a), 1 / (b * b), -1 / (c * c), 1), {{{0, 0, -1}, 0.0}, {{0, 0, 1}, H}}),
+  return {"two-sheet cap",
+          clippedAtom(diagonalQuadric(1 / (a * a), 1 / (b * b), -1 / (c * c), 1), {{{0, 0, -1}, 0.0}, {{0, 0, 1}, H}}),
           [=](const Eigen::Vector3d& d, bool* apex) {
             *apex = false;
             const double p = ellipseSupport(a, b, d);
@@ -110,8 +113,9 @@ TEST(ConvexRegionBox, ContainsTheRegionAndIsTightAgainstClosedFormSupports) {
   int boxes = 0, apex_faces = 0, loose_apex_faces = 0;
   for (int trial = 0; trial < 8; ++trial) {
     const double a = size(rng), b = size(rng), c = size(rng);
-    const std::vector<ClosedFormSolid> solids{clippedEllipsoid(a, b, c, c * unit(rng) * 0.9), paraboloidCap(a, b, size(rng)),
-                                    coneNappe(a, b, size(rng)), sheetCap(a, b, c, c * (1.2 + size(rng)))};
+    const std::vector<ClosedFormSolid> solids{clippedEllipsoid(a, b, c, c * unit(rng) * 0.9),
+                                              paraboloidCap(a, b, size(rng)), coneNappe(a, b, size(rng)),
+                                              sheetCap(a, b, c, c * (1.2 + size(rng)))};
     for (const ClosedFormSolid& solid : solids) {
       for (const double scale : {1e-3, 1.0, 1e3}) {
         // Posed by x -> scale R x + p, p up to ten sizes from the origin (the first trial unposed:
@@ -231,7 +235,8 @@ TEST(ConvexRegionBox, TreeBoxOfAUnionIsTheUnionOfItsOperandsExtents) {
                                         sheetCap(c, a, b, b * (1.2 + size(rng)))};
     // An ellipsoid atom alone, its support in closed form: |D d| (D the radii).
     const double ea = size(rng), eb = size(rng), ec = size(rng);
-    solids.push_back({"ellipsoid atom", QuadricRegion::atom(diagonalQuadric(1 / (ea * ea), 1 / (eb * eb), 1 / (ec * ec), -1)),
+    solids.push_back({"ellipsoid atom",
+                      QuadricRegion::atom(diagonalQuadric(1 / (ea * ea), 1 / (eb * eb), 1 / (ec * ec), -1)),
                       [=](const Eigen::Vector3d& d, bool* apex) {
                         *apex = false;
                         return Eigen::Vector3d(ea * d.x(), eb * d.y(), ec * d.z()).norm();
@@ -253,12 +258,13 @@ TEST(ConvexRegionBox, TreeBoxOfAUnionIsTheUnionOfItsOperandsExtents) {
         double truth = -std::numeric_limits<double>::infinity();
         for (std::size_t k = 0; k < solids.size(); ++k) {
           bool apex = false;
-          truth = std::max(truth, sign * poses[k].second[i] +
-                                      solids[k].support(sign * poses[k].first.transpose().col(i), &apex));
+          truth = std::max(
+              truth, sign * poses[k].second[i] + solids[k].support(sign * poses[k].first.transpose().col(i), &apex));
         }
         const double face = sign > 0 ? box->hi[i] : -box->lo[i];
         EXPECT_GE(face, truth - 1e-12 * (edge + std::abs(truth))) << "trial " << trial << " axis " << i;
-        EXPECT_LE(face, truth + 2 * kRel * edge + 1e-12 * (edge + std::abs(truth))) << "trial " << trial << " axis " << i;
+        EXPECT_LE(face, truth + 2 * kRel * edge + 1e-12 * (edge + std::abs(truth)))
+            << "trial " << trial << " axis " << i;
       }
     }
     // With a one-sheet hyperboloid between two planes as an operand (not convex): none.
@@ -291,7 +297,8 @@ TEST(ConvexRegionBox, ASupportPointWhereTheCurvedAtomsGradientVanishesRaisesNoFl
     // The duality bound fitted at the slab's centre (zero gradient): a value or none, no error.
     const std::optional<ConvexSupport> s = ConvexSupport::fromRegion(region, *box);
     ASSERT_TRUE(s.has_value());
-    const std::optional<double> at_centre = s->dualSupportBound(Eigen::Vector3d(0, 0, 1), Eigen::Vector3d::Zero(), *box);
+    const std::optional<double> at_centre =
+        s->dualSupportBound(Eigen::Vector3d(0, 0, 1), Eigen::Vector3d::Zero(), *box);
     if (at_centre) {
       EXPECT_GE(*at_centre, std::min(w, 2.0) - 1e-12);
     }
@@ -308,11 +315,8 @@ TEST(ConvexRegionBox, ANearlyPlanarAtomFarFromTheOriginKeepsItsCurvature) {
   saddle(0, 0) = 1 / (a * a);
   saddle(1, 1) = -1 / (a * a);
   saddle(2, 3) = saddle(3, 2) = -0.5;
-  const QuadricRegion region = clippedAtom(saddle, {{{1, 0, 0}, 10.0},
-                                                    {{-1, 0, 0}, 0.0},
-                                                    {{0, 1, 0}, y0 + 10.0},
-                                                    {{0, -1, 0}, -y0},
-                                                    {{0, 0, 1}, 10.0}});
+  const QuadricRegion region = clippedAtom(
+      saddle, {{{1, 0, 0}, 10.0}, {{-1, 0, 0}, 0.0}, {{0, 1, 0}, y0 + 10.0}, {{0, -1, 0}, -y0}, {{0, 0, 1}, 10.0}});
   // z >= x^2/a^2 - y^2/a^2, down to -(y0 + 10)^2 / a^2 = -2.5e-5 at x = 0.
   const Eigen::Vector3d deep(0.5, y0 + 0.5, -1e-5);
   ASSERT_EQ(region.classifyPoint(deep), 1);
@@ -332,13 +336,16 @@ TEST(ConvexRegionBox, LeavesAtomsNonConvexUnboundedAndEmptyRegionsToTheRegionEng
   Eigen::Matrix4d ball = diagonalQuadric(1, 1, 1, -1);
   ball(0, 3) = ball(3, 0) = -2.0;  // (x - 2)^2 + y^2 + z^2 <= 1
   ball(3, 3) = 3.0;
-  EXPECT_FALSE(ConvexSupport::regionBox(QuadricRegion::combine(Op::Union, {QuadricRegion::atom(diagonalQuadric(1, 1, 1, -1)),
-                                                                           QuadricRegion::atom(ball)}))
-                   .has_value());
+  EXPECT_FALSE(
+      ConvexSupport::regionBox(QuadricRegion::combine(Op::Union, {QuadricRegion::atom(diagonalQuadric(1, 1, 1, -1)),
+                                                                  QuadricRegion::atom(ball)}))
+          .has_value());
   // A one-sheet hyperboloid between two planes: connected, not convex.
-  EXPECT_FALSE(ConvexSupport::regionBox(clippedAtom(diagonalQuadric(1, 1, -1, -1), {{ez, 1.0}, {-ez, 1.0}})).has_value());
+  EXPECT_FALSE(
+      ConvexSupport::regionBox(clippedAtom(diagonalQuadric(1, 1, -1, -1), {{ez, 1.0}, {-ez, 1.0}})).has_value());
   // Both nappes of a cone between two planes: not convex.
-  EXPECT_FALSE(ConvexSupport::regionBox(clippedAtom(diagonalQuadric(1, 1, -1, 0), {{ez, 1.0}, {-ez, 1.0}})).has_value());
+  EXPECT_FALSE(
+      ConvexSupport::regionBox(clippedAtom(diagonalQuadric(1, 1, -1, 0), {{ez, 1.0}, {-ez, 1.0}})).has_value());
   // A paraboloid cut only from below: unbounded (regionAabb throws, naming it).
   Eigen::Matrix4d par = diagonalQuadric(1, 1, 0, 0);
   par(2, 3) = par(3, 2) = -0.5;

@@ -79,16 +79,18 @@ class ConvexSupport {
   static std::optional<ConvexSupport> fromRegion(const QuadricRegion& region, const Box3& box);
   /// A certified bounding box of a region that fromRegion() accepts, from the support values
   /// towards +-x, +-y, +-z (in stages from `hint`, a box known to contain the region, or from the
-  /// +-kRegionMaxExtent cube), each face then certified by the region engine (findPoint: no point
-  /// of the region beyond the face in the box grown by its half-widths, and one inside; the
-  /// region is connected). Tight to tolerance_region::kRegionAabbRelative of the box, except
-  /// where the engine cannot certify that close (a cone's apex on the face: the face moves out by
-  /// doubling steps, at most 1e-3 of the box). Microseconds for the enumeration and a few
-  /// milliseconds for the certificate, where regionAabb's bisections take 10 ms to seconds
-  /// (docs/algorithms.md section 12, "Bounding boxes of convex regions"). nullopt when the region
-  /// is a single atom (an ellipsoid: regionAabb's closed form), not convex in fromRegion()'s
-  /// sense, unbounded or empty, or when a face is not certified: the caller then uses regionAabb,
-  /// which also names the unbounded or empty case. No failure mode.
+  /// +-kRegionMaxExtent cube). The region engine finds a point of the region inside the box; then
+  /// every face must hold within the box grown by its half-widths (the region is connected), each
+  /// certified by weak duality where the curved atom is convex (dualSupportBound()), else by the
+  /// engine (findPoint: no point of the region beyond the face there). Tight to
+  /// tolerance_region::kRegionAabbRelative of the box near the origin, except where the engine
+  /// cannot certify that close (a cone's apex on the face: the face moves out by doubling steps,
+  /// at most 1e-3 of the box); far from the origin the rounding of the atoms loosens it.
+  /// Microseconds with duality, about 1-10 ms with the engine, where regionAabb's bisections take
+  /// 10 ms to seconds (docs/algorithms.md section 12, "Bounding boxes of convex regions").
+  /// nullopt when the region is a single atom (an ellipsoid: regionAabb's closed form), not
+  /// convex in fromRegion()'s sense, unbounded or empty, or when a face is not certified: the
+  /// caller then uses regionAabb, which also names the unbounded or empty case. No failure mode.
   static std::optional<Box3> regionBox(const QuadricRegion& region, const Box3* hint = nullptr);
   /// regionBox() extended over unions: a union's box is the union of its operands' (exact: the
   /// maximum of a linear function over a union is the largest of its operands'), each operand
