@@ -946,7 +946,10 @@ void registerConstructionBenchmarks() {
                                        for (auto _ : state) {
                                          if (support) {
                                            const std::optional<Box3> b = fcl_quadric::ConvexSupport::treeBox(r);
-                                           if (!b) state.SkipWithError("treeBox left the region to regionAabb");
+                                           if (!b) {
+                                             state.SkipWithError("treeBox left the region to regionAabb");
+                                             break;
+                                           }
                                            benchmark::DoNotOptimize(b);
                                          } else {
                                            benchmark::DoNotOptimize(fcl_quadric::regionAabb(r));
