@@ -106,6 +106,20 @@ int expectConstructedGap(const fcl::CollisionGeometry<double>& shape, const Tran
   return checked;
 }
 
+/// A mesh (pose tm) of the vertices w given in a shape's frame (pose ts): the constructed-gap
+/// tests build their partners where the shape's geometry is known, then pose them.
+std::shared_ptr<fcl::BVHModel<fcl::OBBRSS<double>>> meshInFrame(const std::vector<Eigen::Vector3d>& w,
+                                                                const std::vector<fcl::Triangle>& tris,
+                                                                const Transform& ts, const Transform& tm) {
+  std::vector<Eigen::Vector3d> in_mesh_frame;
+  for (const Eigen::Vector3d& x : w) in_mesh_frame.push_back(tm.inverse() * (ts * x));
+  auto mesh = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
+  mesh->beginModel();
+  mesh->addSubModel(in_mesh_frame, tris);
+  mesh->endModel();
+  return mesh;
+}
+
 /// A unit normal n at the apex of the nappe x^2/a^2 + y^2/b^2 <= z^2, z >= 0, at azimuth th, in
 /// the nappe's polar cone (the nappe lies in x.n <= 0: tan(al) <= 1 / |(a cos th, b sin th)|) with
 /// -n inside the nappe (tan(al) <= 1 / |(cos th / a, sin th / b)|), so that -g n overlaps it;
@@ -229,14 +243,9 @@ TEST(QuadricShapeDistance, MeshVerticesEdgesFacesAndSliverTipsNearAnEllipticCyli
           w = {p, p + H * (dir + eps * e2), p + H * (dir - eps * e2)};
           tris = {{0, 1, 2}};
         }
-        std::vector<Eigen::Vector3d> in_mesh_frame;
-        for (const Eigen::Vector3d& x : w) in_mesh_frame.push_back(tm.inverse() * (tc * x));
-        fcl::BVHModel<fcl::OBBRSS<double>> mesh;
-        mesh.beginModel();
-        mesh.addSubModel(in_mesh_frame, tris);
-        mesh.endModel();
+        const auto mesh = meshInFrame(w, tris, tc, tm);
         const double scale = a + b + lz + H + r + (tc.translation() - tm.translation()).norm();
-        checked += expectConstructedGap(cylinder, tc, mesh, tm, g, 1e-10 * g + 1e-14 * scale, 1e-14 * scale,
+        checked += expectConstructedGap(cylinder, tc, *mesh, tm, g, 1e-10 * g + 1e-14 * scale, 1e-14 * scale,
                                         "kind " + std::to_string(kind) + " trial " + std::to_string(trial));
       }
     }
@@ -282,13 +291,8 @@ TEST(QuadricShapeDistance, AConesApexNearMeshVerticesAndFacesGivesTheConstructed
           w.push_back(p + H * n);
           tris = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
         }
-        std::vector<Eigen::Vector3d> in_mesh_frame;
-        for (const Eigen::Vector3d& x : w) in_mesh_frame.push_back(tm.inverse() * (tc * x));
-        fcl::BVHModel<fcl::OBBRSS<double>> mesh;
-        mesh.beginModel();
-        mesh.addSubModel(in_mesh_frame, tris);
-        mesh.endModel();
-        checked += expectConstructedGap(cone, tc, mesh, tm, g, 1e-10 * g + 1e-13, 3e-14,
+        const auto mesh = meshInFrame(w, tris, tc, tm);
+        checked += expectConstructedGap(cone, tc, *mesh, tm, g, 1e-10 * g + 1e-13, 3e-14,
                                         "kind " + std::to_string(kind) + " trial " + std::to_string(trial));
       }
     }
