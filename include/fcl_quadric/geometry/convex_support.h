@@ -90,13 +90,17 @@ class ConvexSupport {
   /// 10 ms to seconds (docs/algorithms.md section 12, "Bounding boxes of convex regions").
   /// nullopt when the region is a single atom (an ellipsoid: regionAabb's closed form), not
   /// convex in fromRegion()'s sense, unbounded or empty, or when a face is not certified: the
-  /// caller then uses regionAabb, which also names the unbounded or empty case. No failure mode.
+  /// caller then uses regionAabb, which also names the unbounded or empty case. A hint that is
+  /// empty or not finite is ignored; one that does not contain the region gives a certified box
+  /// or nullopt (the certificate checks it). No failure mode. Not from the seed papers: the
+  /// support function of convex analysis, with the engine of thesis ch.6 as the certificate.
   static std::optional<Box3> regionBox(const QuadricRegion& region, const Box3* hint = nullptr);
   /// regionBox() extended over unions: a union's box is the union of its operands' (exact: the
   /// maximum of a linear function over a union is the largest of its operands'), each operand
   /// boxed by this function again, an ellipsoid atom by regionAabb's closed form. Any other
   /// region: regionBox(region, hint). nullopt when some operand is left to regionAabb (the
-  /// caller then boxes the whole region with it). No failure mode.
+  /// caller then boxes the whole region with it). `hint` as for regionBox(), used at the root
+  /// only. No failure mode.
   static std::optional<Box3> treeBox(const QuadricRegion& region, const Box3* hint = nullptr);
   /// A certified upper bound of max n.y over the solid's points y inside `outer`, by weak
   /// duality: non-negative multipliers of the region's own constraints (not the bounding box's)
@@ -105,7 +109,9 @@ class ConvexSupport {
   /// `outer`; tight (to ~1e-11 of the box) when x is the support point towards n. regionBox()
   /// certifies its faces with it. nullopt unless the kind is Region with a convex curved atom
   /// (a cone nappe or a hyperboloid sheet is convex only on one component: their faces are left
-  /// to the region engine), or when x is outside `outer` or no multipliers fit. No failure mode.
+  /// to the region engine), or when n, x or `outer` is not finite, x is outside `outer`, or no
+  /// multipliers fit. No failure mode. Not from the seed papers: weak Lagrangian duality (Boyd and
+  /// Vandenberghe, Convex Optimization, section 5.2) with every rounding charged.
   std::optional<double> dualSupportBound(const Eigen::Vector3d& n, const Eigen::Vector3d& x, const Box3& outer) const;
 
   Kind kind() const { return kind_; }
