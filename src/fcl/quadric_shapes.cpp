@@ -75,7 +75,7 @@ QuadricShape<S>::QuadricShape(QuadricRegion region, const std::optional<Box3>& b
     this->aabb_local.max_ = box_.hi.template cast<S>();
     this->aabb_center = this->aabb_local.center();
     this->aabb_radius = (this->aabb_local.min_ - this->aabb_center).norm();
-    convex_ = ConvexSupport::fromRegion(region_, box_);
+    convex_ = ConvexSupport::fromRegion(region_, box_, ConvexSupport::BoxRole::Contains);
   }
 }
 

@@ -273,7 +273,7 @@ bool ConvexSupport::acceptIndefinite(RegionData* g, double length) {
   return true;
 }
 
-std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& region, const Box3& box) {
+std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& region, const Box3& box, BoxRole role) {
   if (box.empty() || !box.lo.allFinite() || !box.hi.allFinite())
     throw std::invalid_argument("ConvexSupport::fromRegion: the bounding box is empty or not finite");
   std::vector<Eigen::Matrix4d> atoms;
@@ -340,6 +340,7 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
     addPlane(e, box.hi[i], 0.0);
     addPlane(-e, -box.lo[i], 0.0);
   }
+  g->support_planes = g->plane_h.size();
   if (g->has_curved) {
     // Everything about the curved atom and its planar sections that does not depend on n.
     const double length = s.size_ + s.center_.norm();
@@ -383,6 +384,25 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
     }
   }
   s.region_ = g;
+  if (role == BoxRole::Contains) {
+    // The box contains the region, so the region's own constraints bound it and the box's faces
+    // are redundant: max n.x over the region is attained at a candidate of its own constraints.
+    // They were 5 of a clipped cone's 7 planes, and the enumeration is quadratic in the planes
+    // (pairs) times linear (clipping, feasibility): skipping them made its support 3-4 times
+    // faster. A partial check of the precondition: the supports towards +-x, +-y, +-z must be
+    // found and inside the box (an unbounded region passed as contained finds none towards its
+    // opening); if not, the faces stay.
+    g->support_planes = g->own_planes;
+    const double slack = 1e-9 * (s.size_ + s.center_.norm());
+    for (int i = 0; i < 6 && g->support_planes == g->own_planes; ++i) {
+      Eigen::Vector3d e = Eigen::Vector3d::Zero();
+      e[i / 2] = i % 2 == 0 ? 1.0 : -1.0;
+      bool found = false;
+      const Eigen::Vector3d x = s.regionSupport(e, &found);
+      if (!found || (x - box.hi).maxCoeff() > slack || (box.lo - x).maxCoeff() > slack)
+        g->support_planes = g->plane_h.size();
+    }
+  }
   // A probe: every direction of the 3 x 3 x 3 stencil must find a feasible candidate. None is
   // found when the atom is beyond the enumeration's resolution (a cone of aspect ratio 1e7, whose
   // eigenvalues +-1e-14 of the largest pass for a positive semidefinite slab: the support was
@@ -488,7 +508,7 @@ Eigen::Vector3d ConvexSupport::regionSupport(const Eigen::Vector3d& n, bool* fou
   constexpr double kFeas = tolerance_support::kSupportFeasibilityRelative;
   const RegionData& g = *region_;
   const double length = size_ + center_.norm();
-  const std::size_t np = g.plane_h.size();
+  const std::size_t np = g.support_planes;  // the box's faces only when it clips (BoxRole)
   auto curvedValue = [&](const Eigen::Vector3d& x, double* mag) {
     *mag = x.cwiseAbs().dot(g.A.cwiseAbs() * x.cwiseAbs()) + 2.0 * g.b.cwiseAbs().dot(x.cwiseAbs()) + std::abs(g.c);
     return x.dot(g.A * x) + 2.0 * g.b.dot(x) + g.c;
@@ -522,9 +542,11 @@ Eigen::Vector3d ConvexSupport::regionSupport(const Eigen::Vector3d& n, bool* fou
       // over the whole solid (which it bounds), and no other candidate can beat it.
       if (feasible(*x)) return *x;
     }
-    for (const RegionData::Section& sec : g.sections)
+    for (std::size_t i = 0; i < np; ++i) {
+      const RegionData::Section& sec = g.sections[i];
       if (auto y = smoothMax<2>(sec.lam, sec.V, sec.bz, sec.c, Eigen::Vector2d(sec.U.transpose() * n), sec.b_tol, sec.r))
         consider(sec.x0 + sec.U * *y);
+    }
   }
   for (std::size_t i = 0; i < np; ++i) {
     for (std::size_t j = i + 1; j < np; ++j) {

@@ -30,6 +30,9 @@ struct ConvexSupport::RegionData {
   /// The first `own_planes` planes are the region's own half-spaces; the rest are the bounding
   /// box's faces (ConvexSupport::regionBox certifies with the region's own constraints only).
   std::size_t own_planes = 0;
+  /// The planes (and their sections) the support enumeration runs over: all of them when the box
+  /// clips the region, the first `own_planes` when it contains it (BoxRole::Contains).
+  std::size_t support_planes = 0;
   struct Curved {
     Eigen::Vector3d lam = Eigen::Vector3d::Zero(), bz = Eigen::Vector3d::Zero();
     Eigen::Matrix3d V = Eigen::Matrix3d::Identity();

@@ -85,6 +85,19 @@ std::vector<QuadricRegion> convexRegions() {
   return out;
 }
 
+/// The region's support mapping with its box in both roles (convex_support.h, BoxRole): the box
+/// given contains the region, so clipping by its faces and skipping them must give the same
+/// solid. Each test below checks both against its oracle.
+std::vector<ConvexSupport> bothBoxRoles(const QuadricRegion& region, const Box3& box) {
+  std::vector<ConvexSupport> out;
+  for (ConvexSupport::BoxRole role : {ConvexSupport::BoxRole::Clips, ConvexSupport::BoxRole::Contains}) {
+    std::optional<ConvexSupport> s = ConvexSupport::fromRegion(region, box, role);
+    EXPECT_TRUE(s.has_value()) << "role " << int(role);
+    if (s) out.push_back(std::move(*s));
+  }
+  return out;
+}
+
 TEST(ConvexSupport, ClosedFormsAgreeWithTheirRegions) {
   std::mt19937_64 rng(11);
   struct Case {
@@ -107,19 +120,21 @@ TEST(ConvexSupport, ClosedFormsAgreeWithTheirRegions) {
        QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::ellipticCylinder(0.7, 0.2)), slab(0.5)})},
   };
   for (const Case& c : cases) {
-    const auto region = ConvexSupport::fromRegion(c.region, regionAabb(c.region));
-    ASSERT_TRUE(region.has_value());
-    for (int i = 0; i < 300; ++i) {
-      const Eigen::Vector3d n = randomUnitVector(rng);
-      EXPECT_NEAR(n.dot(region->support(n)), n.dot(c.closed.support(n)), 1e-10);
+    const std::vector<ConvexSupport> roles = bothBoxRoles(c.region, regionAabb(c.region));
+    ASSERT_EQ(roles.size(), 2u);
+    for (const ConvexSupport& region : roles) {
+      for (int i = 0; i < 300; ++i) {
+        const Eigen::Vector3d n = randomUnitVector(rng);
+        EXPECT_NEAR(n.dot(region.support(n)), n.dot(c.closed.support(n)), 1e-10);
+      }
     }
   }
   // The cone's quadratic part is indefinite; the slab |z| <= 0.8 keeps one nappe (the apex is on
   // its top plane), so the region is convex and its enumeration (apex candidate included) agrees
   // with the closed form, itself checked against sampled rim and apex points.
   const QuadricRegion cone_region = QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(cone), slab(0.8)});
-  const auto cone_support = ConvexSupport::fromRegion(cone_region, regionAabb(cone_region));
-  ASSERT_TRUE(cone_support.has_value());
+  const std::vector<ConvexSupport> cone_supports = bothBoxRoles(cone_region, regionAabb(cone_region));
+  ASSERT_EQ(cone_supports.size(), 2u);
   const ConvexSupport cs = ConvexSupport::cone(0.6, 0.8);
   for (int i = 0; i < 300; ++i) {
     const Eigen::Vector3d n = randomUnitVector(rng);
@@ -131,7 +146,7 @@ TEST(ConvexSupport, ClosedFormsAgreeWithTheirRegions) {
     const double got = n.dot(cs.support(n));
     EXPECT_GE(got, best - 1e-12);
     EXPECT_LE(got, best + 0.6 * (1 - std::cos(M_PI / 3600)) + 1e-12);
-    EXPECT_NEAR(n.dot(cone_support->support(n)), got, 1e-10);
+    for (const ConvexSupport& cone_support : cone_supports) EXPECT_NEAR(n.dot(cone_support.support(n)), got, 1e-10);
   }
 }
 
@@ -172,13 +187,14 @@ TEST(ConvexSupport, ConeNappesAndHyperboloidSheetsAgreeWithClosedForms) {
       const Eigen::Matrix3d R = pose == 0 ? Eigen::Matrix3d::Identity() : randomRotation(rng);
       const Eigen::Vector3d p = pose == 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.3, -1.2, 2.5);
       const QuadricRegion world = k.local.transformed(R, p);
-      const auto s = ConvexSupport::fromRegion(world, regionAabb(world));
-      ASSERT_TRUE(s.has_value()) << pose;
+      const std::vector<ConvexSupport> roles = bothBoxRoles(world, regionAabb(world));
+      ASSERT_EQ(roles.size(), 2u) << pose;
       for (int i = 0; i < 400; ++i) {
         // Directions near the apex's normal cone and the asymptotic cone's boundary included.
         const Eigen::Vector3d n = i < 8 ? R * Eigen::Vector3d(0.1 * (i % 3), 0.05 * (i % 2), -1.0).normalized()
                                         : randomUnitVector(rng);
-        EXPECT_NEAR(n.dot(s->support(n)), n.dot(p) + k.exact(R.transpose() * n), 1e-12) << pose << " " << i;
+        for (const ConvexSupport& s : roles)
+          EXPECT_NEAR(n.dot(s.support(n)), n.dot(p) + k.exact(R.transpose() * n), 1e-12) << pose << " " << i;
       }
     }
   }
@@ -235,8 +251,8 @@ TEST(ConvexSupport, RegionSupportMatchesTheCertifiedMaxLinearBound) {
   for (std::size_t k = 0; k < regions.size(); ++k) {
     const QuadricRegion& r = regions[k];
     const Box3 box = regionAabb(r);
-    const auto s = ConvexSupport::fromRegion(r, box);
-    ASSERT_TRUE(s.has_value());
+    const std::vector<ConvexSupport> roles = bothBoxRoles(r, box);
+    ASSERT_EQ(roles.size(), 2u);
     const double extent = (box.hi - box.lo).maxCoeff();
     // maxLinear is a certified upper bound within kRegionAabbRelative (1e-7) of the maximum on
     // smooth solids; about a cone's apex and a hyperboloid's sheet its bisections stop looser
@@ -248,9 +264,54 @@ TEST(ConvexSupport, RegionSupportMatchesTheCertifiedMaxLinearBound) {
       const Eigen::Vector3d n = randomUnitVector(rng);
       double upper = 0.0;
       ASSERT_TRUE(maxLinear(r, n, box, &upper));
-      const double got = n.dot(s->support(n));
-      EXPECT_LE(got, upper + 1e-12 * extent);
-      EXPECT_GE(got, upper - looseness * extent);
+      for (const ConvexSupport& s : roles) {
+        const double got = n.dot(s.support(n));
+        EXPECT_LE(got, upper + 1e-12 * extent);
+        EXPECT_GE(got, upper - looseness * extent);
+      }
+    }
+  }
+}
+
+// BoxRole::Contains skips the box's faces, which is right only when the box contains the region.
+// A region its own constraints leave unbounded (an uncapped paraboloid, a wedge of three planes)
+// passed with a box as if contained: the partial check must keep the faces, and the supports
+// must be those of the region cut by the box (closed forms). Without the check the paraboloid's
+// support towards its opening was the box's centre, outside the solid.
+TEST(ConvexSupport, AContainedBoxOfAnUnboundedRegionKeepsItsFaces) {
+  const Box3 box{Eigen::Vector3d(-1, -1, 0), Eigen::Vector3d(1, 1, 1)};
+  // z >= x^2 + y^2 inside the box: its extremes are on the rim z = 1, x^2 + y^2 = 1.
+  const QuadricRegion cup = QuadricRegion::atom(quadric::ellipticParaboloid(1.0, 1.0));
+  // x <= 0.5, y <= 0.5, z <= 0.5 - x - y (a wedge, unbounded towards -x, -y, +z) inside the box.
+  const QuadricRegion wedge =
+      QuadricRegion::combine(Op::Intersection, {QuadricRegion::halfspace({1, 0, 0}, 0.5),
+                                                QuadricRegion::halfspace({0, 1, 0}, 0.5),
+                                                QuadricRegion::halfspace({1, 1, 1}, 0.5)});
+  std::mt19937_64 rng(43);
+  for (ConvexSupport::BoxRole role : {ConvexSupport::BoxRole::Clips, ConvexSupport::BoxRole::Contains}) {
+    SCOPED_TRACE(testing::Message() << "role " << int(role));
+    const auto s = ConvexSupport::fromRegion(cup, box, role);
+    ASSERT_TRUE(s.has_value());
+    EXPECT_NEAR(s->support({0, 0, 1}).z(), 1.0, 1e-12);
+    EXPECT_NEAR(s->support({1, 0, 0}).x(), 1.0, 1e-9);
+    EXPECT_NEAR(s->support({0, 0, -1}).z(), 0.0, 1e-12);
+    const auto w = ConvexSupport::fromRegion(wedge, box, role);
+    ASSERT_TRUE(w.has_value());
+    for (int i = 0; i < 200; ++i) {
+      // The wedge cut by the box is a polytope: its support value is the largest over the
+      // vertices of the box that the wedge keeps and of the wedge's faces cut by the box's edges.
+      const Eigen::Vector3d n = randomUnitVector(rng);
+      double best = -std::numeric_limits<double>::infinity();
+      const double grid[3][3] = {{-1, 0.5, 0}, {-1, 0.5, 0}, {0, 1, 0.5}};
+      for (int a = 0; a < 27; ++a)
+        for (int free = -1; free < 3; ++free) {
+          Eigen::Vector3d x(grid[0][a % 3], grid[1][(a / 3) % 3], grid[2][a / 9]);
+          if (free >= 0) x[free] = 0.5 - (x.sum() - x[free]);  // on the slanted face
+          const bool inside = x.x() >= -1 - 1e-12 && x.x() <= 0.5 + 1e-12 && x.y() >= -1 - 1e-12 &&
+                              x.y() <= 0.5 + 1e-12 && x.z() >= -1e-12 && x.z() <= 1 + 1e-12 && x.sum() <= 0.5 + 1e-12;
+          if (inside) best = std::max(best, n.dot(x));
+        }
+      EXPECT_NEAR(n.dot(w->support(n)), best, 1e-12) << i;
     }
   }
 }
