@@ -274,10 +274,12 @@ TEST(ConvexSupport, RegionSupportMatchesTheCertifiedMaxLinearBound) {
 }
 
 // BoxRole::Contains skips the box's faces, which is right only when the box contains the region.
-// A region its own constraints leave unbounded (an uncapped paraboloid, a wedge of three planes)
-// passed with a box as if contained: the partial check must keep the faces, and the supports
-// must be those of the region cut by the box (closed forms). Without the check the paraboloid's
-// support towards its opening was the box's centre, outside the solid.
+// Regions their own constraints leave unbounded (an uncapped paraboloid, a wedge of three planes,
+// an inverted pyramid whose apex is inside the box), passed with a box as if contained: the check
+// must keep the faces, and the supports must be those of the region cut by the box (closed forms).
+// Without a check the paraboloid's support towards its opening was the box's centre, outside the
+// solid. A first check (the region's own supports towards +-x, +-y, +-z found and inside the box)
+// passed the pyramid: its own enumeration gives the apex in every direction of its opening.
 TEST(ConvexSupport, AContainedBoxOfAnUnboundedRegionKeepsItsFaces) {
   const Box3 box{Eigen::Vector3d(-1, -1, 0), Eigen::Vector3d(1, 1, 1)};
   // z >= x^2 + y^2 inside the box: its extremes are on the rim z = 1, x^2 + y^2 = 1.
@@ -312,6 +314,22 @@ TEST(ConvexSupport, AContainedBoxOfAnUnboundedRegionKeepsItsFaces) {
           if (inside) best = std::max(best, n.dot(x));
         }
       EXPECT_NEAR(n.dot(w->support(n)), best, 1e-12) << i;
+    }
+    // z - 0.5 >= 2 |x| and >= 2 |y|: cut by the box, the pyramid of apex (0, 0, 0.5) and top
+    // square |x|, |y| <= 0.25 at z = 1.
+    std::vector<QuadricRegion> sides;
+    for (const Eigen::Vector3d& h : {Eigen::Vector3d(2, 0, -1), Eigen::Vector3d(-2, 0, -1), Eigen::Vector3d(0, 2, -1),
+                                     Eigen::Vector3d(0, -2, -1)})
+      sides.push_back(QuadricRegion::halfspace(h, -0.5));
+    const auto pyramid = ConvexSupport::fromRegion(QuadricRegion::combine(Op::Intersection, sides), box, role);
+    ASSERT_TRUE(pyramid.has_value());
+    for (int i = 0; i < 200; ++i) {
+      const Eigen::Vector3d n =
+          i < 6 ? Eigen::Vector3d(Eigen::Vector3d::Unit(i / 2) * (i % 2 == 0 ? 1.0 : -1.0)) : randomUnitVector(rng);
+      double best = 0.5 * n.z();
+      for (int c = 0; c < 4; ++c)
+        best = std::max(best, n.dot(Eigen::Vector3d(c & 1 ? 0.25 : -0.25, c & 2 ? 0.25 : -0.25, 1)));
+      EXPECT_NEAR(n.dot(pyramid->support(n)), best, 1e-12) << i;
     }
   }
 }

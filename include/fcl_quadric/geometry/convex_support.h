@@ -77,10 +77,12 @@ class ConvexSupport {
     /// The solid is the region cut by the box (a branch-and-bound node, a piece of a cover, a
     /// half-space): the box's faces are constraints of the enumeration.
     Clips,
-    /// The box is certified to contain the region (QuadricShape::localBox(), regionBox(),
-    /// regionAabb()), which is then bounded: the box's faces are redundant and the enumeration
-    /// skips them. Checked in part: if the region's own constraints leave a support towards
-    /// +-x, +-y or +-z unfound or outside the box, the faces are kept (as Clips).
+    /// The box contains the region (QuadricShape::localBox(), regionBox(), regionAabb()), which
+    /// is then bounded: the box's faces are redundant and the enumeration skips them (3-4 times
+    /// faster GJK on a clipped cone). Checked at construction (2-3 us): the region cut by the box
+    /// grown by its largest half-width must reach no farther than the box towards +-x, +-y, +-z
+    /// (to 1e-9 of its size; the region is convex, so it then lies in the box). If not, the
+    /// faces stay, as with Clips.
     Contains,
   };
   /// The region as a convex support mapping, or nullopt when its formula is not a conjunction of
