@@ -797,8 +797,9 @@ BENCHMARK(BM_SmallEllipsoidEngine)->Name("QuadricShapes/SmallEllipsoid/RegionEng
 // Shape pairs (session 30): fcl_quadric::collide with a quadric shape first, against each FCL
 // partner FCL 0.7 has (libccd on an fcl::Cylinder of the same size in place of the
 // EllipticCylinder), and shapes FCL does not have (a clipped paraboloid, a union of two balls, a
-// ring, the ring against the two balls): 1,000 poses of the partner (random rotation, centre in
-// [-1.5, 1.5]^3), the quadric shape at the identity. One iteration = one pose, walked cyclically.
+// ring, the ring against the two balls, a link of three capped cylinders): 1,000 poses of the
+// partner (random rotation, centre in [-1.5, 1.5]^3), the quadric shape at the identity. One
+// iteration = one pose, walked cyclically.
 struct ShapePairScene {
   std::string name;
   std::shared_ptr<fcl::CollisionGeometryd> ours, partner;
@@ -839,6 +840,17 @@ std::vector<ShapePairScene> makeShapePairScenes() {
   cone_q(2, 3) = cone_q(3, 2) = cone_k * cone_k * cone_h;
   cone_q(3, 3) = -cone_k * cone_k * cone_h * cone_h;
   auto cone = std::make_shared<Q>(cone_q, Q::Clips{{Eigen::Vector3d::UnitZ(), cone_h}, {-Eigen::Vector3d::UnitZ(), cone_h}});
+  // A link of three posed capped elliptic cylinders (a union of convex operands, answered on its
+  // convex cover: one piece per cylinder, since session 43 without the union box's faces).
+  std::vector<Csg::Child> rods;
+  const auto rod = std::make_shared<fcl_quadric::EllipticCylinder<double>>(0.3, 0.4, 2.0);
+  for (int k = 0; k < 3; ++k) {
+    fcl::Transform3d X = I;
+    X.linear() = Eigen::AngleAxisd(0.4 + 0.45 * k, Eigen::Vector3d(1, k, 0.5).normalized()).toRotationMatrix();
+    X.translation() = Eigen::Vector3d(0.3 * k, 0.1 * k, 0.0);
+    rods.push_back({rod, X});
+  }
+  auto link = std::make_shared<Csg>(fcl_quadric::QuadricRegion::Op::Union, rods);
   return {
       {"CylinderSphere", cylinder, sphere, fcl_cylinder},
       {"CylinderBox", cylinder, box, fcl_cylinder},
@@ -852,6 +864,7 @@ std::vector<ShapePairScene> makeShapePairScenes() {
       {"TwoBallsBox", balls, box, nullptr},
       {"RingSphere", ring, sphere, nullptr},
       {"RingTwoBalls", ring, balls, nullptr},
+      {"LinkSphere", link, sphere, nullptr},
   };
 }
 std::vector<ShapePairScene>& shapePairScenes() {

@@ -89,7 +89,10 @@ class CoverBuilder {
       parts.push_back(QuadricRegion::atom(f_.atoms[a]));
     }
     if (parts.empty()) return boxSupport();
-    return ConvexSupport::fromRegion(QuadricRegion::combine(QuadricRegion::Op::Intersection, std::move(parts)), box_);
+    // Contains: a piece inside the model's box (a ball of a union) skips the box's faces; one
+    // that reaches beyond it (a superset) keeps them (fromRegion checks which).
+    return ConvexSupport::fromRegion(QuadricRegion::combine(QuadricRegion::Op::Intersection, std::move(parts)), box_,
+                                     ConvexSupport::BoxRole::Contains);
   }
 
   ConvexSupport boxSupport() const {
@@ -117,7 +120,7 @@ ConvexCover convexCover(const QuadricRegion& region, const Box3& box) {
   if (box.empty() || !box.lo.allFinite() || !box.hi.allFinite())
     throw std::invalid_argument("convexCover: the bounding box is empty or not finite");
   ConvexCover cover;
-  if (std::optional<ConvexSupport> whole = ConvexSupport::fromRegion(region, box)) {
+  if (std::optional<ConvexSupport> whole = ConvexSupport::fromRegion(region, box, ConvexSupport::BoxRole::Contains)) {
     cover.pieces.push_back(std::move(*whole));
     cover.exact = true;
     return cover;

@@ -152,6 +152,74 @@ TEST(ConvexCover, UnionsAreExactAndDifferencesAreCoveredByTheirFirstOperand) {
   EXPECT_THROW(convexCover(ring->region(), Box3{Eigen::Vector3d::Ones(), Eigen::Vector3d::Zero()}), std::invalid_argument);
 }
 
+// Since session 43 a cover's pieces skip the model box's faces when they lie inside it
+// (ConvexSupport::BoxRole::Contains): a union's pieces are then its operands exactly, and a piece
+// that reaches beyond the box (a superset) is still cut by it.
+TEST(ConvexCover, PiecesInsideTheBoxAreTheOperandsAndPiecesBeyondItAreCutByIt) {
+  const auto rod = std::make_shared<EllipticCylinder<double>>(0.3, 0.4, 2.0);
+  std::vector<QuadricCSG<double>::Child> children;
+  std::vector<Transform> poses;
+  for (int k = 0; k < 3; ++k) {
+    poses.push_back(pose(Eigen::AngleAxisd(0.4 + 0.45 * k, Eigen::Vector3d(1, k, 0.5).normalized()).toRotationMatrix(),
+                         {0.3 * k, 0.1 * k, 0.0}));
+    children.push_back({rod, poses.back()});
+  }
+  const QuadricCSG<double> link(Op::Union, children);
+  const ConvexCover c = convexCover(link.region(), link.localBox());
+  EXPECT_TRUE(c.exact);
+  ASSERT_EQ(c.pieces.size(), 3u);
+  const ConvexSupport closed = ConvexSupport::ellipticCylinder(0.3, 0.4, 1.0);
+  const auto dirs = test::fibonacciSphere(200);
+  std::vector<bool> matched(3, false);
+  for (const ConvexSupport& piece : c.pieces) {
+    // The operand whose closed-form support this piece has in every direction.
+    int match = -1;
+    for (int k = 0; k < 3 && match < 0; ++k) {
+      bool all = true;
+      for (const Eigen::Vector3d& n : dirs) {
+        const Eigen::Vector3d x = poses[k] * closed.support(poses[k].linear().transpose() * n);
+        all = all && std::abs(n.dot(piece.support(n)) - n.dot(x)) <= 1e-10;
+      }
+      if (all) match = k;
+    }
+    ASSERT_GE(match, 0);
+    EXPECT_FALSE(matched[match]);
+    matched[match] = true;
+  }
+  // A capped cylinder of radius 0.9 cut by a one-sheet hyperboloid of waist 0.5 (|z| <= 0.5, where
+  // its radius reaches 0.5 sqrt 2): the cover drops the hyperboloid, and its piece is the capped
+  // cylinder cut by the model's box (the disk cuts the box's vertical edges).
+  const auto can = std::make_shared<Quadric<double>>(Quadric<double>::ellipticCylinder(
+      0.9, 0.9, {{Eigen::Vector3d::UnitZ(), 0.5}, {-Eigen::Vector3d::UnitZ(), 0.5}}));
+  const auto waist = std::make_shared<Quadric<double>>(Quadric<double>::hyperboloidOneSheet(0.5, 0.5, 0.5));
+  const QuadricCSG<double> spool(Op::Intersection, {{can, Transform::Identity()}, {waist, Transform::Identity()}});
+  const Box3& box = spool.localBox();
+  EXPECT_NEAR(box.hi.x(), 0.5 * std::sqrt(2.0), 1e-6);
+  const ConvexCover sc = convexCover(spool.region(), box);
+  EXPECT_FALSE(sc.exact);
+  ASSERT_EQ(sc.pieces.size(), 1u);
+  // The square |x|, |y| <= h cut by the disk of radius 0.9: arcs of the circle inside the square
+  // (sampled) and the 8 points where the circle meets the square's sides.
+  const double h = box.hi.x(), y_cut = std::sqrt(0.81 - h * h);
+  std::vector<Eigen::Vector2d> rim;
+  for (int k = 0; k < 7200; ++k) {
+    const double t = 2 * M_PI * k / 7200;
+    const Eigen::Vector2d q(0.9 * std::cos(t), 0.9 * std::sin(t));
+    if (std::abs(q.x()) <= h && std::abs(q.y()) <= h) rim.push_back(q);
+  }
+  for (int k = 0; k < 8; ++k) {
+    const double a = k & 1 ? h : -h, b = k & 2 ? y_cut : -y_cut;
+    rim.push_back(k & 4 ? Eigen::Vector2d(a, b) : Eigen::Vector2d(b, a));
+  }
+  for (const Eigen::Vector3d& n : dirs) {
+    double best = -1e300;
+    for (const Eigen::Vector2d& q : rim) best = std::max(best, n.x() * q.x() + n.y() * q.y() + std::abs(n.z()) * 0.5);
+    const double got = n.dot(sc.pieces[0].support(n));
+    EXPECT_GE(got, best - 1e-9);  // sampled points of the solid
+    EXPECT_LE(got, best + 1e-6);  // the arcs' sampling (0.9 (1 - cos(pi / 7200)) < 1e-7) and the box's pad
+  }
+}
+
 TEST(QuadricShapeDistance, UnionOfEllipsoidsIsTheNearestChildInBothOrdersAndSigns) {
   // Oracle: the closed-form ellipsoid distance of each child (fcl::Ellipsoid through the front
   // door: the thesis ch.4 path, not GJK), the smaller one; for overlaps the deepest child.
