@@ -817,9 +817,12 @@ S continuousCollide(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S
   // 35, an audit), for every pair.
   for (const auto& [tf, which] : {std::pair(&tf1_beg, "tf1_beg"), std::pair(&tf1_end, "tf1_end"),
                                   std::pair(&tf2_beg, "tf2_beg"), std::pair(&tf2_end, "tf2_end")}) {
+    const Eigen::Matrix3d R = tf->linear().template cast<double>();
+    const Eigen::Vector3d p = tf->translation().template cast<double>();
+    if (detail::isRigidPose(R, p)) continue;  // the messages only when a check fails
     const std::string what = std::string(kWhere) + ": " + which;
-    detail::checkRotation(Eigen::Matrix3d(tf->linear().template cast<double>()), (what + " rotation").c_str());
-    detail::checkPosition(Eigen::Vector3d(tf->translation().template cast<double>()), (what + " translation").c_str());
+    detail::checkRotation(R, (what + " rotation").c_str());
+    detail::checkPosition(p, (what + " translation").c_str());
   }
   if (detail::isQuadricShape(o1) || detail::isQuadricShape(o2)) {
     // Only translations are rational among FCL's motion types (FCL's CCDM_LINEAR / CCDM_SCREW

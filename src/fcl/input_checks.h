@@ -97,6 +97,16 @@ inline void checkTranslations(const fcl::Transform3<double>& tf1, const fcl::Tra
   if (!inRange(tf2.translation())) checkPosition(tf2.translation(), (std::string(where) + ": the translation of tf2").c_str());
 }
 
+/// Whether a pose passes checkRotation and checkPosition (ellipsoid.h): R a rotation, p finite and
+/// within +-kMaxLength. The front doors test this first and build those checks' messages only when
+/// it fails (building them per query cost 8% of a cone-sphere collide, session 43). std::isfinite
+/// first: an ordered comparison with NaN would raise FE_INVALID.
+inline bool isRigidPose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
+  for (int i = 0; i < 3; ++i)
+    if (!(std::isfinite(p[i]) && std::fabs(p[i]) <= tolerance::kMaxLength)) return false;
+  return isRotation(R);
+}
+
 template <typename S>
 void checkObject(const fcl::CollisionObject<S>* o, const char* where, const char* which) {
   if (o == nullptr) throw std::invalid_argument(std::string(where) + ": " + which + " is a null collision object");

@@ -1,6 +1,7 @@
 // Front-door dispatch for the quadric shapes: FCL primitives are converted to QuadricRegions and
 // the pair is classified by collideRegions-style certified search (docs/algorithms.md section 9).
 #include "fcl/quadric_shape_dispatch.h"
+#include "fcl/input_checks.h"
 #include "fcl/shape_pieces.h"
 
 #include <algorithm>
@@ -525,6 +526,9 @@ ConvexScreening::Verdict screenPiece(const ConvexSupport& shape, const fcl::Tran
 /// transform is an error, not a silently scaled solid (session 35, an audit: an elliptic cylinder
 /// against an ellipsoid posed by 2 I reported the scaled ellipsoid's depth).
 void checkRigidPoses(const fcl::Transform3<double>& tf1, const fcl::Transform3<double>& tf2, const char* where) {
+  // The messages below only when a check fails (input_checks.h).
+  if (detail::isRigidPose(tf1.linear(), tf1.translation()) && detail::isRigidPose(tf2.linear(), tf2.translation()))
+    return;
   const std::string w(where);
   detail::checkRotation(tf1.linear(), (w + ": the rotation of tf1").c_str());
   detail::checkPosition(tf1.translation(), (w + ": the translation of tf1").c_str());
