@@ -929,6 +929,28 @@ std::vector<ConstructionCase> makeConstructionCases() {
                  },
                  {},
                  {}});
+  // Not convex, so boxed by regionAabb's bisections: the ring of the CSG scenes (an ellipsoid
+  // minus a bore) and a lens (two balls intersected).
+  out.push_back({"Ring",
+                 [] {
+                   const fcl::Transform3d I = fcl::Transform3d::Identity();
+                   const auto outer = std::make_shared<Q>(Q::ellipsoid(1.2, 1.2, 0.6));
+                   const auto bore = std::make_shared<Q>(Q::ellipticCylinder(0.6, 0.6));
+                   return std::make_shared<CSG>(CSG::Op::Difference, std::vector<CSG::Child>{{outer, I}, {bore, I}});
+                 },
+                 {},
+                 {}});
+  out.push_back({"Lens",
+                 [] {
+                   fcl::Transform3d up = fcl::Transform3d::Identity(), down = up;
+                   up.translation() = Eigen::Vector3d(0, 0, 0.5);
+                   down.translation() = Eigen::Vector3d(0, 0, -0.5);
+                   const auto ball = std::make_shared<Q>(Q::ellipsoid(1.0, 1.0, 1.0));
+                   return std::make_shared<CSG>(CSG::Op::Intersection,
+                                                std::vector<CSG::Child>{{ball, up}, {ball, down}});
+                 },
+                 {},
+                 {}});
   const Eigen::Matrix3d R = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
   for (ConstructionCase& c : out) {
     c.local = c.make()->region();

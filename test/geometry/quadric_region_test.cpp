@@ -144,6 +144,64 @@ TEST(QuadricRegionAabb, UnboundedAndEmptyRegionsThrowNamingTheProblem) {
   }
 }
 
+// Since session 43 an unbounded region is recognised by a certified interior point at the search
+// limit, along an atom's null or negative direction (unclipped CSG operands took 3-11 ms of
+// search each). Every kind of unbounded region must still be called unbounded, posed or not (a
+// posed cylinder's candidate lies in its rounding band there, and the search decides), and
+// bounded ones with near-null directions (clipped, or an ellipsoid of aspect 1e5) must not.
+TEST(QuadricRegionAabb, UnboundedRegionsAreFoundAndBoundedOnesWithNearNullDirectionsAreNot) {
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(-1, 2, 0.5).normalized()).toRotationMatrix();
+  const Eigen::Vector3d p(3.0, -1.0, 2.0);
+  auto atom = [](const Eigen::Matrix4d& Q) { return QuadricRegion::atom(Q); };
+  const QuadricRegion ez_cap = QuadricRegion::halfspace({0, 0, 1}, 1.0);
+  const std::vector<std::pair<const char*, QuadricRegion>> unbounded = {
+      {"cylinder", atom(quadric::ellipticCylinder(1, 2))},
+      {"cylinder capped on one side",
+       QuadricRegion::combine(Op::Intersection, {atom(quadric::ellipticCylinder(1, 2)), ez_cap})},
+      {"paraboloid", atom(quadric::ellipticParaboloid(1, 2))},
+      {"paraboloid under a cap, opening away from it",
+       QuadricRegion::combine(Op::Intersection, {atom(quadric::ellipticParaboloid(1, 2)),
+                                                 QuadricRegion::halfspace({0, 0, -1}, -1.0)})},
+      {"hyperboloid of one sheet", atom(quadric::hyperboloidOneSheet(1, 1, 2))},
+      {"hyperboloid of two sheets", atom(quadric::hyperboloidTwoSheets(1, 1, 2))},
+      {"double cone", atom(quadric::ellipticCone(1, 1, 2))},
+      {"hyperbolic paraboloid", atom(quadric::hyperbolicParaboloid(1, 2))},
+      {"half-space", ez_cap},
+      {"outside of a ball", QuadricRegion::combine(Op::Difference, {ez_cap, ball(1.0, Eigen::Vector3d::Zero())})},
+      {"ball or cylinder",
+       QuadricRegion::combine(Op::Union, {ball(1.0, Eigen::Vector3d::Zero()), atom(quadric::ellipticCylinder(1, 2))})},
+  };
+  for (const auto& [name, region] : unbounded) {
+    for (const bool posed : {false, true}) {
+      SCOPED_TRACE(testing::Message() << name << (posed ? ", posed" : ""));
+      try {
+        regionAabb(posed ? region.transformed(R, p) : region);
+        ADD_FAILURE() << "unbounded region accepted";
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("unbounded"), std::string::npos) << e.what();
+      }
+    }
+  }
+  // Bounded: the extents are known in the atoms' frame (checked unposed).
+  const QuadricRegion capped_cylinder = QuadricRegion::combine(
+      Op::Intersection,
+      {atom(quadric::ellipticCylinder(1, 2)), ez_cap, QuadricRegion::halfspace({0, 0, -1}, 1.0)});
+  const QuadricRegion paraboloid_cap =
+      QuadricRegion::combine(Op::Intersection, {atom(quadric::ellipticParaboloid(1, 2)), ez_cap});
+  const QuadricRegion needle = atom(quadric::ellipsoid({1e5, 1.0, 1.0}));
+  const std::vector<std::pair<QuadricRegion, Eigen::Vector3d>> bounded = {
+      {capped_cylinder, Eigen::Vector3d(1, 2, 1)},
+      {paraboloid_cap, Eigen::Vector3d(1, 2, 1)},
+      {needle, Eigen::Vector3d(1e5, 1, 1)}};
+  for (const auto& [region, hi] : bounded) {
+    const Box3 box = regionAabb(region);
+    EXPECT_NEAR(box.hi.x(), hi.x(), 1e-6 * hi.maxCoeff());
+    EXPECT_NEAR(box.hi.y(), hi.y(), 1e-6 * hi.maxCoeff());
+    EXPECT_NEAR(box.hi.z(), hi.z(), 1e-6 * hi.maxCoeff());
+    EXPECT_NO_THROW(regionAabb(region.transformed(R, p)));
+  }
+}
+
 // --- Mass properties ----------------------------------------------------------------------------
 
 TEST(QuadricRegionMass, VolumesAndCentroidsMatchClosedForms) {
