@@ -555,9 +555,7 @@ bool treeHint(const QuadricRegion& r, Box3* out) {
   }
   return false;
 }
-}  // namespace
 
-namespace {
 /// A certified interior point of the region at the search's limit of unboundedness (some |x_i| =
 /// 0.9995 kRegionMaxExtent, inside the search cube and beyond the 0.999 kRegionMaxExtent at which
 /// the search calls a region unbounded, so that the search would say so too), if one of a few
