@@ -387,7 +387,7 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
   if (role == BoxRole::Contains && g->own_planes < g->plane_h.size()) {
     // The box contains the region, so the region's own constraints bound it and the box's faces
     // are redundant: max n.x over the region is attained at a candidate of its own constraints.
-    // They were 5 of a clipped cone's 7 planes, and the enumeration is cubic in the planes
+    // They were 6 of a clipped cone's 8 planes, and the enumeration is cubic in the planes
     // (pairs, each clipped by the rest): skipping them made its support 5-7 times faster.
     // The precondition is checked: the region cut by the box grown by its largest half-width on
     // every side must reach no farther than the box towards +-x, +-y, +-z. The region is convex,
