@@ -11,6 +11,16 @@
 namespace fcl_quadric {
 namespace detail {
 
+/// Every coefficient finite, by std::isfinite: Eigen's allFinite() computes x - x, which raises
+/// FE_INVALID on an infinity (the test binaries trap it).
+template <typename Derived>
+bool allFinite(const Eigen::DenseBase<Derived>& m) {
+  for (Eigen::Index c = 0; c < m.cols(); ++c)
+    for (Eigen::Index r = 0; r < m.rows(); ++r)
+      if (!std::isfinite(m(r, c))) return false;
+  return true;
+}
+
 inline void checkFiniteValue(const char* where, const char* what, double v) {
   if (!std::isfinite(v)) {
     std::ostringstream os;

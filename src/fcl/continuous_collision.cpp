@@ -37,6 +37,7 @@
 #include "fcl_quadric/fcl/rational_motion.h"
 #include "fcl_quadric/geometry/ellipsoid_separation.h"
 #include "fcl_quadric/geometry/signed_distance.h"
+#include "algebra/input_checks.h"
 #include "fcl/input_checks.h"
 #include "fcl/quadric_shape_dispatch.h"
 
@@ -237,11 +238,6 @@ Eigen::Matrix4d toMatrix(const fcl::Transform3d& tf) {
   return X;
 }
 
-bool allFinite(const Eigen::Matrix4d& X) {  // std::isfinite: no floating-point exception
-  for (int i = 0; i < 16; ++i)
-    if (!std::isfinite(X.data()[i])) return false;
-  return true;
-}
 
 }  // namespace
 
@@ -448,7 +444,7 @@ Eigen::Matrix4d currentPose(const fcl::MotionBase<double>* m, double t, const ch
   fcl::Transform3d tf;
   m->getCurrentTransform(tf);
   const Eigen::Matrix4d X = toMatrix(tf);
-  if (!allFinite(X)) {
+  if (!detail::allFinite(X)) {
     std::ostringstream os;
     os << kWhere << ": " << which << " gives a non-finite pose at t = " << t;
     throw std::invalid_argument(os.str());
@@ -507,7 +503,7 @@ struct AdvancingSolid {
   Eigen::Matrix4d pose(double t) const {
     if (kind == MotionKind::Rational) {
       const Eigen::Matrix4d X = static_cast<const RationalMotion<double>*>(motion)->piecewiseMotion().evaluate(t);
-      if (!allFinite(X)) {
+      if (!detail::allFinite(X)) {
         std::ostringstream os;
         os << kWhere << ": " << which << " gives a non-finite pose at t = " << t;
         throw std::invalid_argument(os.str());

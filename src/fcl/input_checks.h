@@ -83,29 +83,30 @@ void checkPosedPair(const fcl::CollisionGeometry<S>* o1, const fcl::Transform3<S
   checkPose(tf2, where, "tf2");
 }
 
+/// Whether p passes checkPosition (ellipsoid.h): finite and within +-kMaxLength. std::isfinite
+/// first: an ordered comparison with NaN would raise FE_INVALID.
+inline bool isPosition(const Eigen::Vector3d& p) {
+  for (int i = 0; i < 3; ++i)
+    if (!(std::isfinite(p[i]) && std::fabs(p[i]) <= tolerance::kMaxLength)) return false;
+  return true;
+}
+
 /// Both translations within +-kMaxLength (tolerances.h), as the quadric shapes' front doors
 /// require: for an ellipsoid or a sphere against a mesh or an OcTree, collide used to return 0
 /// for a mesh posed at x = 1e200 (its triangles were never reached) while distance threw for its
 /// first triangle (docs/reliability.md finding 34 (4)); both now throw here, naming the pose.
 /// (The message is built only for a translation out of range: this runs once per query.)
 inline void checkTranslations(const fcl::Transform3<double>& tf1, const fcl::Transform3<double>& tf2, const char* where) {
-  auto inRange = [](const Eigen::Vector3d& t) {  // (checkPosition's test; the poses are finite)
-    return std::fabs(t[0]) <= tolerance::kMaxLength && std::fabs(t[1]) <= tolerance::kMaxLength &&
-           std::fabs(t[2]) <= tolerance::kMaxLength;
-  };
-  if (!inRange(tf1.translation())) checkPosition(tf1.translation(), (std::string(where) + ": the translation of tf1").c_str());
-  if (!inRange(tf2.translation())) checkPosition(tf2.translation(), (std::string(where) + ": the translation of tf2").c_str());
+  if (!isPosition(tf1.translation()))
+    checkPosition(tf1.translation(), (std::string(where) + ": the translation of tf1").c_str());
+  if (!isPosition(tf2.translation()))
+    checkPosition(tf2.translation(), (std::string(where) + ": the translation of tf2").c_str());
 }
 
-/// Whether a pose passes checkRotation and checkPosition (ellipsoid.h): R a rotation, p finite and
-/// within +-kMaxLength. The front doors test this first and build those checks' messages only when
-/// it fails (building them per query cost 8% of a cone-sphere collide, session 43). std::isfinite
-/// first: an ordered comparison with NaN would raise FE_INVALID.
-inline bool isRigidPose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
-  for (int i = 0; i < 3; ++i)
-    if (!(std::isfinite(p[i]) && std::fabs(p[i]) <= tolerance::kMaxLength)) return false;
-  return isRotation(R);
-}
+/// Whether a pose passes checkRotation and checkPosition (ellipsoid.h). The front doors test this
+/// first and build those checks' messages only when it fails (building them per query cost 8% of
+/// a cone-sphere collide, session 43).
+inline bool isRigidPose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) { return isPosition(p) && isRotation(R); }
 
 template <typename S>
 void checkObject(const fcl::CollisionObject<S>* o, const char* where, const char* which) {

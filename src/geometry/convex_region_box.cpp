@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "fcl_quadric/geometry/convex_support.h"
+#include "algebra/input_checks.h"
 #include "geometry/convex_support_region.h"
 
 namespace fcl_quadric {
@@ -16,15 +17,6 @@ namespace fcl_quadric {
 namespace {
 
 double maxEdge(const Box3& b) { return (b.hi - b.lo).maxCoeff(); }
-
-/// Every coefficient finite, by std::isfinite (Eigen's allFinite() computes x - x, which raises
-/// FE_INVALID on an infinity; the test binaries trap it).
-template <typename Derived>
-bool finite(const Eigen::MatrixBase<Derived>& v) {
-  for (Eigen::Index i = 0; i < v.size(); ++i)
-    if (!std::isfinite(v(i))) return false;
-  return true;
-}
 
 /// Stages of the support box: each stage's box bounds the next stage's enumeration, so that the
 /// feasibility tolerance (relative to the box) ends up relative to the region's own size. From
@@ -57,7 +49,7 @@ constexpr int kDualMaxConstraints = 6;
 std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, const Eigen::Vector3d& x,
                                                       const Box3& outer) const {
   constexpr double u = kDualRounding;
-  if (kind_ != Kind::Region || !finite(e)) return std::nullopt;
+  if (kind_ != Kind::Region || !detail::allFinite(e)) return std::nullopt;
   const RegionData& g = *region_;
   const double e_norm = e.norm();
   // The tangent-plane inequality of f needs f convex: not for a cone nappe or a hyperboloid
@@ -65,8 +57,8 @@ std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, 
   // (fromRegion accepts a curved atom otherwise only as positive semidefinite, its smallest
   // eigenvalue >= -kSupportIndefiniteRelative of the largest: `nu` below.)
   if (g.has_curved && (g.cone || std::isfinite(g.r))) return std::nullopt;
-  if (!finite(x) || !finite(outer.lo) || !finite(outer.hi) || (x.array() < outer.lo.array()).any() ||
-      (x.array() > outer.hi.array()).any())
+  if (!detail::allFinite(x) || !detail::allFinite(outer.lo) || !detail::allFinite(outer.hi) ||
+      (x.array() < outer.lo.array()).any() || (x.array() > outer.hi.array()).any())
     return std::nullopt;
   const double D = (outer.hi - outer.lo).norm();
   const double X = outer.lo.cwiseAbs().cwiseMax(outer.hi.cwiseAbs()).norm();  // |y| <= X in outer
@@ -80,7 +72,7 @@ std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, 
   int n = 0;
   auto add = [&](const Constraint& c) {
     // A vanishing gradient (the centre of a slab or a ball) cannot carry a multiplier.
-    if (!(c.slack >= 0.0) || !std::isfinite(c.slack) || !finite(c.grad) || !(c.grad.norm() > 0.0)) return;
+    if (!(c.slack >= 0.0) || !std::isfinite(c.slack) || !detail::allFinite(c.grad) || !(c.grad.norm() > 0.0)) return;
     if (n < kDualMaxConstraints) {
       all[n++] = c;
       return;
@@ -128,7 +120,7 @@ std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, 
     const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 3, Eigen::Dynamic>> qr(G);
     if (qr.rank() < k) continue;  // dependent gradients: a smaller subset covers them
     const Eigen::VectorXd mu = qr.solve(e);
-    if (!finite(mu) || (mu.array() < 0.0).any()) continue;
+    if (!detail::allFinite(mu) || (mu.array() < 0.0).any()) continue;
     const Eigen::Vector3d r = e - G * mu;
     double r_bound = r.norm() + u * e_norm;
     double gain = 0.0;
@@ -149,7 +141,8 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
   using namespace tolerance_region;
   // An atom alone is bounded only as an ellipsoid, which regionAabb boxes in closed form.
   if (region.op() == QuadricRegion::Op::Atom) return std::nullopt;
-  const bool have_hint = hint != nullptr && finite(hint->lo) && finite(hint->hi) && !hint->empty();
+  const bool have_hint =
+      hint != nullptr && detail::allFinite(hint->lo) && detail::allFinite(hint->hi) && !hint->empty();
   Box3 search = have_hint
                     ? *hint
                     : Box3{Eigen::Vector3d::Constant(-kRegionMaxExtent), Eigen::Vector3d::Constant(kRegionMaxExtent)};
@@ -166,7 +159,7 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
         e[i] = side == 0 ? 1.0 : -1.0;
         bool found = false;
         points[side][i] = last->regionSupport(e, &found);
-        if (!found || !finite(points[side][i])) return std::nullopt;
+        if (!found || !detail::allFinite(points[side][i])) return std::nullopt;
       }
       next.hi[i] = std::min(points[0][i][i], search.hi[i]);
       next.lo[i] = std::max(points[1][i][i], search.lo[i]);

@@ -587,7 +587,7 @@ std::optional<Eigen::Vector3d> unboundedWitness(const QuadricRegion& region) {
         const double t = (0.9995 * kRegionMaxExtent - side * x0[k]) / vk;
         if (!(t > 0.0)) continue;
         const Eigen::Vector3d x = x0 + t * sign * V.col(j);
-        if (std::isfinite(x[0]) && std::isfinite(x[1]) && std::isfinite(x[2]) && region.classifyPoint(x) > 0) return x;
+        if (detail::allFinite(x) && region.classifyPoint(x) > 0) return x;
       }
     }
   }
