@@ -81,8 +81,10 @@ class ConvexSupport {
     /// is then bounded: the box's faces are redundant and the enumeration skips them (3-4 times
     /// faster GJK on a clipped cone). Checked at construction (2-3 us): the region cut by the box
     /// grown by its largest half-width must reach no farther than the box towards +-x, +-y, +-z
-    /// (to 1e-9 of its size; the region is convex, so it then lies in the box). If not, the
-    /// faces stay, as with Clips.
+    /// (to 1e-9 of its size; the region is convex, so it then lies in the box). If not (a box
+    /// that does not contain the region, or an unbounded region), the faces stay, as with Clips:
+    /// never a wrong support, only the old speed. Not from the seed papers: constraints that a
+    /// bounded convex set satisfies strictly inside them are redundant for its support function.
     Contains,
   };
   /// The region as a convex support mapping, or nullopt when its formula is not a conjunction of
