@@ -9,7 +9,8 @@
 ///  - findPoint: is a CSG formula satisfiable in a box? Empty / Found (certified interior point) /
 ///    Undecided (a box of width <= kRegionMinBoxRelative * extent that neither test decides, or
 ///    the box cap was reached: the conservative "contact" answer of a static collide);
-///  - maxLinear: a certified upper bound of max d.x over the region (local AABB);
+///  - maxLinear: a certified upper bound of max d.x over the region (local AABB), starting from
+///    the duality bound over pairs of atoms (dualLinearBound);
 ///  - cell volume / centroid / inertia with a certified error bound.
 /// Only rounding-padded signs are trusted (tolerance::kRegionSignRelative).
 
@@ -37,8 +38,9 @@ constexpr int kRegionMaxBoxes = 200000;
 constexpr int kRegionPencilSteps = 40;
 /// maxLinear stops when the certified upper bound is within this fraction of the search extent of
 /// the best certified interior point; the upper bound is returned (outward-rounded AABB). 1e-7:
-/// where the maximum is attained along a curve (a ring's rim) each search costs ~1/sqrt(tol)
-/// boxes, so tighter AABBs get expensive; FCL's broad phase needs only a conservative box.
+/// where the maximum is attained along a curve and the duality bound (dualLinearBound) is not
+/// tight there, each search costs ~1/sqrt(tol) boxes, so tighter AABBs get expensive; FCL's broad
+/// phase needs only a conservative box.
 constexpr double kRegionAabbRelative = 1e-7;
 /// Bisection steps of maxLinear on the level (2^-60 of the search box); at the cap the current
 /// certified upper bound is returned.
@@ -163,6 +165,12 @@ QuadricRegion intersectionInFrame(const QuadricRegion& a, const QuadricRegion& b
 /// Certified upper bound of max d.x over region within `box` (tight to kRegionAabbRelative).
 /// \return false if the region is empty in `box`.
 bool maxLinear(const QuadricRegion& region, const Eigen::Vector3d& d, const Box3& box, double* upper);
+
+/// A certified upper bound of d.x over the region within `box` by weak duality over pairs of its
+/// atoms (the S-procedure; docs/algorithms.md section 9, "Faces by duality"), or +infinity when no
+/// pair gives one. maxLinear starts from it. Tight (to rounding) where the best pair's duality gap
+/// is zero: two convex atoms (a lens), an ellipsoid of revolution minus a coaxial bore (a ring).
+double dualLinearBound(const QuadricRegion& region, const Eigen::Vector3d& d, const Box3& box);
 
 /// Local AABB of a bounded region: searched in [-kRegionMaxExtent, kRegionMaxExtent]^3 (or in
 /// `hint` when given and non-empty: the caller guarantees the region lies inside it).

@@ -1,0 +1,227 @@
+// Weak duality over pairs of atoms: a certified upper bound of e.y over a composite quadric model
+// (region_dual_bound.h; docs/algorithms.md section 9, "Faces by duality").
+#include "geometry/region_dual_bound.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Eigenvalues>
+
+#include "algebra/input_checks.h"
+
+namespace fcl_quadric {
+namespace detail {
+
+namespace {
+
+constexpr double kNoBound = std::numeric_limits<double>::infinity();
+/// The rounding unit of the bound's terms. Each is a short sum of products (at most 16 terms:
+/// gamma_16 < 17 eps), and the symmetric eigenvalue solver's backward error is a few eps ||H||;
+/// 64 eps covers both with a factor > 3.
+constexpr double kDualBoundRounding = 64.0 * std::numeric_limits<double>::epsilon();
+/// The search over multipliers (not the certificate): eigenvalues of the pencil's quadratic part
+/// below this fraction of the largest count as zero in its pseudo-inverse, and a smallest
+/// eigenvalue below -kMixIndefinite of the largest makes the mix give no bound.
+constexpr double kMixPseudoInverseCutoff = 1e-12;
+constexpr double kMixIndefinite = 1e-10;
+/// The mix t of a pair (multipliers proportional to 1 - t and t): a grid of kMixGrid steps on
+/// [0, 1], then golden section around the grid's best point (0.618^40 ~ 4e-9 of the grid step).
+constexpr int kMixGrid = 16;
+constexpr int kMixGoldenSteps = 40;
+/// An and-node with more atoms than this tries them one by one only (pairs grow as the square).
+constexpr int kMaxPairAtoms = 8;
+
+/// The bound certified for the multipliers lam[i] >= 0 of the atoms Q[i] (n = 1 or 2) at the
+/// expansion point x. For y in the conjunction (f_i(y) <= 0) and in `outer`:
+///   e.y <= L(y) := e.y - sum_i lam_i f_i(y) = L(x) + g.(y - x) - (y - x)^T H (y - x)
+///        <= L(x) + |g| R + nu R^2,
+/// with g = grad L(x) = e - sum_i lam_i grad f_i(x), H = sum_i lam_i A_i (A_i the atoms' 3x3
+/// parts), nu >= max(0, -lambda_min(H)) and R >= |y - x| over `outer`. Every computed term is
+/// taken at its value plus kDualBoundRounding times the magnitude of its evaluation, and the
+/// eigenvalue at the computed H's minus the same unit times sum_i lam_i |A_i|_F (Weyl: that covers
+/// forming H and the solver's backward error).
+double certifiedBound(const Eigen::Matrix4d* const Q[2], const double lam[2], int n, const Eigen::Vector3d& e,
+                      const Eigen::Vector3d& x, const Box3& outer) {
+  constexpr double u = kDualBoundRounding;
+  const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
+  const Eigen::Vector4d Xa = X.cwiseAbs();
+  const Eigen::Vector3d xa = x.cwiseAbs();
+  double L = e.dot(x);
+  double L_mag = e.cwiseAbs().dot(xa);
+  Eigen::Vector3d g = e;
+  Eigen::Vector3d g_mag = e.cwiseAbs();
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  double H_mag = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Matrix4d& Qi = *Q[i];
+    const Eigen::Matrix3d A = Qi.topLeftCorner<3, 3>();
+    const Eigen::Vector3d b = Qi.topRightCorner<3, 1>();
+    L -= lam[i] * X.dot(Qi * X);
+    L_mag += lam[i] * Xa.dot(Qi.cwiseAbs() * Xa);
+    g -= lam[i] * (2.0 * (A * x + b));
+    g_mag += lam[i] * (2.0 * (A.cwiseAbs() * xa + b.cwiseAbs()));
+    H += lam[i] * A;
+    H_mag += lam[i] * A.norm();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(H, Eigen::EigenvaluesOnly);
+  if (es.info() != Eigen::Success) return kNoBound;
+  const double nu = std::max(0.0, -es.eigenvalues()[0]) + u * H_mag;
+  const double L_up = L + u * L_mag;
+  const double g_up = g.norm() + u * g_mag.norm();
+  Eigen::Vector3d reach;
+  for (int i = 0; i < 3; ++i) reach[i] = std::max(std::fabs(outer.lo[i] - x[i]), std::fabs(outer.hi[i] - x[i]));
+  const double R = reach.norm() * (1.0 + u);
+  const double rest = g_up * R + nu * R * R;
+  const double bound = L_up + rest + u * (std::fabs(L_up) + rest);
+  return std::isfinite(bound) ? bound : kNoBound;
+}
+
+/// The bound of the mix t: the pencil W = (1 - t) Q1 + t Q2 (Q1 alone if Q2 is null) scaled by
+/// the s > 0 that minimises the dual function of the multipliers s (1 - t), s t, and expanded at
+/// the maximiser of its Lagrangian. With W's quadratic part A (positive semidefinite), linear
+/// part beta and constant gamma, and A^+ its pseudo-inverse, the dual function is
+///   P / s - e^T A^+ beta + s Qw,  P = e^T A^+ e / 4, Qw = beta^T A^+ beta - gamma,
+/// if e / 2 - s beta has no component in A's null space (else the Lagrangian is unbounded). So a
+/// null direction v with v.beta != 0 fixes s = v.e / (2 v.beta) (a paraboloid's axis against a
+/// cap, a cylinder's against an end plane); without one s = sqrt(P / Qw) is the least. The
+/// Lagrangian's maximiser is A^+ (e / (2 s) - beta). These only choose the multipliers and the
+/// point; certifiedBound() certifies what they give.
+double mixBound(const Eigen::Matrix4d& Q1, const Eigen::Matrix4d* Q2, double t, const Eigen::Vector3d& e,
+                const Box3& outer) {
+  const Eigen::Matrix4d W = Q2 == nullptr ? Q1 : Eigen::Matrix4d((1.0 - t) * Q1 + t * *Q2);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(W.topLeftCorner<3, 3>());
+  if (es.info() != Eigen::Success) return kNoBound;
+  const Eigen::Vector3d& ev = es.eigenvalues();
+  const double ev_max = ev.cwiseAbs().maxCoeff();
+  if (!(ev_max > 0.0) || ev[0] < -kMixIndefinite * ev_max) return kNoBound;
+  const Eigen::Vector3d beta = W.topRightCorner<3, 1>();
+  const Eigen::Vector3d ve = es.eigenvectors().transpose() * e;
+  const Eigen::Vector3d vb = es.eigenvectors().transpose() * beta;
+  double P = 0.0, Qw = -W(3, 3);
+  double s_null = 0.0;  // s fixed by the null directions, if they agree on one
+  bool null_free = true;  // no null direction constrains s
+  for (int k = 0; k < 3; ++k) {
+    if (ev[k] > kMixPseudoInverseCutoff * ev_max) {
+      P += 0.25 * ve[k] * ve[k] / ev[k];
+      Qw += vb[k] * vb[k] / ev[k];
+      continue;
+    }
+    if (std::fabs(vb[k]) <= kMixPseudoInverseCutoff * beta.norm()) {
+      if (std::fabs(ve[k]) > kMixPseudoInverseCutoff * e.norm()) null_free = false;  // no s balances it
+      continue;
+    }
+    const double sk = 0.5 * ve[k] / vb[k];
+    if (null_free && sk > 0.0 && (s_null == 0.0 || std::fabs(sk - s_null) <= 1e-9 * s_null)) {
+      s_null = sk;
+    } else {
+      s_null = -1.0;  // no positive s balances every null direction
+    }
+    null_free = false;
+  }
+  // Where no s makes the Lagrangian bounded, it is still bounded on `outer` (|g| R in the
+  // certificate): the s of the range part is tried as well, and the lesser bound kept.
+  const Eigen::Matrix4d* Q[2] = {&Q1, Q2};
+  double best = kNoBound;
+  for (const double s : {s_null, P > 0.0 && Qw > 0.0 ? std::sqrt(P / Qw) : 0.0}) {
+    if (!(s > 0.0) || !std::isfinite(s)) continue;
+    Eigen::Vector3d z = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k)
+      if (ev[k] > kMixPseudoInverseCutoff * ev_max) z[k] = (0.5 * ve[k] - s * vb[k]) / (s * ev[k]);
+    const Eigen::Vector3d x = es.eigenvectors() * z;
+    if (!allFinite(x)) continue;
+    const double lam[2] = {Q2 == nullptr ? s : s * (1.0 - t), s * t};
+    best = std::min(best, certifiedBound(Q, lam, Q2 == nullptr ? 1 : 2, e, x, outer));
+  }
+  return best;
+}
+
+/// The least bound over the mixes of a pair: the grid's best, then golden section between its
+/// neighbours. The dual function is convex in the multipliers, so its least value along the rays
+/// of mix t is quasi-convex in t (+infinity where the mix is indefinite); the certified values
+/// follow it up to rounding, and the least one seen is returned whichever way the search goes.
+double pairBound(const Eigen::Matrix4d& Q1, const Eigen::Matrix4d& Q2, const Eigen::Vector3d& e, const Box3& outer) {
+  if (isPlanarAtom(Q1) && isPlanarAtom(Q2)) return kNoBound;  // no quadratic part to bound e.y
+  double best = kNoBound;
+  int best_k = 0;
+  for (int k = 0; k <= kMixGrid; ++k) {
+    const double v = mixBound(Q1, &Q2, static_cast<double>(k) / kMixGrid, e, outer);
+    if (v < best) {
+      best = v;
+      best_k = k;
+    }
+  }
+  if (best == kNoBound) return kNoBound;
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = static_cast<double>(std::max(best_k - 1, 0)) / kMixGrid;
+  double b = static_cast<double>(std::min(best_k + 1, kMixGrid)) / kMixGrid;
+  double c = b - phi * (b - a), d = a + phi * (b - a);
+  double fc = mixBound(Q1, &Q2, c, e, outer), fd = mixBound(Q1, &Q2, d, e, outer);
+  for (int it = 0; it < kMixGoldenSteps; ++it) {
+    best = std::min({best, fc, fd});
+    if (fc <= fd) {
+      b = d;
+      d = c;
+      fd = fc;
+      c = b - phi * (b - a);
+      fc = mixBound(Q1, &Q2, c, e, outer);
+    } else {
+      a = c;
+      c = d;
+      fc = fd;
+      d = a + phi * (b - a);
+      fd = mixBound(Q1, &Q2, d, e, outer);
+    }
+  }
+  return std::min({best, fc, fd});
+}
+
+double atomBound(const Eigen::Matrix4d& Q, const Eigen::Vector3d& e, const Box3& outer) {
+  return mixBound(Q, nullptr, 0.0, e, outer);
+}
+
+/// The region of an and-node lies in every pair of its atoms and in every child's region: the
+/// least bound of those. An or-node's region is the union of its members': the largest.
+double nodeBound(const Formula& f, int n, const Eigen::Vector3d& e, const Box3& outer) {
+  const Formula::Node& node = f.nodes[n];
+  const std::vector<int>& atoms = node.atoms;
+  const int k = static_cast<int>(atoms.size());
+  if (node.is_and) {
+    double best = kNoBound;
+    if (k == 1 || k > kMaxPairAtoms) {
+      for (int i : atoms) best = std::min(best, atomBound(f.atoms[i], e, outer));
+    } else {
+      for (int i = 0; i < k; ++i)
+        for (int j = i + 1; j < k; ++j)
+          best = std::min(best, pairBound(f.atoms[atoms[i]], f.atoms[atoms[j]], e, outer));
+    }
+    for (int m : node.nodes) best = std::min(best, nodeBound(f, m, e, outer));
+    return best;
+  }
+  if (k == 0 && node.nodes.empty()) return kNoBound;
+  double worst = -kNoBound;
+  for (int i : atoms) {
+    worst = std::max(worst, atomBound(f.atoms[i], e, outer));
+    if (worst == kNoBound) return kNoBound;
+  }
+  for (int m : node.nodes) {
+    worst = std::max(worst, nodeBound(f, m, e, outer));
+    if (worst == kNoBound) return kNoBound;
+  }
+  return worst;
+}
+
+}  // namespace
+
+double dualLinearBound(const Formula& f, const Eigen::Vector3d& e, const Box3& outer) {
+  if (f.nodes.empty() || !allFinite(e) || !allFinite(outer.lo) || !allFinite(outer.hi)) return kNoBound;
+  return nodeBound(f, f.root, e, outer);
+}
+
+}  // namespace detail
+
+double dualLinearBound(const QuadricRegion& region, const Eigen::Vector3d& d, const Box3& box) {
+  return detail::dualLinearBound(detail::Formula(region), d, box);
+}
+
+}  // namespace fcl_quadric
