@@ -183,7 +183,8 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
   // (the engine's findPoint), and none in the shell between the box and the box grown by its own
   // half-widths (`outer`). The region is convex, hence connected, so it lies in the box. Each
   // face is certified by weak duality at its support point where the curved atom is convex
-  // (dualSupportBound), else by the engine: region AND {e.x >= face} has no point in `outer`. A face
+  // (dualSupportBound), else by weak duality over pairs of inequalities (dualLinearBound), else
+  // by the engine: region AND {e.x >= face} has no point in `outer`. A face
   // the engine leaves undecided moves out by doubling steps; a point found beyond a face means
   // the support was wrong: either way regionAabb decides instead.
   if (maxEdge(search) <= 0.0) return std::nullopt;
@@ -200,6 +201,9 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
       const double face = sign > 0.0 ? search.hi[i] : -search.lo[i];  // e.x <= face on the box
       const std::optional<double> dual = last->dualSupportBound(e, points[side][i], outer);
       if (dual && *dual <= face) continue;
+      // A cone's or a sheet's face along its caps: the duality bound over pairs of inequalities
+      // (the atom with its caps' product, quadric_region.h).
+      if (dualLinearBound(region, e, outer) <= face) continue;
       bool certified = false;
       for (double p = 0.0; p <= kMaxFacePadRelative * edge; p = p == 0.0 ? kRegionAabbRelative * edge : 2.0 * p) {
         // The slab e.x >= face + p, i.e. -e.x <= -(face + p), within the outer box.

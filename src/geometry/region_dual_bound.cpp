@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -32,16 +33,24 @@ constexpr int kMixGoldenSteps = 40;
 /// An and-node with more atoms than this tries them one by one only (pairs grow as the square).
 constexpr int kMaxPairAtoms = 8;
 
-/// The bound certified for the multipliers lam[i] >= 0 of the atoms Q[i] (n = 1 or 2) at the
-/// expansion point x. For y in the conjunction (f_i(y) <= 0) and in `outer`:
-///   e.y <= L(y) := e.y - sum_i lam_i f_i(y) = L(x) + g.(y - x) - (y - x)^T H (y - x)
+/// An inequality f(y) = Y^T Q Y <= slack that every point y of the and-node's region inside
+/// `outer` satisfies: one of its atoms (slack 0), or the product of two opposite planes.
+struct DualAtom {
+  Eigen::Matrix4d Q;
+  double slack = 0.0;
+};
+
+/// The bound certified for the multipliers lam[i] >= 0 of the inequalities a[i] (n = 1 or 2) at
+/// the expansion point x. For y in the conjunction (f_i(y) <= slack_i) and in `outer`:
+///   e.y <= L(y) + sum_i lam_i slack_i,
+///   L(y) := e.y - sum_i lam_i f_i(y) = L(x) + g.(y - x) - (y - x)^T H (y - x)
 ///        <= L(x) + |g| R + nu R^2,
 /// with g = grad L(x) = e - sum_i lam_i grad f_i(x), H = sum_i lam_i A_i (A_i the atoms' 3x3
 /// parts), nu >= max(0, -lambda_min(H)) and R >= |y - x| over `outer`. Every computed term is
 /// taken at its value plus kDualBoundRounding times the magnitude of its evaluation, and the
 /// eigenvalue at the computed H's minus the same unit times sum_i lam_i |A_i|_F (Weyl: that covers
 /// forming H and the solver's backward error).
-double certifiedBound(const Eigen::Matrix4d* const Q[2], const double lam[2], int n, const Eigen::Vector3d& e,
+double certifiedBound(const DualAtom* const a[2], const double lam[2], int n, const Eigen::Vector3d& e,
                       const Eigen::Vector3d& x, const Box3& outer) {
   constexpr double u = kDualBoundRounding;
   const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
@@ -49,12 +58,14 @@ double certifiedBound(const Eigen::Matrix4d* const Q[2], const double lam[2], in
   const Eigen::Vector3d xa = x.cwiseAbs();
   double L = e.dot(x);
   double L_mag = e.cwiseAbs().dot(xa);
+  double slack = 0.0;
   Eigen::Vector3d g = e;
   Eigen::Vector3d g_mag = e.cwiseAbs();
   Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
   double H_mag = 0.0;
   for (int i = 0; i < n; ++i) {
-    const Eigen::Matrix4d& Qi = *Q[i];
+    const Eigen::Matrix4d& Qi = a[i]->Q;
+    slack += lam[i] * a[i]->slack;
     const Eigen::Matrix3d A = Qi.topLeftCorner<3, 3>();
     const Eigen::Vector3d b = Qi.topRightCorner<3, 1>();
     L -= lam[i] * X.dot(Qi * X);
@@ -67,7 +78,7 @@ double certifiedBound(const Eigen::Matrix4d* const Q[2], const double lam[2], in
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(H, Eigen::EigenvaluesOnly);
   if (es.info() != Eigen::Success) return kNoBound;
   const double nu = std::max(0.0, -es.eigenvalues()[0]) + u * H_mag;
-  const double L_up = L + u * L_mag;
+  const double L_up = L + u * L_mag + slack * (1.0 + u);
   const double g_up = g.norm() + u * g_mag.norm();
   Eigen::Vector3d reach;
   for (int i = 0; i < 3; ++i) reach[i] = std::max(std::fabs(outer.lo[i] - x[i]), std::fabs(outer.hi[i] - x[i]));
@@ -77,7 +88,7 @@ double certifiedBound(const Eigen::Matrix4d* const Q[2], const double lam[2], in
   return std::isfinite(bound) ? bound : kNoBound;
 }
 
-/// The bound of the mix t: the pencil W = (1 - t) Q1 + t Q2 (Q1 alone if Q2 is null) scaled by
+/// The bound of the mix t: the pencil W = (1 - t) Q1 + t Q2 (Q1 alone if a2 is null) scaled by
 /// the s > 0 that minimises the dual function of the multipliers s (1 - t), s t, and expanded at
 /// the maximiser of its Lagrangian. With W's quadratic part A (positive semidefinite), linear
 /// part beta and constant gamma, and A^+ its pseudo-inverse, the dual function is
@@ -87,9 +98,8 @@ double certifiedBound(const Eigen::Matrix4d* const Q[2], const double lam[2], in
 /// cap, a cylinder's against an end plane); without one s = sqrt(P / Qw) is the least. The
 /// Lagrangian's maximiser is A^+ (e / (2 s) - beta). These only choose the multipliers and the
 /// point; certifiedBound() certifies what they give.
-double mixBound(const Eigen::Matrix4d& Q1, const Eigen::Matrix4d* Q2, double t, const Eigen::Vector3d& e,
-                const Box3& outer) {
-  const Eigen::Matrix4d W = Q2 == nullptr ? Q1 : Eigen::Matrix4d((1.0 - t) * Q1 + t * *Q2);
+double mixBound(const DualAtom& a1, const DualAtom* a2, double t, const Eigen::Vector3d& e, const Box3& outer) {
+  const Eigen::Matrix4d W = a2 == nullptr ? a1.Q : Eigen::Matrix4d((1.0 - t) * a1.Q + t * a2->Q);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(W.topLeftCorner<3, 3>());
   if (es.info() != Eigen::Success) return kNoBound;
   const Eigen::Vector3d& ev = es.eigenvalues();
@@ -121,7 +131,7 @@ double mixBound(const Eigen::Matrix4d& Q1, const Eigen::Matrix4d* Q2, double t, 
   }
   // Where no s makes the Lagrangian bounded, it is still bounded on `outer` (|g| R in the
   // certificate): the s of the range part is tried as well, and the lesser bound kept.
-  const Eigen::Matrix4d* Q[2] = {&Q1, Q2};
+  const DualAtom* const a[2] = {&a1, a2};
   double best = kNoBound;
   for (const double s : {s_null, P > 0.0 && Qw > 0.0 ? std::sqrt(P / Qw) : 0.0}) {
     if (!(s > 0.0) || !std::isfinite(s)) continue;
@@ -130,8 +140,8 @@ double mixBound(const Eigen::Matrix4d& Q1, const Eigen::Matrix4d* Q2, double t, 
       if (ev[k] > kMixPseudoInverseCutoff * ev_max) z[k] = (0.5 * ve[k] - s * vb[k]) / (s * ev[k]);
     const Eigen::Vector3d x = es.eigenvectors() * z;
     if (!allFinite(x)) continue;
-    const double lam[2] = {Q2 == nullptr ? s : s * (1.0 - t), s * t};
-    best = std::min(best, certifiedBound(Q, lam, Q2 == nullptr ? 1 : 2, e, x, outer));
+    const double lam[2] = {a2 == nullptr ? s : s * (1.0 - t), s * t};
+    best = std::min(best, certifiedBound(a, lam, a2 == nullptr ? 1 : 2, e, x, outer));
   }
   return best;
 }
@@ -140,12 +150,12 @@ double mixBound(const Eigen::Matrix4d& Q1, const Eigen::Matrix4d* Q2, double t, 
 /// neighbours. The dual function is convex in the multipliers, so its least value along the rays
 /// of mix t is quasi-convex in t (+infinity where the mix is indefinite); the certified values
 /// follow it up to rounding, and the least one seen is returned whichever way the search goes.
-double pairBound(const Eigen::Matrix4d& Q1, const Eigen::Matrix4d& Q2, const Eigen::Vector3d& e, const Box3& outer) {
-  if (isPlanarAtom(Q1) && isPlanarAtom(Q2)) return kNoBound;  // no quadratic part to bound e.y
+double pairBound(const DualAtom& a1, const DualAtom& a2, const Eigen::Vector3d& e, const Box3& outer) {
+  if (isPlanarAtom(a1.Q) && isPlanarAtom(a2.Q)) return kNoBound;  // no quadratic part to bound e.y
   double best = kNoBound;
   int best_k = 0;
   for (int k = 0; k <= kMixGrid; ++k) {
-    const double v = mixBound(Q1, &Q2, static_cast<double>(k) / kMixGrid, e, outer);
+    const double v = mixBound(a1, &a2, static_cast<double>(k) / kMixGrid, e, outer);
     if (v < best) {
       best = v;
       best_k = k;
@@ -156,7 +166,7 @@ double pairBound(const Eigen::Matrix4d& Q1, const Eigen::Matrix4d& Q2, const Eig
   double a = static_cast<double>(std::max(best_k - 1, 0)) / kMixGrid;
   double b = static_cast<double>(std::min(best_k + 1, kMixGrid)) / kMixGrid;
   double c = b - phi * (b - a), d = a + phi * (b - a);
-  double fc = mixBound(Q1, &Q2, c, e, outer), fd = mixBound(Q1, &Q2, d, e, outer);
+  double fc = mixBound(a1, &a2, c, e, outer), fd = mixBound(a1, &a2, d, e, outer);
   for (int it = 0; it < kMixGoldenSteps; ++it) {
     best = std::min({best, fc, fd});
     if (fc <= fd) {
@@ -164,43 +174,71 @@ double pairBound(const Eigen::Matrix4d& Q1, const Eigen::Matrix4d& Q2, const Eig
       d = c;
       fd = fc;
       c = b - phi * (b - a);
-      fc = mixBound(Q1, &Q2, c, e, outer);
+      fc = mixBound(a1, &a2, c, e, outer);
     } else {
       a = c;
       c = d;
       fc = fd;
       d = a + phi * (b - a);
-      fd = mixBound(Q1, &Q2, d, e, outer);
+      fd = mixBound(a1, &a2, d, e, outer);
     }
   }
   return std::min({best, fc, fd});
 }
 
 double atomBound(const Eigen::Matrix4d& Q, const Eigen::Vector3d& e, const Box3& outer) {
-  return mixBound(Q, nullptr, 0.0, e, outer);
+  return mixBound(DualAtom{Q, 0.0}, nullptr, 0.0, e, outer);
 }
 
-/// The region of an and-node lies in every pair of its atoms and in every child's region: the
-/// least bound of those. An or-node's region is the union of its members': the largest.
+/// The and-node's inequalities: its atoms, and for every two of its planes p1 = P1.Y <= 0 and
+/// p2 = P2.Y <= 0 with opposite normals (a slab: a cone's or a hyperboloid's caps) the product
+/// -p1 p2 <= 0, whose quadratic part n n^T can make a mix with an indefinite atom semidefinite.
+/// The product's matrix -(P1 P2^T + P2 P1^T) / 2 is rounded, by at most 2 eps |P1| |P2|^T
+/// entrywise; its slack over `outer` is kDualBoundRounding (|P1|.Ymax) (|P2|.Ymax), Ymax the
+/// largest |y| per coordinate there. Planes are atoms whose quadratic part is exactly zero.
+std::vector<DualAtom> andNodeInequalities(const Formula& f, const std::vector<int>& atoms, const Box3& outer) {
+  std::vector<DualAtom> out;
+  std::vector<Eigen::Vector4d> planes;
+  for (int i : atoms) {
+    const Eigen::Matrix4d& Q = f.atoms[i];
+    out.push_back(DualAtom{Q, 0.0});
+    if (Q.topLeftCorner<3, 3>().isZero(0.0))
+      planes.emplace_back(2.0 * Q(0, 3), 2.0 * Q(1, 3), 2.0 * Q(2, 3), Q(3, 3));
+  }
+  const Eigen::Vector4d ymax(std::max(std::fabs(outer.lo[0]), std::fabs(outer.hi[0])),
+                             std::max(std::fabs(outer.lo[1]), std::fabs(outer.hi[1])),
+                             std::max(std::fabs(outer.lo[2]), std::fabs(outer.hi[2])), 1.0);
+  for (std::size_t i = 0; i < planes.size(); ++i)
+    for (std::size_t j = i + 1; j < planes.size(); ++j) {
+      const Eigen::Vector3d hi = planes[i].head<3>(), hj = planes[j].head<3>();
+      if (!(hi.dot(hj) <= -(1.0 - 1e-9) * hi.norm() * hj.norm())) continue;
+      const Eigen::Matrix4d P = planes[i] * planes[j].transpose();
+      const double slack = kDualBoundRounding * planes[i].cwiseAbs().dot(ymax) * planes[j].cwiseAbs().dot(ymax);
+      out.push_back(DualAtom{-0.5 * (P + P.transpose()), slack});
+    }
+  return out;
+}
+
+/// The region of an and-node lies in every pair of its inequalities and in every child's region:
+/// the least bound of those. An or-node's region is the union of its members': the largest.
 double nodeBound(const Formula& f, int n, const Eigen::Vector3d& e, const Box3& outer) {
   const Formula::Node& node = f.nodes[n];
-  const std::vector<int>& atoms = node.atoms;
-  const int k = static_cast<int>(atoms.size());
   if (node.is_and) {
+    const std::vector<DualAtom> all = andNodeInequalities(f, node.atoms, outer);
+    const int k = static_cast<int>(all.size());
     double best = kNoBound;
     if (k == 1 || k > kMaxPairAtoms) {
-      for (int i : atoms) best = std::min(best, atomBound(f.atoms[i], e, outer));
+      for (const DualAtom& a : all) best = std::min(best, mixBound(a, nullptr, 0.0, e, outer));
     } else {
       for (int i = 0; i < k; ++i)
-        for (int j = i + 1; j < k; ++j)
-          best = std::min(best, pairBound(f.atoms[atoms[i]], f.atoms[atoms[j]], e, outer));
+        for (int j = i + 1; j < k; ++j) best = std::min(best, pairBound(all[i], all[j], e, outer));
     }
     for (int m : node.nodes) best = std::min(best, nodeBound(f, m, e, outer));
     return best;
   }
-  if (k == 0 && node.nodes.empty()) return kNoBound;
+  if (node.atoms.empty() && node.nodes.empty()) return kNoBound;
   double worst = -kNoBound;
-  for (int i : atoms) {
+  for (int i : node.atoms) {
     worst = std::max(worst, atomBound(f.atoms[i], e, outer));
     if (worst == kNoBound) return kNoBound;
   }
