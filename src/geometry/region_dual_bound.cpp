@@ -75,6 +75,9 @@ double certifiedBound(const DualAtom* const a[2], const double lam[2], int n, co
     H += lam[i] * A;
     H_mag += lam[i] * A.norm();
   }
+  // Multipliers or a point that overflow give no bound (and no NaN reaches a comparison).
+  if (!allFinite(H) || !std::isfinite(L) || !std::isfinite(L_mag) || !allFinite(g) || !allFinite(g_mag))
+    return kNoBound;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(H, Eigen::EigenvaluesOnly);
   if (es.info() != Eigen::Success) return kNoBound;
   const double nu = std::max(0.0, -es.eigenvalues()[0]) + u * H_mag;
@@ -109,8 +112,8 @@ double mixBound(const DualAtom& a1, const DualAtom* a2, double t, const Eigen::V
   const Eigen::Vector3d ve = es.eigenvectors().transpose() * e;
   const Eigen::Vector3d vb = es.eigenvectors().transpose() * beta;
   double P = 0.0, Qw = -W(3, 3);
-  double s_null = 0.0;  // s fixed by the null directions, if they agree on one
-  bool null_free = true;  // no null direction constrains s
+  double s_null = 0.0;    // s fixed by the null directions, if they agree on one
+  bool balanced = true;  // some s > 0 leaves e / 2 - s beta without a null component
   for (int k = 0; k < 3; ++k) {
     if (ev[k] > kMixPseudoInverseCutoff * ev_max) {
       P += 0.25 * ve[k] * ve[k] / ev[k];
@@ -118,17 +121,15 @@ double mixBound(const DualAtom& a1, const DualAtom* a2, double t, const Eigen::V
       continue;
     }
     if (std::fabs(vb[k]) <= kMixPseudoInverseCutoff * beta.norm()) {
-      if (std::fabs(ve[k]) > kMixPseudoInverseCutoff * e.norm()) null_free = false;  // no s balances it
+      if (std::fabs(ve[k]) > kMixPseudoInverseCutoff * e.norm()) balanced = false;  // no s balances it
       continue;
     }
     const double sk = 0.5 * ve[k] / vb[k];
-    if (null_free && sk > 0.0 && (s_null == 0.0 || std::fabs(sk - s_null) <= 1e-9 * s_null)) {
-      s_null = sk;
-    } else {
-      s_null = -1.0;  // no positive s balances every null direction
-    }
-    null_free = false;
+    if (!(sk > 0.0) || (s_null > 0.0 && !(std::fabs(sk - s_null) <= 1e-9 * s_null))) balanced = false;
+    s_null = sk;
   }
+  if (!balanced) s_null = 0.0;
+  if (!std::isfinite(P) || !std::isfinite(Qw)) return kNoBound;  // an atom's scale overflows the mix
   // Where no s makes the Lagrangian bounded, it is still bounded on `outer` (|g| R in the
   // certificate): the s of the range part is tried as well, and the lesser bound kept.
   const DualAtom* const a[2] = {&a1, a2};
