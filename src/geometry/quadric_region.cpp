@@ -16,6 +16,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "fcl_quadric/algebra/double_double.h"
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
 #include "algebra/input_checks.h"
@@ -565,6 +566,52 @@ bool treeHint(const QuadricRegion& r, Box3* out) {
   return false;
 }
 
+/// classifyPoint with each atom's sign from double-double arithmetic: X^T Q X as the sum of its 16
+/// terms X_i Q_ij X_j, each an exact product (twoProd) times X_j in double-double, summed in
+/// double-double. Each term is within a few 2^-104 of its magnitude and each of the 15 sums adds
+/// at most 2^-104 of the running magnitude, so the value is within 2^-96 |X|^T |Q| |X|; the sign is
+/// trusted beyond 2^-90 of it. Far out along a posed cylinder's axis (|x| ~ 1e6) the double
+/// evaluation's band (kRegionSignRelative, 2^-40) exceeds the atom's value; this one does not.
+int atomPointSignAccurate(const Eigen::Matrix4d& Q, const Eigen::Vector3d& x) {
+  const double X[4] = {x[0], x[1], x[2], 1.0};
+  DoubleDouble v(0.0);
+  double mag = 0.0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      v += DoubleDouble(detail::twoProd(X[i], Q(i, j))) * DoubleDouble(X[j]);
+      mag += std::fabs(X[i]) * std::fabs(Q(i, j)) * std::fabs(X[j]);
+    }
+  const double pad = 0x1p-90 * mag;
+  const double value = toDouble(v);
+  if (!std::isfinite(value) || !std::isfinite(pad)) return 0;
+  if (value > pad) return 1;
+  if (value < -pad) return -1;
+  return 0;
+}
+
+/// classifyPoint (Figure 29) over atomPointSignAccurate.
+int classifyPointAccurate(const QuadricRegion& r, const Eigen::Vector3d& x) {
+  switch (r.op()) {
+    case QuadricRegion::Op::Atom: return -atomPointSignAccurate(r.matrix(), x);
+    case QuadricRegion::Op::Union: {
+      int best = -1;
+      for (const QuadricRegion& c : r.children()) best = std::max(best, classifyPointAccurate(c, x));
+      return best;
+    }
+    case QuadricRegion::Op::Intersection: {
+      int worst = 1;
+      for (const QuadricRegion& c : r.children()) worst = std::min(worst, classifyPointAccurate(c, x));
+      return worst;
+    }
+    case QuadricRegion::Op::Difference: {
+      int v = classifyPointAccurate(r.children()[0], x);
+      for (std::size_t i = 1; i < r.children().size(); ++i) v = std::min(v, -classifyPointAccurate(r.children()[i], x));
+      return v;
+    }
+  }
+  return 0;
+}
+
 /// A certified interior point of the region at the search's limit of unboundedness (some |x_i| =
 /// 0.9995 kRegionMaxExtent, inside the search cube and beyond the 0.999 kRegionMaxExtent at which
 /// the search calls a region unbounded, so that the search would say so too), if one of a few
@@ -572,9 +619,9 @@ bool treeHint(const QuadricRegion& r, Box3* out) {
 /// cylinder's axis, a paraboloid's, a hyperboloid's or cone's negative direction, every direction
 /// of a plane or of a subtracted ellipsoid), from the atom's centre over its other eigenvalues,
 /// both ways. An unclipped unbounded quadric (a CSG operand) used to be found unbounded by the
-/// search, 3-11 ms; this takes microseconds. A candidate is only a candidate: classifyPoint
-/// certifies it, and without one (a thin cylinder far out: its rounding band there) the search
-/// decides.
+/// search, 3-11 ms; this takes microseconds. A candidate is only a candidate: classifyPoint, or
+/// its double-double form where the double one's band is too wide (a posed cylinder's axis),
+/// certifies it; without one the search decides.
 std::optional<Eigen::Vector3d> unboundedWitness(const QuadricRegion& region) {
   for (const Eigen::Matrix4d& M : region.signedAtoms()) {
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(M.topLeftCorner<3, 3>());
@@ -596,7 +643,7 @@ std::optional<Eigen::Vector3d> unboundedWitness(const QuadricRegion& region) {
         const double t = (0.9995 * kRegionMaxExtent - side * x0[k]) / vk;
         if (!(t > 0.0)) continue;
         const Eigen::Vector3d x = x0 + t * sign * V.col(j);
-        if (detail::allFinite(x) && region.classifyPoint(x) > 0) return x;
+        if (detail::allFinite(x) && (region.classifyPoint(x) > 0 || classifyPointAccurate(region, x) > 0)) return x;
       }
     }
   }
