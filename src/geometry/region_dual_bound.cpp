@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 
+#include "fcl_quadric/geometry/convex_support.h"
 #include "algebra/input_checks.h"
 
 namespace fcl_quadric {
@@ -30,8 +33,9 @@ constexpr double kMixIndefinite = 1e-10;
 /// [0, 1], then golden section around the grid's best point (0.618^40 ~ 4e-9 of the grid step).
 constexpr int kMixGrid = 16;
 constexpr int kMixGoldenSteps = 40;
-/// An and-node with more atoms than this tries them one by one only (pairs grow as the square).
-constexpr int kMaxPairAtoms = 8;
+/// An and-node whose pairs with a quadratic part (two planes have none) outnumber this tries its
+/// inequalities one by one only: pairs grow as the square, 75 us each (28: eight curved atoms).
+constexpr int kMaxCurvedPairs = 28;
 
 /// An inequality f(y) = Y^T Q Y <= slack that every point y of the and-node's region inside
 /// `outer` satisfies: one of its atoms (slack 0), or the product of two opposite planes.
@@ -40,7 +44,7 @@ struct DualAtom {
   double slack = 0.0;
 };
 
-/// The bound certified for the multipliers lam[i] >= 0 of the inequalities a[i] (n = 1 or 2) at
+/// The bound certified for the multipliers lam[i] >= 0 of the inequalities a[i] (n = 1 to 3) at
 /// the expansion point x. For y in the conjunction (f_i(y) <= slack_i) and in `outer`:
 ///   e.y <= L(y) + sum_i lam_i slack_i,
 ///   L(y) := e.y - sum_i lam_i f_i(y) = L(x) + g.(y - x) - (y - x)^T H (y - x)
@@ -50,7 +54,7 @@ struct DualAtom {
 /// taken at its value plus kDualBoundRounding times the magnitude of its evaluation, and the
 /// eigenvalue at the computed H's minus the same unit times sum_i lam_i |A_i|_F (Weyl: that covers
 /// forming H and the solver's backward error).
-double certifiedBound(const DualAtom* const a[2], const double lam[2], int n, const Eigen::Vector3d& e,
+double certifiedBound(const DualAtom* const a[], const double lam[], int n, const Eigen::Vector3d& e,
                       const Eigen::Vector3d& x, const Box3& outer) {
   constexpr double u = kDualBoundRounding;
   const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
@@ -191,6 +195,81 @@ double atomBound(const Eigen::Matrix4d& Q, const Eigen::Vector3d& e, const Box3&
   return mixBound(DualAtom{Q, 0.0}, nullptr, 0.0, e, outer);
 }
 
+/// The linear program over the and-node's planes (atoms whose quadratic part is exactly zero,
+/// h.y + c <= 0 with h = 2 b): for every one, two or three of them whose normals are independent,
+/// the least-squares multipliers of e = sum mu_k h_k, kept when none is negative, certified at the
+/// box's centre (the residual e - sum mu_k h_k is rounding; |g| R charges it). A vertex, an edge
+/// or a face of a polytope that bounds e.y is found so, as the curved pairs cannot (their planes
+/// have no quadratic part). At most kMaxPlanes planes (92 subsets).
+constexpr int kMaxPlanes = 8;
+double planeBound(const std::vector<DualAtom>& all, const Eigen::Vector3d& e, const Box3& outer) {
+  std::vector<const DualAtom*> planes;
+  for (const DualAtom& a : all)
+    if (a.slack == 0.0 && a.Q.topLeftCorner<3, 3>().isZero(0.0)) planes.push_back(&a);
+  const int p = static_cast<int>(planes.size());
+  if (p == 0 || p > kMaxPlanes) return kNoBound;
+  const Eigen::Vector3d x = outer.center();
+  double best = kNoBound;
+  for (int mask = 1; mask < (1 << p); ++mask) {
+    int idx[3], k = 0;
+    for (int i = 0; i < p && k <= 3; ++i)
+      if (mask & (1 << i)) {
+        if (k < 3) idx[k] = i;
+        ++k;
+      }
+    if (k > 3) continue;
+    Eigen::Matrix<double, 3, Eigen::Dynamic> G(3, k);
+    for (int j = 0; j < k; ++j) G.col(j) = 2.0 * planes[idx[j]]->Q.topRightCorner<3, 1>();
+    const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 3, Eigen::Dynamic>> qr(G);
+    if (qr.rank() < k) continue;  // dependent normals: a smaller subset covers them
+    const Eigen::VectorXd mu = qr.solve(e);
+    if (!allFinite(mu) || (mu.array() < 0.0).any()) continue;
+    const DualAtom* a[3];
+    double lam[3];
+    for (int j = 0; j < k; ++j) {
+      a[j] = planes[idx[j]];
+      lam[j] = mu[j];
+    }
+    best = std::min(best, certifiedBound(a, lam, k, e, x, outer));
+  }
+  return best;
+}
+
+/// Each convex curved atom with all the and-node's planes: a convex superset of the node's region
+/// whose support point towards e (ConvexSupport's KKT enumeration, the box clipping) carries
+/// multipliers for the curved atom and up to three planes at once, certified by
+/// ConvexSupport::dualSupportBound. A face where an ellipsoid meets two planes (a block's edge
+/// rounded off by it) is bounded so, as pairs cannot.
+double convexPartBound(const Formula& f, const std::vector<int>& atoms, const Eigen::Vector3d& e,
+                       const Box3& outer) {
+  std::vector<QuadricRegion> planes;
+  std::vector<int> curved;
+  for (int i : atoms) {
+    const Eigen::Matrix3d A = f.atoms[i].topLeftCorner<3, 3>();
+    if (A.isZero(0.0)) {
+      planes.push_back(QuadricRegion::atom(f.atoms[i]));
+      continue;
+    }
+    // Only a positive semidefinite atom (an ellipsoid, a cylinder, a paraboloid): the certificate
+    // (dualSupportBound) refuses the others, whose mixes with a slab pairBound() covers.
+    const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(A, Eigen::EigenvaluesOnly).eigenvalues();
+    if (ev[0] >= -1e-14 * ev.cwiseAbs().maxCoeff()) curved.push_back(i);
+  }
+  if (planes.empty() || curved.empty()) return kNoBound;
+  double best = kNoBound;
+  for (int i : curved) {
+    std::vector<QuadricRegion> parts = planes;
+    parts.push_back(QuadricRegion::atom(f.atoms[i]));
+    const QuadricRegion part = QuadricRegion::combine(QuadricRegion::Op::Intersection, parts);
+    const std::optional<ConvexSupport> support = ConvexSupport::fromRegion(part, outer);
+    if (!support || support->kind() != ConvexSupport::Kind::Region) continue;
+    // Any point of `outer` gives a valid bound; the support point makes it tight.
+    const Eigen::Vector3d x = support->support(e);
+    if (const std::optional<double> b = support->dualSupportBound(e, x, outer)) best = std::min(best, *b);
+  }
+  return best;
+}
+
 /// The and-node's inequalities: its atoms, and for every two of its planes p1 = P1.Y <= 0 and
 /// p2 = P2.Y <= 0 with opposite normals (a slab: a cone's or a hyperboloid's caps) the product
 /// -p1 p2 <= 0, whose quadratic part n n^T can make a mix with an indefinite atom semidefinite.
@@ -227,13 +306,18 @@ double nodeBound(const Formula& f, int n, const Eigen::Vector3d& e, const Box3& 
   if (node.is_and) {
     const std::vector<DualAtom> all = andNodeInequalities(f, node.atoms, outer);
     const int k = static_cast<int>(all.size());
+    int planar = 0;
+    for (const DualAtom& a : all) planar += isPlanarAtom(a.Q) ? 1 : 0;
+    const int curved_pairs = k * (k - 1) / 2 - planar * (planar - 1) / 2;
     double best = kNoBound;
-    if (k == 1 || k > kMaxPairAtoms) {
+    if (k == 1 || curved_pairs > kMaxCurvedPairs) {
       for (const DualAtom& a : all) best = std::min(best, mixBound(a, nullptr, 0.0, e, outer));
     } else {
       for (int i = 0; i < k; ++i)
         for (int j = i + 1; j < k; ++j) best = std::min(best, pairBound(all[i], all[j], e, outer));
     }
+    best = std::min(best, planeBound(all, e, outer));
+    best = std::min(best, convexPartBound(f, node.atoms, e, outer));
     for (int m : node.nodes) best = std::min(best, nodeBound(f, m, e, outer));
     return best;
   }

@@ -228,6 +228,56 @@ TEST(DualLinearBound, CapsOfParaboloidsCylindersConesAndSheetsAreBoundedTightlyF
   EXPECT_GE(loose_allowed, 150);
 }
 
+// Planes bound e.y together: a posed box alone (its vertex, by the linear program over its
+// planes) against its closed-form support, and a posed block whose corners an ellipsoid rounds
+// off, drilled along its axis (the maximum where the ellipsoid meets one or two planes, by the
+// ellipsoid with every plane at once), against the engine: nothing beyond the bound, and the
+// level 1e-6 below it not empty.
+TEST(DualLinearBound, BoxesAndRoundedBlocksAreBoundedTightlyByTheirPlanes) {
+  std::mt19937_64 rng(4402);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int found_below = 0;
+  for (int i = 0; i < 60; ++i) {
+    const Eigen::Vector3d h(0.3 + u(rng), 0.3 + u(rng), 0.3 + u(rng));
+    const Eigen::Matrix3d R = randomRotationForDualBound(rng);
+    const Eigen::Vector3d p(6.0 * u(rng) - 3.0, 6.0 * u(rng) - 3.0, 6.0 * u(rng) - 3.0);
+    std::vector<QuadricRegion> planes;
+    for (int k = 0; k < 3; ++k) {
+      planes.push_back(QuadricRegion::halfspace(Eigen::Vector3d::Unit(k), h[k]));
+      planes.push_back(QuadricRegion::halfspace(-Eigen::Vector3d::Unit(k), h[k]));
+    }
+    const Eigen::Vector3d ext = R.cwiseAbs() * h * 1.01;
+    const Box3 outer{p - ext, p + ext};
+    const Eigen::Vector3d e = randomDirectionForDualBound(rng);
+    // The box: max e.y = e.p + sum_k h_k |e.R_k|.
+    const QuadricRegion box = QuadricRegion::combine(Op::Intersection, planes).transformed(R, p);
+    const double exact = e.dot(p) + h.dot((R.transpose() * e).cwiseAbs());
+    const double bound = dualLinearBound(box, e, outer);
+    ASSERT_GE(bound, exact - 1e-12) << "box " << i;
+    ASSERT_LE(bound, exact + 1e-9) << "box " << i;
+    // The rounded block, drilled: an ellipsoid through the box's edges (its semi-axes 1.2 h
+    // leave the corners out), minus a bore of a fifth of the smaller half-width along z.
+    std::vector<QuadricRegion> parts = planes;
+    parts.push_back(QuadricRegion::atom(quadric::ellipsoid(1.2 * h)));
+    const QuadricRegion rounded = QuadricRegion::combine(Op::Intersection, parts);
+    const double r = 0.2 * std::min(h.x(), h.y());
+    const QuadricRegion block =
+        QuadricRegion::combine(Op::Difference, {rounded, QuadricRegion::atom(quadric::ellipticCylinder(r, r))})
+            .transformed(R, p);
+    const double b = dualLinearBound(block, e, outer);
+    ASSERT_TRUE(std::isfinite(b)) << "block " << i;
+    const double size = 2.0 * h.maxCoeff();
+    auto above = [&](double level) {  // the block's points with e.y >= level
+      return QuadricRegion::combine(Op::Intersection, {block, QuadricRegion::halfspace(-e, -level)});
+    };
+    ASSERT_NE(findPoint(above(b + 1e-9 * size), outer).status, PointSearch::Found) << "block " << i;
+    const PointSearchResult below = findPoint(above(b - 1e-6 * size), outer);
+    ASSERT_NE(below.status, PointSearch::Empty) << "block " << i << ": the bound is loose";
+    found_below += below.status == PointSearch::Found ? 1 : 0;
+  }
+  EXPECT_GE(found_below, 30);
+}
+
 /// A random atom of every kind the models use, posed: ellipsoid, cylinder, cone, paraboloid,
 /// hyperboloids of one and two sheets, hyperbolic paraboloid, plane; negated half the time (the
 /// subtracted operand of a difference).
