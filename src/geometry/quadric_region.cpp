@@ -163,30 +163,57 @@ int atomPointSign(const Eigen::Matrix4d& Q, const Eigen::Vector3d& x) {
   return 0;
 }
 
-}  // namespace
+/// atomPointSign from double-double arithmetic (for classifyTree): X^T Q X as the sum of its 16
+/// terms X_i Q_ij X_j, each an exact product (twoProd) times X_j in double-double, summed in
+/// double-double. Each term is within a few 2^-104 of its magnitude and each of the 15 sums adds
+/// at most 2^-104 of the running magnitude, so the value is within 2^-96 |X|^T |Q| |X|; the sign is
+/// trusted beyond 2^-90 of it. Far out along a posed cylinder's axis (|x| ~ 1e6) the double
+/// evaluation's band (kRegionSignRelative, 2^-40) exceeds the atom's value; this one does not.
+int atomPointSignAccurate(const Eigen::Matrix4d& Q, const Eigen::Vector3d& x) {
+  const double X[4] = {x[0], x[1], x[2], 1.0};
+  DoubleDouble v(0.0);
+  double mag = 0.0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      v += DoubleDouble(detail::twoProd(X[i], Q(i, j))) * DoubleDouble(X[j]);
+      mag += std::fabs(X[i]) * std::fabs(Q(i, j)) * std::fabs(X[j]);
+    }
+  const double pad = 0x1p-90 * mag;
+  const double value = toDouble(v);
+  if (!std::isfinite(value) || !std::isfinite(pad)) return 0;
+  if (value > pad) return 1;
+  if (value < -pad) return -1;
+  return 0;
+}
 
-int QuadricRegion::classifyPoint(const Eigen::Vector3d& x) const {
-  // Figure 29 (§6.1): interior / boundary predicates through the tree, three-valued.
-  switch (op_) {
-    case Op::Atom: return -atomPointSign(Q_, x);
-    case Op::Union: {
+/// Figure 29 (§6.1): interior / boundary predicates through the tree, three-valued, over the
+/// atoms' signs from `sign` (-1 certified inside, +1 certified outside, 0 undecided).
+template <class AtomSign>
+int classifyTree(const QuadricRegion& r, const Eigen::Vector3d& x, const AtomSign& sign) {
+  switch (r.op()) {
+    case QuadricRegion::Op::Atom: return -sign(r.matrix(), x);
+    case QuadricRegion::Op::Union: {
       int best = -1;
-      for (const QuadricRegion& c : children_) best = std::max(best, c.classifyPoint(x));
+      for (const QuadricRegion& c : r.children()) best = std::max(best, classifyTree(c, x, sign));
       return best;
     }
-    case Op::Intersection: {
+    case QuadricRegion::Op::Intersection: {
       int worst = 1;
-      for (const QuadricRegion& c : children_) worst = std::min(worst, c.classifyPoint(x));
+      for (const QuadricRegion& c : r.children()) worst = std::min(worst, classifyTree(c, x, sign));
       return worst;
     }
-    case Op::Difference: {
-      int v = children_[0].classifyPoint(x);
-      for (std::size_t i = 1; i < children_.size(); ++i) v = std::min(v, -children_[i].classifyPoint(x));
+    case QuadricRegion::Op::Difference: {
+      int v = classifyTree(r.children()[0], x, sign);
+      for (std::size_t i = 1; i < r.children().size(); ++i) v = std::min(v, -classifyTree(r.children()[i], x, sign));
       return v;
     }
   }
   return 0;
 }
+
+}  // namespace
+
+int QuadricRegion::classifyPoint(const Eigen::Vector3d& x) const { return classifyTree(*this, x, atomPointSign); }
 
 namespace {
 void collectSignedAtoms(const QuadricRegion& r, bool neg, std::vector<Eigen::Matrix4d>* out) {
@@ -566,52 +593,6 @@ bool treeHint(const QuadricRegion& r, Box3* out) {
   return false;
 }
 
-/// classifyPoint with each atom's sign from double-double arithmetic: X^T Q X as the sum of its 16
-/// terms X_i Q_ij X_j, each an exact product (twoProd) times X_j in double-double, summed in
-/// double-double. Each term is within a few 2^-104 of its magnitude and each of the 15 sums adds
-/// at most 2^-104 of the running magnitude, so the value is within 2^-96 |X|^T |Q| |X|; the sign is
-/// trusted beyond 2^-90 of it. Far out along a posed cylinder's axis (|x| ~ 1e6) the double
-/// evaluation's band (kRegionSignRelative, 2^-40) exceeds the atom's value; this one does not.
-int atomPointSignAccurate(const Eigen::Matrix4d& Q, const Eigen::Vector3d& x) {
-  const double X[4] = {x[0], x[1], x[2], 1.0};
-  DoubleDouble v(0.0);
-  double mag = 0.0;
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) {
-      v += DoubleDouble(detail::twoProd(X[i], Q(i, j))) * DoubleDouble(X[j]);
-      mag += std::fabs(X[i]) * std::fabs(Q(i, j)) * std::fabs(X[j]);
-    }
-  const double pad = 0x1p-90 * mag;
-  const double value = toDouble(v);
-  if (!std::isfinite(value) || !std::isfinite(pad)) return 0;
-  if (value > pad) return 1;
-  if (value < -pad) return -1;
-  return 0;
-}
-
-/// classifyPoint (Figure 29) over atomPointSignAccurate.
-int classifyPointAccurate(const QuadricRegion& r, const Eigen::Vector3d& x) {
-  switch (r.op()) {
-    case QuadricRegion::Op::Atom: return -atomPointSignAccurate(r.matrix(), x);
-    case QuadricRegion::Op::Union: {
-      int best = -1;
-      for (const QuadricRegion& c : r.children()) best = std::max(best, classifyPointAccurate(c, x));
-      return best;
-    }
-    case QuadricRegion::Op::Intersection: {
-      int worst = 1;
-      for (const QuadricRegion& c : r.children()) worst = std::min(worst, classifyPointAccurate(c, x));
-      return worst;
-    }
-    case QuadricRegion::Op::Difference: {
-      int v = classifyPointAccurate(r.children()[0], x);
-      for (std::size_t i = 1; i < r.children().size(); ++i) v = std::min(v, -classifyPointAccurate(r.children()[i], x));
-      return v;
-    }
-  }
-  return 0;
-}
-
 /// A certified interior point of the region at the search's limit of unboundedness (some |x_i| =
 /// 0.9995 kRegionMaxExtent, inside the search cube and beyond the 0.999 kRegionMaxExtent at which
 /// the search calls a region unbounded, so that the search would say so too), if one of a few
@@ -643,7 +624,8 @@ std::optional<Eigen::Vector3d> unboundedWitness(const QuadricRegion& region) {
         const double t = (0.9995 * kRegionMaxExtent - side * x0[k]) / vk;
         if (!(t > 0.0)) continue;
         const Eigen::Vector3d x = x0 + t * sign * V.col(j);
-        if (detail::allFinite(x) && (region.classifyPoint(x) > 0 || classifyPointAccurate(region, x) > 0)) return x;
+        if (!detail::allFinite(x)) continue;
+        if (region.classifyPoint(x) > 0 || classifyTree(region, x, atomPointSignAccurate) > 0) return x;
       }
     }
   }

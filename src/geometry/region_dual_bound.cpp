@@ -1,4 +1,5 @@
-// Weak duality over pairs of atoms: a certified upper bound of e.y over a composite quadric model
+// Weak duality over an and/or formula's atoms (pairs, slab products, the planes' linear program,
+// convex parts): a certified upper bound of e.y over a composite quadric model
 // (region_dual_bound.h; docs/algorithms.md section 9, "Faces by duality").
 #include "geometry/region_dual_bound.h"
 

@@ -10,7 +10,7 @@
 ///    Undecided (a box of width <= kRegionMinBoxRelative * extent that neither test decides, or
 ///    the box cap was reached: the conservative "contact" answer of a static collide);
 ///  - maxLinear: a certified upper bound of max d.x over the region (local AABB), starting from
-///    the duality bound over pairs of atoms (dualLinearBound);
+///    a bound by weak duality (dualLinearBound);
 ///  - cell volume / centroid / inertia with a certified error bound.
 /// Only rounding-padded signs are trusted (tolerance::kRegionSignRelative).
 
@@ -166,10 +166,12 @@ QuadricRegion intersectionInFrame(const QuadricRegion& a, const QuadricRegion& b
 /// \return false if the region is empty in `box`.
 bool maxLinear(const QuadricRegion& region, const Eigen::Vector3d& d, const Box3& box, double* upper);
 
-/// A certified upper bound of d.x over the region within `box` by weak duality over pairs of its
-/// atoms (the S-procedure; docs/algorithms.md section 9, "Faces by duality"), or +infinity when no
-/// pair gives one. maxLinear starts from it. Tight (to rounding) where the best pair's duality gap
-/// is zero: two convex atoms (a lens), an ellipsoid of revolution minus a coaxial bore (a ring).
+/// A certified upper bound of d.x over the region within `box` by weak duality (docs/algorithms.md
+/// section 9, "Faces by duality"): over pairs of its atoms (the S-procedure; two opposite planes
+/// also as their product), its planes' linear program, and each convex atom with all its planes;
+/// +infinity when none gives one. maxLinear starts from it. Tight (to rounding) where the best
+/// one's duality gap is zero: two convex atoms (a lens), an ellipsoid of revolution minus a
+/// coaxial bore (a ring), a polytope, an ellipsoid cut by planes; not at a cone's apex.
 double dualLinearBound(const QuadricRegion& region, const Eigen::Vector3d& d, const Box3& box);
 
 /// Local AABB of a bounded region: searched in [-kRegionMaxExtent, kRegionMaxExtent]^3 (or in
