@@ -213,7 +213,10 @@ int classifyTree(const QuadricRegion& r, const Eigen::Vector3d& x, const AtomSig
 
 }  // namespace
 
-int QuadricRegion::classifyPoint(const Eigen::Vector3d& x) const { return classifyTree(*this, x, atomPointSign); }
+int QuadricRegion::classifyPoint(const Eigen::Vector3d& x) const {
+  // (a lambda, not the function's pointer: its own type, so the walk inlines the sign test)
+  return classifyTree(*this, x, [](const Eigen::Matrix4d& Q, const Eigen::Vector3d& y) { return atomPointSign(Q, y); });
+}
 
 namespace {
 void collectSignedAtoms(const QuadricRegion& r, bool neg, std::vector<Eigen::Matrix4d>* out) {
@@ -625,7 +628,8 @@ std::optional<Eigen::Vector3d> unboundedWitness(const QuadricRegion& region) {
         if (!(t > 0.0)) continue;
         const Eigen::Vector3d x = x0 + t * sign * V.col(j);
         if (!detail::allFinite(x)) continue;
-        if (region.classifyPoint(x) > 0 || classifyTree(region, x, atomPointSignAccurate) > 0) return x;
+        auto accurate = [](const Eigen::Matrix4d& Q, const Eigen::Vector3d& y) { return atomPointSignAccurate(Q, y); };
+        if (region.classifyPoint(x) > 0 || classifyTree(region, x, accurate) > 0) return x;
       }
     }
   }
