@@ -37,6 +37,9 @@ constexpr int kMixGoldenSteps = 40;
 /// An and-node whose pairs with a quadratic part (two planes have none) outnumber this tries its
 /// inequalities one by one only: pairs grow as the square, 75 us each (28: eight curved atoms).
 constexpr int kMaxCurvedPairs = 28;
+/// The planes' linear program and the convex parts take an and-node of at most this many planes
+/// (92 subsets of one to three; ConvexSupport's enumeration grows with the cube of the planes).
+constexpr int kMaxPlanes = 8;
 
 /// An inequality f(y) = Y^T Q Y <= slack that every point y of the and-node's region inside
 /// `outer` satisfies: one of its atoms (slack 0), or the product of two opposite planes.
@@ -202,7 +205,6 @@ double atomBound(const Eigen::Matrix4d& Q, const Eigen::Vector3d& e, const Box3&
 /// box's centre (the residual e - sum mu_k h_k is rounding; |g| R charges it). A vertex, an edge
 /// or a face of a polytope that bounds e.y is found so, as the curved pairs cannot (their planes
 /// have no quadratic part). At most kMaxPlanes planes (92 subsets).
-constexpr int kMaxPlanes = 8;
 double planeBound(const std::vector<DualAtom>& all, const Eigen::Vector3d& e, const Box3& outer) {
   std::vector<const DualAtom*> planes;
   for (const DualAtom& a : all)
@@ -256,7 +258,7 @@ double convexPartBound(const Formula& f, const std::vector<int>& atoms, const Ei
     const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(A, Eigen::EigenvaluesOnly).eigenvalues();
     if (ev[0] >= -1e-14 * ev.cwiseAbs().maxCoeff()) curved.push_back(i);
   }
-  if (planes.empty() || curved.empty()) return kNoBound;
+  if (planes.empty() || curved.empty() || static_cast<int>(planes.size()) > kMaxPlanes) return kNoBound;
   double best = kNoBound;
   for (int i : curved) {
     std::vector<QuadricRegion> parts = planes;
