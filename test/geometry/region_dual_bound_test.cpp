@@ -1,7 +1,8 @@
-// The duality bound of a linear function over a composite quadric model (region_dual_bound.h):
-// against closed forms on posed rings and lenses (where it is tight), against the region engine's
-// certified interior points on random and/or formulas of every quadric kind (where it must only
-// be an upper bound), and the boxes regionAabb builds from it against the closed forms.
+// The duality bound of a linear function over a composite quadric model (dualLinearBound,
+// quadric_region.h): against closed forms on posed rings, lenses, caps of paraboloids, cylinders,
+// cones and sheets, and boxes (where it is tight); against the region engine on rounded drilled
+// blocks (tight to 1e-6) and on random and/or formulas of every quadric kind (where it must only
+// be an upper bound); and the boxes regionAabb builds from it against the closed forms.
 #include <gtest/gtest.h>
 
 #include <cmath>
