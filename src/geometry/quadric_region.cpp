@@ -645,7 +645,7 @@ Box3 regionAabb(const QuadricRegion& region, const Box3* hint) {
     if (region.op() == QuadricRegion::Op::Atom) return tree_box;  // an ellipsoid: analytic
     hint = &tree_box;
   }
-  const bool have_hint = hint != nullptr && !hint->empty();
+  bool have_hint = hint != nullptr && !hint->empty();
   if (!have_hint) {
     if (const std::optional<Eigen::Vector3d> far = unboundedWitness(region)) {
       int i = 0;
@@ -654,6 +654,29 @@ Box3 regionAabb(const QuadricRegion& region, const Box3* hint) {
       os << "quadric region is unbounded (reaches |x_" << i << "| >= " << kRegionMaxExtent
          << "); clip it with half-spaces to make it bounded";
       throw std::invalid_argument(os.str());
+    }
+    // The duality bounds of the six faces over the search cube. Where every one lies inside the
+    // limit at which the search calls a region unbounded (0.999 kRegionMaxExtent), the region's
+    // part in the cube does not reach that limit, which is the search's own test of boundedness,
+    // and the bounds box it (certified): the search starts from them instead of the cube, whose
+    // first stage can spend the engine's whole box budget on a small posed region (a posed
+    // paraboloid shell: 1 s).
+    const Box3 cube{Eigen::Vector3d::Constant(-kRegionMaxExtent), Eigen::Vector3d::Constant(kRegionMaxExtent)};
+    const double limit = kRegionMaxExtent * (1.0 - 1e-3);
+    Box3 dual;
+    bool inside = true;
+    for (int i = 0; i < 3 && inside; ++i) {
+      const Eigen::Vector3d e = Eigen::Vector3d::Unit(i);
+      const double up = detail::dualLinearBound(Formula(region), e, cube);
+      const double down = detail::dualLinearBound(Formula(region), -e, cube);
+      inside = up < limit && down < limit;
+      dual.hi[i] = up;
+      dual.lo[i] = -down;
+    }
+    if (inside && !dual.empty()) {
+      tree_box = dual;
+      hint = &tree_box;
+      have_hint = true;
     }
   }
   Box3 search;

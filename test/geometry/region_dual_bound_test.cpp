@@ -378,5 +378,42 @@ TEST(DualLinearBound, RegionAabbOfPosedRingsAndLensesMatchesClosedForms) {
     check(lens.region(), [&](const Eigen::Vector3d& e) { return lens.maxAlong(e); });
 }
 
+// Regions no tree box bounds (no ellipsoid atom) and that are not convex start from the duality
+// bounds over the +-1e6 search cube: a one-sheet hyperboloid and a double cone cut at |z| <= 1,
+// posed. Their hulls are those of their rim ellipses at z = +-1 (radii scaled by w =
+// sqrt(1 + 1/c^2) for the tower, 1/c for the hourglass), so max e.y is, in the local frame,
+// |e_z| + w sqrt(a^2 e_x^2 + b^2 e_y^2). The boxes contain those extents and exceed them by at
+// most 1e-6 of the size.
+TEST(DualLinearBound, RegionAabbWithoutAHintOfPosedTowersAndHourglassesMatchesClosedForms) {
+  std::mt19937_64 rng(4403);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 12; ++i) {
+    const bool tower = i % 2 == 0;
+    const double a = 0.3 + u(rng), b = 0.3 + u(rng), c = 0.5 + u(rng);
+    const Eigen::Matrix3d R = randomRotationForDualBound(rng);
+    const Eigen::Vector3d p(6.0 * u(rng) - 3.0, 6.0 * u(rng) - 3.0, 6.0 * u(rng) - 3.0);
+    const Eigen::Matrix4d Q = tower ? quadric::hyperboloidOneSheet(a, b, c) : quadric::ellipticCone(a, b, c);
+    const QuadricRegion region =
+        QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(Q), QuadricRegion::halfspace({0, 0, 1}, 1.0),
+                                                  QuadricRegion::halfspace({0, 0, -1}, 1.0)})
+            .transformed(R, p);
+    const double w = tower ? std::sqrt(1.0 + 1.0 / (c * c)) : 1.0 / c;
+    auto maxAlong = [&](const Eigen::Vector3d& e) {
+      const Eigen::Vector3d el = R.transpose() * e;
+      return e.dot(p) + std::fabs(el.z()) + w * std::sqrt(a * a * el.x() * el.x() + b * b * el.y() * el.y());
+    };
+    const Box3 box = regionAabb(region);
+    const double size = (box.hi - box.lo).maxCoeff();
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector3d e = Eigen::Vector3d::Unit(k);
+      SCOPED_TRACE(testing::Message() << (tower ? "tower " : "hourglass ") << i << ", axis " << k);
+      EXPECT_GE(box.hi[k], maxAlong(e) - 1e-12 * size);
+      EXPECT_LE(box.hi[k], maxAlong(e) + 1e-6 * size);
+      EXPECT_LE(box.lo[k], -maxAlong(-e) + 1e-12 * size);
+      EXPECT_GE(box.lo[k], -maxAlong(-e) - 1e-6 * size);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fcl_quadric
