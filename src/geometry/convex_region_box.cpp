@@ -11,6 +11,7 @@
 #include "fcl_quadric/geometry/convex_support.h"
 #include "algebra/input_checks.h"
 #include "geometry/convex_support_region.h"
+#include "geometry/nonnegative_multipliers.h"
 
 namespace fcl_quadric {
 
@@ -107,33 +108,22 @@ std::optional<double> ConvexSupport::dualSupportBound(const Eigen::Vector3d& e, 
   }
   std::optional<double> best;
   // Every subset of one to three constraints: least-squares multipliers, kept when non-negative.
-  for (int mask = 1; mask < (1 << n); ++mask) {
-    int idx[3], k = 0;
-    for (int i = 0; i < n && k <= 3; ++i)
-      if (mask & (1 << i)) {
-        if (k < 3) idx[k] = i;
-        ++k;
-      }
-    if (k > 3) continue;
-    Eigen::Matrix<double, 3, Eigen::Dynamic> G(3, k);
-    for (int j = 0; j < k; ++j) G.col(j) = all[idx[j]].grad;
-    const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 3, Eigen::Dynamic>> qr(G);
-    if (qr.rank() < k) continue;  // dependent gradients: a smaller subset covers them
-    const Eigen::VectorXd mu = qr.solve(e);
-    if (!detail::allFinite(mu) || (mu.array() < 0.0).any()) continue;
-    const Eigen::Vector3d r = e - G * mu;
-    double r_bound = r.norm() + u * e_norm;
-    double gain = 0.0;
-    for (int j = 0; j < k; ++j) {
-      const Constraint& c = all[idx[j]];
-      r_bound += mu[j] * (c.grad_err + u * c.grad.norm());
-      gain += mu[j] * c.slack;
-    }
-    const double rest = gain + r_bound * D;
-    const double ex = e.dot(x);
-    const double bound = ex + rest + u * (e_norm * x.norm() + rest);
-    if (std::isfinite(bound) && (!best || bound < *best)) best = bound;
-  }
+  detail::forEachNonNegativeCombination(
+      n, [&](int i) { return all[i].grad; }, e,
+      [&](const int idx[3], int k, const Eigen::Matrix<double, 3, Eigen::Dynamic>& G, const Eigen::VectorXd& mu) {
+        const Eigen::Vector3d r = e - G * mu;
+        double r_bound = r.norm() + u * e_norm;
+        double gain = 0.0;
+        for (int j = 0; j < k; ++j) {
+          const Constraint& c = all[idx[j]];
+          r_bound += mu[j] * (c.grad_err + u * c.grad.norm());
+          gain += mu[j] * c.slack;
+        }
+        const double rest = gain + r_bound * D;
+        const double ex = e.dot(x);
+        const double bound = ex + rest + u * (e_norm * x.norm() + rest);
+        if (std::isfinite(bound) && (!best || bound < *best)) best = bound;
+      });
   return best;
 }
 

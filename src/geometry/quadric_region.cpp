@@ -663,12 +663,13 @@ Box3 regionAabb(const QuadricRegion& region, const Box3* hint) {
     // paraboloid shell: 1 s).
     const Box3 cube{Eigen::Vector3d::Constant(-kRegionMaxExtent), Eigen::Vector3d::Constant(kRegionMaxExtent)};
     const double limit = kRegionMaxExtent * (1.0 - 1e-3);
+    const Formula formula(region);
     Box3 dual;
     bool inside = true;
     for (int i = 0; i < 3 && inside; ++i) {
       const Eigen::Vector3d e = Eigen::Vector3d::Unit(i);
-      const double up = detail::dualLinearBound(Formula(region), e, cube);
-      const double down = detail::dualLinearBound(Formula(region), -e, cube);
+      const double up = detail::dualLinearBound(formula, e, cube);
+      const double down = detail::dualLinearBound(formula, -e, cube);
       inside = up < limit && down < limit;
       dual.hi[i] = up;
       dual.lo[i] = -down;

@@ -10,10 +10,10 @@
 #include <vector>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/QR>
 
 #include "fcl_quadric/geometry/convex_support.h"
 #include "algebra/input_checks.h"
+#include "geometry/nonnegative_multipliers.h"
 
 namespace fcl_quadric {
 namespace detail {
@@ -213,28 +213,17 @@ double planeBound(const std::vector<DualAtom>& all, const Eigen::Vector3d& e, co
   if (p == 0 || p > kMaxPlanes) return kNoBound;
   const Eigen::Vector3d x = outer.center();
   double best = kNoBound;
-  for (int mask = 1; mask < (1 << p); ++mask) {
-    int idx[3], k = 0;
-    for (int i = 0; i < p && k <= 3; ++i)
-      if (mask & (1 << i)) {
-        if (k < 3) idx[k] = i;
-        ++k;
-      }
-    if (k > 3) continue;
-    Eigen::Matrix<double, 3, Eigen::Dynamic> G(3, k);
-    for (int j = 0; j < k; ++j) G.col(j) = 2.0 * planes[idx[j]]->Q.topRightCorner<3, 1>();
-    const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 3, Eigen::Dynamic>> qr(G);
-    if (qr.rank() < k) continue;  // dependent normals: a smaller subset covers them
-    const Eigen::VectorXd mu = qr.solve(e);
-    if (!allFinite(mu) || (mu.array() < 0.0).any()) continue;
-    const DualAtom* a[3];
-    double lam[3];
-    for (int j = 0; j < k; ++j) {
-      a[j] = planes[idx[j]];
-      lam[j] = mu[j];
-    }
-    best = std::min(best, certifiedBound(a, lam, k, e, x, outer));
-  }
+  forEachNonNegativeCombination(
+      p, [&](int i) -> Eigen::Vector3d { return 2.0 * planes[i]->Q.topRightCorner<3, 1>(); }, e,
+      [&](const int idx[3], int k, const Eigen::Matrix<double, 3, Eigen::Dynamic>&, const Eigen::VectorXd& mu) {
+        const DualAtom* a[3];
+        double lam[3];
+        for (int j = 0; j < k; ++j) {
+          a[j] = planes[idx[j]];
+          lam[j] = mu[j];
+        }
+        best = std::min(best, certifiedBound(a, lam, k, e, x, outer));
+      });
   return best;
 }
 

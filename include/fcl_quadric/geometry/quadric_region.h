@@ -171,7 +171,10 @@ bool maxLinear(const QuadricRegion& region, const Eigen::Vector3d& d, const Box3
 /// also as their product), its planes' linear program, and each convex atom with all its planes;
 /// +infinity when none gives one. maxLinear starts from it. Tight (to rounding) where the best
 /// one's duality gap is zero: two convex atoms (a lens), an ellipsoid of revolution minus a
-/// coaxial bore (a ring), a polytope, an ellipsoid cut by planes; not at a cone's apex.
+/// coaxial bore (a ring), a polytope, an ellipsoid cut by planes; not at a cone's apex. The model
+/// is thesis ch.6's CQM (§6.1); the bound is weak Lagrangian duality, not from the papers. Bad
+/// input (d or the box not finite) gives +infinity, no bound, rather than an exception: callers
+/// keep their own certified bound.
 double dualLinearBound(const QuadricRegion& region, const Eigen::Vector3d& d, const Box3& box);
 
 /// Local AABB of a bounded region: searched in [-kRegionMaxExtent, kRegionMaxExtent]^3 (or in
