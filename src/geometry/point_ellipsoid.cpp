@@ -235,6 +235,94 @@ int criticalPointsPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::M
   return count;
 }
 
+double closestPointOnEllipse(double e0, double e1, const Eigen::Vector2d& y, Eigen::Vector2d* x) {
+  // Power-of-two scale (exact): the largest length into [1, 2).
+  const double m = std::max({e0, e1, std::fabs(y[0]), std::fabs(y[1])});
+  const double unit = std::ldexp(1.0, -std::ilogb(m));
+  // Indices of the major (M) and minor (n) axes; the point folded into the first quadrant.
+  const int M = e0 >= e1 ? 0 : 1, n = 1 - M;
+  const double eM = unit * (M == 0 ? e0 : e1), en = unit * (M == 0 ? e1 : e0);
+  const double aM = unit * std::fabs(y[M]), an = unit * std::fabs(y[n]);
+  const double inside = (aM / eM) * (aM / eM) + (an / en) * (an / en);
+  double xM, xn;
+  if (eM == en) {
+    // A circle: the radial projection (any point of it from the centre).
+    const double rho = std::max(aM, an) > 1e-150 ? std::sqrt(aM * aM + an * an) : std::hypot(aM, an);
+    xM = rho > 0.0 ? eM * (aM / rho) : eM;
+    xn = rho > 0.0 ? eM * (an / rho) : 0.0;
+  } else {
+    const double D = (eM - en) * (eM + en);  // e_M^2 - e_n^2 > 0
+    const double cM = eM * aM, cn = en * an;
+    if (cn == 0.0) {
+      // On the major axis (Eberly's degenerate case): inside the evolute's cusp the nearest point
+      // leaves the axis (two mirror images; the one with x_n >= 0), else it is the vertex.
+      if (cM < D) {
+        xM = eM * cM / D;
+        xn = en * std::sqrt(std::max(0.0, 1.0 - (xM / eM) * (xM / eM)));
+      } else {
+        xM = eM;
+        xn = 0.0;
+      }
+    } else {
+      // g(s) and g'(s) from u = c_max / (s + D) and v = c_min / s.
+      // (Two independent reciprocals, so that each step has two divisions on its chain, not four.)
+      auto eval = [&](double s, double* df) {
+        const double p = 1.0 / (s + D), q = 1.0 / s;
+        const double u = cM * p, v = cn * q;
+        const double u2 = u * u, v2 = v * v;
+        *df = -2.0 * (u2 * p + v2 * q);
+        return (u2 + v2) - 1.0;
+      };
+      const double big = std::max(cM, cn);
+      double lo = cn, hi = big > 1e-150 ? std::sqrt(cM * cM + cn * cn) : std::hypot(cM, cn);
+      // One Newton step from the right end: by convexity it lands at or left of the root.
+      double s = hi;
+      {
+        double df;
+        const double f = eval(s, &df);
+        const double next = s - f / df;
+        s = next > lo && next < hi ? next : lo;
+      }
+      double step = hi - lo;
+      for (int it = 0; it < tolerance::kMaxPointEllipsoidIterations; ++it) {
+        double df;
+        const double f = eval(s, &df);
+        if (f > 0.0) {
+          lo = s;
+        } else if (f < 0.0) {
+          hi = s;
+        } else {
+          break;
+        }
+        // At the root to g's rounding (its terms are at most ~1 there): one last Newton step.
+        if (std::fabs(f) <= 8.0 * std::numeric_limits<double>::epsilon()) {
+          s -= f / df;
+          break;
+        }
+        double next = s - f / df;
+        const double step_old = step;
+        if (!(next > lo && next < hi) || std::fabs(2.0 * f) > std::fabs(step_old * df)) {
+          next = hi > 4.0 * lo ? std::sqrt(lo) * std::sqrt(hi) : 0.5 * (lo + hi);
+        }
+        step = std::fabs(next - s);
+        if (next == s || !(hi - lo > 4.0 * std::numeric_limits<double>::epsilon() * hi)) {
+          s = next;
+          break;
+        }
+        s = next;
+      }
+      xM = eM * cM / (s + D);
+      xn = en * cn / s;
+    }
+  }
+  (*x)[M] = std::copysign(xM / unit, y[M]);
+  (*x)[n] = std::copysign(xn / unit, y[n]);
+  const double dM = xM - aM, dn = xn - an;
+  const double dist = (std::max(std::fabs(dM), std::fabs(dn)) > 1e-150 ? std::sqrt(dM * dM + dn * dn)
+                                                                         : std::hypot(dM, dn)) / unit;
+  return inside < 1.0 ? -dist : dist;
+}
+
 template int criticalPointsPrincipal<2>(const Eigen::Vector2d&, const Eigen::Vector2d&, Eigen::Vector2d*, int);
 template int criticalPointsPrincipal<3>(const Eigen::Vector3d&, const Eigen::Vector3d&, Eigen::Vector3d*, int);
 

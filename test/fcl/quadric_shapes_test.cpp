@@ -122,6 +122,76 @@ TEST(EllipticCylinderShape, AnalyticSphereContactsAlongEachAxis) {
   }
 }
 
+TEST(EllipticCylinderShape, SphereClosedFormAgreesWithTheGeneralPathOnCollideAndDistance) {
+  // The front doors answer an EllipticCylinder against an fcl::Sphere by the closed form of
+  // sphere_solid.h; the same solid as a clipped Quadric goes the general way (GJK's screening and
+  // the region engine for collide, GJK / EPA for distance). Both argument orders.
+  std::mt19937_64 rng(4505);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int colliding = 0;
+  for (int k = 0; k < 300; ++k) {
+    const double a = 0.2 + std::fabs(unit(rng)), b = 0.2 + std::fabs(unit(rng)), L = 0.3 + 2.0 * std::fabs(unit(rng));
+    const EllipticCylinder<double> cyl(a, b, L);
+    const Quadric<double> general(quadric::ellipticCylinder(a, b), {{Eigen::Vector3d::UnitZ(), 0.5 * L},
+                                                                     {-Eigen::Vector3d::UnitZ(), 0.5 * L}});
+    const fcl::Sphere<double> sphere(0.05 + 0.5 * std::fabs(unit(rng)));
+    const Eigen::Vector3d axis = Eigen::Vector3d(unit(rng), unit(rng), 1.0).normalized();
+    const Transform tc =
+        pose(Eigen::AngleAxisd(3.0 * unit(rng), axis).toRotationMatrix(), Eigen::Vector3d(unit(rng), unit(rng), unit(rng)));
+    const Eigen::Vector3d local(1.6 * a * unit(rng), 1.6 * b * unit(rng), 0.8 * L * unit(rng));
+    const Transform ts = pose(Eigen::Matrix3d::Identity(), tc * local);
+    for (const bool sphere_first : {false, true}) {
+      auto query = [&](const fcl::CollisionGeometry<double>& shape, fcl::CollisionResult<double>* cres,
+                       fcl::DistanceResult<double>* dres) {
+        fcl::CollisionRequest<double> creq;
+        creq.enable_contact = true;
+        fcl::DistanceRequest<double> dreq;
+        dreq.enable_signed_distance = true;
+        dreq.enable_nearest_points = true;
+        if (sphere_first) {
+          fcl_quadric::collide(&sphere, ts, &shape, tc, creq, *cres);
+          return fcl_quadric::distance(&sphere, ts, &shape, tc, dreq, *dres);
+        }
+        fcl_quadric::collide(&shape, tc, &sphere, ts, creq, *cres);
+        return fcl_quadric::distance(&shape, tc, &sphere, ts, dreq, *dres);
+      };
+      fcl::CollisionResult<double> c_fast, c_general;
+      fcl::DistanceResult<double> d_fast, d_general;
+      const double fast = query(cyl, &c_fast, &d_fast), slow = query(general, &c_general, &d_general);
+      EXPECT_NEAR(fast, slow, 1e-9) << k;
+      if (std::fabs(slow) > 1e-8) {
+        EXPECT_EQ(c_fast.isCollision(), c_general.isCollision()) << k;
+      }
+      EXPECT_EQ(c_fast.isCollision(), fast <= 0.0) << k;
+      // The witnesses in FCL's argument order: the sphere's on the sphere, the cylinder's on it.
+      const Eigen::Vector3d on_sphere = d_fast.nearest_points[sphere_first ? 0 : 1];
+      const Eigen::Vector3d on_cyl = tc.inverse() * d_fast.nearest_points[sphere_first ? 1 : 0];
+      EXPECT_NEAR((on_sphere - ts.translation()).norm(), sphere.radius, 1e-12);
+      EXPECT_NEAR(std::max((on_cyl.x() / a) * (on_cyl.x() / a) + (on_cyl.y() / b) * (on_cyl.y() / b) - 1.0,
+                           std::fabs(on_cyl.z()) - 0.5 * L) < 1e-12,
+                  true, 0.0) << k;
+      if (c_fast.isCollision()) {
+        ++colliding;
+        // The contact is a point of both solids, its normal unit.
+        const fcl::Contact<double>& contact = c_fast.getContact(0);
+        const Eigen::Vector3d x = tc.inverse() * contact.pos;
+        EXPECT_LE((x.x() / a) * (x.x() / a) + (x.y() / b) * (x.y() / b), 1.0 + 1e-12) << k;
+        EXPECT_LE(std::fabs(x.z()), 0.5 * L + 1e-12) << k;
+        EXPECT_LE((contact.pos - ts.translation()).norm(), sphere.radius + 1e-12) << k;
+        EXPECT_NEAR(contact.normal.norm(), 1.0, 1e-12) << k;
+      }
+    }
+  }
+  EXPECT_GT(colliding, 100);
+  // A bad sphere radius still gets the general path's error.
+  const fcl::Sphere<double> bad(-1.0);
+  const EllipticCylinder<double> cyl(1.0, 0.5, 1.0);
+  fcl::CollisionRequest<double> req;
+  fcl::CollisionResult<double> res;
+  EXPECT_THROW(fcl_quadric::collide(&cyl, Transform::Identity(), &bad, Transform::Identity(), req, res),
+               std::invalid_argument);
+}
+
 /// An operand of the front door with its solid as a quadric region (local frame) and a bounding
 /// box: the region engine's view of it, the oracle of the tests below.
 struct SolidOperand {

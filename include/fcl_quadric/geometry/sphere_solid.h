@@ -60,6 +60,27 @@ SignedDistanceResult signedDistanceSphereCapsule(const Eigen::Vector3d& c, doubl
 SignedDistanceResult signedDistanceSphereCylinder(const Eigen::Vector3d& c, double r, double radius, double length,
                                                   const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC);
 
+/// Sphere against the capped elliptic cylinder { x^2/a^2 + y^2/b^2 <= 1, |z| <= L/2 } of
+/// fcl_quadric::EllipticCylinder(a, b, length), posed at (R_WC, p_WC). The 2D problem of the
+/// ellipse separates from the caps; its nearest point comes from detail::closestPointOnEllipse
+/// (point_ellipsoid.h, to rounding), and outside the solid the status is read from a certified
+/// bracket of the distance (the support function along the nearest direction below, the nearest
+/// point above), not from the root's accuracy. converged = false (status Touching, distance 0)
+/// only if that bracket is wider than the band (not met in the tests). Same exceptions as the
+/// cylinder's, and also for a semi-axis of 0.
+SignedDistanceResult signedDistanceSphereEllipticCylinder(const Eigen::Vector3d& c, double r, double a, double b,
+                                                          double length, const Eigen::Matrix3d& R_WC,
+                                                          const Eigen::Vector3d& p_WC);
+
+namespace detail {
+/// signedDistanceSphereEllipticCylinder without its checks, for the FCL front doors, which have
+/// checked the poses (rigid within tolerance::kRotationOrthogonality, R used as given, as their
+/// GJK does) and the cylinder at its construction. \pre r in [0, kMaxLength]; a, b > 0 and
+/// length within kMaxLength; c and p finite within kMaxLength.
+SignedDistanceResult sphereEllipticCylinder(const Eigen::Vector3d& c, double r, double a, double b, double length,
+                                            const Eigen::Matrix3d& R, const Eigen::Vector3d& p);
+}  // namespace detail
+
 /// Sphere against fcl::Cone(radius, length): base disk of that radius at z = -L/2, apex at +L/2.
 SignedDistanceResult signedDistanceSphereCone(const Eigen::Vector3d& c, double r, double radius, double length,
                                               const Eigen::Matrix3d& R_WC, const Eigen::Vector3d& p_WC);
