@@ -537,14 +537,16 @@ void checkRigidPoses(const fcl::Transform3<double>& tf1, const fcl::Transform3<d
   detail::checkPosition(tf2.translation(), (w + ": the translation of tf2").c_str());
 }
 
-/// An EllipticCylinder against an fcl::Sphere, in either order, answered by the closed form of
-/// sphere_solid.h (signedDistanceSphereEllipticCylinder: ~0.1 us, where GJK's screening takes
-/// ~0.25 us; docs/algorithms.md section 12d). `sphere_first`: o1 is the sphere. nullopt for any
-/// other pair, and where the closed form leaves the pair undecided (its bracket wider than its
-/// band: converged = false), so that the general path decides.
+/// An EllipticCylinder against an fcl::Sphere, in either order, answered by the closed forms of
+/// sphere_solid.h (docs/algorithms.md section 12d; ~0.1 us, where GJK's screening took ~0.25 us).
+/// The pair's parts, or nullopt for any other pair (and for a sphere radius the closed form does
+/// not accept: the general path reports it).
 struct CylinderSphere {
-  SignedDistanceResult d;  // the sphere as a, the cylinder as b
-  bool sphere_first;
+  const EllipticCylinder<double>* cylinder;
+  double radius;
+  const fcl::Transform3<double>* tf_sphere;
+  const fcl::Transform3<double>* tf_cylinder;
+  bool sphere_first;  // o1 is the sphere
 };
 std::optional<CylinderSphere> cylinderSphere(const fcl::CollisionGeometry<double>* o1,
                                              const fcl::Transform3<double>& tf1,
@@ -557,15 +559,8 @@ std::optional<CylinderSphere> cylinderSphere(const fcl::CollisionGeometry<double
   const auto* cylinder = dynamic_cast<const EllipticCylinder<double>*>(g);
   if (cylinder == nullptr) return std::nullopt;
   const double radius = static_cast<const fcl::Sphere<double>*>(first ? o1 : o2)->radius;
-  // (A bad radius goes the general way, to its error.)
   if (!(radius >= 0.0 && radius <= tolerance::kMaxLength)) return std::nullopt;
-  const fcl::Transform3<double>& tfs = first ? tf1 : tf2;
-  const fcl::Transform3<double>& tfc = first ? tf2 : tf1;
-  // (Poses checked by the caller, checkRigidPoses; the cylinder's sizes by its constructor.)
-  const SignedDistanceResult d = detail::sphereEllipticCylinder(tfs.translation(), radius, cylinder->a(), cylinder->b(),
-                                                                cylinder->lz(), tfc.linear(), tfc.translation());
-  if (d.status == Separation::Touching && !d.converged) return std::nullopt;
-  return CylinderSphere{d, first};
+  return CylinderSphere{cylinder, radius, first ? &tf1 : &tf2, first ? &tf2 : &tf1, first};
 }
 
 }  // namespace
@@ -574,26 +569,29 @@ std::size_t collideQuadricShapes(const fcl::CollisionGeometry<double>* o1, const
                                  const fcl::CollisionGeometry<double>* o2, const fcl::Transform3<double>& tf2,
                                  const fcl::CollisionRequest<double>& request, fcl::CollisionResult<double>& result) {
   checkRigidPoses(tf1, tf2, "fcl_quadric::collide");
+  // (Poses checked above, checkRigidPoses; the cylinder's sizes by its constructor.)
   if (const std::optional<CylinderSphere> cs = cylinderSphere(o1, tf1, o2, tf2)) {
-    if (cs->d.status == Separation::Separated || result.numContacts() >= request.num_max_contacts)
+    const Eigen::Vector3d centre = cs->tf_sphere->translation();
+    Eigen::Vector3d point;
+    const std::optional<bool> hit = detail::sphereEllipticCylinderContact(
+        centre, cs->radius, cs->cylinder->a(), cs->cylinder->b(), cs->cylinder->lz(), cs->tf_cylinder->linear(),
+        cs->tf_cylinder->translation(), &point);
+    if (hit) {
+      if (!*hit || result.numContacts() >= request.num_max_contacts) return result.numContacts();
+      // The normal is o1's outward one at the common point, as addRegionContact() makes it (a
+      // sphere's at its centre: o1's frame's x axis).
+      Eigen::Vector3d normal;
+      if (cs->sphere_first) {
+        const Eigen::Vector3d v = point - centre;
+        const double len = v.norm();
+        normal = len > 0.0 ? Eigen::Vector3d(v / len) : Eigen::Vector3d(tf1.linear().col(0));
+      } else {
+        normal = regionNormalAt(cs->cylinder->region(), tf1, point);
+      }
+      result.addContact(fcl::Contact<double>(o1, o2, fcl::Contact<double>::NONE, fcl::Contact<double>::NONE, point,
+                                             normal, 0.0));
       return result.numContacts();
-    // A common point: the sphere's centre when it is inside the cylinder (signed distance <= -r),
-    // else the cylinder's point nearest to it (within r of it). The normal is o1's outward one
-    // there, as addRegionContact() makes it (a sphere's at its centre: o1's frame's x axis).
-    const Eigen::Vector3d centre = (cs->sphere_first ? tf1 : tf2).translation();
-    const double radius = static_cast<const fcl::Sphere<double>*>(cs->sphere_first ? o1 : o2)->radius;
-    const Eigen::Vector3d point = cs->d.distance + radius <= 0.0 ? centre : cs->d.point_b;
-    Eigen::Vector3d normal;
-    if (cs->sphere_first) {
-      const Eigen::Vector3d v = point - centre;
-      const double len = v.norm();
-      normal = len > 0.0 ? Eigen::Vector3d(v / len) : Eigen::Vector3d(tf1.linear().col(0));
-    } else {
-      normal = regionNormalAt(static_cast<const QuadricShape<double>&>(*o1).region(), tf1, point);
     }
-    result.addContact(fcl::Contact<double>(o1, o2, fcl::Contact<double>::NONE, fcl::Contact<double>::NONE, point,
-                                           normal, 0.0));
-    return result.numContacts();
   }
   // Meshes and octrees: the pieces (triangles / occupied leaves) whose bounding boxes meet the
   // shape's, found through the mesh's BVH or the octree's cells; the first contact wins
@@ -1327,12 +1325,16 @@ double distanceQuadricShapes(const fcl::CollisionGeometry<double>* o1, const fcl
   const char* where = "fcl_quadric::distance";
   checkRigidPoses(tf1, tf2, where);
   if (const std::optional<CylinderSphere> cs = cylinderSphere(o1, tf1, o2, tf2)) {
-    // The closed form's witnesses: point_a on the sphere, point_b on the cylinder.
-    const SignedDistanceResult& d = cs->d;
-    const double value = d.distance < 0.0 && !request.enable_signed_distance ? -1.0 : d.distance;
-    result.update(value, o1, o2, fcl::DistanceResult<double>::NONE, fcl::DistanceResult<double>::NONE,
-                  cs->sphere_first ? d.point_a : d.point_b, cs->sphere_first ? d.point_b : d.point_a);
-    return result.min_distance;
+    const SignedDistanceResult d = detail::sphereEllipticCylinder(
+        cs->tf_sphere->translation(), cs->radius, cs->cylinder->a(), cs->cylinder->b(), cs->cylinder->lz(),
+        cs->tf_cylinder->linear(), cs->tf_cylinder->translation());
+    if (d.status != Separation::Touching || d.converged) {
+      // The closed form's witnesses: point_a on the sphere, point_b on the cylinder.
+      const double value = d.distance < 0.0 && !request.enable_signed_distance ? -1.0 : d.distance;
+      result.update(value, o1, o2, fcl::DistanceResult<double>::NONE, fcl::DistanceResult<double>::NONE,
+                    cs->sphere_first ? d.point_a : d.point_b, cs->sphere_first ? d.point_b : d.point_a);
+      return result.min_distance;
+    }
   }
   // The quadric shape (o1 or o2) as one convex piece; the partner as one piece, or as the pieces of
   // a mesh / octree, or a half-space.

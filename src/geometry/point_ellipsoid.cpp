@@ -14,99 +14,149 @@ namespace detail {
 template <int N>
 double closestPointPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::Matrix<double, N, 1>& y,
                              Eigen::Matrix<double, N, 1>* x) {
-  using LD = long double;
-  // Work with |y| (reflect back at the end) and scale to the largest radius for conditioning.
-  LD ee[N], yy[N];
-  LD scale = 0;
-  for (int i = 0; i < N; ++i) scale = std::max<LD>(scale, e[i]);
+  // Power-of-two scale (exact): the longest radius into [1, 2), so that no square below
+  // overflows for coordinates up to 1e100 of it, and none that matters underflows. (A point
+  // farther away is answered below from its direction.)
+  double big = 0.0;
+  for (int i = 0; i < N; ++i) big = std::max(big, e[i]);
+  const double unit = std::ldexp(1.0, -std::ilogb(big));
+  // The point folded into the first orthant; the shortest radius and each axis's offset
+  // D_i = e_i^2 - e_min^2 >= 0 of its pole (0 for the shortest axes, which share s = 0), from a
+  // product of the difference and the sum (no cancellation).
+  double ee[N], a[N], c[N], D[N];
+  double emin = std::numeric_limits<double>::infinity();
   for (int i = 0; i < N; ++i) {
-    ee[i] = e[i] / scale;
-    yy[i] = std::fabs(static_cast<LD>(y[i])) / scale;
+    ee[i] = unit * e[i];
+    a[i] = unit * std::fabs(y[i]);
+    emin = std::min(emin, ee[i]);
   }
-  LD emin2 = ee[0] * ee[0];
-  int imin = 0;
-  for (int i = 1; i < N; ++i)
-    if (ee[i] * ee[i] < emin2) {
-      emin2 = ee[i] * ee[i];
-      imin = i;
-    }
-  LD inside = -1;
-  for (int i = 0; i < N; ++i) inside += (yy[i] / ee[i]) * (yy[i] / ee[i]);
-  auto g = [&](LD t) {
-    LD s = -1;
-    for (int i = 0; i < N; ++i) {
-      if (yy[i] == 0) continue;  // contributes 0 (and 0/0 at its pole)
-      const LD q = ee[i] * yy[i] / (ee[i] * ee[i] + t);
-      s += q * q;
-    }
-    return s;
-  };
-  LD xs[N];
+  double form = 0.0, c_minor2 = 0.0, c_max = 0.0;
+  for (int i = 0; i < N; ++i) {
+    c[i] = ee[i] * a[i];
+    D[i] = (ee[i] - emin) * (ee[i] + emin);
+    form += (a[i] / ee[i]) * (a[i] / ee[i]);
+    if (D[i] == 0.0) c_minor2 += c[i] * c[i];
+    c_max = std::max(c_max, c[i]);
+  }
+  double xs[N];
   bool done = false;
-  if (yy[imin] == 0 && inside < 0) {
-    // Eberly's degenerate case: the point lies on the principal plane through the two longer axes
-    // and inside. Candidate: the root with t in (-emin^2, inf) of the reduced problem; if the
-    // reduced solution would place x_imin beyond the surface, the closest point leaves that plane
-    // with t = -emin^2.
-    LD denom_sum = 0;
-    for (int i = 0; i < N; ++i) {
-      if (i == imin || yy[i] == 0) continue;
-      const LD d = ee[i] * ee[i] - emin2;
-      if (d == 0) {  // an axis as short as the shortest with y_i != 0: not this degenerate case
-        denom_sum = 2;
-        break;
-      }
-      const LD q = ee[i] * yy[i] / d;
-      denom_sum += q * q;
-    }
-    if (denom_sum < 1) {
-      LD s2 = 0;
+  double a_max = 0.0;
+  for (int i = 0; i < N; ++i) a_max = std::max(a_max, a[i]);
+  bool round = true;  // all radii equal: a circle or a sphere, the radial projection
+  for (int i = 0; i < N; ++i) round = round && D[i] == 0.0;
+  if (round && a_max <= 1e100) {
+    double r2 = 0.0;
+    for (int i = 0; i < N; ++i) r2 += a[i] * a[i];
+    const double rho = std::sqrt(r2);
+    for (int i = 0; i < N; ++i) xs[i] = rho > 0.0 ? emin * (a[i] / rho) : (i == 0 ? emin : 0.0);
+    done = true;
+  } else if (a_max > 1e100) {
+    // Farther than 1e100 radii: the nearest point is the support point along y,
+    // x_i = e_i c_i / |c|, to within (e_max / |y|)^2 < 1e-200 of the scale |y|.
+    double n2 = 0.0;
+    for (int i = 0; i < N; ++i) n2 += (c[i] / c_max) * (c[i] / c_max);
+    const double norm = c_max * std::sqrt(n2);
+    for (int i = 0; i < N; ++i) xs[i] = ee[i] * (c[i] / norm);
+    done = true;
+  }
+  double lo = std::sqrt(c_minor2);  // g(lo) >= 0: the shortest axes' terms alone reach 1 there
+  if (!done && c_minor2 == 0.0) {
+    // No coordinate along a shortest axis: no pole at s = 0, where g is
+    // sum over the other axes of (c_i / D_i)^2 - 1. If that is < 1 (only inside), the root
+    // would be at s < 0, beyond the pole: the nearest point leaves the principal plane
+    // (Eberly's degenerate case) with its coordinates x_i = e_i c_i / D_i on the other axes and
+    // the rest along the first shortest axis. The centre itself is such a point.
+    double reduced = 0.0;
+    for (int i = 0; i < N; ++i)
+      if (c[i] != 0.0) reduced += (c[i] / D[i]) * (c[i] / D[i]);
+    if (reduced < 1.0) {
+      double s2 = 0.0;
+      int first_minor = -1;
       for (int i = 0; i < N; ++i) {
-        if (i == imin) continue;
-        xs[i] = yy[i] == 0 ? 0 : ee[i] * ee[i] * yy[i] / (ee[i] * ee[i] - emin2);
-        s2 += (xs[i] / ee[i]) * (xs[i] / ee[i]);
+        if (D[i] == 0.0) {
+          xs[i] = 0.0;
+          if (first_minor < 0) first_minor = i;
+        } else {
+          xs[i] = c[i] == 0.0 ? 0.0 : ee[i] * c[i] / D[i];
+          s2 += (xs[i] / ee[i]) * (xs[i] / ee[i]);
+        }
       }
-      xs[imin] = ee[imin] * std::sqrt(std::max<LD>(0, 1 - s2));
+      xs[first_minor] = emin * std::sqrt(std::max(0.0, 1.0 - s2));
       done = true;
+    } else {
+      lo = 0.0;
     }
   }
   if (!done) {
-    // Largest root of g on (-emin^2, inf): bracket then safeguarded Newton.
-    LD lo = -emin2, hi;
-    if (inside > 0) {
-      lo = 0;
-      hi = 1;
-      for (int k = 0; k < 2000 && g(hi) > 0; ++k) hi *= 2;
-    } else {
-      hi = 0;
-    }
-    LD t = 0.5L * (lo + hi);
-    for (int it = 0; it < tolerance::kMaxPointEllipsoidIterations; ++it) {
-      const LD gt = g(t);
-      if (gt > 0) lo = t; else hi = t;
-      LD dg = 0;
+    // The secular equation in s = t + e_min^2 > 0 (Eberly's t, shifted so that the nearest
+    // point's coordinates x_i = e_i c_i / (s + D_i) lose nothing to cancellation next to the
+    // pole): g(s) = sum (c_i / (s + D_i))^2 - 1, convex and decreasing. Bracket [lo, hi] with
+    // hi = |c| (g(hi) <= 0 since s + D_i >= s). One Newton step from hi lands at or left of the
+    // root (convexity); Newton steps from there climb to it. A step that leaves the bracket or
+    // does not halve the last one is replaced by a bisection (geometric while hi > 4 lo > 0).
+    double hi2 = 0.0;
+    for (int i = 0; i < N; ++i) hi2 += (c[i] / c_max) * (c[i] / c_max);
+    double hi = c_max * std::sqrt(hi2);
+    // g and g' from the reciprocals p_i = 1 / (s + D_i) (independent divisions); a zero c_i
+    // contributes nothing (and is skipped: its pole may be s = 0).
+    auto eval = [&](double s, double* df) {
+      double f = -1.0, d = 0.0;
       for (int i = 0; i < N; ++i) {
-        if (yy[i] == 0) continue;
-        const LD d = ee[i] * ee[i] + t;
-        dg += -2 * ee[i] * ee[i] * yy[i] * yy[i] / (d * d * d);
+        if (c[i] == 0.0) continue;
+        const double p = 1.0 / (s + D[i]);
+        const double u = c[i] * p, u2 = u * u;
+        f += u2;
+        d -= 2.0 * u2 * p;
       }
-      LD next = (dg < 0) ? t - gt / dg : 0.5L * (lo + hi);
-      if (!(next > lo && next < hi)) next = 0.5L * (lo + hi);
-      if (next == t || hi - lo <= std::numeric_limits<LD>::epsilon() * (std::fabs(lo) + std::fabs(hi))) {
-        t = next;
+      *df = d;
+      return f;
+    };
+    double s = hi;
+    {
+      double df;
+      const double f = eval(s, &df);
+      const double next = s - f / df;
+      s = next > lo && next < hi ? next : (lo > 0.0 ? lo : 0.5 * hi);
+    }
+    double step = hi - lo;
+    for (int it = 0; it < tolerance::kMaxPointEllipsoidIterations; ++it) {
+      double df;
+      const double f = eval(s, &df);
+      if (f > 0.0) {
+        lo = s;
+      } else if (f < 0.0) {
+        hi = s;
+      } else {
         break;
       }
-      t = next;
+      // At the root to g's rounding (its terms are at most ~1 there): one last Newton step.
+      if (std::fabs(f) <= 8.0 * std::numeric_limits<double>::epsilon()) {
+        s -= f / df;
+        break;
+      }
+      double next = s - f / df;
+      const double step_old = step;
+      if (!(next > lo && next < hi) || std::fabs(2.0 * f) > std::fabs(step_old * df))
+        next = lo > 0.0 && hi > 4.0 * lo ? std::sqrt(lo) * std::sqrt(hi) : 0.5 * (lo + hi);
+      step = std::fabs(next - s);
+      if (next == s || !(hi - lo > 4.0 * std::numeric_limits<double>::epsilon() * hi)) {
+        s = next;
+        break;
+      }
+      s = next;
     }
-    for (int i = 0; i < N; ++i) xs[i] = yy[i] == 0 ? 0 : ee[i] * ee[i] * yy[i] / (ee[i] * ee[i] + t);
+    for (int i = 0; i < N; ++i) xs[i] = c[i] == 0.0 ? 0.0 : ee[i] * c[i] / (s + D[i]);
   }
-  LD d2 = 0;
+  double d_max = 0.0;
   for (int i = 0; i < N; ++i) {
-    (*x)[i] = static_cast<double>(std::copysign(xs[i] * scale, static_cast<LD>(y[i])));
-    d2 += (xs[i] - yy[i]) * (xs[i] - yy[i]);
+    (*x)[i] = std::copysign(xs[i] / unit, y[i]);
+    d_max = std::max(d_max, std::fabs(xs[i] - a[i]));
   }
-  const double dist = static_cast<double>(std::sqrt(d2) * scale);
-  return inside < 0 ? -dist : dist;
+  double d2 = 0.0;
+  if (d_max > 0.0)
+    for (int i = 0; i < N; ++i) d2 += ((xs[i] - a[i]) / d_max) * ((xs[i] - a[i]) / d_max);
+  const double dist = d_max * std::sqrt(d2) / unit;
+  return form < 1.0 ? -dist : dist;
 }
 
 template <int N>
@@ -233,94 +283,6 @@ int criticalPointsPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::M
     }
   }
   return count;
-}
-
-double closestPointOnEllipse(double e0, double e1, const Eigen::Vector2d& y, Eigen::Vector2d* x) {
-  // Power-of-two scale (exact): the largest length into [1, 2).
-  const double m = std::max({e0, e1, std::fabs(y[0]), std::fabs(y[1])});
-  const double unit = std::ldexp(1.0, -std::ilogb(m));
-  // Indices of the major (M) and minor (n) axes; the point folded into the first quadrant.
-  const int M = e0 >= e1 ? 0 : 1, n = 1 - M;
-  const double eM = unit * (M == 0 ? e0 : e1), en = unit * (M == 0 ? e1 : e0);
-  const double aM = unit * std::fabs(y[M]), an = unit * std::fabs(y[n]);
-  const double inside = (aM / eM) * (aM / eM) + (an / en) * (an / en);
-  double xM, xn;
-  if (eM == en) {
-    // A circle: the radial projection (any point of it from the centre).
-    const double rho = std::max(aM, an) > 1e-150 ? std::sqrt(aM * aM + an * an) : std::hypot(aM, an);
-    xM = rho > 0.0 ? eM * (aM / rho) : eM;
-    xn = rho > 0.0 ? eM * (an / rho) : 0.0;
-  } else {
-    const double D = (eM - en) * (eM + en);  // e_M^2 - e_n^2 > 0
-    const double cM = eM * aM, cn = en * an;
-    if (cn == 0.0) {
-      // On the major axis (Eberly's degenerate case): inside the evolute's cusp the nearest point
-      // leaves the axis (two mirror images; the one with x_n >= 0), else it is the vertex.
-      if (cM < D) {
-        xM = eM * cM / D;
-        xn = en * std::sqrt(std::max(0.0, 1.0 - (xM / eM) * (xM / eM)));
-      } else {
-        xM = eM;
-        xn = 0.0;
-      }
-    } else {
-      // g(s) and g'(s) from u = c_max / (s + D) and v = c_min / s.
-      // (Two independent reciprocals, so that each step has two divisions on its chain, not four.)
-      auto eval = [&](double s, double* df) {
-        const double p = 1.0 / (s + D), q = 1.0 / s;
-        const double u = cM * p, v = cn * q;
-        const double u2 = u * u, v2 = v * v;
-        *df = -2.0 * (u2 * p + v2 * q);
-        return (u2 + v2) - 1.0;
-      };
-      const double big = std::max(cM, cn);
-      double lo = cn, hi = big > 1e-150 ? std::sqrt(cM * cM + cn * cn) : std::hypot(cM, cn);
-      // One Newton step from the right end: by convexity it lands at or left of the root.
-      double s = hi;
-      {
-        double df;
-        const double f = eval(s, &df);
-        const double next = s - f / df;
-        s = next > lo && next < hi ? next : lo;
-      }
-      double step = hi - lo;
-      for (int it = 0; it < tolerance::kMaxPointEllipsoidIterations; ++it) {
-        double df;
-        const double f = eval(s, &df);
-        if (f > 0.0) {
-          lo = s;
-        } else if (f < 0.0) {
-          hi = s;
-        } else {
-          break;
-        }
-        // At the root to g's rounding (its terms are at most ~1 there): one last Newton step.
-        if (std::fabs(f) <= 8.0 * std::numeric_limits<double>::epsilon()) {
-          s -= f / df;
-          break;
-        }
-        double next = s - f / df;
-        const double step_old = step;
-        if (!(next > lo && next < hi) || std::fabs(2.0 * f) > std::fabs(step_old * df)) {
-          next = hi > 4.0 * lo ? std::sqrt(lo) * std::sqrt(hi) : 0.5 * (lo + hi);
-        }
-        step = std::fabs(next - s);
-        if (next == s || !(hi - lo > 4.0 * std::numeric_limits<double>::epsilon() * hi)) {
-          s = next;
-          break;
-        }
-        s = next;
-      }
-      xM = eM * cM / (s + D);
-      xn = en * cn / s;
-    }
-  }
-  (*x)[M] = std::copysign(xM / unit, y[M]);
-  (*x)[n] = std::copysign(xn / unit, y[n]);
-  const double dM = xM - aM, dn = xn - an;
-  const double dist = (std::max(std::fabs(dM), std::fabs(dn)) > 1e-150 ? std::sqrt(dM * dM + dn * dn)
-                                                                         : std::hypot(dM, dn)) / unit;
-  return inside < 1.0 ? -dist : dist;
 }
 
 template int criticalPointsPrincipal<2>(const Eigen::Vector2d&, const Eigen::Vector2d&, Eigen::Vector2d*, int);

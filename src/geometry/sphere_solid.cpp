@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -220,7 +221,7 @@ LocalAnswer coneLocal(double radius, double length, const Eigen::Vector3d& x) {
 /// The answer for a capped elliptic cylinder { u^2/a^2 + v^2/b^2 <= 1, |w| <= h } (scaled by
 /// unitScale()), with a bracket [lower, upper] of the centre's signed distance. Outside the
 /// infinite cylinder the nearest point is (y, clamp(x_z)), y the ellipse's point nearest to
-/// (x_x, x_y) (detail::closestPointOnEllipse: the 2D problem separates from the caps, since the
+/// (x_x, x_y) (detail::closestPointPrincipal<2>: the 2D problem separates from the caps, since the
 /// solid is the product of the filled ellipse and [-h, h]). There the bracket is certified
 /// whatever y's accuracy: lower = (m.x - h_K(m)) / |m| along m = x - nearest, with the support
 /// function h_K(m) = |(a m_x, b m_y)| + h |m_z| (weak duality: every point of K is at least that
@@ -254,7 +255,7 @@ CylinderAnswer ellipticCylinderLocal(double a, double b, double length, const Ei
     return {ans, cap_excess, cap_excess};
   }
   Eigen::Vector2d y;
-  const double side = detail::closestPointOnEllipse(a, b, q, &y);
+  const double side = detail::closestPointPrincipal<2>(Eigen::Vector2d(a, b), q, &y);
   if (form <= 1.0) {
     // Inside: the nearer face, the side (depth -side >= 0) or the cap (depth -cap_excess).
     const double side_depth = std::max(0.0, -side);
@@ -401,6 +402,39 @@ SignedDistanceResult sphereEllipticCylinder(const Eigen::Vector3d& c, double r, 
     out.converged = upper - lower <= band;
   }
   return out;
+}
+
+std::optional<bool> sphereEllipticCylinderContact(const Eigen::Vector3d& c, double r, double a, double b,
+                                                  double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                                                  Eigen::Vector3d* common) {
+  const Eigen::Vector3d x = R.transpose() * (c - p);
+  const double unit = unitScale({x.cwiseAbs().maxCoeff(), a, b, length, r});
+  const Eigen::Vector3d xs = unit * x;
+  const double as = unit * a, bs = unit * b, hs = 0.5 * unit * length, rs = unit * r;
+  // The band of these two tests: 2^-40 of every length involved (their sums, products and the
+  // square root round to a few eps of it).
+  const double band = tolerance::kCertificateRelativeBoundDouble * (xs.norm() + as + bs + hs + rs);
+  // Apart along the centre's own direction m = x: every point of the solid is at least
+  // (|x|^2 - h_K(x)) / |x| from the centre along it (the support function of section 12d).
+  const double n2 = xs.squaredNorm();
+  if (n2 > 0.0) {
+    const double support = std::sqrt((as * xs.x()) * (as * xs.x()) + (bs * xs.y()) * (bs * xs.y())) +
+                           hs * std::fabs(xs.z());
+    if ((n2 - support) / std::sqrt(n2) - rs > band) return false;
+  }
+  // The centre inside the solid with a margin: a common point.
+  const double form = (xs.x() / as) * (xs.x() / as) + (xs.y() / bs) * (xs.y() / bs);
+  if (form < 1.0 - tolerance::kCertificateRelativeBoundDouble && std::fabs(xs.z()) < hs - band) {
+    *common = c;
+    return true;
+  }
+  const SignedDistanceResult d = sphereEllipticCylinder(c, r, a, b, length, R, p);
+  if (d.status == Separation::Separated) return false;
+  if (d.status == Separation::Touching && !d.converged) return std::nullopt;
+  // Within r of the centre (up to the band): the cylinder's point nearest to it, or the centre
+  // itself when it is inside.
+  *common = d.distance + r <= 0.0 ? c : d.point_b;
+  return true;
 }
 
 }  // namespace detail

@@ -1,9 +1,13 @@
 // Closest point of an ellipsoid: optimality conditions and dense surface sampling.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
+#include <string>
 
 #include "fcl_quadric/geometry/point_ellipsoid.h"
+#include "support/point_ellipsoid_oracle.h"
 #include "support/random_ellipsoids.h"
 
 namespace fcl_quadric {
@@ -56,6 +60,38 @@ TEST(PointEllipsoid, CriticalPointsAreStationaryAndIncludeTheClosest) {
     }
     ASSERT_NEAR(best, d, 1e-10 * (1 + d));
   }
+}
+
+TEST(PointEllipsoid, MatchesAFiftyDigitOracleNextToThePrincipalPlanes) {
+  // Interior points with a tiny coordinate along the shortest axis put the root next to the
+  // pole: the long-double solver of sessions up to 44, which worked on t = s - e_min^2, lost up to
+  // 1e-5 of the scale there to cancellation (e.g. radii (0.008, 0.0108), y = (-1.8e-16, 1.8e-4):
+  // -0.0080050979 against -0.0080050677).
+  std::mt19937_64 rng(4506);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  auto logUniform = [&](double lo, double hi) { return lo * std::pow(hi / lo, 0.5 * (unit(rng) + 1.0)); };
+  double worst = 0.0;
+  for (int k = 0; k < 3000; ++k) {
+    Eigen::Vector3d e(logUniform(1e-3, 1e2), 0, 0);
+    e[1] = e[0] * logUniform(1e-2, 1e2);
+    e[2] = k % 4 == 0 ? e[1] * (1.0 + 1e-9 * unit(rng)) : e[0] * logUniform(1e-2, 1e2);
+    int shortest = 0;
+    for (int i = 1; i < 3; ++i)
+      if (e[i] < e[shortest]) shortest = i;
+    Eigen::Vector3d y(unit(rng), unit(rng), unit(rng));
+    y = y.cwiseProduct(e) * (k % 3 == 0 ? 0.3 : (k % 3 == 1 ? 0.95 : 2.0));
+    if (k % 2 == 0) y[shortest] *= std::pow(10.0, -6.0 - 10.0 * std::fabs(unit(rng)));  // near the plane
+    if (y[shortest] == 0.0) continue;
+    Eigen::Vector3d x;
+    const double d = detail::closestPointPrincipal<3>(e, y, &x);
+    const double oracle = test::pointEllipsoidOracle<3>(e, y);
+    const double scale = y.norm() + e.maxCoeff();
+    worst = std::max(worst, std::fabs(d - oracle) / scale);
+    ASSERT_NEAR(d, oracle, 4e-15 * scale) << "e " << e.transpose() << " y " << y.transpose();
+    EXPECT_NEAR(x.cwiseQuotient(e).squaredNorm(), 1.0, 1e-13);
+    EXPECT_NEAR((x - y).norm(), std::fabs(d), 4e-15 * scale);
+  }
+  RecordProperty("worst_relative_error", std::to_string(worst));
 }
 
 TEST(PointEllipsoid, DegenerateInteriorPointsOnPrincipalPlanes) {

@@ -1,5 +1,5 @@
 // A sphere against a capped elliptic cylinder in closed form (signedDistanceSphereEllipticCylinder,
-// sphere_solid.h) and its 2D solver (detail::closestPointOnEllipse, point_ellipsoid.h), checked
+// sphere_solid.h) and its 2D solver (detail::closestPointPrincipal<2>, point_ellipsoid.h), checked
 // against a 50-digit oracle (the secular equation bisected in boost::multiprecision), against
 // tangent constructions whose distance is known by construction, and against the independent
 // closed form of the circular cylinder.
@@ -7,53 +7,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
 
 #include <Eigen/Geometry>
-#include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include "fcl_quadric/geometry/point_ellipsoid.h"
 #include "fcl_quadric/geometry/sphere_solid.h"
+#include "support/point_ellipsoid_oracle.h"
 
 namespace fcl_quadric {
 namespace {
 namespace sphere_elliptic_cylinder_test {
 
-using Big = boost::multiprecision::cpp_bin_float_50;
-
-/// The signed distance (< 0 inside) of y to the ellipse u^2/e0^2 + v^2/e1^2 = 1 in 50 digits:
-/// the root t on (-e_min^2, inf) of sum (e_i y_i / (e_i^2 + t))^2 = 1 by 240 bisections of a
-/// bracket where the sum is >= 1 at the left end and <= 1 at the right (Eberly). \pre the
-/// coordinate along the shorter axis is not 0.
 double ellipseOracle(double e0, double e1, const Eigen::Vector2d& y) {
-  const Big E[2] = {Big(e0), Big(e1)};
-  const Big Y[2] = {abs(Big(y[0])), abs(Big(y[1]))};
-  const int n = e0 <= e1 ? 0 : 1;  // the shorter axis
-  auto sum = [&](const Big& t) {
-    Big s = 0;
-    for (int i = 0; i < 2; ++i) {
-      const Big u = E[i] * Y[i] / (E[i] * E[i] + t);
-      s += u * u;
-    }
-    return s;
-  };
-  Big lo = E[n] * Y[n] - E[n] * E[n];  // the shorter axis's term alone is >= 1 there
-  Big hi = sqrt(E[0] * E[0] * Y[0] * Y[0] + E[1] * E[1] * Y[1] * Y[1]) - E[n] * E[n];
-  for (int k = 0; k < 240; ++k) {
-    const Big mid = (lo + hi) / 2;
-    (sum(mid) > 1 ? lo : hi) = mid;
-  }
-  const Big t = (lo + hi) / 2;
-  Big d2 = 0;
-  for (int i = 0; i < 2; ++i) {
-    const Big x = E[i] * E[i] * Y[i] / (E[i] * E[i] + t);
-    d2 += (x - Y[i]) * (x - Y[i]);
-  }
-  const Big form = (Y[0] / E[0]) * (Y[0] / E[0]) + (Y[1] / E[1]) * (Y[1] / E[1]);
-  const double d = static_cast<double>(sqrt(d2));
-  return form < 1 ? -d : d;
+  return test::pointEllipsoidOracle<2>(Eigen::Vector2d(e0, e1), y);
 }
 
 /// The signed distance of the local point x to { u^2/a^2 + v^2/b^2 <= 1, |w| <= h }: the solid is
@@ -75,7 +45,7 @@ Eigen::Matrix3d randomRotation(std::mt19937_64& rng) {
   return Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
 }
 
-TEST(ClosestPointOnEllipse, MatchesAFiftyDigitOracleInsideOutsideAndNearTheAxes) {
+TEST(ClosestPointOnEllipseInDouble, MatchesAFiftyDigitOracleInsideOutsideAndNearTheAxes) {
   std::mt19937_64 rng(4501);
   std::uniform_real_distribution<double> unit(-1.0, 1.0), angle(0.0, 6.283185307179586);
   double worst = 0.0;
@@ -92,7 +62,7 @@ TEST(ClosestPointOnEllipse, MatchesAFiftyDigitOracleInsideOutsideAndNearTheAxes)
     if (k % 13 == 0) y[1] *= 1e-12;
     if (y[0] == 0.0 || y[1] == 0.0) continue;
     Eigen::Vector2d x;
-    const double d = detail::closestPointOnEllipse(e0, e1, y, &x);
+    const double d = detail::closestPointPrincipal<2>(Eigen::Vector2d(e0, e1), y, &x);
     const double oracle = ellipseOracle(e0, e1, y);
     const double scale = y.norm() + size;
     worst = std::max(worst, std::fabs(d - oracle) / scale);
@@ -106,7 +76,7 @@ TEST(ClosestPointOnEllipse, MatchesAFiftyDigitOracleInsideOutsideAndNearTheAxes)
   RecordProperty("worst_relative_error", std::to_string(worst));
 }
 
-TEST(ClosestPointOnEllipse, PointsOnAnAxisAreTheLimitsOfTheirNeighbours) {
+TEST(ClosestPointOnEllipseInDouble, PointsOnAnAxisAreTheLimitsOfTheirNeighbours) {
   // On the major axis (Eberly's closed-form case) the distance is continuous: it matches the
   // solver's answer 1e-13 off the axis, inside the evolute's cusp and beyond it, and at the centre.
   for (const double e1 : {0.3, 0.7, 2.0}) {
@@ -118,8 +88,8 @@ TEST(ClosestPointOnEllipse, PointsOnAnAxisAreTheLimitsOfTheirNeighbours) {
       y[major] = s * emaj;
       near = y;
       near[1 - major] = 1e-13;
-      const double d = detail::closestPointOnEllipse(e0, e1, y, &x);
-      const double dn = detail::closestPointOnEllipse(e0, e1, near, &xn);
+      const double d = detail::closestPointPrincipal<2>(Eigen::Vector2d(e0, e1), y, &x);
+      const double dn = detail::closestPointPrincipal<2>(Eigen::Vector2d(e0, e1), near, &xn);
       EXPECT_NEAR(d, dn, 1e-12) << "e1 " << e1 << " s " << s;
       EXPECT_NEAR((x[0] / e0) * (x[0] / e0) + (x[1] / e1) * (x[1] / e1), 1.0, 1e-14);
     }
@@ -173,6 +143,21 @@ TEST(SphereEllipticCylinder, SignedDistancesWitnessesAndStatusesMatchTheOracle) 
     }
     if (d.status != Separation::Touching) {
       ASSERT_NEAR(d.distance, oracle, 1e-13 * scale) << k;
+    }
+    // The collide-only entry (its own pre-tests first): the same verdict, and a common point.
+    Eigen::Vector3d common;
+    const std::optional<bool> hit =
+        detail::sphereEllipticCylinderContact(c, r, cyl.a, cyl.b, cyl.length, cyl.R, cyl.p, &common);
+    ASSERT_TRUE(hit.has_value()) << k;
+    if (std::fabs(oracle) > 1e-10 * scale) {
+      ASSERT_EQ(*hit, oracle < 0.0) << k << " oracle " << oracle;
+    }
+    if (*hit) {
+      const Eigen::Vector3d w = cyl.R.transpose() * (common - cyl.p);
+      const double tol = 1e-12 * (scale + cyl.p.norm());
+      EXPECT_LE((w.x() / cyl.a) * (w.x() / cyl.a) + (w.y() / cyl.b) * (w.y() / cyl.b), 1.0 + 1e-12) << k;
+      EXPECT_LE(std::fabs(w.z()), h + tol) << k;
+      EXPECT_LE((common - c).norm(), r + tol) << k;
     }
     // Witnesses: point_b on the cylinder's surface, point_a on the sphere, their difference the
     // distance along the unit normal.

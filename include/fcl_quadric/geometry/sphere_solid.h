@@ -38,6 +38,8 @@
 /// 0.1-0.4 us. signedDistanceEllipsoidConvex does the same for a convex polytope: the nearest
 /// face plane when the centre is inside every one, otherwise the nearest of its fan triangles.
 
+#include <optional>
+
 #include <Eigen/Core>
 
 #include "fcl_quadric/geometry/signed_distance.h"
@@ -62,7 +64,7 @@ SignedDistanceResult signedDistanceSphereCylinder(const Eigen::Vector3d& c, doub
 
 /// Sphere against the capped elliptic cylinder { x^2/a^2 + y^2/b^2 <= 1, |z| <= L/2 } of
 /// fcl_quadric::EllipticCylinder(a, b, length), posed at (R_WC, p_WC). The 2D problem of the
-/// ellipse separates from the caps; its nearest point comes from detail::closestPointOnEllipse
+/// ellipse separates from the caps; its nearest point comes from detail::closestPointPrincipal<2>
 /// (point_ellipsoid.h, to rounding), and outside the solid the status is read from a certified
 /// bracket of the distance (the support function along the nearest direction below, the nearest
 /// point above), not from the root's accuracy. converged = false (status Touching, distance 0)
@@ -79,6 +81,13 @@ namespace detail {
 /// length within kMaxLength; c and p finite within kMaxLength.
 SignedDistanceResult sphereEllipticCylinder(const Eigen::Vector3d& c, double r, double a, double b, double length,
                                             const Eigen::Matrix3d& R, const Eigen::Vector3d& p);
+/// Collision only, for the front doors' collide (same preconditions): false when apart, true with
+/// *common a point of both solids, nullopt where sphereEllipticCylinder leaves the pair undecided.
+/// Two certified tests come first and decide most pairs without the ellipse's root: apart along
+/// the centre's own direction (the support function), and the centre inside the cylinder.
+std::optional<bool> sphereEllipticCylinderContact(const Eigen::Vector3d& c, double r, double a, double b,
+                                                  double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                                                  Eigen::Vector3d* common);
 }  // namespace detail
 
 /// Sphere against fcl::Cone(radius, length): base disk of that radius at z = -L/2, apex at +L/2.
