@@ -170,6 +170,16 @@ TEST(EllipticCylinderShape, SphereClosedFormAgreesWithTheGeneralPathOnCollideAnd
       EXPECT_NEAR(std::max((on_cyl.x() / a) * (on_cyl.x() / a) + (on_cyl.y() / b) * (on_cyl.y() / b) - 1.0,
                            std::fabs(on_cyl.z()) - 0.5 * L) < 1e-12,
                   true, 0.0) << k;
+      // An fcl::Ellipsoid of three equal radii is the same ball, answered the same way.
+      {
+        const fcl::Ellipsoid<double> ball(sphere.radius, sphere.radius, sphere.radius);
+        fcl::DistanceRequest<double> dreq;
+        dreq.enable_signed_distance = true;
+        fcl::DistanceResult<double> dres;
+        const double via_ellipsoid = sphere_first ? fcl_quadric::distance(&ball, ts, &cyl, tc, dreq, dres)
+                                                  : fcl_quadric::distance(&cyl, tc, &ball, ts, dreq, dres);
+        EXPECT_EQ(via_ellipsoid, fast) << k;
+      }
       if (c_fast.isCollision()) {
         ++colliding;
         // The contact is a point of both solids, its normal unit.

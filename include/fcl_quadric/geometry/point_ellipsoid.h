@@ -32,7 +32,7 @@ PointEllipsoidResult closestPointOnEllipsoid(const Ellipsoid& e, const Eigen::Ve
 
 namespace detail {
 /// Principal-frame solver for N = 2 or 3: radii e (any order, > 0), point y; writes the closest
-/// point x and returns the signed distance. ~90 ns in 2D (the sphere against an elliptic
+/// point x and returns the signed distance. ~100 ns in 2D (the sphere against an elliptic
 /// cylinder, sphere_solid.h, calls it on every query). \pre e > 0 and finite, y finite.
 template <int N>
 double closestPointPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::Matrix<double, N, 1>& y,

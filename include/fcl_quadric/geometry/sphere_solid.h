@@ -1,7 +1,7 @@
 #pragma once
 /// \file sphere_solid.h
-/// A sphere against FCL's convex primitives (box, capsule, cylinder, cone) and a triangle, in
-/// closed form.
+/// A sphere against FCL's convex primitives (box, capsule, cylinder, cone), a triangle and
+/// fcl_quadric's EllipticCylinder, in closed form.
 ///
 /// A solid ball of radius r and centre c is the Minkowski sum of its centre with the ball, so its
 /// signed distance to a convex solid K is the signed distance of the point c to K minus r (for
