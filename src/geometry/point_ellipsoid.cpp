@@ -66,9 +66,11 @@ double closestPointPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::
     // would be at s < 0, beyond the pole: the nearest point leaves the principal plane
     // (Eberly's degenerate case) with its coordinates x_i = e_i c_i / D_i on the other axes and
     // the rest along the first shortest axis. The centre itself is such a point.
+    // (A shortest axis's c_i may be non-zero with its square underflowed: it counts as 0, as its
+    // square does; skipped, not divided by its D_i = 0.)
     double reduced = 0.0;
     for (int i = 0; i < N; ++i)
-      if (c[i] != 0.0) reduced += (c[i] / D[i]) * (c[i] / D[i]);
+      if (c[i] != 0.0 && D[i] != 0.0) reduced += (c[i] / D[i]) * (c[i] / D[i]);
     if (reduced < 1.0) {
       double s2 = 0.0;
       int first_minor = -1;

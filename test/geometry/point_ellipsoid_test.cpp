@@ -124,6 +124,29 @@ TEST(PointEllipsoid, CriticalPointsIncludeTheClosestOneNextToThePrincipalPlanes)
   }
 }
 
+TEST(PointEllipsoid, CoordinatesWhoseSquaresUnderflowStayFinite) {
+  // A coordinate along the shortest axis of ~1e-170: its square underflows to 0 while it does not
+  // (the test main traps division by zero and invalid operations). The answer is the limit of
+  // the degenerate case, the nearest point off the principal plane.
+  for (const double tiny : {1e-170, -3e-200, 1e-300}) {
+    Eigen::Vector2d x2;
+    const double d2 = detail::closestPointPrincipal<2>(Eigen::Vector2d(1.0, 0.5), Eigen::Vector2d(0.3, tiny), &x2);
+    ASSERT_TRUE(x2.allFinite() && std::isfinite(d2)) << tiny;
+    Eigen::Vector2d z2;
+    const double d0 = detail::closestPointPrincipal<2>(Eigen::Vector2d(1.0, 0.5), Eigen::Vector2d(0.3, 0.0), &z2);
+    EXPECT_NEAR(d2, d0, 1e-15) << tiny;
+    Eigen::Vector3d x3;
+    const double d3 =
+        detail::closestPointPrincipal<3>(Eigen::Vector3d(2.0, 1.0, 0.5), Eigen::Vector3d(0.3, -0.2, tiny), &x3);
+    ASSERT_TRUE(x3.allFinite() && std::isfinite(d3)) << tiny;
+    EXPECT_NEAR(x3.cwiseQuotient(Eigen::Vector3d(2.0, 1.0, 0.5)).squaredNorm(), 1.0, 1e-14);
+    Eigen::Vector3d pts[8];
+    const int n = detail::criticalPointsPrincipal<3>(Eigen::Vector3d(2.0, 1.0, 0.5), Eigen::Vector3d(0.3, -0.2, tiny),
+                                                     pts, 8);
+    for (int i = 0; i < n; ++i) ASSERT_TRUE(pts[i].allFinite()) << tiny;
+  }
+}
+
 TEST(PointEllipsoid, DegenerateInteriorPointsOnPrincipalPlanes) {
   const Ellipsoid e({3, 2, 1}, Eigen::Matrix3d::Identity(), {0, 0, 0});
   // The centre: closest points are the ends of the shortest axis.
