@@ -229,7 +229,9 @@ int criticalPointsPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::M
     // y = 0: every critical point has t = -e_i^2 (handled below).
   } else {
     // (-inf, first pole): g -> -1 at -inf, +inf at the pole.
-    LD lo = poles[0] - 1;
+    // (A step of at least 1e-15 of the pole: a plain 1 is absorbed by poles beyond ~1e19, e > 4e9,
+    // and g there divided by zero; found by a session 45 scratch audit of extreme sizes.)
+    LD lo = poles[0] - std::max<LD>(1, std::fabs(poles[0]) * 1e-15L);
     for (int k = 0; k < 4000 && g(lo) > 0; ++k) lo = poles[0] - 2 * (poles[0] - lo);
     const LD eps0 = std::max<LD>(1e-30L, std::fabs(poles[0]) * 1e-18L);
     if (g(lo) < 0 && g(poles[0] - eps0) > 0) emit(root(lo, poles[0] - eps0));
@@ -237,7 +239,11 @@ int criticalPointsPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::M
     for (int k = 0; k + 1 < np; ++k) {
       const LD a0 = poles[k], b0 = poles[k + 1];
       if (!(b0 > a0)) continue;
-      LD a = a0 + (b0 - a0) * 1e-15L, b = b0 - (b0 - a0) * 1e-15L;
+      // Off each pole by 1e-15 of the interval, and at least 1e-18 of the pole: at poles beyond
+      // ~1e100 a narrower interval's step was absorbed (a == a0) and g divided by zero (session 45).
+      const LD guard = std::max<LD>((b0 - a0) * 1e-15L, std::fabs(a0) * 1e-18L);
+      if (!(b0 - a0 > 4 * guard)) continue;
+      LD a = a0 + guard, b = b0 - guard;
       // minimise by bisection on dg (increasing on the interval)
       LD lo2 = a, hi2 = b;
       for (int it = 0; it < 200; ++it) {

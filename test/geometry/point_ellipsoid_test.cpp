@@ -147,6 +147,32 @@ TEST(PointEllipsoid, CoordinatesWhoseSquaresUnderflowStayFinite) {
   }
 }
 
+TEST(PointEllipsoid, ExtremeSizesStayFinite) {
+  // Radii from 1e-100 to 1e100 (the accepted range), coordinates from 1e-300 to 1e100, some zero.
+  // The critical points' search stepped 1 to the left of its first pole and 1e-15 of the interval
+  // off the inner ones: at poles beyond ~1e19 and ~1e100 the step was absorbed and g divided by
+  // zero (trapped here; a session 45 scratch audit of 300,000 such cases found both).
+  std::mt19937_64 rng(4508);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  auto logUniform = [&](double lo, double hi) { return std::pow(10.0, lo + (hi - lo) * 0.5 * (unit(rng) + 1.0)); };
+  for (int k = 0; k < 20000; ++k) {
+    Eigen::Vector3d e(logUniform(-100, 100), 0, 0);
+    e[1] = std::clamp(e[0] * logUniform(-10, 10), 1e-100, 1e100);
+    e[2] = k % 4 == 0 ? e[1] : std::clamp(e[0] * logUniform(-10, 10), 1e-100, 1e100);
+    Eigen::Vector3d y(unit(rng) * logUniform(-300, 100), unit(rng) * logUniform(-300, 100),
+                      unit(rng) * logUniform(-300, 100));
+    if (k % 3 == 0) y[k % 3] = 0.0;
+    y = y.cwiseMin(1e100).cwiseMax(-1e100);
+    Eigen::Vector3d x, pts[8];
+    const double d = detail::closestPointPrincipal<3>(e, y, &x);
+    ASSERT_TRUE(std::isfinite(d) && x.allFinite()) << e.transpose() << " | " << y.transpose();
+    const int n = detail::criticalPointsPrincipal<3>(e, y, pts, 8);
+    for (int i = 0; i < n; ++i) ASSERT_TRUE(pts[i].allFinite()) << e.transpose() << " | " << y.transpose();
+    Eigen::Vector2d x2;
+    ASSERT_TRUE(std::isfinite(detail::closestPointPrincipal<2>(e.head<2>(), y.head<2>(), &x2)) && x2.allFinite());
+  }
+}
+
 TEST(PointEllipsoid, DegenerateInteriorPointsOnPrincipalPlanes) {
   const Ellipsoid e({3, 2, 1}, Eigen::Matrix3d::Identity(), {0, 0, 0});
   // The centre: closest points are the ends of the shortest axis.
