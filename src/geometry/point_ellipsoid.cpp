@@ -24,11 +24,12 @@ double closestPointPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::
   // D_i = e_i^2 - e_min^2 >= 0 of its pole (0 for the shortest axes, which share s = 0), from a
   // product of the difference and the sum (no cancellation).
   double ee[N], a[N], c[N], D[N];
-  double emin = std::numeric_limits<double>::infinity();
+  double emin = std::numeric_limits<double>::infinity(), a_max = 0.0;
   for (int i = 0; i < N; ++i) {
     ee[i] = unit * e[i];
     a[i] = unit * std::fabs(y[i]);
     emin = std::min(emin, ee[i]);
+    a_max = std::max(a_max, a[i]);
   }
   double form = 0.0, c_minor2 = 0.0, c_max = 0.0;
   for (int i = 0; i < N; ++i) {
@@ -40,8 +41,6 @@ double closestPointPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::
   }
   double xs[N];
   bool done = false;
-  double a_max = 0.0;
-  for (int i = 0; i < N; ++i) a_max = std::max(a_max, a[i]);
   bool round = true;  // all radii equal: a circle or a sphere, the radial projection
   for (int i = 0; i < N; ++i) round = round && D[i] == 0.0;
   if (round && a_max <= 1e100) {

@@ -235,6 +235,14 @@ struct CylinderAnswer {
   double lower, upper;
 };
 
+/// u^2/a^2 + v^2/b^2: the ellipse's form (<= 1 inside).
+double ellipseForm(double a, double b, double u, double v) { return (u / a) * (u / a) + (v / b) * (v / b); }
+
+/// The capped elliptic cylinder's support function h_K(m) = |(a m_x, b m_y)| + h |m_z|.
+double ellipticCylinderSupport(double a, double b, double h, const Eigen::Vector3d& m) {
+  return std::sqrt((a * m.x()) * (a * m.x()) + (b * m.y()) * (b * m.y())) + h * std::fabs(m.z());
+}
+
 CylinderAnswer ellipticCylinderLocal(double a, double b, double length, const Eigen::Vector3d& x) {
   const double h = 0.5 * length;
   const double scale = x.norm();
@@ -242,7 +250,7 @@ CylinderAnswer ellipticCylinderLocal(double a, double b, double length, const Ei
   const double zside = x.z() >= 0.0 ? 1.0 : -1.0;
   const double cap_excess = std::fabs(x.z()) - h;  // > 0 beyond the cap on the centre's side
   const Eigen::Vector3d cap_normal(0.0, 0.0, zside);
-  const double form = (q.x() / a) * (q.x() / a) + (q.y() / b) * (q.y() / b);
+  const double form = ellipseForm(a, b, q.x(), q.y());
   // The side's outward unit normal at a point y of the ellipse: (y_x / a^2, y_y / b^2) normalised.
   auto sideNormal = [&](const Eigen::Vector2d& y) {
     const Eigen::Vector3d n((y.x() / a) / a, (y.y() / b) / b, 0.0);
@@ -273,9 +281,8 @@ CylinderAnswer ellipticCylinderLocal(double a, double b, double length, const Ei
   const LocalAnswer ans = outside(x, nearest, -fallback.normalized(), scale);
   // The bracket. m points from the solid to the centre (the fallback's reverse at distance 0).
   const Eigen::Vector3d m = ans.point_distance > 0.0 ? Eigen::Vector3d(x - nearest) : Eigen::Vector3d(-ans.toward);
-  const double support = std::sqrt((a * m.x()) * (a * m.x()) + (b * m.y()) * (b * m.y())) + h * std::fabs(m.z());
-  const double lower = (m.dot(x) - support) / m.norm();
-  const double form_y = (y.x() / a) * (y.x() / a) + (y.y() / b) * (y.y() / b);
+  const double lower = (m.dot(x) - ellipticCylinderSupport(a, b, h, m)) / m.norm();
+  const double form_y = ellipseForm(a, b, y.x(), y.y());
   const double upper = ans.point_distance + y.norm() * std::max(0.0, form_y - 1.0);
   return {ans, lower, upper};
 }
@@ -379,9 +386,12 @@ SignedDistanceResult signedDistanceSphereCone(const Eigen::Vector3d& c, double r
 
 namespace detail {
 
-SignedDistanceResult sphereEllipticCylinder(const Eigen::Vector3d& c, double r, double a, double b, double length,
-                                            const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
-  const Eigen::Vector3d x = R.transpose() * (c - p);
+namespace {
+
+/// sphereEllipticCylinder() with the centre already in the cylinder's frame, x = R^T (c - p).
+SignedDistanceResult sphereEllipticCylinderAt(const Eigen::Vector3d& c, double r, double a, double b, double length,
+                                              const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
+                                              const Eigen::Vector3d& x) {
   const double unit = unitScale({x.cwiseAbs().maxCoeff(), a, b, length});
   const CylinderAnswer local = ellipticCylinderLocal(unit * a, unit * b, unit * length, unit * x);
   SignedDistanceResult out = finish(c, r, R, p, local.answer, unit);
@@ -404,6 +414,13 @@ SignedDistanceResult sphereEllipticCylinder(const Eigen::Vector3d& c, double r, 
   return out;
 }
 
+}  // namespace
+
+SignedDistanceResult sphereEllipticCylinder(const Eigen::Vector3d& c, double r, double a, double b, double length,
+                                            const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
+  return sphereEllipticCylinderAt(c, r, a, b, length, R, p, R.transpose() * (c - p));
+}
+
 std::optional<bool> sphereEllipticCylinderContact(const Eigen::Vector3d& c, double r, double a, double b,
                                                   double length, const Eigen::Matrix3d& R, const Eigen::Vector3d& p,
                                                   Eigen::Vector3d* common) {
@@ -418,17 +435,15 @@ std::optional<bool> sphereEllipticCylinderContact(const Eigen::Vector3d& c, doub
   // (|x|^2 - h_K(x)) / |x| from the centre along it (the support function of section 12d).
   const double n2 = xs.squaredNorm();
   if (n2 > 0.0) {
-    const double support = std::sqrt((as * xs.x()) * (as * xs.x()) + (bs * xs.y()) * (bs * xs.y())) +
-                           hs * std::fabs(xs.z());
-    if ((n2 - support) / std::sqrt(n2) - rs > band) return false;
+    if ((n2 - ellipticCylinderSupport(as, bs, hs, xs)) / std::sqrt(n2) - rs > band) return false;
   }
   // The centre inside the solid with a margin: a common point.
-  const double form = (xs.x() / as) * (xs.x() / as) + (xs.y() / bs) * (xs.y() / bs);
+  const double form = ellipseForm(as, bs, xs.x(), xs.y());
   if (form < 1.0 - tolerance::kCertificateRelativeBoundDouble && std::fabs(xs.z()) < hs - band) {
     *common = c;
     return true;
   }
-  const SignedDistanceResult d = sphereEllipticCylinder(c, r, a, b, length, R, p);
+  const SignedDistanceResult d = sphereEllipticCylinderAt(c, r, a, b, length, R, p, x);
   if (d.status == Separation::Separated) return false;
   if (d.status == Separation::Touching && !d.converged) return std::nullopt;
   // Within r of the centre (up to the band): the cylinder's point nearest to it, or the centre

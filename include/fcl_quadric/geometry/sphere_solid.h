@@ -68,8 +68,11 @@ SignedDistanceResult signedDistanceSphereCylinder(const Eigen::Vector3d& c, doub
 /// (point_ellipsoid.h, to rounding), and outside the solid the status is read from a certified
 /// bracket of the distance (the support function along the nearest direction below, the nearest
 /// point above), not from the root's accuracy. converged = false (status Touching, distance 0)
-/// only if that bracket is wider than the band (not met in the tests). Same exceptions as the
-/// cylinder's, and also for a semi-axis of 0.
+/// only if that bracket is wider than the band (not met in the tests). Not from the seed papers:
+/// Eberly's point-ellipse distance and the support function's weak duality (docs/algorithms.md
+/// sections 6 and 12d). \throws std::invalid_argument as the cylinder's (a radius, semi-axis or
+/// length not finite or outside [0, kMaxLength], a non-rotation, a centre not finite or beyond
+/// kMaxLength; the message names the value), and also for a semi-axis of 0.
 SignedDistanceResult signedDistanceSphereEllipticCylinder(const Eigen::Vector3d& c, double r, double a, double b,
                                                           double length, const Eigen::Matrix3d& R_WC,
                                                           const Eigen::Vector3d& p_WC);
