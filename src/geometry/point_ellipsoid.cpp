@@ -163,116 +163,148 @@ double closestPointPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::
 template <int N>
 int criticalPointsPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::Matrix<double, N, 1>& y,
                             Eigen::Matrix<double, N, 1>* out, int max_out) {
+  // The critical points are x_i = e_i^2 y_i / (e_i^2 + t) at the roots t of
+  // g(t) = sum (c_i / (e_i^2 + t))^2 - 1, c_i = e_i y_i, whose poles are the -e_i^2 with c_i != 0.
+  // Each root is solved in its offset s = t + e_r^2 from the pole r it lies next to (the
+  // reference), with e_i^2 + t = D_i + s and D_i = (e_i - e_r)(e_i + e_r): a root next to its pole
+  // keeps its relative precision, which t itself (or e_i^2 + t formed from it) lost to
+  // cancellation, putting the point off the surface by up to 3e-3 in the form (sessions 45-46).
+  // Long double: no scaling is needed for radii and coordinates in the accepted ranges.
   using LD = long double;
-  LD ee2[N], c2[N];  // e_i^2 and (e_i y_i)^2
+  LD ee2[N], c2[N], ac[N];  // e_i^2, c_i^2 and |c_i|
+  LD c_norm2 = 0;
   for (int i = 0; i < N; ++i) {
     ee2[i] = static_cast<LD>(e[i]) * e[i];
-    c2[i] = ee2[i] * static_cast<LD>(y[i]) * y[i];
+    ac[i] = std::fabs(static_cast<LD>(e[i]) * y[i]);
+    c2[i] = ac[i] * ac[i];
+    c_norm2 += c2[i];
   }
-  auto g = [&](LD t) {
-    LD s = -1;
-    for (int i = 0; i < N; ++i)  // a zero coordinate contributes nothing (and 0/0 at its pole)
-      if (c2[i] != 0) s += c2[i] / ((ee2[i] + t) * (ee2[i] + t));
-    return s;
+  const LD c_norm = std::sqrt(c_norm2);
+  // The offsets of the poles from the reference pole r.
+  auto offsets = [&](int r, LD D[N]) {
+    for (int i = 0; i < N; ++i) D[i] = (static_cast<LD>(e[i]) - e[r]) * (static_cast<LD>(e[i]) + e[r]);
   };
-  auto dg = [&](LD t) {
-    LD s = 0;
+  auto g = [&](const LD D[N], LD s) {
+    LD f = -1;
+    for (int i = 0; i < N; ++i)  // a zero coordinate contributes nothing (and 0/0 at its pole)
+      if (c2[i] != 0) f += c2[i] / ((D[i] + s) * (D[i] + s));
+    return f;
+  };
+  auto dg = [&](const LD D[N], LD s) {
+    LD f = 0;
     for (int i = 0; i < N; ++i)
-      if (c2[i] != 0) s -= 2 * c2[i] / ((ee2[i] + t) * (ee2[i] + t) * (ee2[i] + t));
-    return s;
+      if (c2[i] != 0) f -= 2 * c2[i] / ((D[i] + s) * (D[i] + s) * (D[i] + s));
+    return f;
   };
   int count = 0;
-  auto emit = [&](LD t) {
+  auto emit = [&](const LD D[N], LD s) {
     if (count >= max_out) return;
     Eigen::Matrix<double, N, 1> x;
     for (int i = 0; i < N; ++i) {
       if (c2[i] == 0) {
-        if (ee2[i] + t == 0) return;  // t = -e_i^2 with y_i = 0: the points of the loop below
+        if (D[i] + s == 0) return;  // t = -e_i^2 with y_i = 0: the points of the loop below
         x[i] = 0;
       } else {
-        x[i] = static_cast<double>(ee2[i] * y[i] / (ee2[i] + t));
+        x[i] = static_cast<double>(ee2[i] * y[i] / (D[i] + s));
       }
     }
     out[count++] = x;
   };
-  // Root of g on (a, b) where g changes sign: bisection-safeguarded Newton.
-  auto root = [&](LD a, LD b) {
-    LD ga = g(a);
-    LD t = 0.5L * (a + b);
+  // The root of g on [a, b], where g changes sign (up to rounding at an end, which is then the
+  // answer): bisection-safeguarded Newton, at most kMaxPointEllipsoidIterations steps.
+  auto root = [&](const LD D[N], LD a, LD b) {
+    LD ga = g(D, a);
+    const LD gb = g(D, b);
+    if (ga == 0 || (ga > 0) == (gb > 0)) return std::fabs(ga) <= std::fabs(gb) ? a : b;
+    if (gb == 0) return b;
+    LD s = 0.5L * (a + b);
     for (int it = 0; it < tolerance::kMaxPointEllipsoidIterations; ++it) {
-      const LD gt = g(t);
-      if ((gt > 0) == (ga > 0)) {
-        a = t;
-        ga = gt;
+      const LD gs = g(D, s);
+      if (gs == 0) return s;
+      if ((gs > 0) == (ga > 0)) {
+        a = s;
+        ga = gs;
       } else {
-        b = t;
+        b = s;
       }
-      const LD d = dg(t);
-      LD next = d != 0 ? t - gt / d : 0.5L * (a + b);
+      const LD d = dg(D, s);
+      LD next = d != 0 ? s - gs / d : 0.5L * (a + b);
       if (!(next > a && next < b)) next = 0.5L * (a + b);
-      if (next == t || b - a <= 4 * std::numeric_limits<LD>::epsilon() * (std::fabs(a) + std::fabs(b))) return next;
-      t = next;
+      if (next == s || b - a <= 4 * std::numeric_limits<LD>::epsilon() * (std::fabs(a) + std::fabs(b))) return next;
+      s = next;
     }
-    return t;
+    return s;
   };
-  // Poles in increasing order of -e_i^2 (i.e. decreasing e_i^2), only where y_i != 0.
-  LD poles[N];
+  // The axes with c_i != 0 by decreasing e_i: their poles -e_i^2 in increasing order.
+  int axis[N];
   int np = 0;
   for (int i = 0; i < N; ++i)
-    if (c2[i] > 0) poles[np++] = -ee2[i];
+    if (c2[i] > 0) axis[np++] = i;
   for (int i = 1; i < np; ++i)  // insertion sort of <= 3 values
-    for (int j = i; j > 0 && poles[j] < poles[j - 1]; --j) std::swap(poles[j], poles[j - 1]);
-  LD scale = 1;
-  for (int i = 0; i < N; ++i) scale = std::max(scale, ee2[i] + static_cast<LD>(std::sqrt(c2[i])));
-  if (np == 0) {
-    // y = 0: every critical point has t = -e_i^2 (handled below).
-  } else {
-    // (-inf, first pole): g -> -1 at -inf, +inf at the pole.
-    // (A step of at least 1e-15 of the pole: a plain 1 is absorbed by poles beyond ~1e19, e > 4e9,
-    // and g there divided by zero; found by a session 45 scratch audit of extreme sizes.)
-    LD lo = poles[0] - std::max<LD>(1, std::fabs(poles[0]) * 1e-15L);
-    for (int k = 0; k < 4000 && g(lo) > 0; ++k) lo = poles[0] - 2 * (poles[0] - lo);
-    const LD eps0 = std::max<LD>(1e-30L, std::fabs(poles[0]) * 1e-18L);
-    if (g(lo) < 0 && g(poles[0] - eps0) > 0) emit(root(lo, poles[0] - eps0));
-    // Between consecutive poles: convex, +inf at both ends: minimum, then two roots if it is < 0.
+    for (int j = i; j > 0 && e[axis[j]] > e[axis[j - 1]]; --j) std::swap(axis[j], axis[j - 1]);
+  if (np > 0) {
+    // Brackets from g's terms alone: the term of the reference pole is >= 1 within |c_r| of it,
+    // so g >= 0 there; beyond |c| of the outermost poles every term is < 1 in sum, so g < 0.
+    LD D[N];
+    // (-inf, first pole): g rises from -1 to +inf; s in [-|c|, -|c_r|] (every D_i <= 0 there).
+    const int first = axis[0];
+    offsets(first, D);
+    emit(D, root(D, -c_norm, -ac[first]));
+    // Between consecutive poles k and j, W apart: convex, +inf at both ends; its minimum, then two
+    // roots if that is < 0. None if |c_k| + |c_j| >= W (one of the two terms is >= 1 everywhere).
+    // The half next to pole k is solved in k's frame, s in (0, W/2], the other in j's,
+    // s in [-W/2, 0): a root or minimum next to either pole keeps its relative precision (one
+    // frame for the whole interval lost the far pole's neighbourhood to rounding, and a bracket
+    // end there fell on the pole itself).
     for (int k = 0; k + 1 < np; ++k) {
-      const LD a0 = poles[k], b0 = poles[k + 1];
-      if (!(b0 > a0)) continue;
-      // Off each pole by 1e-15 of the interval, and at least 1e-18 of the pole: at poles beyond
-      // ~1e100 a narrower interval's step was absorbed (a == a0) and g divided by zero (session 45).
-      const LD guard = std::max<LD>((b0 - a0) * 1e-15L, std::fabs(a0) * 1e-18L);
-      if (!(b0 - a0 > 4 * guard)) continue;
-      LD a = a0 + guard, b = b0 - guard;
-      // minimise by bisection on dg (increasing on the interval)
-      LD lo2 = a, hi2 = b;
-      for (int it = 0; it < 200; ++it) {
-        const LD m = 0.5L * (lo2 + hi2);
-        if (dg(m) < 0) lo2 = m; else hi2 = m;
+      const int ik = axis[k], ij = axis[k + 1];
+      const LD W = (static_cast<LD>(e[ik]) - e[ij]) * (static_cast<LD>(e[ik]) + e[ij]);
+      if (!(W > ac[ik] + ac[ij])) continue;
+      const LD half = 0.5L * W;  // the midpoint, in k's frame (-half in j's)
+      LD Dk[N], Dj[N];
+      offsets(ik, Dk);
+      offsets(ij, Dj);
+      // Which half holds the minimum (dg increasing), then the minimum by bisection on dg within it.
+      // It has g >= 0 when it is within |c| of the half's pole: no roots then.
+      const bool in_k = !(dg(Dk, half) < 0);
+      const LD* Dm = in_k ? Dk : Dj;
+      LD lo = in_k ? ac[ik] : -half, hi = in_k ? half : -ac[ij];
+      if (!(lo < hi)) continue;
+      for (int it = 0; it < tolerance::kMaxPointEllipsoidIterations; ++it) {
+        const LD m = 0.5L * (lo + hi);
+        if (!(m > lo && m < hi)) break;
+        (dg(Dm, m) < 0 ? lo : hi) = m;
       }
-      const LD tm = 0.5L * (lo2 + hi2);
-      if (g(tm) < 0) {
-        if (g(a) > 0) emit(root(a, tm));
-        if (g(b) > 0) emit(root(tm, b));
+      const LD sm = 0.5L * (lo + hi);
+      if (!(g(Dm, sm) < 0)) continue;
+      // The root on the minimum's side of the midpoint shares its frame; the other lies in the
+      // minimum's half too if g at the midpoint is > 0, else in the other half.
+      const bool mid_positive = g(Dk, half) > 0;
+      if (in_k) {
+        emit(Dk, root(Dk, ac[ik], sm));
+        if (mid_positive)
+          emit(Dk, root(Dk, sm, half));
+        else
+          emit(Dj, root(Dj, -half, std::max(-half, -ac[ij])));
+      } else {
+        if (mid_positive)
+          emit(Dj, root(Dj, -half, sm));
+        else
+          emit(Dk, root(Dk, std::min(ac[ik], half), half));
+        emit(Dj, root(Dj, sm, -ac[ij]));
       }
     }
-    // (last pole, inf): +inf at the pole, -1 at inf. When that pole is -e_min^2 (a coordinate along
-    // a shortest axis), the root is the closest point: closestPointPrincipal's, which solves in the
-    // shifted unknown. The search below on t misses a root within 1e-18 of the pole, which a tiny
-    // coordinate along the shortest axis puts there: the closest point was then missing from the
-    // list, up to 0.4 of the scale nearer than the best point listed (session 45, a scratch audit
-    // of 20,000 interior points near a principal plane).
-    const LD last = poles[np - 1];
+    // (last pole, inf): +inf at the pole, -1 at inf; s in [|c_r|, |c|]. When that pole is
+    // -e_min^2 (a coordinate along a shortest axis), the root is the closest point:
+    // closestPointPrincipal's (in double, ~4e-16 of the scale against a 50-digit oracle).
+    const int last = axis[np - 1];
     double emin = e[0];
     for (int i = 1; i < N; ++i) emin = std::min(emin, e[i]);
-    bool minor_pole = false;
-    for (int i = 0; i < N; ++i) minor_pole = minor_pole || (e[i] == emin && c2[i] != 0);
-    if (minor_pole) {
+    if (e[last] == emin) {
       if (count < max_out) closestPointPrincipal<N>(e, y, &out[count++]);
     } else {
-      const LD epsl = std::max<LD>(1e-30L, std::fabs(last) * 1e-18L);
-      LD hi = last + scale;
-      for (int k = 0; k < 4000 && g(hi) > 0; ++k) hi = last + 2 * (hi - last);
-      if (g(last + epsl) > 0 && g(hi) < 0) emit(root(last + epsl, hi));
+      offsets(last, D);
+      emit(D, root(D, ac[last], c_norm));
     }
   }
   // Points with t = -e_i^2 where y_i = 0: x_k = e_k^2 y_k / (e_k^2 - e_i^2) for k != i, and x_i
@@ -284,7 +316,7 @@ int criticalPointsPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::M
     bool ok = true;
     for (int k = 0; k < N; ++k) {
       if (k == i) continue;
-      const LD d = ee2[k] - ee2[i];
+      const LD d = (static_cast<LD>(e[k]) - e[i]) * (static_cast<LD>(e[k]) + e[i]);
       if (d == 0 || c2[k] == 0) {
         if (c2[k] != 0) ok = false;
         x[k] = 0;
