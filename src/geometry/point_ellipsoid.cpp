@@ -168,7 +168,8 @@ int criticalPointsPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::M
   // Each root is solved in its offset s = t + e_r^2 from the pole r it lies next to (the
   // reference), with e_i^2 + t = D_i + s and D_i = (e_i - e_r)(e_i + e_r): a root next to its pole
   // keeps its relative precision, which t itself (or e_i^2 + t formed from it) lost to
-  // cancellation, putting the point off the surface by up to 3e-3 in the form (sessions 45-46).
+  // cancellation: roots were lost, or put off the surface by up to 0.75 in the form (session 46's
+  // scratch audit, docs/algorithms.md section 6).
   // Long double: no scaling is needed for radii and coordinates in the accepted ranges.
   using LD = long double;
   LD ee2[N], c2[N], ac[N];  // e_i^2, c_i^2 and |c_i|
@@ -180,9 +181,10 @@ int criticalPointsPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::M
     c_norm2 += c2[i];
   }
   const LD c_norm = std::sqrt(c_norm2);
-  // The offsets of the poles from the reference pole r.
+  // e_i^2 - e_r^2 without cancellation, and the offsets of every pole from the reference pole r.
+  auto offset = [&](int i, int r) { return (static_cast<LD>(e[i]) - e[r]) * (static_cast<LD>(e[i]) + e[r]); };
   auto offsets = [&](int r, LD D[N]) {
-    for (int i = 0; i < N; ++i) D[i] = (static_cast<LD>(e[i]) - e[r]) * (static_cast<LD>(e[i]) + e[r]);
+    for (int i = 0; i < N; ++i) D[i] = offset(i, r);
   };
   auto g = [&](const LD D[N], LD s) {
     LD f = -1;
@@ -258,7 +260,7 @@ int criticalPointsPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::M
     // end there fell on the pole itself).
     for (int k = 0; k + 1 < np; ++k) {
       const int ik = axis[k], ij = axis[k + 1];
-      const LD W = (static_cast<LD>(e[ik]) - e[ij]) * (static_cast<LD>(e[ik]) + e[ij]);
+      const LD W = offset(ik, ij);
       if (!(W > ac[ik] + ac[ij])) continue;
       const LD half = 0.5L * W;  // the midpoint, in k's frame (-half in j's)
       LD Dk[N], Dj[N];
@@ -316,7 +318,7 @@ int criticalPointsPrincipal(const Eigen::Matrix<double, N, 1>& e, const Eigen::M
     bool ok = true;
     for (int k = 0; k < N; ++k) {
       if (k == i) continue;
-      const LD d = (static_cast<LD>(e[k]) - e[i]) * (static_cast<LD>(e[k]) + e[i]);
+      const LD d = offset(k, i);
       if (d == 0 || c2[k] == 0) {
         if (c2[k] != 0) ok = false;
         x[k] = 0;
