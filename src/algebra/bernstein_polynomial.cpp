@@ -132,7 +132,7 @@ namespace {
 
 using detail::checkFiniteValue;
 
-void checkCoefficients(const char* where, const std::vector<double>& c) {
+void checkBernsteinCoefficients(const char* where, const std::vector<double>& c) {
   detail::checkCoefficients(where, c, /*non_empty=*/true);
 }
 
@@ -151,7 +151,7 @@ BernsteinPolynomial::BernsteinPolynomial() : coefficients_(1, 0.0), a_(0.0), b_(
 
 BernsteinPolynomial::BernsteinPolynomial(std::vector<double> coefficients, double a, double b)
     : coefficients_(std::move(coefficients)), a_(a), b_(b) {
-  checkCoefficients("BernsteinPolynomial", coefficients_);
+  checkBernsteinCoefficients("BernsteinPolynomial", coefficients_);
   detail::checkInterval("BernsteinPolynomial", a, b);
 }
 
@@ -173,7 +173,7 @@ BernsteinPolynomial BernsteinPolynomial::fromPower(const Polynomial& p, double a
 }
 
 BernsteinPolynomial BernsteinPolynomial::fromScaled(const std::vector<double>& scaled, double a, double b) {
-  checkCoefficients("BernsteinPolynomial::fromScaled", scaled);
+  checkBernsteinCoefficients("BernsteinPolynomial::fromScaled", scaled);
   detail::checkInterval("BernsteinPolynomial::fromScaled", a, b);
   const int n = static_cast<int>(scaled.size()) - 1;
   std::vector<double> c(scaled.size());

@@ -41,6 +41,20 @@ inline void checkCoefficients(const char* where, const std::vector<double>& c, b
   }
 }
 
+/// Every entry of M finite; the message names the function, the matrix and the bad entry.
+template <typename Derived>
+void checkFiniteMatrix(const char* where, const char* what, const Eigen::MatrixBase<Derived>& M) {
+  for (Eigen::Index i = 0; i < M.rows(); ++i) {
+    for (Eigen::Index j = 0; j < M.cols(); ++j) {
+      if (!std::isfinite(M(i, j))) {
+        std::ostringstream os;
+        os << where << ": non-finite entry (" << i << ", " << j << ") = " << M(i, j) << " of " << what;
+        throw std::invalid_argument(os.str());
+      }
+    }
+  }
+}
+
 /// A 4x4 quadric matrix: every entry finite (checked entry by entry: Eigen's allFinite() computes
 /// x - x, which raises FE_INVALID on an infinity) and symmetric to 1e-12 relative to its largest
 /// entry. A zero matrix passes (callers that reject it say so).

@@ -1,5 +1,7 @@
 #include "fcl_quadric/algebra/polynomial.h"
 
+#include "fcl_quadric/tolerances.h"
+
 #include "algebra/input_checks.h"
 
 #include <algorithm>
@@ -13,11 +15,11 @@
 namespace fcl_quadric {
 namespace {
 
-constexpr double kUnitRoundoff = 1.1102230246251565e-16;  // 2^-53
+using tolerance::kUnitRoundoff;
 
 using detail::checkFiniteValue;
 
-void checkCoefficients(const char* where, const std::vector<double>& c) {
+void checkPowerCoefficients(const char* where, const std::vector<double>& c) {
   detail::checkCoefficients(where, c, /*non_empty=*/false);
 }
 
@@ -33,7 +35,7 @@ Polynomial::Polynomial() : coefficients_(1, 0.0) {}
 
 Polynomial::Polynomial(std::vector<double> coefficients) : coefficients_(std::move(coefficients)) {
   if (coefficients_.empty()) coefficients_.assign(1, 0.0);
-  checkCoefficients("Polynomial", coefficients_);
+  checkPowerCoefficients("Polynomial", coefficients_);
 }
 
 Polynomial::Polynomial(std::initializer_list<double> coefficients)

@@ -6,51 +6,23 @@
 #include <stdexcept>
 #include <string>
 
+#include "algebra/input_checks.h"
+#include "algebra/lambda_polynomial.h"
+
 namespace fcl_quadric {
 namespace {
+
+using detail::Bivariate;
+using detail::operator*;
+using detail::operator+;
+using detail::operator-;
+using detail::checkFiniteMatrix;
 
 void checkIndex(int i, int j) {
   if (i < 0 || i > 3 || j < 0 || j > 3) {
     throw std::invalid_argument("PolynomialMatrix4: index (" + std::to_string(i) + ", " + std::to_string(j) +
                                 ") outside [0, 3]");
   }
-}
-
-void checkFiniteMatrix(const char* where, const char* what, const Eigen::Matrix4d& M) {
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      if (!std::isfinite(M(i, j))) {
-        std::ostringstream os;
-        os << where << ": non-finite entry (" << i << ", " << j << ") = " << M(i, j) << " of " << what;
-        throw std::invalid_argument(os.str());
-      }
-    }
-  }
-}
-
-/// Polynomial in lambda whose coefficients are polynomials in t (index = power of lambda).
-using Bivariate = std::vector<Polynomial>;
-
-Bivariate operator*(const Bivariate& a, const Bivariate& b) {
-  Bivariate c(a.size() + b.size() - 1);
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
-  }
-  return c;
-}
-
-Bivariate operator+(const Bivariate& a, const Bivariate& b) {
-  Bivariate c(std::max(a.size(), b.size()));
-  for (std::size_t i = 0; i < a.size(); ++i) c[i] += a[i];
-  for (std::size_t i = 0; i < b.size(); ++i) c[i] += b[i];
-  return c;
-}
-
-Bivariate operator-(const Bivariate& a, const Bivariate& b) {
-  Bivariate c(std::max(a.size(), b.size()));
-  for (std::size_t i = 0; i < a.size(); ++i) c[i] += a[i];
-  for (std::size_t i = 0; i < b.size(); ++i) c[i] -= b[i];
-  return c;
 }
 
 /// Determinant of a row-major 4x4 array by Laplace expansion along rows (0,1) against the

@@ -6,8 +6,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "algebra/input_checks.h"
+#include "algebra/lambda_polynomial.h"
+
 namespace fcl_quadric {
 namespace {
+
+using detail::Bivariate;
+using detail::operator*;
+using detail::operator+;
+using detail::operator-;
+using detail::checkFiniteMatrix;
 
 std::size_t index3(int i, int j) { return static_cast<std::size_t>(3 * i + j); }
 
@@ -16,43 +25,6 @@ void checkIndex3(int i, int j) {
     throw std::invalid_argument("PolynomialMatrix3: index (" + std::to_string(i) + ", " + std::to_string(j) +
                                 ") outside [0, 2]");
   }
-}
-
-void checkFiniteMatrix3(const char* where, const char* what, const Eigen::Matrix3d& M) {
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      if (!std::isfinite(M(i, j))) {
-        std::ostringstream os;
-        os << where << ": non-finite entry (" << i << ", " << j << ") = " << M(i, j) << " of " << what;
-        throw std::invalid_argument(os.str());
-      }
-    }
-  }
-}
-
-/// Polynomial in lambda whose coefficients are polynomials in t (index = power of lambda).
-using Bivariate = std::vector<Polynomial>;
-
-Bivariate operator*(const Bivariate& a, const Bivariate& b) {
-  Bivariate c(a.size() + b.size() - 1);
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    for (std::size_t j = 0; j < b.size(); ++j) c[i + j] += a[i] * b[j];
-  }
-  return c;
-}
-
-Bivariate operator+(const Bivariate& a, const Bivariate& b) {
-  Bivariate c(std::max(a.size(), b.size()));
-  for (std::size_t i = 0; i < a.size(); ++i) c[i] += a[i];
-  for (std::size_t i = 0; i < b.size(); ++i) c[i] += b[i];
-  return c;
-}
-
-Bivariate operator-(const Bivariate& a, const Bivariate& b) {
-  Bivariate c(std::max(a.size(), b.size()));
-  for (std::size_t i = 0; i < a.size(); ++i) c[i] += a[i];
-  for (std::size_t i = 0; i < b.size(); ++i) c[i] -= b[i];
-  return c;
 }
 
 /// Determinant of a row-major 3x3 array by cofactor expansion along the first row.
@@ -70,7 +42,7 @@ T cofactorDeterminant(const std::array<T, 9>& a) {
 PolynomialMatrix3::PolynomialMatrix3() = default;
 
 PolynomialMatrix3::PolynomialMatrix3(const Eigen::Matrix3d& M) {
-  checkFiniteMatrix3("PolynomialMatrix3", "M", M);
+  checkFiniteMatrix("PolynomialMatrix3", "M", M);
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) entries_[index3(i, j)] = Polynomial::constant(M(i, j));
   }
@@ -79,7 +51,7 @@ PolynomialMatrix3::PolynomialMatrix3(const Eigen::Matrix3d& M) {
 PolynomialMatrix3 PolynomialMatrix3::fromCoefficients(const std::vector<Eigen::Matrix3d>& matrices) {
   for (std::size_t k = 0; k < matrices.size(); ++k) {
     const std::string what = "M_" + std::to_string(k);
-    checkFiniteMatrix3("PolynomialMatrix3::fromCoefficients", what.c_str(), matrices[k]);
+    checkFiniteMatrix("PolynomialMatrix3::fromCoefficients", what.c_str(), matrices[k]);
   }
   PolynomialMatrix3 r;
   for (int i = 0; i < 3; ++i) {
@@ -188,8 +160,8 @@ PolynomialMatrix3 PolynomialMatrix3::adjugate() const {
 }
 
 Polynomial pencilDeterminant3(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B) {
-  checkFiniteMatrix3("pencilDeterminant3", "A", A);
-  checkFiniteMatrix3("pencilDeterminant3", "B", B);
+  checkFiniteMatrix("pencilDeterminant3", "A", A);
+  checkFiniteMatrix("pencilDeterminant3", "B", B);
   return PolynomialMatrix3::linear(-B, A).determinant();
 }
 

@@ -1,5 +1,7 @@
 #include "fcl_quadric/algebra/root_isolation.h"
 
+#include "fcl_quadric/tolerances.h"
+
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -11,7 +13,7 @@
 namespace fcl_quadric {
 namespace {
 
-constexpr double kUnitRoundoff = 0.5 * DBL_EPSILON;
+using tolerance::kUnitRoundoff;
 /// Factor applied to every error bound after it is accumulated in floating point, so that the
 /// rounding of the bound computation itself is covered.
 constexpr double kBoundInflation = 1.0 + 16.0 * kUnitRoundoff;

@@ -17,7 +17,6 @@ namespace fcl_quadric {
 
 namespace {
 
-double maxEdge(const Box3& b) { return (b.hi - b.lo).maxCoeff(); }
 
 /// Stages of the support box: each stage's box bounds the next stage's enumeration, so that the
 /// feasibility tolerance (relative to the box) ends up relative to the region's own size. From
@@ -160,10 +159,10 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
       const double reach = kRegionMaxExtent * (1.0 - 1e-3);
       if ((next.hi.array() >= reach).any() || (next.lo.array() <= -reach).any()) return std::nullopt;
     }
-    const bool shrunk = maxEdge(next) < 0.5 * maxEdge(search);
+    const bool shrunk = next.maxEdge() < 0.5 * search.maxEdge();
     // Outward by kRegionAabbRelative of the box, plus the rounding of its coordinates.
     const double magnitude = std::max(next.lo.cwiseAbs().maxCoeff(), next.hi.cwiseAbs().maxCoeff());
-    const Eigen::Vector3d pad = Eigen::Vector3d::Constant(kRegionAabbRelative * maxEdge(next) +
+    const Eigen::Vector3d pad = Eigen::Vector3d::Constant(kRegionAabbRelative * next.maxEdge() +
                                                           16.0 * std::numeric_limits<double>::epsilon() * magnitude);
     search = Box3{next.lo - pad, next.hi + pad};
     if (!shrunk) break;
@@ -177,11 +176,11 @@ std::optional<Box3> ConvexSupport::regionBox(const QuadricRegion& region, const 
   // by the engine: region AND {e.x >= face} has no point in `outer`. A face
   // the engine leaves undecided moves out by doubling steps; a point found beyond a face means
   // the support was wrong: either way regionAabb decides instead.
-  if (maxEdge(search) <= 0.0) return std::nullopt;
+  if (search.maxEdge() <= 0.0) return std::nullopt;
   if (findPoint(region, search, 0).status != PointSearch::Found) return std::nullopt;
   const Eigen::Vector3d c = search.center(), h = search.halfWidth();
   const Box3 outer{c - 2.0 * h, c + 2.0 * h};
-  const double edge = maxEdge(search);
+  const double edge = search.maxEdge();
   Box3 out = search;
   for (int i = 0; i < 3; ++i) {
     for (int side = 0; side < 2; ++side) {

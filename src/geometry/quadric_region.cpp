@@ -354,7 +354,6 @@ Tri pointEval(const Formula& f, int n, const Eigen::Vector3d& x) {
   return detail::pointEval(f, n, [&](int a) { return atomPointSign(f.atoms[a], x); });
 }
 
-double maxEdge(const Box3& b) { return (b.hi - b.lo).maxCoeff(); }
 
 void split(const Box3& b, int axis, Box3* l, Box3* h) {
   const double mid = 0.5 * (b.lo[axis] + b.hi[axis]);
@@ -371,7 +370,7 @@ PointSearchResult findPointFormula(const Formula& f, const Box3& box, int extra_
     res.status = PointSearch::Empty;
     return res;
   }
-  const double min_width = min_box_relative * maxEdge(box);
+  const double min_width = min_box_relative * box.maxEdge();
   int undecided_at = -1;
   std::vector<Box3> stack{box};
   while (!stack.empty()) {
@@ -710,9 +709,9 @@ Box3 regionAabb(const QuadricRegion& region, const Box3* hint) {
         }
       }
     }
-    const bool shrunk = maxEdge(next) < 0.5 * maxEdge(search);
+    const bool shrunk = next.maxEdge() < 0.5 * search.maxEdge();
     // Widen by the stage tolerance so the next stage's box still contains the region.
-    const Eigen::Vector3d pad = Eigen::Vector3d::Constant(2.0 * kRegionAabbRelative * maxEdge(search));
+    const Eigen::Vector3d pad = Eigen::Vector3d::Constant(2.0 * kRegionAabbRelative * search.maxEdge());
     search = Box3{next.lo - pad, next.hi + pad};
     if (!shrunk) break;
   }

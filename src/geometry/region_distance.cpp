@@ -47,7 +47,6 @@ using detail::Formula;
 using detail::Tri;
 using Conjunction = std::vector<int>;
 
-double maxEdge(const Box3& b) { return (b.hi - b.lo).maxCoeff(); }
 
 /// One operand as the search sees it: its convex pieces on a box, and its exact membership.
 class Side {
@@ -337,8 +336,8 @@ RegionDistanceResult regionDistance(const DistanceOperand& a, const DistanceOper
   const double scale = sizeOf(sa) + sizeOf(sb) + (centreOf(sa) - centreOf(sb)).norm();
   const double tol = tolerance > 0.0 ? std::max(tolerance, kRegionDistanceFloorRelative * scale)
                                      : kRegionDistanceRelative * scale;
-  const double min_a = sa.isRegion() ? kRegionDistanceMinBoxRelative * maxEdge(a.box) : 0.0;
-  const double min_b = sb.isRegion() ? kRegionDistanceMinBoxRelative * maxEdge(b.box) : 0.0;
+  const double min_a = sa.isRegion() ? kRegionDistanceMinBoxRelative * a.box.maxEdge() : 0.0;
+  const double min_b = sb.isRegion() ? kRegionDistanceMinBoxRelative * b.box.maxEdge() : 0.0;
 
   RegionDistanceResult out;
   double upper = std::numeric_limits<double>::infinity();
@@ -419,8 +418,8 @@ RegionDistanceResult regionDistance(const DistanceOperand& a, const DistanceOper
       floor_lower = std::min(floor_lower, n.lower);
       continue;
     }
-    const bool split_a = sa.isRegion() && maxEdge(n.xa) > min_a;
-    const bool split_b = sb.isRegion() && maxEdge(n.xb) > min_b;
+    const bool split_a = sa.isRegion() && n.xa.maxEdge() > min_a;
+    const bool split_b = sb.isRegion() && n.xb.maxEdge() > min_b;
     if (!split_a && !split_b) {
       floor_lower = std::min(floor_lower, n.lower);
       continue;

@@ -85,6 +85,8 @@ struct Box3 {
   bool empty() const { return (lo.array() > hi.array()).any(); }
   Eigen::Vector3d center() const { return 0.5 * (lo + hi); }
   Eigen::Vector3d halfWidth() const { return 0.5 * (hi - lo); }
+  /// The longest edge.
+  double maxEdge() const { return (hi - lo).maxCoeff(); }
 };
 
 /// A CSG tree over quadric atoms, in its own (local) frame.
