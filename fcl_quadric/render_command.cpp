@@ -27,8 +27,8 @@ constexpr int kPanel3 = 400;   // side of a view panel, 3D scenes
 constexpr int kPanel2 = 560;   // side of the one panel of a planar scene
 constexpr int kMarginX = 64;   // left/right margin (room for the tick labels of the v axis)
 constexpr int kGap = 64;       // between panels
-constexpr int kTop = 96;       // title, subtitle and panel titles
-constexpr int kBottom = 96;    // tick labels of the u axis and the legend
+constexpr int kHeaderHeight = 96;  // title, subtitle and panel titles
+constexpr int kFooterHeight = 96;  // tick labels of the u axis and the legend
 
 constexpr Rgb kCollideFill{0.90, 0.16, 0.14};
 constexpr Rgb kCollideLine{0.62, 0.05, 0.04};
@@ -723,7 +723,7 @@ std::vector<Panel> layoutPanels(const Scene& scene) {
   std::vector<Panel> panels;
   for (std::size_t k = 0; k < views.size(); ++k) {
     panels.push_back(Panel{views[k], static_cast<double>(kMarginX + static_cast<int>(k) * (panel_size + kGap)),
-                           static_cast<double>(kTop), static_cast<double>(panel_size), centre[views[k].u],
+                           static_cast<double>(kHeaderHeight), static_cast<double>(panel_size), centre[views[k].u],
                            centre[views[k].v], scale});
   }
   return panels;
@@ -768,8 +768,8 @@ Eigen::Vector2d pixelOf(const Scene& scene, int view, const Eigen::Vector3d& wor
 }
 
 ImageSize renderImageSize(int dimension) {
-  if (dimension == 2) return {2 * kMarginX + kPanel2 + 160, kTop + kPanel2 + kBottom};
-  return {2 * kMarginX + 3 * kPanel3 + 2 * kGap, kTop + kPanel3 + kBottom};
+  if (dimension == 2) return {2 * kMarginX + kPanel2 + 160, kHeaderHeight + kPanel2 + kFooterHeight};
+  return {2 * kMarginX + 3 * kPanel3 + 2 * kGap, kHeaderHeight + kPanel3 + kFooterHeight};
 }
 
 void renderScene(const Scene& scene, const RenderOptions& options, const std::string& path) {

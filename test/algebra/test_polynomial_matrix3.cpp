@@ -15,6 +15,7 @@
 #include "fcl_quadric/algebra/polynomial_matrix3.h"
 
 namespace fcl_quadric {
+namespace test_polynomial_matrix3 {
 namespace {
 
 Eigen::Matrix3d randomMatrix(std::mt19937_64& rng) {
@@ -141,4 +142,5 @@ TEST(PolynomialMatrix3, BadInputThrowsNamingTheItem) {
 }
 
 }  // namespace
+}  // namespace test_polynomial_matrix3
 }  // namespace fcl_quadric

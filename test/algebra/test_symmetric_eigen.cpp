@@ -14,6 +14,7 @@
 #include "fcl_quadric/algebra/symmetric_eigen.h"
 
 namespace fcl_quadric {
+namespace test_symmetric_eigen {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -130,4 +131,5 @@ TEST(SymmetricEigen, BadInputThrowsNamingTheValue) {
 }
 
 }  // namespace
+}  // namespace test_symmetric_eigen
 }  // namespace fcl_quadric

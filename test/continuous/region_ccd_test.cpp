@@ -18,6 +18,7 @@
 #include "fcl_quadric/continuous/region_ccd.h"
 
 namespace fcl_quadric {
+namespace region_ccd_test {
 namespace {
 
 using Op = QuadricRegion::Op;
@@ -211,4 +212,5 @@ TEST(RegionCcd, BallAndCylinderUnderRandomRationalMotionsMatchTheDistanceOracle)
 }
 
 }  // namespace
+}  // namespace region_ccd_test
 }  // namespace fcl_quadric

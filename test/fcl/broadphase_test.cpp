@@ -26,6 +26,7 @@
 #include "fcl_quadric/geometry/signed_distance.h"
 
 namespace fcl_quadric {
+namespace broadphase_test {
 namespace {
 
 using PairSet = std::set<std::pair<int, int>>;
@@ -162,4 +163,5 @@ TEST(BroadPhase, CallbacksRejectNullData) {
 }
 
 }  // namespace
+}  // namespace broadphase_test
 }  // namespace fcl_quadric

@@ -41,6 +41,7 @@
 #include "support/random_ellipsoids.h"
 
 namespace fcl_quadric {
+namespace continuous_collision_test {
 namespace {
 
 using test::expectInvalid;
@@ -854,4 +855,5 @@ TEST(ContinuousCollide, BadInputThrowsNamingTheArgument) {
 }
 
 }  // namespace
+}  // namespace continuous_collision_test
 }  // namespace fcl_quadric

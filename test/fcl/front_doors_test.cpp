@@ -35,6 +35,7 @@
 #include "support/random_ellipsoids.h"
 
 namespace fcl_quadric {
+namespace front_doors_test {
 namespace {
 
 using GeometryPtr = std::shared_ptr<fcl::CollisionGeometryd>;
@@ -403,4 +404,5 @@ TEST(FrontDoorsBadInput, UnsupportedPairsAndZeroMaxContactsKeepFclBehaviour) {
 }
 
 }  // namespace
+}  // namespace front_doors_test
 }  // namespace fcl_quadric

@@ -46,6 +46,7 @@
 #include "fcl_quadric/geometry/ellipsoid_polytope.h"
 
 namespace fcl_quadric {
+namespace octree_mesh_test {
 namespace {
 
 /// An ellipsoid outside the plane through x0 with outward normal u (pointing towards the
@@ -1234,4 +1235,5 @@ TEST(ExactBvhMesh, OwnTraversalRejectsBadInputWhereNoTriangleIsReached) {
 
 
 }  // namespace
+}  // namespace octree_mesh_test
 }  // namespace fcl_quadric

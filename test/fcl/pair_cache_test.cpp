@@ -18,6 +18,7 @@
 #include "support/random_ellipsoids.h"
 
 namespace fcl_quadric {
+namespace pair_cache_test {
 namespace {
 
 using PairSet = std::set<std::pair<const void*, const void*>>;
@@ -142,4 +143,5 @@ TEST(PairCache, OtherPairsGoThroughTheFrontDoorAndBadDataThrows) {
 }
 
 }  // namespace
+}  // namespace pair_cache_test
 }  // namespace fcl_quadric

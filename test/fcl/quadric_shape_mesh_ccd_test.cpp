@@ -29,6 +29,7 @@
 #include "support/fcl_fixtures.h"
 
 namespace fcl_quadric {
+namespace quadric_shape_mesh_ccd_test {
 namespace {
 
 using Transform = fcl::Transform3<double>;
@@ -214,4 +215,5 @@ TEST(QuadricShapeMeshCcd, BadMotionsOfAMeshPartnerThrowNamingThem) {
 }
 
 }  // namespace
+}  // namespace quadric_shape_mesh_ccd_test
 }  // namespace fcl_quadric

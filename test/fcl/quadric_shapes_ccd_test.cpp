@@ -28,6 +28,7 @@
 #include "support/fcl_fixtures.h"
 
 namespace fcl_quadric {
+namespace quadric_shapes_ccd_test {
 namespace {
 
 using Transform = fcl::Transform3<double>;
@@ -206,9 +207,11 @@ TEST(QuadricShapeCcd, ContinuousBroadPhaseAnswersQuadricShapePairsExactly) {
 }
 
 }  // namespace
+}  // namespace quadric_shapes_ccd_test
 }  // namespace fcl_quadric
 
 namespace fcl_quadric {
+namespace quadric_shapes_ccd_test {
 namespace {
 
 // A cuboid as a CSG intersection of six half-spaces (a QuadricShape, so its boundary elements
@@ -288,4 +291,5 @@ TEST(QuadricShapeCcd, PolynomialSolverOnFclPrimitivesAgreesWithTheEngineForEachS
 }
 
 }  // namespace
+}  // namespace quadric_shapes_ccd_test
 }  // namespace fcl_quadric

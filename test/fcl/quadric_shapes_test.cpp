@@ -42,6 +42,7 @@
 #include <octomap/OcTree.h>
 
 namespace fcl_quadric {
+namespace quadric_shapes_test {
 namespace {
 
 using Transform = fcl::Transform3<double>;
@@ -763,4 +764,5 @@ TEST(QuadricShapes, DistanceLowerBoundIsBelowTheClosedFormAndNamesItsPairs) {
 }
 
 }  // namespace
+}  // namespace quadric_shapes_test
 }  // namespace fcl_quadric

@@ -20,6 +20,7 @@
 #include "support/random_ellipsoids.h"
 
 namespace fcl_quadric {
+namespace ellipsoid_quadric_test {
 namespace {
 
 using T = QuadricSurfaceType;
@@ -340,4 +341,5 @@ TEST(EllipsoidQuadric, EveryCertifiedVerdictAgreesWithTheRegionEngine) {
 }
 
 }  // namespace
+}  // namespace ellipsoid_quadric_test
 }  // namespace fcl_quadric

@@ -21,6 +21,7 @@
 #include "support/random_ellipsoids.h"
 
 namespace fcl_quadric {
+namespace sphere_solid_test {
 namespace {
 
 enum Kind { kBox, kCapsule, kCylinder, kCone, kTriangle };
@@ -481,4 +482,5 @@ TEST(SphereSolid, BadInputNamesTheValue) {
 }
 
 }  // namespace
+}  // namespace sphere_solid_test
 }  // namespace fcl_quadric
