@@ -8,7 +8,11 @@
 #      leak checking included. The fuzz targets are built in the same tree. The libraries, the
 #      CLI and the fuzz targets get both sanitizers; the test programs' own sources none
 #      (FCL_QUADRIC_SANITIZE_TESTS=none): they only drive and check the code under test (their
-#      compile time in this tree 460 s -> 372 s on a slow host, docs/reliability.md).
+#      compile time in this tree 460 s -> 372 s on a slow host, docs/reliability.md). Given a
+#      Release tree of the same sources (RELEASE_TREE, .ci/run's `build`), the tree does not
+#      compile them at all: it links that tree's test objects (FCL_QUADRIC_TEST_OBJECTS_FROM,
+#      test/CMakeLists.txt) against its instrumented libraries (this tree's build 494 s -> 332 s
+#      on a slow host, 2026-12-02; the tests drove the libraries no slower).
 #   2. ThreadSanitizer: test_threads (two threads querying one scene: FCL's static dispatch tables
 #      through fcl_quadric::collide / distance, one PairCache per thread over shared objects).
 #   3. Fuzzing: each target replays its committed corpus (fuzz/corpus/<target>/) and then runs a
@@ -16,11 +20,17 @@
 #      FUZZ_MOTION_RUNS, default 1000), so a run is deterministic: no time
 #      bound decides how far the mutation sequence gets. New inputs go to a scratch directory; the
 #      committed corpus is never modified.
-# Usage: scripts/ci-sanitizers.sh [BUILD_PREFIX]   (build trees BUILD_PREFIX-asan, -tsan; default
-# "build-sanitizers" under the repository root). JOBS (default 2) sets the build parallelism.
+# Usage: scripts/ci-sanitizers.sh [BUILD_PREFIX [RELEASE_TREE]]   (build trees BUILD_PREFIX-asan,
+# -tsan; default "build-sanitizers" under the repository root; RELEASE_TREE: a built Release tree
+# of this source tree, by default none). JOBS (default 2) sets the build parallelism.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 prefix=${1:-build-sanitizers}
+release_tree=${2:-}
+test_objects=()
+if [ -n "$release_tree" ]; then
+  test_objects=(-DFCL_QUADRIC_TEST_OBJECTS_FROM="$(cd "$release_tree" && pwd)")
+fi
 jobs=${JOBS:-2}
 fuzz_runs=${FUZZ_RUNS:-4000}
 # fuzz_motion: 100 executions took 19 s under the -O1 tree with comparison tracing everywhere
@@ -73,7 +83,7 @@ fi
 ubsan_exclude=alignment,null,pointer-overflow,object-size,function,nonnull-attribute,returns-nonnull-attribute
 step "asan+ubsan configure" cmake -S . -B "$prefix-asan" "${common[@]}" \
   -DFCL_QUADRIC_SANITIZE=address,undefined -DFCL_QUADRIC_SANITIZE_EXCLUDE="$ubsan_exclude" \
-  -DFCL_QUADRIC_SANITIZE_TESTS=none -DFCL_QUADRIC_BUILD_FUZZERS=ON > /dev/null
+  -DFCL_QUADRIC_SANITIZE_TESTS=none -DFCL_QUADRIC_BUILD_FUZZERS=ON "${test_objects[@]}" > /dev/null
 step "asan+ubsan build" cmake --build "$prefix-asan" -j"$jobs"
 # Reduced subset (docs/reliability.md, section 1). Left out: the tests that take 5 s or more in
 # this tree (measured on the CI tree of c09a0c2, session 15: 55 previously listed tests, 605 s of

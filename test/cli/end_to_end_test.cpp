@@ -1,5 +1,6 @@
-// End-to-end tests: run the built fcl_quadric executable (FCL_QUADRIC_EXE) on temporary files and
-// check exit status, stdout and stderr against the library called directly.
+// End-to-end tests: run the built fcl_quadric executable on temporary files and check exit status,
+// stdout and stderr against the library called directly. The executable is $FCL_QUADRIC_EXE, which
+// ctest sets to the build tree's own program (test/CMakeLists.txt), else the path compiled in.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -74,7 +75,8 @@ class EndToEnd : public ::testing::Test {
   /// Runs the executable with `args`, capturing stdout and stderr.
   static ProcessResult run(const std::vector<std::string>& args) {
     const std::filesystem::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    std::string command = shellQuote(FCL_QUADRIC_EXE);
+    const char* exe = std::getenv("FCL_QUADRIC_EXE");
+    std::string command = shellQuote(exe != nullptr && *exe != '\0' ? exe : FCL_QUADRIC_EXE);
     for (const std::string& a : args) command += " " + shellQuote(a);
     command += " >" + shellQuote(out.string()) + " 2>" + shellQuote(err.string()) + " </dev/null";
     const int raw = std::system(command.c_str());
