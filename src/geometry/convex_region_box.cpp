@@ -17,7 +17,6 @@ namespace fcl_quadric {
 
 namespace {
 
-
 /// Stages of the support box: each stage's box bounds the next stage's enumeration, so that the
 /// feasibility tolerance (relative to the box) ends up relative to the region's own size. From
 /// the +-kRegionMaxExtent cube a region of size 1e-6 needs three.

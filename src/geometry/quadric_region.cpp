@@ -354,7 +354,6 @@ Tri pointEval(const Formula& f, int n, const Eigen::Vector3d& x) {
   return detail::pointEval(f, n, [&](int a) { return atomPointSign(f.atoms[a], x); });
 }
 
-
 void split(const Box3& b, int axis, Box3* l, Box3* h) {
   const double mid = 0.5 * (b.lo[axis] + b.hi[axis]);
   *l = b;

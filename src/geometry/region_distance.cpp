@@ -47,7 +47,6 @@ using detail::Formula;
 using detail::Tri;
 using Conjunction = std::vector<int>;
 
-
 /// One operand as the search sees it: its convex pieces on a box, and its exact membership.
 class Side {
  public:
