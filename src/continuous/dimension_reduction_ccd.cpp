@@ -21,6 +21,7 @@
 #include "fcl_quadric/algebra/symmetric_eigen.h"
 
 #include "../geometry/region_formula.h"
+#include "algebra/dense_decompositions.h"
 
 namespace fcl_quadric {
 
@@ -407,7 +408,7 @@ bool lineOfPlanes(const Eigen::Vector4d& p1, const Eigen::Vector4d& p2, Eigen::V
   N.row(0) = n1.transpose();
   N.row(1) = n2.transpose();
   const Eigen::Vector2d rhs(-p1[3], -p2[3]);
-  *x = N.transpose() * (N * N.transpose()).ldlt().solve(rhs);
+  *x = N.transpose() * detail::ldltSolve(Eigen::Matrix2d(N * N.transpose()), rhs);
   return true;
 }
 
@@ -425,8 +426,7 @@ Body makeBody(const MovingRegion& m) {
       // A singular quadric: a cylinder (null vector at infinity), or a cone whose apex (a finite
       // null vector) is a point contact of its own, not a vertex of the boundary elements.
       b.singular[f.atom] = true;
-      Eigen::FullPivLU<Eigen::Matrix4d> lu(Q);
-      const Eigen::MatrixXd K = lu.kernel();
+      const Eigen::MatrixXd K = detail::fullPivLuKernel(Q);
       if (K.cols() > 1) {
         b.unsupported = "a quadric of rank 2 or less as a face";
       } else if (K.cols() == 1 && std::fabs(K(3, 0)) > 1e-9 * K.col(0).norm()) {
@@ -472,8 +472,9 @@ Body makeBody(const MovingRegion& m) {
         N.row(i) = p.head<3>().transpose();
         rhs[i] = -p[3];
       }
-      Eigen::FullPivLU<Eigen::Matrix3d> lu(N);
-      if (lu.isInvertible()) pts.push_back(Eigen::Vector4d(0, 0, 0, 1) + (Eigen::Vector4d() << lu.solve(rhs), 0.0).finished());
+      Eigen::Vector3d x;
+      if (detail::fullPivLuSolve(N, rhs, &x))
+        pts.push_back(Eigen::Vector4d(0, 0, 0, 1) + (Eigen::Vector4d() << x, 0.0).finished());
     } else if (planes.size() == 2) {
       Eigen::Vector3d x, d;
       if (lineOfPlanes(planeOf(b.sgn[planes[0]]), planeOf(b.sgn[planes[1]]), &x, &d)) {
@@ -914,9 +915,9 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
             const Eigen::Matrix4d Su = at(S, u);
             const Eigen::Vector4d p = at(pi, u);
             // The pole adj(S) π: for a regular S the solution of S X = π.
-            Eigen::FullPivLU<Eigen::Matrix4d> lu(Su);
-            if (!lu.isInvertible()) return std::vector<PointAt>{PointAt()};  // cylinder: at infinity
-            return std::vector<PointAt>{affine(lu.solve(p), 1.0)};
+            Eigen::Vector4d x;
+            if (!detail::fullPivLuSolve(Su, p, &x)) return std::vector<PointAt>{PointAt()};  // cylinder: at infinity
+            return std::vector<PointAt>{affine(x, 1.0)};
           };
           tasks.push_back(std::move(task));
           break;

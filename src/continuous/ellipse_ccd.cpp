@@ -16,6 +16,7 @@
 #include "fcl_quadric/algebra/root_isolation.h"
 #include "fcl_quadric/algebra/sturm_sequence.h"
 #include "fcl_quadric/continuous/motion_matrix.h"
+#include "algebra/dense_decompositions.h"
 
 namespace fcl_quadric {
 namespace {
@@ -752,7 +753,7 @@ Separation classifyEllipses3(const MovingEllipse3& a, const MovingEllipse3& b, d
   N.row(0) = na.transpose();
   N.row(1) = nb.transpose();
   const Eigen::Vector2d rhs(na.dot(ca), nb.dot(cb));
-  const Eigen::Vector3d p0 = N.transpose() * (N * N.transpose()).ldlt().solve(rhs);
+  const Eigen::Vector3d p0 = N.transpose() * detail::ldltSolve(Eigen::Matrix2d(N * N.transpose()), rhs);
   const Eigen::Vector3d d = dir.normalized();
   double a_lo = 0.0, a_hi = 0.0, b_lo = 0.0, b_hi = 0.0;
   const bool ha = chord(a, t, p0, d, &a_lo, &a_hi);

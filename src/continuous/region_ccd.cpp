@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "../geometry/region_formula.h"
+#include "algebra/dense_decompositions.h"
 
 namespace fcl_quadric {
 
@@ -192,7 +193,8 @@ class SpaceTimeEngine {
           K.topLeftCorner<3, 3>() = G.transpose() * G;
           K.block<3, 1>(0, 3) = Eigen::Vector3d::Ones();
           K.block<1, 3>(3, 0) = Eigen::RowVector3d::Ones();
-          const Eigen::Vector4d sol = K.fullPivLu().solve(Eigen::Vector4d(0, 0, 0, 1));
+          Eigen::Vector4d sol;
+          detail::fullPivLuSolve(K, Eigen::Vector4d(0, 0, 0, 1), &sol);
           // Start from the first-order weights projected onto the simplex (the centroid when they
           // are not finite), then coordinate ascent by golden section along the two edges through
           // the third vertex: the lower bound is concave in the weights, and any positive value

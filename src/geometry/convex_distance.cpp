@@ -14,6 +14,8 @@
 
 #include <Eigen/Dense>
 
+#include "algebra/dense_decompositions.h"
+
 namespace fcl_quadric {
 
 namespace {
@@ -248,9 +250,8 @@ bool originInStar(const std::vector<Vertex>& verts, const std::vector<Face>& fac
     const Vertex &v1 = verts[g.v[0]], &v2 = verts[g.v[1]], &v3 = verts[g.v[2]];
     Eigen::Matrix3d E;
     E << v1.w - v0.w, v2.w - v0.w, v3.w - v0.w;
-    const Eigen::FullPivLU<Eigen::Matrix3d> lu(E);
-    if (!lu.isInvertible()) continue;
-    const Eigen::Vector3d mu = lu.solve(-v0.w);
+    Eigen::Vector3d mu;
+    if (!detail::fullPivLuSolve(E, Eigen::Vector3d(-v0.w), &mu)) continue;
     const double l0 = 1.0 - mu.sum();
     if (!(mu.minCoeff() >= -1e-12 && l0 >= -1e-12)) continue;
     *point_a = l0 * v0.a + mu[0] * v1.a + mu[1] * v2.a + mu[2] * v3.a;
@@ -466,7 +467,8 @@ SignedDistanceResult gjkEpa(const ConvexSupport& a, const Eigen::Matrix3d& R_a, 
       // support points of a (and of b: the same point up to rounding).
       Eigen::Matrix3d E;
       E << W[1].w - W[0].w, W[2].w - W[0].w, W[3].w - W[0].w;
-      const Eigen::Vector3d mu = E.fullPivLu().solve(-W[0].w);
+      Eigen::Vector3d mu;
+      detail::fullPivLuSolve(E, Eigen::Vector3d(-W[0].w), &mu);
       const double l0 = 1.0 - mu.sum();
       out.point_a = l0 * W[0].a + mu[0] * W[1].a + mu[1] * W[2].a + mu[2] * W[3].a;
       out.point_b = l0 * W[0].b + mu[0] * W[1].b + mu[1] * W[2].b + mu[2] * W[3].b;

@@ -10,6 +10,7 @@
 
 #include "geometry/convex_support_region.h"
 #include "geometry/region_formula.h"
+#include "algebra/dense_decompositions.h"
 
 namespace fcl_quadric {
 
@@ -362,10 +363,10 @@ std::optional<ConvexSupport> ConvexSupport::fromRegion(const QuadricRegion& regi
       sec.U << u1, h.cross(u1);
       const Eigen::Matrix2d A2 = sec.U.transpose() * g->A * sec.U;
       const Eigen::Vector2d b2 = sec.U.transpose() * (g->A * sec.x0 + g->b);
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es2(A2);
-      sec.lam = es2.eigenvalues();
-      sec.V = es2.eigenvectors();
-      sec.bz = es2.eigenvectors().transpose() * b2;
+      const detail::SymmetricEigen2 es2 = detail::selfAdjointEigen(A2);
+      sec.lam = es2.values;
+      sec.V = es2.vectors;
+      sec.bz = es2.vectors.transpose() * b2;
       sec.c = sec.x0.dot(g->A * sec.x0) + 2.0 * g->b.dot(sec.x0) + g->c;
       sec.b_tol = 1e-12 * (b2.norm() + sec.lam.cwiseAbs().maxCoeff() * length);
       if (g->cone && sec.lam.cwiseAbs().minCoeff() > tolerance_support::kSupportNullEigenRelative * sec.lam.cwiseAbs().maxCoeff()) {

@@ -14,6 +14,7 @@
 #include "fcl_quadric/geometry/point_ellipsoid.h"
 #include "fcl_quadric/geometry/sphere_solid.h"
 #include "fcl_quadric/tolerances.h"
+#include "algebra/dense_decompositions.h"
 
 namespace fcl_quadric {
 
@@ -202,15 +203,15 @@ void sideCandidatesCylinder(const Problem& P, Best* best) {
   Eigen::Matrix<double, 3, 2> B;
   B << k.u, k.v;
   const Eigen::Matrix2d G2 = B.transpose() * P.G * B;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(G2);
-  const Eigen::Vector2d radii = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  const detail::SymmetricEigen2 es = detail::selfAdjointEigen(G2);
+  const Eigen::Vector2d radii = es.values.cwiseMax(0.0).cwiseSqrt();
   if (!(radii.minCoeff() > 0.0)) return;
-  const Eigen::Vector2d y = es.eigenvectors().transpose() * (B.transpose() * k.dp);
+  const Eigen::Vector2d y = es.vectors.transpose() * (B.transpose() * k.dp);
   // Restricted to this circle phi is the 2D signed distance minus r, whose maximum is attained at
   // the closest point of the shadow's boundary (inside or outside): one candidate suffices.
   Eigen::Vector2d x;
   detail::closestPointPrincipal<2>(radii, y, &x);
-  consider(P, B * (es.eigenvectors() * x.cwiseQuotient(radii.cwiseAbs2())), true, best);
+  consider(P, B * (es.vectors * x.cwiseQuotient(radii.cwiseAbs2())), true, best);
 }
 
 /// Cone (frustum) side (r0 != r1): both disks support K at -n exactly on the circle of directions
@@ -356,9 +357,9 @@ Witness ellipsoidMinimumOverSolid(const Problem& P) {
   const Eigen::Vector3d g = M * k.dp, b = M * k.a;
   Eigen::Matrix<double, 3, 2> A;
   A << M * k.u, M * k.v;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(A.transpose() * A);
-  const Eigen::Vector2d h = es.eigenvalues();
-  const Eigen::Matrix2d Q = es.eigenvectors();
+  const detail::SymmetricEigen2 es = detail::selfAdjointEigen(A.transpose() * A);
+  const Eigen::Vector2d h = es.values;
+  const Eigen::Matrix2d Q = es.vectors;
   Witness W;
   auto section = [&](double t, Eigen::Vector2d* xi) {
     const double z = k.L * (t - 0.5);

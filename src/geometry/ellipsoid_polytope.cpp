@@ -17,6 +17,7 @@
 #include "fcl_quadric/geometry/point_ellipsoid.h"
 #include "fcl_quadric/geometry/sphere_solid.h"
 #include "fcl_quadric/tolerances.h"
+#include "algebra/dense_decompositions.h"
 
 namespace fcl_quadric {
 
@@ -261,10 +262,10 @@ int edgeDirections(const Ellipsoid& e, const Eigen::Vector3d& v, const Eigen::Ve
   B << b1, b2;
   const Eigen::Matrix3d G = e.rotation() * e.radii().cwiseAbs2().asDiagonal() * e.rotation().transpose();
   const Eigen::Matrix2d G2 = B.transpose() * G * B;  // shadow: support h(m) = sqrt(m^T G2 m)
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(G2);
-  const Eigen::Vector2d radii = es.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  const detail::SymmetricEigen2 es = detail::selfAdjointEigen(G2);
+  const Eigen::Vector2d radii = es.values.cwiseMax(0.0).cwiseSqrt();
   if (!(radii.minCoeff() > 0.0)) return 0;
-  const Eigen::Vector2d y = es.eigenvectors().transpose() * (B.transpose() * (v - e.center()));
+  const Eigen::Vector2d y = es.vectors.transpose() * (B.transpose() * (v - e.center()));
   Eigen::Vector2d xs[4];
   int n = 0;
   if (all) {
@@ -277,7 +278,7 @@ int edgeDirections(const Ellipsoid& e, const Eigen::Vector3d& v, const Eigen::Ve
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector2d n2 = xs[i].cwiseQuotient(radii.cwiseAbs2());  // normal of the shadow
     const double len = n2.norm();
-    if (len > 0.0) out[k++] = B * (es.eigenvectors() * (n2 / len));
+    if (len > 0.0) out[k++] = B * (es.vectors * (n2 / len));
   }
   return k;
 }

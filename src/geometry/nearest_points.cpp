@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "algebra/dense_decompositions.h"
+
 namespace fcl_quadric {
 
 using namespace tolerance_nearest_points;
@@ -71,9 +73,9 @@ bool nearApex(const std::vector<Eigen::Matrix4d>& atoms, const Eigen::Vector3d& 
     const Eigen::Vector3d b = Q.topRightCorner<3, 1>();
     const double a_max = A.cwiseAbs().maxCoeff();
     if (!(a_max > 0.0)) continue;  // a plane
-    const Eigen::FullPivLU<Eigen::Matrix3d> lu(A / a_max);
-    if (lu.rank() < 3) continue;  // cylinders, paraboloids: no isolated singular point
-    const Eigen::Vector3d centre = lu.solve(-b / a_max);
+    Eigen::Vector3d centre;
+    if (!detail::fullPivLuSolve(Eigen::Matrix3d(A / a_max), Eigen::Vector3d(-b / a_max), &centre))
+      continue;  // rank < 3: cylinders, paraboloids, no isolated singular point
     if (!centre.allFinite() || (x - centre).norm() > band) continue;
     const Eigen::Vector3d c_abs = centre.cwiseAbs();
     const double mag = c_abs.dot(A.cwiseAbs() * c_abs) + 2.0 * b.cwiseAbs().dot(c_abs) + std::abs(Q(3, 3));

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include "algebra/input_checks.h"
+#include "algebra/dense_decompositions.h"
 
 namespace fcl_quadric {
 namespace detail {
@@ -26,9 +27,8 @@ void forEachNonNegativeCombination(int n, const Column& column, const Eigen::Vec
     if (k > 3) continue;
     Eigen::Matrix<double, 3, Eigen::Dynamic> G(3, k);
     for (int j = 0; j < k; ++j) G.col(j) = column(idx[j]);
-    const Eigen::ColPivHouseholderQR<Eigen::Matrix<double, 3, Eigen::Dynamic>> qr(G);
-    if (qr.rank() < k) continue;
-    const Eigen::VectorXd mu = qr.solve(e);
+    Eigen::VectorXd mu;
+    if (!colPivQrSolve(G, e, &mu)) continue;  // dependent columns
     if (!allFinite(mu) || (mu.array() < 0.0).any()) continue;
     use(idx, k, G, mu);
   }

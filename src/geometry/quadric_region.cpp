@@ -22,6 +22,7 @@
 #include "algebra/input_checks.h"
 #include "geometry/region_dual_bound.h"
 #include "geometry/region_formula.h"
+#include "algebra/dense_decompositions.h"
 
 namespace fcl_quadric {
 
@@ -333,7 +334,8 @@ class BoxEval {
           K.topLeftCorner<3, 3>() = G.transpose() * G;
           K.block<3, 1>(0, 3) = Eigen::Vector3d::Ones();
           K.block<1, 3>(3, 0) = Eigen::RowVector3d::Ones();
-          const Eigen::Vector4d sol = K.fullPivLu().solve(Eigen::Vector4d(0, 0, 0, 1));
+          Eigen::Vector4d sol;
+          detail::fullPivLuSolve(K, Eigen::Vector4d(0, 0, 0, 1), &sol);
           if (!sol.allFinite()) continue;
           const Eigen::Vector3d mu = sol.head<3>();
           if ((mu.array() < 0.0).any()) continue;
