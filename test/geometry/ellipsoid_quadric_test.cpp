@@ -11,7 +11,6 @@
 #include <random>
 #include <vector>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
@@ -84,10 +83,11 @@ double maxAbsNormalCurvature(const Eigen::Matrix4d& Q, const Eigen::Vector3d& x)
   const Eigen::Vector3d g = Q3 * x + Q.topRightCorner<3, 1>();
   const Eigen::Vector3d n = g.normalized();
   const Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
-  Eigen::Matrix2d H;
-  H << t1.dot(Q3 * t1), t1.dot(Q3 * t2), t2.dot(Q3 * t1), t2.dot(Q3 * t2);
-  const Eigen::Vector2d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(H).eigenvalues();
-  return ev.cwiseAbs().maxCoeff() / g.norm();
+  // The symmetric 2 x 2 restriction [[h11, h21], [h21, h22]] has the eigenvalues m -+ r with
+  // m = (h11 + h22) / 2 and r = hypot((h11 - h22) / 2, h21): the larger |eigenvalue| is |m| + r.
+  const double h11 = t1.dot(Q3 * t1), h21 = t2.dot(Q3 * t1), h22 = t2.dot(Q3 * t2);
+  const double m = 0.5 * (h11 + h22), r = std::hypot(0.5 * (h11 - h22), h21);
+  return (std::fabs(m) + r) / g.norm();
 }
 
 TEST(QuadricSurface, TypeAndCurvatureBoundAgreeWithSampledNormalCurvatures) {
