@@ -79,9 +79,26 @@ inline double jab(double frame, double period, double phase, int* cycle) {
   return s * s;
 }
 
-/// Rotation taking the x axis to direction d (shortest arc; d never points along -x here).
+/// Rotation taking the x axis to direction d (shortest arc; d never points along -x here). This is
+/// Eigen's Quaternion::FromTwoVectors(UnitX, d / |d|), the same operations for d away from -x;
+/// written out because FromTwoVectors instantiates a JacobiSVD for its antiparallel branch, about
+/// 7 s of gcc in every file that includes this header (docs/reliability.md section 1, session 50).
+/// Within 1e-12 of -x (Eigen's threshold for that branch) it turns by pi about an axis orthogonal
+/// to d instead.
 inline Eigen::Matrix3d alongBone(const Eigen::Vector3d& d) {
-  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitX(), d.normalized()).toRotationMatrix();
+  const Eigen::Vector3d v0 = Eigen::Vector3d::UnitX().normalized();
+  const Eigen::Vector3d v1 = d.normalized().normalized();
+  const double c = v1.dot(v0);
+  Eigen::Quaterniond q;
+  if (c < -1.0 + 1e-12) {
+    q.w() = 0.0;
+    q.vec() = v1.unitOrthogonal();
+  } else {
+    const double s = std::sqrt((1.0 + c) * 2.0);
+    q.vec() = v0.cross(v1) * (1.0 / s);
+    q.w() = s * 0.5;
+  }
+  return q.toRotationMatrix();
 }
 
 inline Eigen::Isometry3d pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
