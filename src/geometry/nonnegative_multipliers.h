@@ -5,8 +5,8 @@
 
 #include <Eigen/Dense>
 
-#include "algebra/input_checks.h"
 #include "algebra/dense_decompositions.h"
+#include "algebra/input_checks.h"
 
 namespace fcl_quadric {
 namespace detail {

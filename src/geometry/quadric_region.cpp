@@ -19,10 +19,10 @@
 #include "fcl_quadric/algebra/double_double.h"
 #include "fcl_quadric/algebra/quadric_matrix.h"
 #include "fcl_quadric/geometry/ellipsoid.h"
+#include "algebra/dense_decompositions.h"
 #include "algebra/input_checks.h"
 #include "geometry/region_dual_bound.h"
 #include "geometry/region_formula.h"
-#include "algebra/dense_decompositions.h"
 
 namespace fcl_quadric {
 
