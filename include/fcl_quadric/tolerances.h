@@ -125,9 +125,10 @@ constexpr int kCcdMaxClipSteps = 96;
 /// cannot be certified separate it is reported as colliding (thesis Remark 5.4: conservative).
 constexpr double kCcdMinIntervalWidth = 1.0 / 1073741824.0;  // 2^-30 ~ 9.3e-10
 
-/// Work cap of one CCD solve (all its segments together): state evaluations plus Bezier shoots.
-/// When it is reached every interval not yet certified separate is reported as colliding and the
-/// result is flagged unresolved (conservative fallback).
+/// Work cap of one CCD solve (all its segments together): state evaluations plus Bezier shoots
+/// plus the u-slabs of the overlap certificates (kCcdMaxSlabVisits). When it is reached every
+/// interval not yet certified separate is reported as colliding and the result is flagged
+/// unresolved (conservative fallback).
 constexpr int kCcdMaxWork = 20000;
 
 /// Balance breaks of the CCD (docs/algorithms.md section 8, "Nearly vanishing w"): a segment is
@@ -174,6 +175,7 @@ constexpr double kCcdMaxCondition = 1e14;
 constexpr int kCcdMaxSlabDepth = 20;
 /// Slabs one overlap certificate may examine (depth first) before it gives up, uncertified: the
 /// old full tree's 127, so that the deeper limit above does not raise the cost of a certificate.
+/// Every slab examined also counts toward kCcdMaxWork (since session 51).
 constexpr int kCcdMaxSlabVisits = 127;
 
 }  // namespace tolerance

@@ -107,8 +107,8 @@ struct EllipsoidCcdResult {
   int culled_by = 0;
   /// Degree of F(u, t) in t (0 when culled).
   int degree_t = 0;
-  /// State evaluations plus Bezier shoots spent (over all segments; capped by
-  /// tolerance::kCcdMaxWork).
+  /// State evaluations plus Bezier shoots plus overlap-certificate slabs spent (over all
+  /// segments; capped by tolerance::kCcdMaxWork).
   int work = 0;
   /// Segments [0, t_max] was cut into and solved one by one: the breaks of piecewise motions
   /// plus the balance breaks (tolerance::kCcdBalanceRatio). 1 for two single-piece motions
