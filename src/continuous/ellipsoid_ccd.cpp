@@ -662,8 +662,8 @@ class IntervalSolver {
     // for one degree-6 motion of fuzz_motion's corpus (docs/reliability.md, finding 39). The
     // certificate never changes the intervals (where it holds, F <= band throughout, so the
     // bisection would certify no separation there either), only the work spent.
-    slab_limit_ = std::min(tolerance::kCcdMaxSlabVisits, tolerance::kCcdMaxWork - result_->work);
-    if (slab_limit_ <= 0) return false;
+    const int limit = std::min(tolerance::kCcdMaxSlabVisits, tolerance::kCcdMaxWork - result_->work);
+    if (limit <= 0) return false;
     // F restricted to [t1, t2] in t, row by row in place (no allocation per row).
     RowMajor G = F_.coefficients();
     const int n = static_cast<int>(G.cols()) - 1;
@@ -674,18 +674,19 @@ class IntervalSolver {
       if (b < 1.0) keepLeft(G.row(i).data(), n, (b - a) / (1.0 - a));
     }
     RowMajor S(G.rows(), G.cols());
-    int visits = 0;
-    const bool certified = slabCertified(G, &S, 0.0, 1.0, band, 0, &visits);
-    result_->work += std::min(visits, slab_limit_);
+    int budget = limit;
+    const bool certified = slabCertified(G, &S, 0.0, 1.0, band, 0, &budget);
+    result_->work += limit - budget;
     return certified;
   }
 
-  // G on [0, 1] in u; S is scratch space of the same size. At most slab_limit_ slabs (in *visits;
-  // kCcdMaxSlabVisits, or less at the end of the work budget) down to depth kCcdMaxSlabDepth: the
-  // budget goes where the slabs fail, e.g. to the u where F of two thin bodies is largest
-  // (finding 21), instead of a full tree of depth 6.
-  bool slabCertified(const RowMajor& G, RowMajor* S, double ua, double ub, double band, int depth, int* visits) {
-    if (++*visits > slab_limit_) return false;
+  // G on [0, 1] in u; S is scratch space of the same size. At most *budget slabs (kCcdMaxSlabVisits,
+  // or less at the end of the work budget; each examined slab takes one) down to depth
+  // kCcdMaxSlabDepth: the budget goes where the slabs fail, e.g. to the u where F of two thin
+  // bodies is largest (finding 21), instead of a full tree of depth 6.
+  bool slabCertified(const RowMajor& G, RowMajor* S, double ua, double ub, double band, int depth, int* budget) {
+    if (*budget <= 0) return false;
+    --*budget;
     const int m = static_cast<int>(G.rows()) - 1;
     *S = G;
     if (ua > 0.0 || ub < 1.0) {  // restrict every column (degree 4 in u) to [ua, ub]
@@ -710,7 +711,7 @@ class IntervalSolver {
     if (increasing || decreasing) return true;
     if (depth >= tolerance::kCcdMaxSlabDepth) return false;
     const double um = 0.5 * (ua + ub);
-    return slabCertified(G, S, ua, um, band, depth + 1, visits) && slabCertified(G, S, um, ub, band, depth + 1, visits);
+    return slabCertified(G, S, ua, um, band, depth + 1, budget) && slabCertified(G, S, um, ub, band, depth + 1, budget);
   }
 
   void process(double t1, State s1, double t2, State s2) {
@@ -757,7 +758,6 @@ class IntervalSolver {
   double error_at_t_ = 0.0;  // set by rowsAt: max_i error bound of c_i(t)
   // Set by rowsAt: the bounds 2^-40 sum_j |C(i, j)| B_j(t) + 2 E_end(i, t) of the end rows i = 0, 4.
   double end_bound_[2] = {0.0, 0.0};
-  int slab_limit_ = 0;  // set by overlapCertified: the slabs this certificate may examine
   std::vector<double> binomial_t_;
   std::vector<double> basis_;
 };
