@@ -28,8 +28,8 @@ namespace {
 
 constexpr int kMaxCoef = kRegionCcdMaxDegree + 1;
 /// Boxes one time slab may visit before it is halved, at least (three times the cost of the last
-/// certified slab when that is more); a slab of width kRegionCcdTimeTolerance gets
-/// kRegionCcdMaxBoxes.
+/// certified slab when that is more); a slab of width kRegionCcdTimeTolerance gets the piece's
+/// whole box limit (RegionCcdLimits::max_boxes).
 constexpr int kRegionCcdSlabBudget = 500;
 /// Triple pencils: rounds of coordinate ascent over the weight simplex, and golden-section steps
 /// per direction (0.618^20 ~ 7e-5 of the edge).
@@ -64,10 +64,32 @@ struct AtomOnBox {
   Tri state = Tri::Unknown;
 };
 
+/// The work of one query so far (all pieces), and its limits, which hold for each piece: a
+/// keyframed motion is answered as its pieces would be one by one (docs/reliability.md finding
+/// 41), and its time is at most the number of pieces times a capped piece's.
+struct QueryWork {
+  RegionCcdLimits limits;
+  int boxes = 0;
+  long long evaluations = 0;
+  int piece_boxes0 = 0;  // the counts when the current piece started
+  long long piece_evaluations0 = 0;
+  void startPiece() {
+    piece_boxes0 = boxes;
+    piece_evaluations0 = evaluations;
+  }
+  bool spent() const {
+    return boxes - piece_boxes0 >= limits.max_boxes ||
+           evaluations - piece_evaluations0 >= limits.max_pencil_evaluations;
+  }
+};
+
 class SpaceTimeEngine {
  public:
-  SpaceTimeEngine(const Formula& f, std::vector<MovingAtom> atoms, int degree, double sign_relative)
-      : f_(f), atoms_(std::move(atoms)), n_(degree), sign_relative_(sign_relative), on_box_(atoms_.size()) {
+  /// `work`: the query's counts, shared by its pieces; the engine counts its pencil bound
+  /// evaluations (pencilLower) there, the search its boxes.
+  SpaceTimeEngine(const Formula& f, std::vector<MovingAtom> atoms, int degree, double sign_relative, QueryWork* work)
+      : f_(f), atoms_(std::move(atoms)), n_(degree), sign_relative_(sign_relative), on_box_(atoms_.size()),
+        work_(work) {
     // ratio[i][j] = C(i, j) / C(n, j): power -> Bernstein on [0, 1].
     ratio_.assign((n_ + 1) * (n_ + 1), 0.0);
     for (int i = 0; i <= n_; ++i)
@@ -359,6 +381,7 @@ class SpaceTimeEngine {
   // Bernstein coefficients of the combination are the combinations of the coefficients, and the
   // rounding pad is the same combination of the atoms' pads (set by evaluate).
   double pencilLower(const int* ids, const double* w, int count) const {
+    ++work_->evaluations;
     const int N = n_ + 1;
     double ext[10];
     double tmp[kMaxCoef];
@@ -403,6 +426,7 @@ class SpaceTimeEngine {
   // valid certificate, so a stale entry costs one evaluation and never a wrong exclusion).
   mutable std::unordered_map<long long, double> pair_mu_;
   mutable std::unordered_map<long long, Eigen::Vector3d> triple_mu_;
+  QueryWork* work_;
 };
 
 struct PieceAnswer {
@@ -411,7 +435,6 @@ struct PieceAnswer {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   double band = 0.0;  // size of the box the answer came from
   bool near_tangent = false, capped = false;
-  int boxes = 0;
 };
 
 // The rounding pad of the space-time engine, relative to |X|^T abs |X| with abs >= the sum of
@@ -443,9 +466,10 @@ struct SlabAnswer {
 
 // Depth-first search of the slab box x [t0, t1] (spatial splits only) for a certified interior
 // point at some instant, or a certificate that the slab holds none. `budget` boxes at most
-// (Inconclusive beyond, or Capped when the global cap is reached).
+// (Inconclusive beyond, or Capped when a cap of the query is reached: RegionCcdLimits, both
+// checked before each box).
 SlabAnswer searchSlab(SpaceTimeEngine& engine, const Box3& box, double t0, double t1, double min_width, double t_tol,
-                      int budget, int extra_after_undecided, int* boxes) {
+                      int budget, int extra_after_undecided, QueryWork* work) {
   SlabAnswer ans;
   int undecided_at = -1, used = 0;
   std::vector<Box3> stack{box};
@@ -453,7 +477,8 @@ SlabAnswer searchSlab(SpaceTimeEngine& engine, const Box3& box, double t0, doubl
     const Box3 b = stack.back();
     stack.pop_back();
     ++used;
-    if (++*boxes >= kRegionCcdMaxBoxes) {
+    ++work->boxes;
+    if (work->spent()) {
       ans.outcome = SlabOutcome::Capped;
       if (undecided_at < 0) ans.point = b.center();
       return ans;
@@ -517,10 +542,13 @@ SlabAnswer searchSlab(SpaceTimeEngine& engine, const Box3& box, double t0, doubl
 // certified free; a witness at U bounds the first contact from above. The slab [L, L + dt] is
 // searched with a small box budget: Empty advances L and doubles dt; a witness lowers U and
 // halves dt; an inconclusive or undecided slab halves dt. A slab of width t_tol gets the full
-// budget: Undecided there is a contact within the band (near_tangent).
+// budget: Undecided there is a contact within the band (near_tangent). `work` holds the query's
+// counts and the limits of one piece (kRegionCcdMaxBoxes and kRegionCcdMaxPencilEvaluations by
+// default).
 PieceAnswer searchPiece(const Formula& f, std::vector<MovingAtom> atoms, int degree, double sign_relative,
-                        const Box3& box, double t_tol, double min_width, std::vector<int>* active) {
-  SpaceTimeEngine engine(f, std::move(atoms), degree, sign_relative);
+                        const Box3& box, double t_tol, double min_width, std::vector<int>* active, QueryWork* work) {
+  SpaceTimeEngine engine(f, std::move(atoms), degree, sign_relative, work);
+  work->startPiece();
   PieceAnswer ans;
   double lower = 0.0, upper = std::numeric_limits<double>::infinity(), dt = 1.0;
   int budget = kRegionCcdSlabBudget;
@@ -537,16 +565,16 @@ PieceAnswer searchPiece(const Formula& f, std::vector<MovingAtom> atoms, int deg
     if (lower >= 1.0) break;  // certified free on the whole piece
     const double end = std::min({lower + dt, upper, 1.0});
     const bool finest = end - lower <= t_tol;
-    const int before = ans.boxes;
-    const SlabAnswer s = searchSlab(engine, box, lower, end, min_width, t_tol, finest ? kRegionCcdMaxBoxes : budget,
-                                    finest ? kRegionCcdExtraBoxesAfterUndecided : 0, &ans.boxes);
+    const int before = work->boxes;
+    const SlabAnswer s = searchSlab(engine, box, lower, end, min_width, t_tol, finest ? work->limits.max_boxes : budget,
+                                    finest ? kRegionCcdExtraBoxesAfterUndecided : 0, work);
     switch (s.outcome) {
       case SlabOutcome::Empty:
         lower = end;
         dt *= 2.0;
         // A slab twice as wide costs more where the hardness is spatial (a small gap that closes
         // slowly): the budget follows the cost of the last certified slab.
-        budget = std::max(kRegionCcdSlabBudget, 3 * (ans.boxes - before));
+        budget = std::max(kRegionCcdSlabBudget, 3 * (work->boxes - before));
         continue;
       case SlabOutcome::Found:
         upper = s.time;
@@ -584,9 +612,16 @@ PieceAnswer searchPiece(const Formula& f, std::vector<MovingAtom> atoms, int deg
 
 }  // namespace
 
-RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegion& b) {
+RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegion& b, const RegionCcdLimits& limits) {
   if (!a.box && !b.box)
     throw std::invalid_argument("continuousCollideRegions: both regions are unbounded (no local AABB)");
+  if (limits.max_boxes < 1 || limits.max_pencil_evaluations < 1) {
+    std::ostringstream os;
+    os << "continuousCollideRegions: limits.max_boxes = " << limits.max_boxes
+       << " and limits.max_pencil_evaluations = " << limits.max_pencil_evaluations << " must both be at least 1";
+    throw std::invalid_argument(os.str());
+  }
+  QueryWork work{limits};
   // The search frame: the body with the smaller box (the bounded one if only one is).
   auto volume = [](const Box3& x) { return (x.hi - x.lo).prod(); };
   const bool frame_is_a = a.box && (!b.box || volume(*a.box) <= volume(*b.box));
@@ -640,8 +675,9 @@ RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegi
     std::vector<int> active;
     const PieceAnswer ans =
         searchPiece(f, std::move(atoms), degree, paddingRelative(P.size() - 1, mO.inverseCoefficients().size() - 1, degree),
-                    box, kRegionCcdTimeTolerance / (s1 - s0), min_width, &active);
-    res.boxes += ans.boxes;
+                    box, kRegionCcdTimeTolerance / (s1 - s0), min_width, &active, &work);
+    res.boxes = work.boxes;
+    res.pencil_evaluations = work.evaluations;
     if (!ans.collide) continue;
     res.collide = true;
     res.time = std::min(1.0, s0 + (s1 - s0) * ans.time);

@@ -11,6 +11,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -81,6 +82,80 @@ TEST(RegionCcd, NearMissesAreCertifiedFree) {
                          translation({5, 0, h + r + gap}, {-5, 0, h + r + gap})};
     const RegionCcdResult res = continuousCollideRegions(cyl, b);
     EXPECT_FALSE(res.collide) << "gap " << gap << " time " << res.time << " boxes " << res.boxes;
+  }
+}
+
+// The query's work limits (RegionCcdLimits) hold for each piece of the motion, so that a
+// keyframed motion is answered as its pieces would be one by one. A ball sweeps back and forth
+// past the rim of a capped cylinder at a gap of 1e-6 (four keyframed pieces, thousands of boxes
+// each: a slow-closing gap); the oracle is the closed-form distance of its centre to the cylinder,
+// positive along the sweep, so the pair never touches. Limits above what one piece uses change
+// nothing, even when the query as a whole uses more; lower ones stop the first piece with a
+// conservative (capped) contact, within one box of the limit; limits below 1 are refused, naming
+// the value.
+TEST(RegionCcd, WorkLimitsHoldPerPieceCapConservativelyAndBadLimitsThrow) {
+  const double R = 1.0, h = 1.0, r = 0.5, gap = 1e-6;
+  const MovingRegion cyl{cappedCylinder(R, R, 2 * h), centredBox({R, R, h}), still()};
+  const double o = (r + gap) / std::sqrt(2.0);  // the centre passes the rim's point (R, 0, h) at r + gap
+  std::vector<double> times;
+  std::vector<Eigen::Isometry3d> poses;
+  for (int k = 0; k <= 4; ++k) {
+    times.push_back(k / 4.0);
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.translation() = Eigen::Vector3d(R + o, k % 2 == 0 ? 2.0 : -2.0, h + o);
+    poses.push_back(X);
+  }
+  double min_gap = 1.0;
+  for (int i = 0; i <= 2000; ++i) {  // one sweep, y from 2 to -2 (the others retrace it)
+    const Eigen::Vector3d centre(R + o, 2.0 - 4.0 * i / 2000.0, h + o);
+    min_gap = std::min(min_gap, cylinderDistance(centre, R, h) - r);
+  }
+  ASSERT_GT(min_gap, 0.5 * gap);
+  const MovingRegion b{ball(r), centredBox(Eigen::Vector3d::Constant(r)), PiecewiseMotion::fromKeyframes(times, poses)};
+  const RegionCcdResult free = continuousCollideRegions(cyl, b);
+  ASSERT_FALSE(free.collide);
+  ASSERT_GT(free.boxes, 1000);
+  ASSERT_GT(free.pencil_evaluations, 10000);
+  RecordProperty("boxes", free.boxes);
+
+  // Half the query's total is about twice one piece's share: every piece still fits.
+  RegionCcdLimits per_piece;
+  per_piece.max_boxes = free.boxes / 2;
+  per_piece.max_pencil_evaluations = free.pencil_evaluations / 2;
+  const RegionCcdResult same = continuousCollideRegions(cyl, b, per_piece);
+  EXPECT_FALSE(same.collide);
+  EXPECT_EQ(same.boxes, free.boxes);
+  EXPECT_EQ(same.pencil_evaluations, free.pencil_evaluations);
+
+  RegionCcdLimits few_boxes;
+  few_boxes.max_boxes = free.boxes / 16;
+  const RegionCcdResult by_boxes = continuousCollideRegions(cyl, b, few_boxes);
+  EXPECT_TRUE(by_boxes.collide && by_boxes.capped);
+  EXPECT_LT(by_boxes.time, 0.25);  // in the first piece
+  EXPECT_EQ(by_boxes.boxes, few_boxes.max_boxes);
+
+  RegionCcdLimits few_evaluations;
+  few_evaluations.max_pencil_evaluations = free.pencil_evaluations / 16;
+  const RegionCcdResult by_evaluations = continuousCollideRegions(cyl, b, few_evaluations);
+  EXPECT_TRUE(by_evaluations.collide && by_evaluations.capped);
+  EXPECT_LT(by_evaluations.time, 0.25);
+  EXPECT_GE(by_evaluations.pencil_evaluations, few_evaluations.max_pencil_evaluations);
+  // Checked before each box: one box's pencil search beyond the limit at most (a ball against a
+  // capped cylinder has four atoms, so at most a few hundred evaluations per box).
+  EXPECT_LE(by_evaluations.pencil_evaluations, few_evaluations.max_pencil_evaluations + 1000);
+
+  for (int bad : {0, -3}) {
+    RegionCcdLimits limits;
+    limits.max_boxes = bad;
+    try {
+      continuousCollideRegions(cyl, b, limits);
+      ADD_FAILURE() << "max_boxes = " << bad << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("max_boxes = " + std::to_string(bad)), std::string::npos) << e.what();
+    }
+    limits = RegionCcdLimits();
+    limits.max_pencil_evaluations = bad;
+    EXPECT_THROW(continuousCollideRegions(cyl, b, limits), std::invalid_argument);
   }
 }
 

@@ -24,7 +24,8 @@
 ///  - when, in a slab of width kRegionCcdTimeTolerance, a box of kRegionCcdMinBoxRelative of the
 ///    search box is neither excluded nor certified inside (the boundaries are within the tolerance
 ///    band of contact there: near_tangent);
-///  - when kRegionCcdMaxBoxes boxes have been visited (capped: a conservative contact).
+///  - when kRegionCcdMaxBoxes boxes have been visited or kRegionCcdMaxPencilEvaluations pencil
+///    bounds evaluated on one piece of the motion (capped: a conservative contact; RegionCcdLimits).
 /// So a reported "no collision" is certified, and a reported contact time is a lower bound of the
 /// true one, within kRegionCcdTimeTolerance of it unless the pair only comes within the band
 /// (then it is early by about the band over the approach speed) or the cap is reached.
@@ -54,9 +55,18 @@ constexpr double kRegionCcdTimeTolerance = 7.450580596923828e-09;
 /// ill-conditioned where the gap closes slowly (a grazing approach): the time error of a
 /// near-tangent answer is about this band divided by the approach speed.
 constexpr double kRegionCcdMinBoxRelative = 1.4551915228366852e-11;  // 2^-36
-/// Work cap of one region CCD query (space-time boxes visited); on reaching it the answer is a
-/// contact at the certified lower end of the first contact time (conservative).
+/// Work cap of one region CCD query on each piece of the motion (space-time boxes visited); on
+/// reaching it the answer is a contact at the certified lower end of the first contact time
+/// (conservative). Per piece, so that a keyframed motion is answered as its pieces would be one
+/// by one; a query takes at most the number of pieces times a capped piece's time.
 constexpr int kRegionCcdMaxBoxes = 400000;
+/// Work cap of one region CCD query on each piece in pencil bound evaluations (reaching it caps
+/// the query as kRegionCcdMaxBoxes does). The pencil exclusion of a box tries pairs and
+/// triples of the atoms undecided on it, O(m^3) bounds for m of them: up to 16,417 on one box of
+/// a box-against-box pair (measured), so the box cap alone left a query's time unbounded in
+/// practice. 2^25; one evaluation costs 0.07-0.14 us for motions from poses (measured, session
+/// 52: 2-5 s at the cap), and the tests' largest query used 19.4 million.
+constexpr long long kRegionCcdMaxPencilEvaluations = 33554432;
 /// Largest degree in t of a moving atom X^T S(t) X (the relative motion's degree twice). Two
 /// motions from poses give 10; a chain of three such joints about 30.
 constexpr int kRegionCcdMaxDegree = 60;
@@ -92,14 +102,25 @@ struct RegionCcdResult {
   /// contact (see boundaryElementLabel). Empty for a deep overlap at t = 0.
   std::vector<int> active_a, active_b;
   bool near_tangent = false;  ///< the contact is an undecided box within the tolerance band
-  bool capped = false;        ///< kRegionCcdMaxBoxes reached: conservative contact
-  int boxes = 0;              ///< space-time boxes visited
+  bool capped = false;        ///< a work cap reached (RegionCcdLimits): conservative contact
+  int boxes = 0;              ///< space-time boxes visited (all pieces)
+  long long pencil_evaluations = 0;  ///< pencil bound evaluations (all pieces)
+};
+
+/// Work caps of one query, on each piece of the motions (the union of both motions' breaks).
+/// Reaching one gives a conservative contact at the certified front (`capped`). Lower limits bound
+/// a query's time more tightly at the price of more capped answers.
+struct RegionCcdLimits {
+  int max_boxes = tolerance_region::kRegionCcdMaxBoxes;
+  long long max_pencil_evaluations = tolerance_region::kRegionCcdMaxPencilEvaluations;
 };
 
 /// First contact of a and b over t in [0, 1] (file comment).
-/// \throws std::invalid_argument if neither region has a box; CcdDegreeError (a
-/// std::invalid_argument) if a motion pair's relative degree exceeds kRegionCcdMaxDegree.
-RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegion& b);
+/// \throws std::invalid_argument if neither region has a box, or if a limit is below 1 (naming
+/// it); CcdDegreeError (a std::invalid_argument) if a motion pair's relative degree exceeds
+/// kRegionCcdMaxDegree.
+RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegion& b,
+                                         const RegionCcdLimits& limits = RegionCcdLimits());
 
 /// The label of the boundary element (thesis §6.1-6.2) formed by the given atoms of a CQM:
 /// "F<i>" for one atom (faces[i]), "E<i>" for two (edges[i]), "V<i>" for three (vertices[i]),
