@@ -664,8 +664,11 @@ double refineNumerically(const std::function<double(double)>& value, double u0) 
 // multiple roots: spheres, coaxial cylinders).
 // Boxes are searched depth first, earlier t first; `accept(u)` is called on each new seed (in
 // the search's order, not sorted) and returns the time limit below which the search goes on (a
-// verified contact at u returns u: later boxes are pruned). Returns false at the box cap.
-bool tangencySeeds(const LPoly& g, double limit, const std::function<double(double, std::optional<double>)>& accept) {
+// verified contact at u returns u: later boxes are pruned). Returns false at the box cap of the
+// search (kPencilMaxBoxes) or when *total_boxes, the count of all pencil searches of the query,
+// exceeds total_cap (the piece's share: kReductionMaxPencilBoxes more than at its start).
+bool tangencySeeds(const LPoly& g, double limit, int* total_boxes, int total_cap,
+                   const std::function<double(double, std::optional<double>)>& accept) {
   const int m = static_cast<int>(g.size()) - 1;
   std::size_t d = 1;
   for (const Poly& p : g) d = std::max(d, p.c.size());
@@ -690,7 +693,7 @@ bool tangencySeeds(const LPoly& g, double limit, const std::function<double(doub
     const std::array<double, 4> b = stack.back();
     stack.pop_back();
     if (b[2] > limit) continue;
-    if (++boxes > kPencilMaxBoxes) return false;
+    if (++boxes > kPencilMaxBoxes || ++*total_boxes > total_cap) return false;
     const BivariateBernstein Fb = F.restrict(b[0], b[1], b[2], b[3]);
     if (Fb.minCoefficient() > pad || Fb.maxCoefficient() < -pad) continue;
     const BivariateBernstein Fxb = Fx.restrict(b[0], b[1], b[2], b[3]);
@@ -829,6 +832,9 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
 
   for (std::size_t piece = 0; piece + 1 < breaks.size(); ++piece) {
     const double s0 = breaks[piece], s1 = breaks[piece + 1];
+    // The pencil searches of this piece together (every pair of elements) may visit
+    // kReductionMaxPencilBoxes boxes (docs/reliability.md finding 41).
+    const int piece_cap = res.pencil_boxes + kReductionMaxPencilBoxes;
     const MotionMatrix ma = a.motion.restricted(s0, s1), mb = b.motion.restricted(s0, s1);
     const std::vector<Eigen::Matrix4d> P = multiplyCoefficients(mb.inverseCoefficients(), ma.matrixCoefficients());
     const std::vector<Eigen::Matrix4d> Pinv = multiplyCoefficients(ma.inverseCoefficients(), mb.matrixCoefficients());
@@ -1266,14 +1272,17 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
       if (task.pencil.empty()) continue;
       // Each seed is tried at its Newton solution of (F, F_x) = 0, then refined on the pencil's
       // discriminant evaluated at u (which fails only for a permanent multiple root: spheres).
-      const bool complete = tangencySeeds(task.pencil, std::min(best, 1.0), [&](double centre, std::optional<double> newton) {
+      auto seed = [&](double centre, std::optional<double> newton) {
         if (newton && *newton < best && verify(task, *newton)) return best;
         const double u = refineNumerically(task.value, centre);
         if (u < best && verify(task, u)) return best;
         return 2.0;
-      });
+      };
+      const bool complete = tangencySeeds(task.pencil, std::min(best, 1.0), &res.pencil_boxes, piece_cap, seed);
       if (!complete) {
-        res.reason = describe(task.sp, "has a curve of multiple roots (subdivision cap reached)");
+        res.reason = res.pencil_boxes > piece_cap
+                         ? describe(task.sp, "reached the piece's pencil work cap (kReductionMaxPencilBoxes)")
+                         : describe(task.sp, "has a curve of multiple roots (subdivision cap reached)");
         return res;
       }
     }

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -423,6 +424,40 @@ TEST(DimensionReductionCcd, ConeApexLandsOnAFloorAtTheClosedFormTime) {
     EXPECT_EQ(r.subproblem.type, SubproblemType::FaceVertex);
     EXPECT_EQ(r.label_b.substr(0, 1), "A") << r.label_b;
   }
+}
+
+// The pencil searches' work cap (kReductionMaxPencilBoxes) holds for each piece of the motion, so
+// that a keyframed motion is answered as its pieces would be one by one: a capped cylinder swept
+// back and forth, turning, just clear of another's top rim. Every piece retraces the first two,
+// which the certified space-time engine finds free; 96 pieces need more pencil boxes together
+// than one piece may use, and the answer is still decided (free).
+TEST(DimensionReductionCcd, PencilWorkCapHoldsPerPieceSoKeyframedMotionsAreDecided) {
+  const MovingRegion a{cappedCylinder(0.5, 0.3, 2.0), centred({0.5, 0.3, 1.0}), still()};
+  auto keyframed = [&](int pieces) {
+    std::vector<double> times;
+    std::vector<Eigen::Isometry3d> poses;
+    for (int k = 0; k <= pieces; ++k) {
+      times.push_back(static_cast<double>(k) / pieces);
+      Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+      X.linear() = rot(k % 2 == 0 ? 0.3 : 1.2, Eigen::Vector3d::UnitZ()) * rot(M_PI / 2, Eigen::Vector3d::UnitX());
+      X.translation() = Eigen::Vector3d(k % 2 == 0 ? 1.5 : -1.5, 0.7 + 1e-6, 1.4 + 1e-6);
+      poses.push_back(X);
+    }
+    return MovingRegion{cappedCylinder(0.4, 0.4, 1.6), centred({0.4, 0.4, 0.8}),
+                        PiecewiseMotion::fromKeyframes(times, poses)};
+  };
+  const MovingRegion there_and_back = keyframed(2);
+  ASSERT_FALSE(continuousCollideRegions(a, there_and_back).collide);
+  const ReductionCcdResult two = continuousCollideRegionsByReduction(a, there_and_back);
+  ASSERT_EQ(two.status, ReductionStatus::Decided) << two.reason;
+  EXPECT_FALSE(two.collide);
+  ASSERT_GT(two.pencil_boxes, 0);
+  const ReductionCcdResult many = continuousCollideRegionsByReduction(a, keyframed(96));
+  ASSERT_EQ(many.status, ReductionStatus::Decided) << many.reason;
+  EXPECT_FALSE(many.collide);
+  EXPECT_GT(many.pencil_boxes, tolerance_reduction::kReductionMaxPencilBoxes);
+  RecordProperty("pencil_boxes_2", two.pencil_boxes);
+  RecordProperty("pencil_boxes_96", many.pencil_boxes);
 }
 
 }  // namespace

@@ -59,7 +59,8 @@
 ///  - a degenerate candidate: g identically zero within kReductionZeroRelative (other than
 ///    quadric-line, above), or a contact
 ///    point that is undefined (coincident planes: a cap landing flat on a face);
-///  - a pencil search reaching kPencilMaxBoxes (a curve of multiple roots);
+///  - a pencil search reaching kPencilMaxBoxes (a curve of multiple roots), or the pencil
+///    searches of one piece reaching kReductionMaxPencilBoxes together;
 ///  - an unbounded body (no local AABB), a non-rigid pose at t = 0 for the start test.
 /// Completeness rests on generic position of the first contact (thesis §6.1): a first contact
 /// at a point where each body's lowest-dimensional element is one of the pairs above is a root
@@ -100,6 +101,14 @@ constexpr double kReductionEvalRelative = 1e-14;
 constexpr double kPencilSeedWidth = 1e-7;
 /// Pencil subproblems: work cap of one search (boxes); reaching it makes the answer Undecided.
 constexpr int kPencilMaxBoxes = 40000;
+/// Pencil subproblems: work cap of one piece of the motion (boxes of all its pencil searches,
+/// every pair of elements together); reaching it makes the answer Undecided. Before it, a piece
+/// could run every one of its searches (up to 49 for two clipped ellipsoids) nearly to
+/// kPencilMaxBoxes. A query costs about 11 us per pencil box for motions from poses (measured,
+/// session 52), about 1 s at the cap; the tests' largest single-piece query used 46,952 (one of
+/// its searches stopped at kPencilMaxBoxes). Per piece, as region_ccd.h's caps, so that a
+/// keyframed motion is answered as its pieces would be one by one.
+constexpr int kReductionMaxPencilBoxes = 100000;
 }  // namespace tolerance_reduction
 
 enum class ReductionStatus { Decided, Undecided };
@@ -120,6 +129,9 @@ struct ReductionCcdResult {
   std::optional<ContactConfiguration> configuration;
   int subproblems = 0;                               ///< subproblems examined (all pieces)
   int candidates = 0;                                ///< candidate moments verified
+  /// Boxes of the pencil searches (all pieces and pairs of elements; kReductionMaxPencilBoxes
+  /// caps those of each piece, one more counted when that cap stopped the query).
+  int pencil_boxes = 0;
 };
 
 /// First contact of a and b over [0, 1] by dimension reduction (file comment). Never throws for
