@@ -69,9 +69,9 @@ struct AtomOnBox {
 /// 41), and its time is at most the number of pieces times a capped piece's.
 struct QueryWork {
   RegionCcdLimits limits;
-  int boxes = 0;
+  long long boxes = 0;  // long: a piece may use max_boxes, and a motion may have many pieces
   long long evaluations = 0;
-  int piece_boxes0 = 0;  // the counts when the current piece started
+  long long piece_boxes0 = 0;  // the counts when the current piece started
   long long piece_evaluations0 = 0;
   void startPiece() {
     piece_boxes0 = boxes;
@@ -565,17 +565,19 @@ PieceAnswer searchPiece(const Formula& f, std::vector<MovingAtom> atoms, int deg
     if (lower >= 1.0) break;  // certified free on the whole piece
     const double end = std::min({lower + dt, upper, 1.0});
     const bool finest = end - lower <= t_tol;
-    const int before = work->boxes;
+    const long long before = work->boxes;
     const SlabAnswer s = searchSlab(engine, box, lower, end, min_width, t_tol, finest ? work->limits.max_boxes : budget,
                                     finest ? kRegionCcdExtraBoxesAfterUndecided : 0, work);
     switch (s.outcome) {
-      case SlabOutcome::Empty:
+      case SlabOutcome::Empty: {
         lower = end;
         dt *= 2.0;
         // A slab twice as wide costs more where the hardness is spatial (a small gap that closes
         // slowly): the budget follows the cost of the last certified slab.
-        budget = std::max(kRegionCcdSlabBudget, 3 * (work->boxes - before));
+        const long long next = std::max<long long>(kRegionCcdSlabBudget, 3 * (work->boxes - before));
+        budget = static_cast<int>(std::min<long long>(next, work->limits.max_boxes));
         continue;
+      }
       case SlabOutcome::Found:
         upper = s.time;
         point = s.point;
@@ -676,7 +678,7 @@ RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegi
     const PieceAnswer ans =
         searchPiece(f, std::move(atoms), degree, paddingRelative(P.size() - 1, mO.inverseCoefficients().size() - 1, degree),
                     box, kRegionCcdTimeTolerance / (s1 - s0), min_width, &active, &work);
-    res.boxes = work.boxes;
+    res.boxes = static_cast<int>(std::min<long long>(work.boxes, std::numeric_limits<int>::max()));
     res.pencil_evaluations = work.evaluations;
     if (!ans.collide) continue;
     res.collide = true;

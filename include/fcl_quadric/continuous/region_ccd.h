@@ -103,7 +103,7 @@ struct RegionCcdResult {
   std::vector<int> active_a, active_b;
   bool near_tangent = false;  ///< the contact is an undecided box within the tolerance band
   bool capped = false;        ///< a work cap reached (RegionCcdLimits): conservative contact
-  int boxes = 0;              ///< space-time boxes visited (all pieces)
+  int boxes = 0;              ///< space-time boxes visited (all pieces; saturates at INT_MAX)
   long long pencil_evaluations = 0;  ///< pencil bound evaluations (all pieces)
 };
 
