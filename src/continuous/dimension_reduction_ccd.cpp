@@ -667,7 +667,7 @@ double refineNumerically(const std::function<double(double)>& value, double u0) 
 // verified contact at u returns u: later boxes are pruned). Returns false at the box cap of the
 // search (kPencilMaxBoxes) or when *total_boxes, the count of all pencil searches of the query,
 // exceeds total_cap (the piece's share: kReductionMaxPencilBoxes more than at its start).
-bool tangencySeeds(const LPoly& g, double limit, int* total_boxes, int total_cap,
+bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long long total_cap,
                    const std::function<double(double, std::optional<double>)>& accept) {
   const int m = static_cast<int>(g.size()) - 1;
   std::size_t d = 1;
@@ -834,7 +834,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
     const double s0 = breaks[piece], s1 = breaks[piece + 1];
     // The pencil searches of this piece together (every pair of elements) may visit
     // kReductionMaxPencilBoxes boxes (docs/reliability.md finding 41).
-    const int piece_cap = res.pencil_boxes + kReductionMaxPencilBoxes;
+    const long long piece_cap = res.pencil_boxes + kReductionMaxPencilBoxes;
     const MotionMatrix ma = a.motion.restricted(s0, s1), mb = b.motion.restricted(s0, s1);
     const std::vector<Eigen::Matrix4d> P = multiplyCoefficients(mb.inverseCoefficients(), ma.matrixCoefficients());
     const std::vector<Eigen::Matrix4d> Pinv = multiplyCoefficients(ma.inverseCoefficients(), mb.matrixCoefficients());

@@ -131,7 +131,7 @@ struct ReductionCcdResult {
   int candidates = 0;                                ///< candidate moments verified
   /// Boxes of the pencil searches (all pieces and pairs of elements; kReductionMaxPencilBoxes
   /// caps those of each piece, one more counted when that cap stopped the query).
-  int pencil_boxes = 0;
+  long long pencil_boxes = 0;
 };
 
 /// First contact of a and b over [0, 1] by dimension reduction (file comment). Never throws for
