@@ -869,12 +869,24 @@ std::optional<SegmentPencil> segmentPencil(const MovingEllipsoid& a, const Motio
       // interpolant's b was 1e-8 of its length too long or short along its long axis; finding 18).
       const Eigen::Matrix3d Linv = bk->radii().cwiseInverse().asDiagonal() * bk->rotation().transpose() * Ta.topLeftCorner<3, 3>();
       Bs[k] = Linv.transpose() * Linv;
+      // a's map so ill-conditioned that b's end state in a's frame overflows: no interpolant, as
+      // for the rigid path above. Such maps are refused by their condition first (finding 42's
+      // motion reached here while MotionMatrix::linearCondition() lost a NaN); this is reached
+      // with max_condition raised above them, where the overflow may also form inf - inf before
+      // it is seen (harmless without floating-point traps: Polynomial rejects it, caught below).
+      if (!cs[k].allFinite() || !Bs[k].allFinite()) return std::nullopt;
     }
     p.S.block<3, 1>(0, 3) = 0.5 * (a.body.center() + cs[0]);
-    p.A = scaledQuadric(a.body.quadricMatrix(), {Eigen::Matrix4d::Identity()}, p.S);
-    const PolynomialMatrix4 Bq = affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], p.S);
-    const double b_scale = balanceScale(Bq);
-    p.B = {balanced(Bq, b_scale), 1.0};
+    if (!p.S.array().isFinite().all()) return std::nullopt;
+    double b_scale = 1.0;
+    try {
+      p.A = scaledQuadric(a.body.quadricMatrix(), {Eigen::Matrix4d::Identity()}, p.S);
+      const PolynomialMatrix4 Bq = affineInterpolant(Bs[0], cs[0], Bs[1], cs[1], p.S);
+      b_scale = balanceScale(Bq);
+      p.B = {balanced(Bq, b_scale), 1.0};
+    } catch (const std::invalid_argument&) {
+      return std::nullopt;  // a coefficient overflowed to inf / NaN (Polynomial rejects it)
+    }
     // The precision check as for rigid pairs (finding 16 holds for the interpolant too: F's
     // rounding is relative to its coefficients, the touching band to F's value at t). a's
     // quadric and the interpolant are rebuilt in extended precision from the same inputs (the

@@ -135,9 +135,24 @@ double MotionMatrix::linearCondition() const {
     const Eigen::Matrix3d L = evaluate(t).topLeftCorner<3, 3>();
     // A map that overflows, or whose determinant underflows, has no usable inverse (and the
     // division of Eigen's 3x3 inverse must not run on a zero determinant).
-    const double det = L.array().isFinite().all() ? L.determinant() : 0.0;
-    if (!std::isnormal(det)) return std::numeric_limits<double>::infinity();
-    worst = std::max(worst, L.norm() * L.inverse().norm());
+    if (!L.array().isFinite().all()) return std::numeric_limits<double>::infinity();
+    // On L scaled by the power of two 2^-e that brings its largest entry into [0.5, 1) (exact):
+    // no product of entries overflows (entries of 1e106 made inf - inf, a NaN, in the cofactors:
+    // docs/reliability.md finding 42). The cofactors are the cross products of the rows, det the
+    // expansion along row 0, det(L) = det(L 2^-e) 2^(3e) (by ldexp: inf or 0, never NaN), and
+    // |L^-1| = |adj L| / |det L|, scale-free like the condition number: one division, by the
+    // non-zero det of these very cofactors (Eigen's inverse forms its own determinant, which
+    // came out 0 for a nearly singular L whose determinant() did not).
+    int e = 0;
+    std::frexp(L.cwiseAbs().maxCoeff(), &e);
+    const Eigen::Matrix3d Ls = L * std::ldexp(1.0, -e);
+    Eigen::Matrix3d C;
+    C.row(0) = Ls.row(1).cross(Ls.row(2));
+    C.row(1) = Ls.row(2).cross(Ls.row(0));
+    C.row(2) = Ls.row(0).cross(Ls.row(1));
+    const double det_s = Ls.row(0).dot(C.row(0));
+    if (!std::isnormal(std::ldexp(det_s, 3 * e))) return std::numeric_limits<double>::infinity();
+    worst = std::max(worst, Ls.norm() * (C.norm() / std::fabs(det_s)));
   }
   return worst;
 }

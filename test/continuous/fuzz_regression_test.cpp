@@ -204,5 +204,47 @@ TEST(FuzzRegression, AnOverflowingAffineMapGetsTheConservativeAnswer) {
   }
 }
 
+// fuzz_motion (session 52, seed 52; corpus entry regression_affine_interpolant_overflow): a
+// constant motion whose linear part, M / w, has entries of 2.4e106 and of 1 passes MotionMatrix
+// validation. MotionMatrix::linearCondition() formed inf - inf in the cofactors, and std::max
+// dropped the NaN: the condition (~1e160) came out small, the motion was not refused, and
+// through the affine interpolant (thesis section 5.2) b's end states in a's frame overflowed:
+// building a's scaled quadric threw "Polynomial: non-finite coefficient c[0] = -nan" from inside
+// continuousCollideEllipsoids. Now the condition (~1.5e159, from scaled cofactors) is far above
+// kCcdMaxCondition and the pair gets the documented conservative answer (colliding throughout,
+// unresolved), in both argument orders and without a floating-point exception
+// (docs/reliability.md finding 42).
+TEST(FuzzRegression, AnOverflowingAffineInterpolantGetsTheConservativeAnswer) {
+  const double big = -2.9444959457990247e+47, tiny = -1.2260560296460538e-59;
+  Eigen::Matrix4d M0;
+  M0 << 1, 0, big, big,  //
+      big, big, -2.9444574660818194e+47, tiny,  //
+      tiny, tiny, tiny, tiny,  //
+      0, 0, 0, -1.2260560296460587e-59;
+  const MotionMatrix m = MotionMatrix::fromPolynomialMatrix(PolynomialMatrix4(M0));
+  const MovingEllipsoid a{Ellipsoid(Eigen::Vector3d::Constant(2.001), Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()),
+                          PiecewiseMotion(m)};
+  Eigen::Matrix3d R1;
+  R1 << 0, 0, 1, 1, 0, 0, 0, 1, 0;
+  const MovingEllipsoid b{Ellipsoid(Eigen::Vector3d::Constant(2.0), Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()),
+                          PiecewiseMotion(MotionMatrix::fromPoses(Eigen::Matrix3d::Identity(), {0, 0, -1}, R1, {-1, -1, -1}))};
+  EXPECT_GT(m.linearCondition(), 1e100);  // ~1.5e159, from the scaled cofactors
+  for (int mode = 0; mode < 2; ++mode) {
+    CcdOptions options;
+    options.interpolation = CcdInterpolation::Affine;
+    options.all_intervals = mode == 1;
+    options.culling = false;
+    for (bool swapped : {false, true}) {
+      const EllipsoidCcdResult r =
+          swapped ? continuousCollideEllipsoids(b, a, options) : continuousCollideEllipsoids(a, b, options);
+      EXPECT_TRUE(r.collide) << mode << swapped;
+      EXPECT_TRUE(r.unresolved) << mode << swapped;
+      EXPECT_TRUE(r.contact_point.allFinite()) << mode << swapped;
+      ASSERT_EQ(r.collision_intervals.size(), 1u) << mode << swapped;
+      EXPECT_EQ(r.collision_intervals[0].begin, 0.0);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace fcl_quadric
