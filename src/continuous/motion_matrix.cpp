@@ -252,18 +252,21 @@ MotionMatrix MotionMatrix::fromPolynomialMatrix(const PolynomialMatrix4& M_given
        << tolerance::kMaxLength << ": the motion leaves the supported range";
     throw std::invalid_argument(os.str());
   }
+  // The last row as given: the rescaling below can flush a subnormal entry to zero (fuzz_motion,
+  // session 52: (3, j) = 5e-324 beside coefficients of 1e300 was accepted; finding 43).
+  for (int j = 0; j < 3; ++j) {
+    if (!M_given(3, j).trimmed().isZero()) {
+      std::ostringstream os;
+      os << "motion matrix entry (3," << j << ") must be 0 (last row [0, 0, 0, w(t)]), has a coefficient of up to "
+         << M_given(3, j).maxAbsCoefficient();
+      throw std::invalid_argument(os.str());
+    }
+  }
   PolynomialMatrix4 M = M_given;
   if (max_abs > 0.0 && (max_abs > 0x1p32 || max_abs < 0x1p-32)) {
     int e = 0;
     (void)std::frexp(max_abs, &e);
     M = M_given * std::ldexp(1.0, -e);
-  }
-  for (int j = 0; j < 3; ++j) {
-    if (!M(3, j).trimmed().isZero()) {
-      std::ostringstream os;
-      os << "motion matrix entry (3," << j << ") must be 0 (last row [0, 0, 0, w(t)])";
-      throw std::invalid_argument(os.str());
-    }
   }
   const Polynomial& w = M(3, 3);
   detail::checkNoRootOnUnitInterval(w, "motion matrix w(t) = M(3,3)");

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <string>
 
 #include "fcl_quadric/continuous/ellipsoid_ccd.h"
 #include "support/exact_oracle.h"
@@ -243,6 +244,27 @@ TEST(FuzzRegression, AnOverflowingAffineInterpolantGetsTheConservativeAnswer) {
       ASSERT_EQ(r.collision_intervals.size(), 1u) << mode << swapped;
       EXPECT_EQ(r.collision_intervals[0].begin, 0.0);
     }
+  }
+}
+
+// fuzz_motion (session 52, seed 52; corpus entry regression_last_row_flushed_by_rescaling): a
+// motion with coefficients of 1e300 and a subnormal (3, 0) entry was accepted. The last row was
+// checked after the rescaling by a power of two (finding 2), which flushed 5e-324 to zero; it
+// is checked as given now (docs/reliability.md finding 43), whatever the scale of the rest.
+TEST(FuzzRegression, ALastRowEntryIsRejectedWhateverTheScaleOfTheRest) {
+  for (const double scale : {1.0, 1e-300, 1e300}) {
+    for (const double entry : {5e-324, 1e-310, 1e-20, 1.0}) {
+      Eigen::Matrix4d M0 = scale * Eigen::Matrix4d::Identity();
+      M0(3, 0) = entry;
+      try {
+        (void)MotionMatrix::fromPolynomialMatrix(PolynomialMatrix4(M0));
+        ADD_FAILURE() << "accepted (3, 0) = " << entry << " beside " << scale;
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("(3,0)"), std::string::npos) << e.what();
+      }
+    }
+    // The same matrix with a zero last row is a valid motion (a uniform scaling).
+    EXPECT_NO_THROW((void)MotionMatrix::fromPolynomialMatrix(PolynomialMatrix4(Eigen::Matrix4d(scale * Eigen::Matrix4d::Identity()))));
   }
 }
 
