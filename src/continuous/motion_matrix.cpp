@@ -133,8 +133,7 @@ double MotionMatrix::linearCondition() const {
   double worst = 0.0;
   for (double t : {0.0, 0.5, 1.0}) {
     const Eigen::Matrix3d L = evaluate(t).topLeftCorner<3, 3>();
-    // A map that overflows, or whose determinant underflows, has no usable inverse (and the
-    // division of Eigen's 3x3 inverse must not run on a zero determinant).
+    // A map that overflows, or whose determinant underflows, has no usable inverse.
     if (!L.array().isFinite().all()) return std::numeric_limits<double>::infinity();
     // On L scaled by the power of two 2^-e that brings its largest entry into [0.5, 1) (exact):
     // no product of entries overflows (entries of 1e106 made inf - inf, a NaN, in the cofactors:
