@@ -99,6 +99,7 @@ heavy_tests=(
   # The region engine or the space-time engine as the oracle (8-51 s each).
   DimensionReductionCcd.AgreesWithTheSpaceTimeEngineOnRandomRigidMotions
   DimensionReductionCcd.ConesAgreeWithTheSpaceTimeEngineOnRandomRigidMotions
+  DimensionReductionCcd.PencilWorkCapHoldsPerPieceSoKeyframedMotionsAreDecided
   ConvexDistance.RegionPairsAgreeWithTheCertifiedStaticEngineAlongTheNormal
   ConvexSupport.RegionSupportMatchesTheCertifiedMaxLinearBound
   QuadricShapeCcd.PolynomialSolverOnFclPrimitivesAgreesWithTheEngineForEachSize
