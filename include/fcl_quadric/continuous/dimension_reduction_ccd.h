@@ -101,8 +101,8 @@ constexpr double kReductionEvalRelative = 1e-14;
 constexpr double kPencilSeedWidth = 1e-7;
 /// Pencil subproblems: work cap of one search (boxes); reaching it makes the answer Undecided.
 constexpr int kPencilMaxBoxes = 40000;
-/// Pencil subproblems: work cap of one piece of the motion (boxes of all its pencil searches,
-/// every pair of elements together); reaching it makes the answer Undecided. Before it, a piece
+/// Pencil subproblems (thesis §6.2.2): work cap of one piece of the motion (boxes of all its
+/// pencil searches, every pair of elements together); reaching it makes the answer Undecided. Before it, a piece
 /// could run every one of its searches (up to 49 for two clipped ellipsoids) nearly to
 /// kPencilMaxBoxes. A query costs about 11 us per pencil box for motions from poses (measured,
 /// session 52), about 1 s at the cap; the tests' largest single-piece query used 46,952 (one of

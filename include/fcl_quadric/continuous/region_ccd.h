@@ -107,9 +107,10 @@ struct RegionCcdResult {
   long long pencil_evaluations = 0;  ///< pencil bound evaluations (all pieces)
 };
 
-/// Work caps of one query, on each piece of the motions (the union of both motions' breaks).
-/// Reaching one gives a conservative contact at the certified front (`capped`). Lower limits bound
-/// a query's time more tightly at the price of more capped answers.
+/// Work caps of one query of the space-time search (file comment; docs/algorithms.md section 10),
+/// on each piece of the motions (the union of both motions' breaks). Reaching one gives a
+/// conservative contact at the certified front (`capped`). Lower limits bound a query's time more
+/// tightly at the price of more capped answers; a limit below 1 is refused (continuousCollideRegions).
 struct RegionCcdLimits {
   int max_boxes = tolerance_region::kRegionCcdMaxBoxes;
   long long max_pencil_evaluations = tolerance_region::kRegionCcdMaxPencilEvaluations;
