@@ -125,10 +125,13 @@ constexpr int kCcdMaxClipSteps = 96;
 /// cannot be certified separate it is reported as colliding (thesis Remark 5.4: conservative).
 constexpr double kCcdMinIntervalWidth = 1.0 / 1073741824.0;  // 2^-30 ~ 9.3e-10
 
-/// Work cap of one CCD solve (all its segments together): state evaluations plus Bezier shoots
-/// plus the u-slabs of the overlap certificates (kCcdMaxSlabVisits). When it is reached every
-/// interval not yet certified separate is reported as colliding and the result is flagged
-/// unresolved (conservative fallback).
+/// Work cap of the ellipsoid CCD per piece of the motions (all balance segments of the piece
+/// together): state evaluations plus Bezier shoots plus the u-slabs of the overlap certificates
+/// (kCcdMaxSlabVisits). When it is reached every interval of the piece not yet certified separate
+/// is reported as colliding and the result is flagged unresolved (conservative fallback). Per
+/// piece since session 53, as the region and dimension-reduction engines' caps: a keyframed
+/// motion is answered as its pieces would be one by one, in at most their number times a capped
+/// piece's time.
 constexpr int kCcdMaxWork = 20000;
 
 /// Balance breaks of the CCD (docs/algorithms.md section 8, "Nearly vanishing w"): a segment is
@@ -141,8 +144,8 @@ constexpr int kCcdMaxWork = 20000;
 /// exactly solved segments, never an answer.
 constexpr double kCcdBalanceRatio = 4.0;
 
-/// Bisection depth and segment count caps of the balance breaks (a segment at the cap is solved
-/// as it is: at worst the work cap's conservative answer).
+/// Bisection depth and segment count caps of the balance breaks, per piece of the motions (a
+/// segment at the cap is solved as it is: at worst the work cap's conservative answer).
 constexpr int kCcdMaxBalanceDepth = 48;
 constexpr int kCcdMaxBalanceSegments = 256;
 

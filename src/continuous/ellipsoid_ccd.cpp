@@ -920,7 +920,8 @@ std::optional<Eigen::Vector3d> centreAtStart(const MovingEllipsoid& e, const Mot
 }
 
 // One segment: both motions are single rational pieces on the local [0, 1]; t_max local.
-// `work_used`: the work already spent on earlier segments of the same solve (the cap is global).
+// `work_used`: the work already spent on earlier segments of the same piece of the motions (the
+// cap, kCcdMaxWork, holds per piece).
 EllipsoidCcdResult solveSegment(const MovingEllipsoid& a, const MotionMatrix& ma, const MovingEllipsoid& b,
                                 const MotionMatrix& mb, double tmax, const CcdOptions& opt, int work_used = 0) {
   EllipsoidCcdResult r;
@@ -1260,14 +1261,15 @@ bool unbalanced(const MovingEllipsoid& a, const MovingEllipsoid& b, double s0, d
   return w_hi > tolerance::kCcdBalanceRatio * w_lo || l_hi > tolerance::kCcdBalanceRatio * l_lo;
 }
 
-// Appends the right ends of the balanced sub-segments of [s0, s1] (bisection, capped).
+// Appends the right ends of the balanced sub-segments of [s0, s1] (bisection, capped: depth, and
+// `*budget` segments for the piece being refined).
 void balanceBreaks(const MovingEllipsoid& a, const MovingEllipsoid& b, double s0, double s1, int depth,
-                   std::vector<double>* out) {
+                   int* budget, std::vector<double>* out) {
   const double mid = 0.5 * (s0 + s1);
-  if (depth < tolerance::kCcdMaxBalanceDepth && out->size() < static_cast<std::size_t>(tolerance::kCcdMaxBalanceSegments) &&
-      s0 < mid && mid < s1 && unbalanced(a, b, s0, s1)) {
-    balanceBreaks(a, b, s0, mid, depth + 1, out);
-    balanceBreaks(a, b, mid, s1, depth + 1, out);
+  if (depth < tolerance::kCcdMaxBalanceDepth && *budget > 1 && s0 < mid && mid < s1 && unbalanced(a, b, s0, s1)) {
+    --*budget;  // one segment becomes two
+    balanceBreaks(a, b, s0, mid, depth + 1, budget, out);
+    balanceBreaks(a, b, mid, s1, depth + 1, budget, out);
     return;
   }
   out->push_back(s1);
@@ -1285,15 +1287,26 @@ std::vector<double> segmentBreaks(const MovingEllipsoid& a, const MovingEllipsoi
 }
 
 // The segments the solver cuts [0, t_max] into: the breaks of both piecewise motions, each piece
-// interval refined by balanceBreaks (skipped when both motions are single pieces from poses).
-std::vector<double> solverBreaks(const MovingEllipsoid& a, const MovingEllipsoid& b, double tmax, bool from_poses) {
+// interval refined by balanceBreaks (skipped when both motions are single pieces from poses) into
+// at most kCcdMaxBalanceSegments segments. `piece_starts`, when given, receives for each segment
+// whether it begins a piece (where the work cap kCcdMaxWork starts afresh).
+std::vector<double> solverBreaks(const MovingEllipsoid& a, const MovingEllipsoid& b, double tmax, bool from_poses,
+                                 std::vector<bool>* piece_starts = nullptr) {
   const std::vector<double> piece_breaks = segmentBreaks(a, b, tmax);
   std::vector<double> breaks{piece_breaks.front()};
   for (std::size_t k = 0; k + 1 < piece_breaks.size(); ++k) {
+    const std::size_t first = breaks.size() - 1;  // index of the piece's first segment
     if (from_poses) {
       breaks.push_back(piece_breaks[k + 1]);
     } else {
-      balanceBreaks(a, b, piece_breaks[k], piece_breaks[k + 1], 0, &breaks);
+      // The segment cap holds per piece, as the work cap does: until session 53 it counted every
+      // break of the query, so a motion of more than 256 pieces got no balance breaks after them.
+      int budget = tolerance::kCcdMaxBalanceSegments;
+      balanceBreaks(a, b, piece_breaks[k], piece_breaks[k + 1], 0, &budget, &breaks);
+    }
+    if (piece_starts) {
+      piece_starts->resize(breaks.size() - 1, false);
+      (*piece_starts)[first] = true;
     }
   }
   return breaks;
@@ -1373,17 +1386,28 @@ EllipsoidCcdResult continuousCollideEllipsoids(const MovingEllipsoid& a, const M
     // The common case: one segment, no copies.
     return solveSegment(a, a.motion.pieces().front(), b, b.motion.pieces().front(), 1.0, options);
   }
-  const std::vector<double> breaks = solverBreaks(a, b, options.t_max, from_poses);
+  std::vector<bool> piece_starts;
+  const std::vector<double> breaks = solverBreaks(a, b, options.t_max, from_poses, &piece_starts);
   total.segments = static_cast<int>(breaks.size()) - 1;
+  int piece_work = 0;  // work spent on the current piece of the motions so far
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const double s0 = breaks[k], s1 = breaks[k + 1], w = s1 - s0;
     CcdOptions local = options;
     local.t_max = 1.0;
     const bool whole = s0 == 0.0 && s1 == 1.0;  // single pieces over [0, 1]: no copies
+    // The work cap holds per piece of the motions (shared by the piece's balance segments), as
+    // the region and dimension-reduction engines' caps do: a keyframed motion gets the answers
+    // its pieces would get one by one. Until session 53 it was shared by the whole query, so a
+    // motion of some hundreds of near-contact pieces ran out of it part way (unresolved contact
+    // reported over the rest of [0, t_max]).
+    if (piece_starts[k]) piece_work = 0;
     const EllipsoidCcdResult r =
-        whole ? solveSegment(a, a.motion.pieces().front(), b, b.motion.pieces().front(), 1.0, local, total.work)
-              : solveSegment(a, a.motion.restricted(s0, s1), b, b.motion.restricted(s0, s1), 1.0, local, total.work);
-    total.work = r.work;  // r started from total.work: the cap is shared by all segments
+        whole ? solveSegment(a, a.motion.pieces().front(), b, b.motion.pieces().front(), 1.0, local, piece_work)
+              : solveSegment(a, a.motion.restricted(s0, s1), b, b.motion.restricted(s0, s1), 1.0, local, piece_work);
+    // r started from piece_work; the sum over pieces saturates (more than 10^5 capped pieces).
+    total.work = static_cast<int>(std::min<long long>(std::numeric_limits<int>::max(),
+                                                      static_cast<long long>(total.work) + (r.work - piece_work)));
+    piece_work = r.work;
     total.degree_t = std::max(total.degree_t, r.degree_t);
     total.near_tangent = total.near_tangent || r.near_tangent;
     total.unresolved = total.unresolved || r.unresolved;

@@ -628,6 +628,60 @@ TEST(EllipsoidCcd, KeyframeMotionsAgreeWithTheOracle) {
   }
 }
 
+// A keyframed orbit of n pieces: b (radii 0.5, 0.3, 0.4, its long axis radial) keyframed on a
+// circle of radius 2.5 + g around a (radii 2, 2, 0.5). Each piece moves b's centre along a chord
+// that cuts a's equator circle by the sagitta less g, so every piece collides inside and every
+// keyframe is separate by g. 512 pieces need about 27,000 units of work: the work cap, shared
+// by the whole query until session 53, ran out after about 380 pieces (unresolved contact
+// reported over the rest); it now holds per piece.
+TEST(EllipsoidCcd, WorkCapHoldsPerPieceSoEveryPieceOfALongKeyframedOrbitIsDecided) {
+  constexpr int n = 512;
+  const double sagitta = 2.5 * (1.0 - std::cos(M_PI / n));
+  const double g = 0.999 * sagitta;
+  std::vector<double> times;
+  std::vector<Eigen::Isometry3d> pa, pb;
+  for (int i = 0; i <= n; ++i) {
+    const double theta = 2.0 * M_PI * i / n;
+    times.push_back(i == n ? 1.0 : static_cast<double>(i) / n);
+    pa.push_back(Eigen::Isometry3d::Identity());
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    pb.push_back(pose(R, (2.5 + g) * Eigen::Vector3d(std::cos(theta), std::sin(theta), 0.0)));
+  }
+  const MovingEllipsoid A{bodyEllipsoid(Eigen::Vector3d(2.0, 2.0, 0.5)), PiecewiseMotion::fromKeyframes(times, pa)};
+  const MovingEllipsoid B{bodyEllipsoid(Eigen::Vector3d(0.5, 0.3, 0.4)), PiecewiseMotion::fromKeyframes(times, pb)};
+  // The premises, from the evaluated motion only: at each piece's middle a point of b (its support
+  // point towards a's centre, in the plane z = 0) lies strictly inside a's equator circle; at each
+  // keyframe b's support towards a's centre stays g outside it.
+  auto innermost = [&](double t) {  // b's point nearest a's axis along the radial direction
+    const Eigen::Matrix4d T = B.motion.evaluate(t);
+    const Eigen::Vector3d c = T.block<3, 1>(0, 3);
+    const Eigen::Vector3d u = Eigen::Vector3d(c.x(), c.y(), 0.0).normalized();
+    const Eigen::Matrix3d L = T.topLeftCorner<3, 3>() * Eigen::Vector3d(0.5, 0.3, 0.4).asDiagonal();
+    const Eigen::Vector3d Ltu = L.transpose() * u;
+    return Eigen::Vector3d(c - L * Ltu / Ltu.norm());  // support point of b in direction -u
+  };
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d mid = innermost((k + 0.5) / n);
+    ASSERT_LT(mid.head<2>().norm(), 2.0 - 5e-4 * sagitta) << "piece " << k;  // (2.5 + g) cos(pi / n) - 0.5
+    ASSERT_LT(std::abs(mid.z()), 1e-12);
+    ASSERT_NEAR(innermost(static_cast<double>(k) / n).head<2>().norm(), 2.0 + g, 1e-12) << "keyframe " << k;
+  }
+  const EllipsoidCcdResult r = continuousCollideEllipsoids(A, B);
+  EXPECT_TRUE(r.collide);
+  EXPECT_FALSE(r.unresolved);
+  EXPECT_GT(r.work, tolerance::kCcdMaxWork);  // more than one cap's worth over the query
+  ASSERT_EQ(r.collision_intervals.size(), static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    const CcdInterval& i = r.collision_intervals[k];
+    EXPECT_GT(i.begin, static_cast<double>(k) / n) << "piece " << k;
+    EXPECT_LT(i.begin, (k + 0.5) / n) << "piece " << k;
+    EXPECT_GT(i.end, (k + 0.5) / n) << "piece " << k;
+    EXPECT_LT(i.end, (k + 1.0) / n) << "piece " << k;
+  }
+  ASSERT_TRUE(r.first_contact_time.has_value());
+  EXPECT_EQ(*r.first_contact_time, r.collision_intervals.front().begin);
+}
+
 TEST(EllipsoidCcd, AffineInterpolantIsExactForPureTranslations) {
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> U(-1.0, 1.0);

@@ -107,8 +107,9 @@ struct EllipsoidCcdResult {
   int culled_by = 0;
   /// Degree of F(u, t) in t (0 when culled).
   int degree_t = 0;
-  /// State evaluations plus Bezier shoots plus overlap-certificate slabs spent (over all
-  /// segments; capped by tolerance::kCcdMaxWork).
+  /// State evaluations plus Bezier shoots plus overlap-certificate slabs spent, summed over all
+  /// segments (saturating at INT_MAX); tolerance::kCcdMaxWork caps the work of each piece of the
+  /// motions.
   int work = 0;
   /// Segments [0, t_max] was cut into and solved one by one: the breaks of piecewise motions
   /// plus the balance breaks (tolerance::kCcdBalanceRatio). 1 for two single-piece motions
