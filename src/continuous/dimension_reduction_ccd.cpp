@@ -29,23 +29,75 @@ using namespace tolerance_reduction;
 
 namespace {
 
-// Polynomial vectors and matrices in the piece's time u: power-basis coefficient lists.
+// Polynomials in the piece's time u are kept in the Bernstein basis of [0, 1] (a list of n + 1
+// coefficients: degree n), scalars, vectors and matrices alike. Products and degree elevation in
+// that basis have positive weights, so their rounding stays relative to the polynomials' values
+// on [0, 1]. The power basis does not: a factor such as (1 - u)^n has power coefficients of sum
+// (1 + u)^n at u, and the determinants of the pencils (degree 48 in u for two bodies that both
+// rotate) lost up to 12 digits to that cancellation near u = 1, enough to move a tangency by
+// 2e-3 of the piece and miss the contact (docs/reliability.md finding 45).
 using PVec = std::vector<Eigen::Vector4d>;
 using PMat = std::vector<Eigen::Matrix4d>;
 
-Eigen::Vector4d at(const PVec& v, double u) {
-  Eigen::Vector4d r = Eigen::Vector4d::Zero();
-  for (std::size_t k = v.size(); k-- > 0;) r = r * u + v[k];
-  return r;
+// Binomial coefficients C(n, 0..n) (exact in double up to n = 56, relative rounding beyond).
+std::vector<double> binomials(std::size_t n) {
+  std::vector<double> c(n + 1, 1.0);
+  for (std::size_t k = 0; k < n; ++k) c[k + 1] = c[k] * static_cast<double>(n - k) / static_cast<double>(k + 1);
+  return c;
 }
-Eigen::Matrix4d at(const PMat& m, double u) {
-  Eigen::Matrix4d r = Eigen::Matrix4d::Zero();
-  for (std::size_t k = m.size(); k-- > 0;) r = r * u + m[k];
+
+// de Casteljau evaluation at u (stable: convex combinations only for u in [0, 1]).
+template <class T>
+T bernsteinAt(std::vector<T> b, double u) {
+  for (std::size_t n = b.size(); n-- > 1;)
+    for (std::size_t i = 0; i < n; ++i) b[i] = (1.0 - u) * b[i] + u * b[i + 1];
+  return b[0];
+}
+Eigen::Vector4d at(const PVec& v, double u) { return v.empty() ? Eigen::Vector4d::Zero() : bernsteinAt(v, u); }
+Eigen::Matrix4d at(const PMat& m, double u) { return m.empty() ? Eigen::Matrix4d::Zero() : bernsteinAt(m, u); }
+
+// Power-basis coefficients on [0, 1] (a motion's coefficient matrices) to the Bernstein basis of
+// the same degree: b_i = sum_{k <= i} C(i, k) / C(n, k) a_k.
+PMat bernsteinFromPower(const PMat& a) {
+  if (a.empty()) return a;
+  const std::size_t n = a.size() - 1;
+  const std::vector<double> cn = binomials(n);
+  PMat b(a.size(), Eigen::Matrix4d::Zero());
+  for (std::size_t i = 0; i <= n; ++i) {
+    const std::vector<double> ci = binomials(i);
+    for (std::size_t k = 0; k <= i; ++k) b[i] += (ci[k] / cn[k]) * a[k];
+  }
+  return b;
+}
+
+// The product weight of B_i^r B_j^s = w B_{i+j}^{r+s}: C(r, i) C(s, j) / C(r + s, i + j).
+struct ProductWeights {
+  std::vector<double> cr, cs, crs;
+  ProductWeights(std::size_t r, std::size_t s) : cr(binomials(r)), cs(binomials(s)), crs(binomials(r + s)) {}
+  double operator()(std::size_t i, std::size_t j) const { return cr[i] * cs[j] / crs[i + j]; }
+};
+
+// A(u) B(u) for Bernstein matrix polynomials.
+PMat product(const PMat& A, const PMat& B) {
+  if (A.empty() || B.empty()) return {};
+  const ProductWeights w(A.size() - 1, B.size() - 1);
+  PMat r(A.size() + B.size() - 1, Eigen::Matrix4d::Zero());
+  for (std::size_t i = 0; i < A.size(); ++i)
+    for (std::size_t j = 0; j < B.size(); ++j) r[i + j] += w(i, j) * (A[i] * B[j]);
   return r;
 }
 
-// A polynomial and its companion on absolute values (sum over the formula's terms of |products|):
-// the magnitude against which "zero" is judged.
+// P(u)^T Q P(u), symmetrised: a quadric posed by P.
+PMat congruenceOf(const Eigen::Matrix4d& Q, const PMat& P) {
+  PMat Pt;
+  for (const Eigen::Matrix4d& M : P) Pt.push_back(M.transpose());
+  PMat S = product(Pt, product(PMat{Q}, P));
+  for (Eigen::Matrix4d& M : S) M = 0.5 * (M + M.transpose()).eval();
+  return S;
+}
+
+// A polynomial and its companion on absolute values (the same formula on |coefficients| with
+// the basis' positive weights): the magnitude against which "zero" is judged.
 struct Poly {
   std::vector<double> c, mag;
   void add(std::size_t k, double v, double m) {
@@ -58,21 +110,44 @@ struct Poly {
   }
 };
 
+// p raised to degree n >= its own: c'_i = sum_j C(r, j) C(n - r, i - j) / C(n, i) c_j.
+Poly elevated(const Poly& p, std::size_t n) {
+  if (p.c.empty() || p.c.size() == n + 1) return p;
+  const std::size_t r = p.c.size() - 1;
+  const ProductWeights w(r, n - r);
+  Poly e;
+  e.c.assign(n + 1, 0.0);
+  e.mag.assign(n + 1, 0.0);
+  for (std::size_t j = 0; j <= r; ++j)
+    for (std::size_t q = 0; q <= n - r; ++q) {
+      e.c[j + q] += w(j, q) * p.c[j];
+      e.mag[j + q] += w(j, q) * p.mag[j];
+    }
+  return e;
+}
+
 Poly operator*(const Poly& a, const Poly& b) {
   Poly r;
   if (a.c.empty() || b.c.empty()) return r;
+  const ProductWeights w(a.c.size() - 1, b.c.size() - 1);
   r.c.assign(a.c.size() + b.c.size() - 1, 0.0);
   r.mag.assign(r.c.size(), 0.0);
   for (std::size_t i = 0; i < a.c.size(); ++i)
     for (std::size_t j = 0; j < b.c.size(); ++j) {
-      r.c[i + j] += a.c[i] * b.c[j];
-      r.mag[i + j] += a.mag[i] * b.mag[j];
+      const double wij = w(i, j);
+      r.c[i + j] += wij * a.c[i] * b.c[j];
+      r.mag[i + j] += wij * a.mag[i] * b.mag[j];
     }
   return r;
 }
-Poly operator+(Poly a, const Poly& b) {
-  for (std::size_t k = 0; k < b.c.size(); ++k) a.add(k, b.c[k], b.mag[k]);
-  return a;
+Poly operator+(const Poly& a, const Poly& b) {
+  if (a.c.empty()) return b;
+  if (b.c.empty()) return a;
+  const std::size_t n = std::max(a.c.size(), b.c.size()) - 1;
+  Poly r = elevated(a, n);
+  const Poly e = elevated(b, n);
+  for (std::size_t k = 0; k <= n; ++k) r.add(k, e.c[k], e.mag[k]);
+  return r;
 }
 Poly operator-(const Poly& a) {
   Poly r = a;
@@ -99,24 +174,35 @@ Poly entry(const PMat& m, int i, int j) {
 }
 Poly dot(const PVec& a, const PVec& b) {
   Poly p;
+  if (a.empty() || b.empty()) return p;
+  const ProductWeights w(a.size() - 1, b.size() - 1);
   for (std::size_t k = 0; k < a.size(); ++k)
-    for (std::size_t l = 0; l < b.size(); ++l) p.add(k + l, a[k].dot(b[l]), a[k].cwiseAbs().dot(b[l].cwiseAbs()));
+    for (std::size_t l = 0; l < b.size(); ++l)
+      p.add(k + l, w(k, l) * a[k].dot(b[l]), w(k, l) * a[k].cwiseAbs().dot(b[l].cwiseAbs()));
   return p;
 }
 // X^T S Y.
 Poly form(const PVec& X, const PMat& S, const PVec& Y) {
   Poly p;
-  for (std::size_t i = 0; i < X.size(); ++i)
-    for (std::size_t j = 0; j < S.size(); ++j) {
+  if (X.empty() || S.empty() || Y.empty()) return p;
+  const std::size_t r = X.size() - 1, s = S.size() - 1, t = Y.size() - 1;
+  const std::vector<double> cr = binomials(r), cs = binomials(s), ct = binomials(t), cn = binomials(r + s + t);
+  for (std::size_t i = 0; i <= r; ++i)
+    for (std::size_t j = 0; j <= s; ++j) {
       const Eigen::Vector4d SX = S[j].transpose() * X[i], SXa = S[j].cwiseAbs().transpose() * X[i].cwiseAbs();
-      for (std::size_t k = 0; k < Y.size(); ++k) p.add(i + j + k, SX.dot(Y[k]), SXa.dot(Y[k].cwiseAbs()));
+      for (std::size_t k = 0; k <= t; ++k) {
+        const double w = cr[i] * cs[j] * ct[k] / cn[i + j + k];
+        p.add(i + j + k, w * SX.dot(Y[k]), w * SXa.dot(Y[k].cwiseAbs()));
+      }
     }
   return p;
 }
 PVec scaled(const PVec& v, const Poly& s) {  // s(u) v(u)
+  if (v.empty() || s.c.empty()) return {};
+  const ProductWeights w(v.size() - 1, s.c.size() - 1);
   PVec r(v.size() + s.c.size() - 1, Eigen::Vector4d::Zero());
   for (std::size_t i = 0; i < v.size(); ++i)
-    for (std::size_t j = 0; j < s.c.size(); ++j) r[i + j] += s.c[j] * v[i];
+    for (std::size_t j = 0; j < s.c.size(); ++j) r[i + j] += (w(i, j) * s.c[j]) * v[i];
   return r;
 }
 
@@ -557,7 +643,7 @@ Posed pose(const Body& b, const std::vector<Eigen::Matrix4d>& P, const std::vect
     for (const Eigen::Matrix4d& M : P) v.push_back(M.transpose() * p);
     return v;
   };
-  auto quadric = [&](const Eigen::Matrix4d& Q) { return coefficientMatrices(congruence(Q, P)); };
+  auto quadric = [&](const Eigen::Matrix4d& Q) { return congruenceOf(Q, P); };
   for (const Eigen::Matrix4d& Q : b.sgn) o.atoms.push_back(quadric(Q));
   for (const Eigen::Matrix4d& Q : b.raw) o.raw.push_back(quadric(Q));
   for (const BoundaryFace& f : b.el.faces) o.planes.push_back(f.planar() ? covector(planeOf(b.sgn[f.atom])) : PVec{});
@@ -669,21 +755,22 @@ double refineNumerically(const std::function<double(double)>& value, double u0) 
 // exceeds total_cap (the piece's share: kReductionMaxPencilBoxes more than at its start).
 bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long long total_cap,
                    const std::function<double(double, std::optional<double>)>& accept) {
+  // F(x, u) = sum_k g_k(u) (x - 1)^k x^(m - k) = sum_k (-1)^k g_k(u) B_{m-k}^m(x) / C(m, k): its
+  // Bernstein coefficients in x come straight from the g_k (already Bernstein in u).
   const int m = static_cast<int>(g.size()) - 1;
   std::size_t d = 1;
   for (const Poly& p : g) d = std::max(d, p.c.size());
+  const std::vector<double> cm = binomials(static_cast<std::size_t>(m));
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(m + 1, d);
-  for (int k = 0; k <= m; ++k)
-    for (int i = 0; i <= k; ++i) {
-      double binom = 1.0;
-      for (int q = 1; q <= i; ++q) binom = binom * (k - q + 1) / q;
-      const double w = binom * (((k - i) % 2) ? -1.0 : 1.0);
-      for (std::size_t j = 0; j < g[k].c.size(); ++j) P(i + m - k, j) += w * g[k].c[j];
-    }
+  for (int k = 0; k <= m; ++k) {
+    if (g[k].c.empty()) continue;
+    const Poly e = elevated(g[k], d - 1);
+    for (std::size_t j = 0; j < d; ++j) P(m - k, j) = ((k % 2) ? -1.0 : 1.0) * e.c[j] / cm[k];
+  }
   const double scale = P.cwiseAbs().maxCoeff();
-  if (scale == 0.0) return false;
+  if (scale == 0.0 || !std::isfinite(scale)) return false;
   P /= scale;
-  const BivariateBernstein F = BivariateBernstein::fromPower(P), Fx = F.derivativeU();
+  const BivariateBernstein F(P), Fx = F.derivativeU();
   const BivariateBernstein Fu = F.derivativeT(), Fxx = Fx.derivativeU(), Fxu = Fx.derivativeT();
   const double pad = 1e-12 * F.coefficients().cwiseAbs().maxCoeff(), padx = 1e-12 * Fx.coefficients().cwiseAbs().maxCoeff();
   std::vector<std::array<double, 4>> stack{{0.0, 1.0, 0.0, 1.0}};
@@ -836,8 +923,9 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
     // kReductionMaxPencilBoxes boxes (docs/reliability.md finding 41).
     const long long piece_cap = res.pencil_boxes + kReductionMaxPencilBoxes;
     const MotionMatrix ma = a.motion.restricted(s0, s1), mb = b.motion.restricted(s0, s1);
-    const std::vector<Eigen::Matrix4d> P = multiplyCoefficients(mb.inverseCoefficients(), ma.matrixCoefficients());
-    const std::vector<Eigen::Matrix4d> Pinv = multiplyCoefficients(ma.inverseCoefficients(), mb.matrixCoefficients());
+    // The relative motion and its inverse in the Bernstein basis (file comment at PVec).
+    const PMat P = product(bernsteinFromPower(mb.inverseCoefficients()), bernsteinFromPower(ma.matrixCoefficients()));
+    const PMat Pinv = product(bernsteinFromPower(ma.inverseCoefficients()), bernsteinFromPower(mb.matrixCoefficients()));
     if (2 * static_cast<int>(P.size() - 1) > tolerance_region::kRegionCcdMaxDegree)
       throw CcdDegreeError("continuousCollideRegionsByReduction: relative motion of degree " + std::to_string(P.size() - 1) +
                                " exceeds kRegionCcdMaxDegree / 2 = " + std::to_string(tolerance_region::kRegionCcdMaxDegree / 2),
@@ -974,10 +1062,10 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
           const PMat& S = pc.atoms[bc.edges[ic].quadric];
           const PVec &U = pl.edgeU[il], &D = pl.edgeD[il];
           // X = (π.D) U - (π.U) D: the line's point in the conic's plane.
+          // U and D are points of one body: X and Y have the same Bernstein degree.
           PVec X = scaled(U, dot(pi, D));
           const PVec Y = scaled(D, dot(pi, U));
-          X.resize(std::max(X.size(), Y.size()), Eigen::Vector4d::Zero());
-          for (std::size_t k = 0; k < Y.size(); ++k) X[k] -= Y[k];
+          for (std::size_t k = 0; k < Y.size() && k < X.size(); ++k) X[k] -= Y[k];
           task.g = form(X, S, X);
           task.value = [X, S](double u) {
             const Eigen::Vector4d x = at(X, u);
@@ -1216,14 +1304,14 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
       std::vector<double> c = g.c;
       const double inv = 1.0 / cmax;
       for (double& v : c) v *= inv;
-      const BernsteinPolynomial bp = BernsteinPolynomial::fromPower(Polynomial(c));
+      const BernsteinPolynomial bp(c);
       auto seed = [&](double u) { return tasks[k].value ? refineNumerically(tasks[k].value, u) : u; };
       for (const RootInterval& r : isolateRoots(bp, kReductionRootWidth)) cands.push_back({seed(refined(bp, r)), k});
       // Grazing candidates: extrema with |g| near zero.
       const BernsteinPolynomial dp = bp.derivative();
       std::vector<double> mag = g.mag;
       for (double& v : mag) v *= inv;
-      const Polynomial pm(mag);
+      const BernsteinPolynomial pm(mag);
       for (const RootInterval& r : isolateRoots(dp, kReductionRootWidth)) {
         const double u = refined(dp, r);
         if (std::fabs(bp.evaluate(u)) <= kReductionNearRootRelative * std::max(pm(u), 1e-300)) cands.push_back({seed(u), k});
@@ -1262,9 +1350,19 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
       }
       return false;
     };
+    // A degenerate candidate (a conic lying in a face's plane) makes the answer Undecided unless
+    // a candidate within kReductionDegenerateWindow after it verifies: the same contact seen
+    // through an exact root (a cone's apex landing on the face whose plane then holds the apex's
+    // point conic, while the conic's own graze is located to about sqrt(eps) only).
+    double degenerate_at = 2.0;
     for (const Candidate& cd : cands) {
-      if (verify(tasks[cd.task], cd.u)) break;
-      if (!degenerate_reason.empty()) break;
+      if (!degenerate_reason.empty() && cd.u > degenerate_at + kReductionDegenerateWindow) break;
+      const bool had_degenerate = !degenerate_reason.empty();
+      if (verify(tasks[cd.task], cd.u)) {
+        degenerate_reason.clear();
+        break;
+      }
+      if (!had_degenerate && !degenerate_reason.empty()) degenerate_at = cd.u;
     }
     // Pencil tasks: their seeds, only before the best contact so far.
     for (std::size_t k = 0; k < tasks.size() && degenerate_reason.empty(); ++k) {

@@ -405,8 +405,56 @@ TEST(DimensionReductionCcd, LongConesAgreeWithTheSpaceTimeEngineOnManyRandomRigi
   compareWithEngine(77, 160, true);
 }
 
+// Two balls, both turning about their centres while they move: the first contact is where the
+// centres' segments come within ra + rb, in closed form. Both rotations make the pencil's
+// coefficients polynomials of degree 48 in u; expanded in the power basis they lost up to 12
+// digits near u = 1 and the tangency moved by up to 2e-3, so that its seed failed verification
+// and the contact was missed (72 of 300 such pairs; docs/reliability.md finding 45).
+TEST(DimensionReductionCcd, TwoTurningBallsMeetAtTheClosedFormTime) {
+  std::mt19937 rng(45);
+  std::uniform_real_distribution<double> U(-1.0, 1.0), R(0.2, 1.0);
+  auto turn = [&]() { return Eigen::Quaterniond(Eigen::Vector4d(U(rng), U(rng), U(rng), U(rng)).normalized()).toRotationMatrix(); };
+  int hits = 0, checked = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const double ra = R(rng), rb = R(rng);
+    const Eigen::Vector3d pa0(U(rng), U(rng), U(rng)), pa1(U(rng), U(rng), U(rng));
+    const Eigen::Vector3d pb0 = pa0 + 3.0 * Eigen::Vector3d(U(rng), U(rng), U(rng)).normalized();
+    const Eigen::Vector3d pb1 = pa1 + 1.2 * (ra + rb) * Eigen::Vector3d(U(rng), U(rng), U(rng));
+    const Eigen::Matrix3d Ra0 = turn(), Ra1 = turn(), Rb0 = turn(), Rb1 = turn();
+    const MovingRegion a{QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(ra))),
+                         centred(Eigen::Vector3d::Constant(ra)), moving(Ra0, pa0, Ra1, pa1)};
+    const MovingRegion b{QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(rb))),
+                         centred(Eigen::Vector3d::Constant(rb)), moving(Rb0, pb0, Rb1, pb1)};
+    // |d(t)|^2 = (ra + rb)^2 with d(t) = D0 + t (D1 - D0), the centres' offset (linear paths).
+    const Eigen::Vector3d D0 = pb0 - pa0, dD = (pb1 - pa1) - D0;
+    const double qa = dD.squaredNorm(), qb = D0.dot(dD), qc = D0.squaredNorm() - (ra + rb) * (ra + rb);
+    ASSERT_GT(qc, 0.0);  // apart at t = 0 by construction
+    const double disc = qb * qb - qa * qc;
+    if (std::fabs(disc) <= 1e-6 * qb * qb) continue;  // a graze: not this test's subject
+    double toi = 2.0;
+    if (disc > 0.0) {
+      const double t = (-qb - std::sqrt(disc)) / qa;
+      if (t >= 0.0 && t <= 1.0) toi = t;
+    }
+    ++checked;
+    const ReductionCcdResult r = continuousCollideRegionsByReduction(a, b);
+    ASSERT_EQ(r.status, ReductionStatus::Decided) << "trial " << trial << ": " << r.reason;
+    ASSERT_EQ(r.collide, toi <= 1.0) << "trial " << trial << " closed form " << toi << " reduction " << r.time;
+    if (!r.collide) continue;
+    ++hits;
+    EXPECT_NEAR(r.time, toi, 1e-9) << "trial " << trial;
+    // The contact point lies on the segment of the centres at ra from a's.
+    const Eigen::Vector3d ca = (1.0 - r.time) * pa0 + r.time * pa1, cb = (1.0 - r.time) * pb0 + r.time * pb1;
+    EXPECT_LE((r.point - (ca + ra / (ra + rb) * (cb - ca))).norm(), 1e-7) << "trial " << trial;
+  }
+  EXPECT_GE(checked, 50);
+  EXPECT_GE(hits, 10);
+}
+
 // A cone falling tip first onto a floor: its apex is the first contact, at the closed-form time,
-// tilted or not (a face-vertex subproblem of the apex, labelled "A<face>").
+// tilted or not. The contact is the apex's: its face-vertex subproblem ("A<face>"), or the point
+// conic that the cap plane through the apex cuts from the cone (an edge "E<k>", which meets the
+// floor at the same moment); the point is the apex either way.
 TEST(DimensionReductionCcd, ConeApexLandsOnAFloorAtTheClosedFormTime) {
   const double c = 0.6;
   const MovingRegion floor{cuboid({5, 5, 1}), centred({5, 5, 1}), still()};  // top face z = 1
@@ -421,8 +469,10 @@ TEST(DimensionReductionCcd, ConeApexLandsOnAFloorAtTheClosedFormTime) {
     EXPECT_NEAR(r.time, (4.0 - (1.0 + drop)) / 6.0, 1e-9) << tilt;
     EXPECT_NEAR(r.point.z(), 1.0, 1e-7);
     EXPECT_NEAR(r.point.y(), 0.1 - c * std::sin(tilt), 1e-7);
-    EXPECT_EQ(r.subproblem.type, SubproblemType::FaceVertex);
-    EXPECT_EQ(r.label_b.substr(0, 1), "A") << r.label_b;
+    if (r.label_b.substr(0, 1) == "A")
+      EXPECT_EQ(r.subproblem.type, SubproblemType::FaceVertex);
+    else
+      EXPECT_EQ(r.label_b.substr(0, 1), "E") << r.label_b;
   }
 }
 

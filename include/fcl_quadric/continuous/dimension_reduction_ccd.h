@@ -97,6 +97,11 @@ constexpr double kReductionZeroRelative = 1e-11;
 /// elsewhere it is far below that band. Near an apex it accepts points within about 1e-7 of the
 /// size (f is second order there). Dimensionless.
 constexpr double kReductionEvalRelative = 1e-14;
+/// A candidate whose contact point is degenerate (a conic lying in a face's plane within the
+/// band) leaves the answer Undecided unless another candidate verifies at most this much later
+/// in the piece's time; that contact is then the answer (its time may be late by up to this
+/// much). About 10 sqrt(eps): a graze's double root is located to about sqrt(eps) only.
+constexpr double kReductionDegenerateWindow = 1e-7;
 /// Pencil subproblems: boxes of (x, u) narrower than this in both are candidates.
 constexpr double kPencilSeedWidth = 1e-7;
 /// Pencil subproblems: work cap of one search (boxes); reaching it makes the answer Undecided.
