@@ -504,11 +504,23 @@ Body makeBody(const MovingRegion& m) {
   b.sgn = m.region.signedAtoms();
   b.el = m.elements ? *m.elements : boundaryElements(m.region, *m.box);
   b.singular.assign(b.sgn.size(), false);
+  // Rank is judged on the quadric in coordinates of the body's size (x = h x'), by its smallest
+  // |eigenvalue| against its largest. The former test, |det Q| <= 1e-12 max|Q|^4 in the body's
+  // own units, called an ellipsoid of radius 500 singular (det 1 / r^6), skipped its face-plane
+  // subproblems as a cylinder's, and missed a box's face landing on it (finding 46).
+  const double extent = (m.box->hi - m.box->lo).cwiseAbs().maxCoeff();
+  const double h = std::ldexp(1.0, std::ilogb(extent > 0.0 && std::isfinite(extent) ? extent : 1.0));
+  const Eigen::Matrix4d Dh = Eigen::Vector4d(h, h, h, 1.0).asDiagonal();
   for (std::size_t fi = 0; fi < b.el.faces.size(); ++fi) {
     const BoundaryFace& f = b.el.faces[fi];
     const Eigen::Matrix4d& Q = b.sgn[f.atom];
     if (f.planar() && !detail::isPlanarAtom(Q)) b.unsupported = "a pair of planes as one atom";
-    if (!f.planar() && std::fabs(Q.determinant()) <= 1e-12 * std::pow(Q.cwiseAbs().maxCoeff(), 4)) {
+    bool rank_deficient = false;
+    if (!f.planar()) {
+      const Eigen::Vector4d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(Dh * Q * Dh, Eigen::EigenvaluesOnly).eigenvalues().cwiseAbs();
+      rank_deficient = ev.minCoeff() <= 1e-12 * ev.maxCoeff();
+    }
+    if (rank_deficient) {
       // A singular quadric: a cylinder (null vector at infinity), or a cone whose apex (a finite
       // null vector) is a point contact of its own, not a vertex of the boundary elements.
       b.singular[f.atom] = true;
@@ -799,6 +811,9 @@ bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long lo
         const double det = fx * fxu - fu * fxx;
         if (det == 0.0 || !std::isfinite(det)) break;
         const double dx = (f * fxu - fu * fx) / det, du = (fx * fx - f * fxx) / det;
+        // A near-singular Jacobian (a thin shape's flat pencil) can throw the step far off or to
+        // infinity: stop there, and the box centre is the seed.
+        if (!std::isfinite(dx) || !std::isfinite(du) || std::fabs(x - dx) > 2.0 || std::fabs(u - du) > 2.0) break;
         x -= dx;
         u -= du;
         if (std::fabs(du) <= 1e-15 && std::fabs(dx) <= 1e-15) {
@@ -891,7 +906,16 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
       return res;
     }
   const double size = std::max((a.box->hi - a.box->lo).maxCoeff(), (b.box->hi - b.box->lo).maxCoeff());
-  const double band = kReductionVerifyRelative * size;
+  // The subproblems are set up in a's frame scaled by 1 / unit (x = unit x'; unit the power of two
+  // nearest the pair's size): a pencil pairs matrices whose entries scale as 1 / size^2 against
+  // constants, and its coefficients in λ spread by size^(2k) -- at size 100 to 1000 the
+  // comparisons of its coefficients with each other (structural zeros) and the absolute
+  // thresholds misjudged it and tangencies came late (finding 46). Unit size makes the setup the
+  // one the tests exercise at size 1; times are unchanged, points are scaled back.
+  const double unit = std::ldexp(1.0, std::ilogb(size > 0.0 && std::isfinite(size) ? size : 1.0));
+  const Eigen::Matrix4d Dscale = Eigen::Vector4d(unit, unit, unit, 1.0).asDiagonal();
+  const Eigen::Matrix4d Dinv = Eigen::Vector4d(1.0 / unit, 1.0 / unit, 1.0 / unit, 1.0).asDiagonal();
+  const double band = kReductionVerifyRelative * size / unit;
 
   // Start: the pair at t = 0 (static engine).
   {
@@ -924,13 +948,14 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
     const long long piece_cap = res.pencil_boxes + kReductionMaxPencilBoxes;
     const MotionMatrix ma = a.motion.restricted(s0, s1), mb = b.motion.restricted(s0, s1);
     // The relative motion and its inverse in the Bernstein basis (file comment at PVec).
-    const PMat P = product(bernsteinFromPower(mb.inverseCoefficients()), bernsteinFromPower(ma.matrixCoefficients()));
-    const PMat Pinv = product(bernsteinFromPower(ma.inverseCoefficients()), bernsteinFromPower(mb.matrixCoefficients()));
+    // X_b ~ P X'_a and X'_a ~ Pinv X_b, X'_a = Dinv X_a (a's scaled frame, above).
+    const PMat P = product(bernsteinFromPower(mb.inverseCoefficients()), product(bernsteinFromPower(ma.matrixCoefficients()), PMat{Dscale}));
+    const PMat Pinv = product(PMat{Dinv}, product(bernsteinFromPower(ma.inverseCoefficients()), bernsteinFromPower(mb.matrixCoefficients())));
     if (2 * static_cast<int>(P.size() - 1) > tolerance_region::kRegionCcdMaxDegree)
       throw CcdDegreeError("continuousCollideRegionsByReduction: relative motion of degree " + std::to_string(P.size() - 1) +
                                " exceeds kRegionCcdMaxDegree / 2 = " + std::to_string(tolerance_region::kRegionCcdMaxDegree / 2),
                            2 * static_cast<int>(P.size() - 1), tolerance_region::kRegionCcdMaxDegree);
-    const Posed pa = pose(A, {Eigen::Matrix4d::Identity()}, {Eigen::Matrix4d::Identity()});
+    const Posed pa = pose(A, {Dscale}, {Dinv});
     const Posed pb = pose(B, P, Pinv);
 
     // The subproblems' polynomials and contact points.
@@ -1130,7 +1155,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
         }
         case SubproblemType::QuadricQuadric: {
           // §6.2.2 face-face: a double root of det(λ A - S(u)) (a's face A is constant).
-          const Eigen::Matrix4d Aq = A.sgn[A.el.faces[sp.index_a].atom];
+          const Eigen::Matrix4d Aq = Dscale * A.sgn[A.el.faces[sp.index_a].atom] * Dscale;
           const PMat& S = pb.atoms[B.el.faces[sp.index_b].atom];
           PolyMatrix M1(4, std::vector<Poly>(4)), M2(4, std::vector<Poly>(4));
           for (int i = 0; i < 4; ++i)
@@ -1205,7 +1230,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
           // b's conic on ℓ.
           const EdgeGeometry& ea = A.edges[sp.index_a];
           const Eigen::Matrix3d Ca = ea.conic;
-          const Eigen::Matrix<double, 4, 3> Ea = ea.basis;
+          const Eigen::Matrix<double, 4, 3> Ea = Dinv * ea.basis;  // the conic ea.conic is unchanged
           const PMat& Sb = pb.atoms[B.edges[sp.index_b].quadric];
           const PVec& pib = pb.edgePlane[sp.index_b];
           PolyMatrix M1(3, std::vector<Poly>(3)), M2(3, std::vector<Poly>(3));
@@ -1340,7 +1365,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
           best = u;
           res.time = s0 + (s1 - s0) * u;
           const Eigen::Matrix4d Xa = a.motion.evaluate(res.time);
-          res.point = Xa.topLeftCorner<3, 3>() * p.x + Xa.block<3, 1>(0, 3);
+          res.point = Xa.topLeftCorner<3, 3>() * (unit * p.x) + Xa.block<3, 1>(0, 3);
           res.subproblem = task.sp;
           res.label_a = elementLabel(task.sp.kind_a, task.sp.index_a);
           res.label_b = elementLabel(task.sp.kind_b, task.sp.index_b);

@@ -451,6 +451,32 @@ TEST(DimensionReductionCcd, TwoTurningBallsMeetAtTheClosedFormTime) {
   EXPECT_GE(hits, 10);
 }
 
+// A box lowered onto an ellipsoid, face down, turning about the vertical: its bottom face meets
+// the ellipsoid's top point at the closed-form time, at every size. At size 1000 the rank test of
+// the ellipsoid's quadric (|det Q| against max|Q|^4 in the body's units) called it singular, its
+// face-plane subproblems were skipped as a cylinder's, and the contact was missed (finding 46).
+TEST(DimensionReductionCcd, ABoxFaceLandsOnAnEllipsoidAtTheClosedFormTimeAtEverySize) {
+  for (const double size : {1.0, 1000.0, 1e5}) {
+    const Eigen::Vector3d radii = size * Eigen::Vector3d(0.5, 0.4, 0.3), half = size * Eigen::Vector3d(0.1, 0.1, 0.1);
+    const MovingRegion ellipsoid{QuadricRegion::atom(quadric::ellipsoid(radii)), centred(radii), still()};
+    const Eigen::Vector3d from = size * Eigen::Vector3d(0.03, -0.02, 1.0), to = size * Eigen::Vector3d(0.05, 0.01, 0.2);
+    const MovingRegion box{cuboid(half), centred(half),
+                           moving(rot(0.2, Eigen::Vector3d::UnitZ()), from, rot(1.4, Eigen::Vector3d::UnitZ()), to)};
+    // The bottom face z = c_z(t) - 0.1 size reaches the top point z = 0.3 size, which lies under
+    // the face throughout (|x|, |y| < 0.1 size - the face's lateral offset): c_z(t) = 0.4 size.
+    const double toi = (from.z() - 0.4 * size) / (from.z() - to.z());
+    for (const bool swap : {false, true}) {
+      const ReductionCcdResult r =
+          swap ? continuousCollideRegionsByReduction(box, ellipsoid) : continuousCollideRegionsByReduction(ellipsoid, box);
+      ASSERT_EQ(r.status, ReductionStatus::Decided) << size << ": " << r.reason;
+      ASSERT_TRUE(r.collide) << size;
+      EXPECT_NEAR(r.time, toi, 1e-9) << size << " swap " << swap;
+      EXPECT_LE((r.point - Eigen::Vector3d(0, 0, radii.z())).norm(), 1e-7 * size) << size << " swap " << swap;
+      EXPECT_EQ(r.subproblem.type, SubproblemType::QuadricPlane) << size;
+    }
+  }
+}
+
 // A cone falling tip first onto a floor: its apex is the first contact, at the closed-form time,
 // tilted or not. The contact is the apex's: its face-vertex subproblem ("A<face>"), or the point
 // conic that the cap plane through the apex cuts from the cone (an edge "E<k>", which meets the

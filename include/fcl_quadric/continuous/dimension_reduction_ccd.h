@@ -36,6 +36,10 @@
 ///    x in (0, 1), as the CCD function of thesis §5.3) are enclosed by Bernstein subdivision,
 ///    earliest u first, to boxes of 1e-7. A singular pencil (f identically zero: parallel
 ///    cylinders) has no isolated tangency: its contacts are lines, found on the bounding edges.
+/// Every polynomial in u (the relative motion, the posed elements, the conditions g, the pencils'
+/// coefficients and F) is kept in the Bernstein basis of the piece, whose products have positive
+/// weights: in the power basis the degree-48 pencils of two rotating bodies lost up to 12 digits
+/// to cancellation near u = 1 and missed contacts (docs/reliability.md finding 45).
 /// Every candidate (a root of g isolated on the Bernstein form, a local extremum of g within
 /// kReductionNearRootRelative of zero -- a graze that rounding could lift off zero --) is refined
 /// on the same condition evaluated at u from the elements at u (no expansion in u) to
