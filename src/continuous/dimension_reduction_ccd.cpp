@@ -720,6 +720,14 @@ struct Task {
   /// Pencil tasks: f(λ; u) without its structural zeros; the candidates come from
   /// tangencySeeds, searched after the other tasks' candidates (pruned by their best time).
   std::vector<Poly> pencil;
+  /// Pencil tasks: f(λ*; u) at the negative critical point λ* of f(·; u) where f is nearest to
+  /// zero (multipleRoot()), from the elements evaluated at u. It changes sign where the double
+  /// root λ* appears, as the discriminant does, but does not vanish identically when f has a
+  /// permanent multiple root elsewhere (two spheres: a positive one, the circle at infinity),
+  /// where the discriminant is rounding noise and cannot refine a seed: a shallow graze of two
+  /// turning balls, whose Newton solution does not converge (F_u -> 0), was missed
+  /// (docs/reliability.md finding 47).
+  std::function<double(double)> critical_value;
 };
 
 // A root of `value` near u0 (a root of the expanded polynomial): the nearest sign change within
@@ -873,6 +881,14 @@ void pencilTask(Task& task, const LPoly& f, std::function<std::vector<double>(do
     return std::vector<double>(c.begin() + range.first, c.begin() + range.second);
   };
   task.value = [stripped](double u) { return discriminant(stripped(u)); };
+  task.critical_value = [stripped](double u) {
+    const std::vector<double> c = stripped(u);
+    const std::optional<double> lambda = multipleRoot(c);
+    if (!lambda) return 0.0;  // no negative critical point: refineNumerically stops there
+    double v = 0.0;
+    for (std::size_t k = c.size(); k-- > 0;) v = v * *lambda + c[k];
+    return v;
+  };
   task.points = [stripped, at_root](double u) {
     const std::optional<double> lambda = multipleRoot(stripped(u));
     if (!lambda) return std::vector<PointAt>{};
@@ -1394,11 +1410,14 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
       const Task& task = tasks[k];
       if (task.pencil.empty()) continue;
       // Each seed is tried at its Newton solution of (F, F_x) = 0, then refined on the pencil's
-      // discriminant evaluated at u (which fails only for a permanent multiple root: spheres).
+      // discriminant evaluated at u (which fails for a permanent multiple root: spheres), then on
+      // f at its negative critical point (which does not).
       auto seed = [&](double centre, std::optional<double> newton) {
         if (newton && *newton < best && verify(task, *newton)) return best;
         const double u = refineNumerically(task.value, centre);
         if (u < best && verify(task, u)) return best;
+        const double uc = refineNumerically(task.critical_value, centre);
+        if (uc != u && uc < best && verify(task, uc)) return best;
         return 2.0;
       };
       const bool complete = tangencySeeds(task.pencil, std::min(best, 1.0), &res.pencil_boxes, piece_cap, seed);

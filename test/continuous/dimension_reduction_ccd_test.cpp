@@ -451,6 +451,41 @@ TEST(DimensionReductionCcd, TwoTurningBallsMeetAtTheClosedFormTime) {
   EXPECT_GE(hits, 10);
 }
 
+// Two turning balls passing at a closest distance of (ra + rb)(1 + s eps): they collide exactly
+// when s < 0, for depths and gaps of 1e-6 and 1e-8 of the pair's size, near the origin and 1000
+// sizes away from it. The discriminant of two spheres' pencil vanishes identically (a permanent
+// positive double root), and at a shallow graze the seed's Newton solution does not converge
+// (F_u -> 0): 5 of 50 passes 1e-8 deep were missed until the seeds were also refined on f's value
+// at its negative critical point (docs/reliability.md finding 47).
+TEST(DimensionReductionCcd, TwoTurningBallsGrazingBy1e8OfTheirSizeAreDecidedExactly) {
+  std::mt19937 rng(47);
+  std::uniform_real_distribution<double> U(-1.0, 1.0), R(0.2, 1.0);
+  auto turn = [&]() { return Eigen::Quaterniond(Eigen::Vector4d(U(rng), U(rng), U(rng), U(rng)).normalized()).toRotationMatrix(); };
+  for (const double offset : {0.0, 1000.0})
+    for (const double eps : {1e-6, 1e-8})
+      for (int trial = 0; trial < 30; ++trial)
+        for (const double s : {-1.0, 1.0}) {
+          const double ra = R(rng), rb = R(rng);
+          // The centres' offset D(t) = D0 + t dD is closest, m n with n ⟂ dD, at t = ts.
+          const Eigen::Vector3d dD = 3.0 * Eigen::Vector3d(U(rng), U(rng), U(rng)).normalized();
+          const Eigen::Vector3d n = Eigen::AngleAxisd(M_PI * U(rng), dD.normalized()) * dD.unitOrthogonal();
+          const double ts = 0.5 + 0.3 * U(rng), m = (ra + rb) * (1.0 + s * eps);
+          const Eigen::Vector3d D0 = m * n - ts * dD;
+          const Eigen::Vector3d pa0 = offset * Eigen::Vector3d(0.6, -0.48, 0.64) + Eigen::Vector3d(U(rng), U(rng), U(rng));
+          const Eigen::Vector3d pa1 = pa0 + Eigen::Vector3d(U(rng), U(rng), U(rng));
+          const Eigen::Matrix3d Ra0 = turn(), Ra1 = turn(), Rb0 = turn(), Rb1 = turn();
+          const MovingRegion a{QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(ra))),
+                               centred(Eigen::Vector3d::Constant(ra)), moving(Ra0, pa0, Ra1, pa1)};
+          const MovingRegion b{QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(rb))),
+                               centred(Eigen::Vector3d::Constant(rb)), moving(Rb0, pa0 + D0, Rb1, pa1 + D0 + dD)};
+          const ReductionCcdResult r = continuousCollideRegionsByReduction(a, b);
+          ASSERT_EQ(r.status, ReductionStatus::Decided) << r.reason;
+          EXPECT_EQ(r.collide, s < 0.0) << "offset " << offset << " eps " << eps << " trial " << trial;
+          // Penetrating by (ra + rb) eps, they touch within about sqrt(2 eps) (ra + rb) / |dD| of ts.
+          if (r.collide) EXPECT_NEAR(r.time, ts, 2.0 * std::sqrt(2.0 * eps) * (ra + rb) / 3.0 + 1e-9);
+        }
+}
+
 // A box lowered onto an ellipsoid, face down, turning about the vertical: its bottom face meets
 // the ellipsoid's top point at the closed-form time, at every size. At size 1000 the rank test of
 // the ellipsoid's quadric (|det Q| against max|Q|^4 in the body's units) called it singular, its
