@@ -922,16 +922,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
       return res;
     }
   const double size = std::max((a.box->hi - a.box->lo).maxCoeff(), (b.box->hi - b.box->lo).maxCoeff());
-  // The subproblems are set up in a's frame scaled by 1 / unit (x = unit x'; unit the power of two
-  // nearest the pair's size): a pencil pairs matrices whose entries scale as 1 / size^2 against
-  // constants, and its coefficients in λ spread by size^(2k) -- at size 100 to 1000 the
-  // comparisons of its coefficients with each other (structural zeros) and the absolute
-  // thresholds misjudged it and tangencies came late (finding 46). Unit size makes the setup the
-  // one the tests exercise at size 1; times are unchanged, points are scaled back.
-  const double unit = std::ldexp(1.0, std::ilogb(size > 0.0 && std::isfinite(size) ? size : 1.0));
-  const Eigen::Matrix4d Dscale = Eigen::Vector4d(unit, unit, unit, 1.0).asDiagonal();
-  const Eigen::Matrix4d Dinv = Eigen::Vector4d(1.0 / unit, 1.0 / unit, 1.0 / unit, 1.0).asDiagonal();
-  const double band = kReductionVerifyRelative * size / unit;
+  const double band = kReductionVerifyRelative * size;
 
   // Start: the pair at t = 0 (static engine).
   {
@@ -964,14 +955,14 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
     const long long piece_cap = res.pencil_boxes + kReductionMaxPencilBoxes;
     const MotionMatrix ma = a.motion.restricted(s0, s1), mb = b.motion.restricted(s0, s1);
     // The relative motion and its inverse in the Bernstein basis (file comment at PVec).
-    // X_b ~ P X'_a and X'_a ~ Pinv X_b, X'_a = Dinv X_a (a's scaled frame, above).
-    const PMat P = product(bernsteinFromPower(mb.inverseCoefficients()), product(bernsteinFromPower(ma.matrixCoefficients()), PMat{Dscale}));
-    const PMat Pinv = product(PMat{Dinv}, product(bernsteinFromPower(ma.inverseCoefficients()), bernsteinFromPower(mb.matrixCoefficients())));
+    // The relative motion and its inverse in the Bernstein basis (file comment at PVec).
+    const PMat P = product(bernsteinFromPower(mb.inverseCoefficients()), bernsteinFromPower(ma.matrixCoefficients()));
+    const PMat Pinv = product(bernsteinFromPower(ma.inverseCoefficients()), bernsteinFromPower(mb.matrixCoefficients()));
     if (2 * static_cast<int>(P.size() - 1) > tolerance_region::kRegionCcdMaxDegree)
       throw CcdDegreeError("continuousCollideRegionsByReduction: relative motion of degree " + std::to_string(P.size() - 1) +
                                " exceeds kRegionCcdMaxDegree / 2 = " + std::to_string(tolerance_region::kRegionCcdMaxDegree / 2),
                            2 * static_cast<int>(P.size() - 1), tolerance_region::kRegionCcdMaxDegree);
-    const Posed pa = pose(A, {Dscale}, {Dinv});
+    const Posed pa = pose(A, {Eigen::Matrix4d::Identity()}, {Eigen::Matrix4d::Identity()});
     const Posed pb = pose(B, P, Pinv);
 
     // The subproblems' polynomials and contact points.
@@ -1171,7 +1162,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
         }
         case SubproblemType::QuadricQuadric: {
           // §6.2.2 face-face: a double root of det(λ A - S(u)) (a's face A is constant).
-          const Eigen::Matrix4d Aq = Dscale * A.sgn[A.el.faces[sp.index_a].atom] * Dscale;
+          const Eigen::Matrix4d Aq = A.sgn[A.el.faces[sp.index_a].atom];
           const PMat& S = pb.atoms[B.el.faces[sp.index_b].atom];
           PolyMatrix M1(4, std::vector<Poly>(4)), M2(4, std::vector<Poly>(4));
           for (int i = 0; i < 4; ++i)
@@ -1246,7 +1237,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
           // b's conic on ℓ.
           const EdgeGeometry& ea = A.edges[sp.index_a];
           const Eigen::Matrix3d Ca = ea.conic;
-          const Eigen::Matrix<double, 4, 3> Ea = Dinv * ea.basis;  // the conic ea.conic is unchanged
+          const Eigen::Matrix<double, 4, 3> Ea = ea.basis;
           const PMat& Sb = pb.atoms[B.edges[sp.index_b].quadric];
           const PVec& pib = pb.edgePlane[sp.index_b];
           PolyMatrix M1(3, std::vector<Poly>(3)), M2(3, std::vector<Poly>(3));
@@ -1381,7 +1372,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
           best = u;
           res.time = s0 + (s1 - s0) * u;
           const Eigen::Matrix4d Xa = a.motion.evaluate(res.time);
-          res.point = Xa.topLeftCorner<3, 3>() * (unit * p.x) + Xa.block<3, 1>(0, 3);
+          res.point = Xa.topLeftCorner<3, 3>() * p.x + Xa.block<3, 1>(0, 3);
           res.subproblem = task.sp;
           res.label_a = elementLabel(task.sp.kind_a, task.sp.index_a);
           res.label_b = elementLabel(task.sp.kind_b, task.sp.index_b);
