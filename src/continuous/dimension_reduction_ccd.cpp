@@ -16,7 +16,6 @@
 #include "fcl_quadric/algebra/bernstein_polynomial.h"
 #include "fcl_quadric/algebra/bivariate_bernstein.h"
 #include "fcl_quadric/algebra/low_degree_roots.h"
-#include "fcl_quadric/algebra/polynomial.h"
 #include "fcl_quadric/algebra/root_isolation.h"
 #include "fcl_quadric/algebra/symmetric_eigen.h"
 
@@ -517,7 +516,8 @@ Body makeBody(const MovingRegion& m) {
     if (f.planar() && !detail::isPlanarAtom(Q)) b.unsupported = "a pair of planes as one atom";
     bool rank_deficient = false;
     if (!f.planar()) {
-      const Eigen::Vector4d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(Dh * Q * Dh, Eigen::EigenvaluesOnly).eigenvalues().cwiseAbs();
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(Dh * Q * Dh, Eigen::EigenvaluesOnly);
+      const Eigen::Vector4d ev = eig.eigenvalues().cwiseAbs();
       rank_deficient = ev.minCoeff() <= 1e-12 * ev.maxCoeff();
     }
     if (rank_deficient) {
@@ -955,9 +955,9 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
     const long long piece_cap = res.pencil_boxes + kReductionMaxPencilBoxes;
     const MotionMatrix ma = a.motion.restricted(s0, s1), mb = b.motion.restricted(s0, s1);
     // The relative motion and its inverse in the Bernstein basis (file comment at PVec).
-    // The relative motion and its inverse in the Bernstein basis (file comment at PVec).
     const PMat P = product(bernsteinFromPower(mb.inverseCoefficients()), bernsteinFromPower(ma.matrixCoefficients()));
-    const PMat Pinv = product(bernsteinFromPower(ma.inverseCoefficients()), bernsteinFromPower(mb.matrixCoefficients()));
+    const PMat Pinv =
+        product(bernsteinFromPower(ma.inverseCoefficients()), bernsteinFromPower(mb.matrixCoefficients()));
     if (2 * static_cast<int>(P.size() - 1) > tolerance_region::kRegionCcdMaxDegree)
       throw CcdDegreeError("continuousCollideRegionsByReduction: relative motion of degree " + std::to_string(P.size() - 1) +
                                " exceeds kRegionCcdMaxDegree / 2 = " + std::to_string(tolerance_region::kRegionCcdMaxDegree / 2),

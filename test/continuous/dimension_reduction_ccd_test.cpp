@@ -413,7 +413,9 @@ TEST(DimensionReductionCcd, LongConesAgreeWithTheSpaceTimeEngineOnManyRandomRigi
 TEST(DimensionReductionCcd, TwoTurningBallsMeetAtTheClosedFormTime) {
   std::mt19937 rng(45);
   std::uniform_real_distribution<double> U(-1.0, 1.0), R(0.2, 1.0);
-  auto turn = [&]() { return Eigen::Quaterniond(Eigen::Vector4d(U(rng), U(rng), U(rng), U(rng)).normalized()).toRotationMatrix(); };
+  auto turn = [&]() {
+    return Eigen::Quaterniond(Eigen::Vector4d(U(rng), U(rng), U(rng), U(rng)).normalized()).toRotationMatrix();
+  };
   int hits = 0, checked = 0;
   for (int trial = 0; trial < 60; ++trial) {
     const double ra = R(rng), rb = R(rng);
@@ -460,7 +462,9 @@ TEST(DimensionReductionCcd, TwoTurningBallsMeetAtTheClosedFormTime) {
 TEST(DimensionReductionCcd, TwoTurningBallsGrazingBy1e8OfTheirSizeAreDecidedExactly) {
   std::mt19937 rng(47);
   std::uniform_real_distribution<double> U(-1.0, 1.0), R(0.2, 1.0);
-  auto turn = [&]() { return Eigen::Quaterniond(Eigen::Vector4d(U(rng), U(rng), U(rng), U(rng)).normalized()).toRotationMatrix(); };
+  auto turn = [&]() {
+    return Eigen::Quaterniond(Eigen::Vector4d(U(rng), U(rng), U(rng), U(rng)).normalized()).toRotationMatrix();
+  };
   for (const double offset : {0.0, 1000.0})
     for (const double eps : {1e-6, 1e-8})
       for (int trial = 0; trial < 30; ++trial)
@@ -471,7 +475,8 @@ TEST(DimensionReductionCcd, TwoTurningBallsGrazingBy1e8OfTheirSizeAreDecidedExac
           const Eigen::Vector3d n = Eigen::AngleAxisd(M_PI * U(rng), dD.normalized()) * dD.unitOrthogonal();
           const double ts = 0.5 + 0.3 * U(rng), m = (ra + rb) * (1.0 + s * eps);
           const Eigen::Vector3d D0 = m * n - ts * dD;
-          const Eigen::Vector3d pa0 = offset * Eigen::Vector3d(0.6, -0.48, 0.64) + Eigen::Vector3d(U(rng), U(rng), U(rng));
+          const Eigen::Vector3d pa0 =
+              offset * Eigen::Vector3d(0.6, -0.48, 0.64) + Eigen::Vector3d(U(rng), U(rng), U(rng));
           const Eigen::Vector3d pa1 = pa0 + Eigen::Vector3d(U(rng), U(rng), U(rng));
           const Eigen::Matrix3d Ra0 = turn(), Ra1 = turn(), Rb0 = turn(), Rb1 = turn();
           const MovingRegion a{QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(ra))),
@@ -502,7 +507,8 @@ TEST(DimensionReductionCcd, ABoxFaceLandsOnAnEllipsoidAtTheClosedFormTimeAtEvery
     const double toi = (from.z() - 0.4 * size) / (from.z() - to.z());
     for (const bool swap : {false, true}) {
       const ReductionCcdResult r =
-          swap ? continuousCollideRegionsByReduction(box, ellipsoid) : continuousCollideRegionsByReduction(ellipsoid, box);
+          swap ? continuousCollideRegionsByReduction(box, ellipsoid)
+               : continuousCollideRegionsByReduction(ellipsoid, box);
       ASSERT_EQ(r.status, ReductionStatus::Decided) << size << ": " << r.reason;
       ASSERT_TRUE(r.collide) << size;
       EXPECT_NEAR(r.time, toi, 1e-9) << size << " swap " << swap;
