@@ -487,7 +487,9 @@ TEST(DimensionReductionCcd, TwoTurningBallsGrazingBy1e8OfTheirSizeAreDecidedExac
           ASSERT_EQ(r.status, ReductionStatus::Decided) << r.reason;
           EXPECT_EQ(r.collide, s < 0.0) << "offset " << offset << " eps " << eps << " trial " << trial;
           // Penetrating by (ra + rb) eps, they touch within about sqrt(2 eps) (ra + rb) / |dD| of ts.
-          if (r.collide) EXPECT_NEAR(r.time, ts, 2.0 * std::sqrt(2.0 * eps) * (ra + rb) / 3.0 + 1e-9);
+          if (r.collide) {
+            EXPECT_NEAR(r.time, ts, 2.0 * std::sqrt(2.0 * eps) * (ra + rb) / 3.0 + 1e-9);
+          }
         }
 }
 
@@ -536,10 +538,11 @@ TEST(DimensionReductionCcd, ConeApexLandsOnAFloorAtTheClosedFormTime) {
     EXPECT_NEAR(r.time, (4.0 - (1.0 + drop)) / 6.0, 1e-9) << tilt;
     EXPECT_NEAR(r.point.z(), 1.0, 1e-7);
     EXPECT_NEAR(r.point.y(), 0.1 - c * std::sin(tilt), 1e-7);
-    if (r.label_b.substr(0, 1) == "A")
+    if (r.label_b.substr(0, 1) == "A") {
       EXPECT_EQ(r.subproblem.type, SubproblemType::FaceVertex);
-    else
+    } else {
       EXPECT_EQ(r.label_b.substr(0, 1), "E") << r.label_b;
+    }
   }
 }
 
