@@ -629,6 +629,24 @@ RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegi
   const bool frame_is_a = a.box && (!b.box || volume(*a.box) <= volume(*b.box));
   const MovingRegion& F = frame_is_a ? a : b;
   const MovingRegion& O = frame_is_a ? b : a;
+  {
+    // Far from the origin: the same query on both motions shifted by -o, o the frame body's
+    // start (kRegionCcdShiftRelative). The shifted frame body starts within rounding of the
+    // origin, so this recurses once at most.
+    const Eigen::Vector3d o = F.motion.evaluate(0.0).block<3, 1>(0, 3);
+    const double extent = (F.box->hi - F.box->lo).maxCoeff();
+    if (o.allFinite() && o.norm() > kRegionCcdShiftRelative * extent) {
+      auto shifted = [&](const MovingRegion& m) {
+        const MotionMatrix T = MotionMatrix::constant(Eigen::Matrix3d::Identity(), -o);
+        std::vector<MotionMatrix> pieces;
+        for (const MotionMatrix& piece : m.motion.pieces()) pieces.push_back(MotionMatrix::compose(T, piece));
+        return MovingRegion(m.region, m.box, PiecewiseMotion(m.motion.breaks(), std::move(pieces)), m.elements);
+      };
+      RegionCcdResult r = continuousCollideRegions(shifted(a), shifted(b), limits);
+      r.point += o;
+      return r;
+    }
+  }
   const Formula f(QuadricRegion::combine(QuadricRegion::Op::Intersection, {F.region, O.region}));
   const std::size_t nF = F.region.signedAtoms().size();
   const Box3& box = *F.box;

@@ -286,6 +286,64 @@ TEST(RegionCcd, BallAndCylinderUnderRandomRationalMotionsMatchTheDistanceOracle)
   RecordProperty("near_tangent", tangent);
 }
 
+// The same pairs 1000 sizes from the world origin: the engine shifts both motions next to the
+// origin (kRegionCcdShiftRelative), so it decides them as near the origin: never capped, every
+// contact of the oracle found no later than it and no earlier than 1e-7 before. Unshifted, half of
+// an audit's pairs at that distance reached the box cap (docs/reliability.md finding 48).
+TEST(RegionCcd, FarFromTheOriginTheEngineMatchesTheDistanceOracleWithoutReachingItsCap) {
+  std::mt19937 rng(48);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const Eigen::Vector3d far(600.0, -480.0, 640.0);
+  int collisions = 0;
+  for (int trial = 0; trial < 16; ++trial) {
+    const double R = 0.3 + 0.7 * U(rng), h = 0.3 + 0.7 * U(rng), r = 0.2 + 0.4 * U(rng);
+    auto point = [&](double s) { return Eigen::Vector3d(s * (2 * U(rng) - 1), s * (2 * U(rng) - 1), s * (2 * U(rng) - 1)); };
+    const Eigen::Matrix3d Rc0 = randomRotation(rng), Rc1 = randomRotation(rng);
+    const Eigen::Vector3d c0 = point(1.0), c1 = point(1.0);
+    const Eigen::Matrix3d Rb0 = randomRotation(rng), Rb1 = randomRotation(rng);
+    const Eigen::Vector3d b0 = point(2.2), b1 = point(2.2);
+    // The oracle on the motions near the origin; the engine on the far ones (the same relative motion).
+    const MotionMatrix mc = MotionMatrix::fromPoses(Rc0, c0, Rc1, c1), mb = MotionMatrix::fromPoses(Rb0, b0, Rb1, b1);
+    const MovingRegion cyl{cappedCylinder(R, R, 2 * h), centredBox({R, R, h}),
+                           PiecewiseMotion(MotionMatrix::fromPoses(Rc0, c0 + far, Rc1, c1 + far))};
+    const MovingRegion b{ball(r), centredBox(Eigen::Vector3d::Constant(r)),
+                         PiecewiseMotion(MotionMatrix::fromPoses(Rb0, b0 + far, Rb1, b1 + far))};
+    auto gap = [&](double t) {
+      const Eigen::Matrix4d Xc = mc.evaluate(t), Xb = mb.evaluate(t);
+      const Eigen::Vector3d local = Xc.topLeftCorner<3, 3>().transpose() * (Xb.block<3, 1>(0, 3) - Xc.block<3, 1>(0, 3));
+      return cylinderDistance(local, R, h) - r;
+    };
+    std::optional<double> oracle;
+    const int n = 4000;
+    if (gap(0.0) <= 0.0) oracle = 0.0;
+    for (int i = 1; i <= n && !oracle; ++i) {
+      double hi = static_cast<double>(i) / n;
+      if (gap(hi) > 0.0) continue;
+      double lo = static_cast<double>(i - 1) / n;
+      for (int k = 0; k < 60; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (gap(mid) <= 0.0 ? hi : lo) = mid;
+      }
+      oracle = hi;
+    }
+    const RegionCcdResult res = continuousCollideRegions(trial % 2 ? cyl : b, trial % 2 ? b : cyl);
+    EXPECT_FALSE(res.capped) << "trial " << trial;
+    if (oracle) {
+      ++collisions;
+      ASSERT_TRUE(res.collide) << "trial " << trial << ": missed the contact at " << *oracle;
+      EXPECT_LE(res.time, *oracle + 1e-9) << "trial " << trial;
+      EXPECT_GE(res.time, *oracle - 1e-7) << "trial " << trial;
+      // The contact point, shifted back, is at the ball's surface near the cylinder.
+      const Eigen::Vector3d centre = mb.evaluate(res.time).block<3, 1>(0, 3) + far;
+      EXPECT_NEAR((res.point - centre).norm(), r, 1e-6) << "trial " << trial;
+    } else {
+      EXPECT_TRUE(!res.collide || res.near_tangent) << "trial " << trial << " time " << res.time;
+    }
+  }
+  EXPECT_GE(collisions, 4);
+  EXPECT_LE(collisions, 12);
+}
+
 }  // namespace
 }  // namespace region_ccd_test
 }  // namespace fcl_quadric

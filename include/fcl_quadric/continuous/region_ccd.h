@@ -70,6 +70,13 @@ constexpr long long kRegionCcdMaxPencilEvaluations = 33554432;
 /// Largest degree in t of a moving atom X^T S(t) X (the relative motion's degree twice). Two
 /// motions from poses give 10; a chain of three such joints about 30.
 constexpr int kRegionCcdMaxDegree = 60;
+/// When the frame body starts farther from the world origin than this many times its box's
+/// largest edge, the search runs on both motions shifted so that it starts at the origin (the
+/// same relative motion; the contact point is shifted back). Far out, the magnitudes of the
+/// relative motion's translations (|p| ~ 10^3 of the size, cancelling to the size) widened every
+/// sign pad by about |p|^2 / size^2, and half of the audit's pairs at 10^3 sizes away reached the
+/// box cap (docs/reliability.md finding 48).
+constexpr double kRegionCcdShiftRelative = 8.0;
 }  // namespace tolerance_region
 
 /// A CQM in its local frame moving by `motion` (local -> world).
