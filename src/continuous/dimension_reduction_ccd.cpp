@@ -38,10 +38,10 @@ namespace {
 using PVec = std::vector<Eigen::Vector4d>;
 using PMat = std::vector<Eigen::Matrix4d>;
 
-// Binomial coefficients C(n, 0..n) (exact in double up to n = 56, relative rounding beyond).
+// Binomial coefficients C(n, 0..n) (detail::binomial: its cached table, and its degree check).
 std::vector<double> binomials(std::size_t n) {
-  std::vector<double> c(n + 1, 1.0);
-  for (std::size_t k = 0; k < n; ++k) c[k + 1] = c[k] * static_cast<double>(n - k) / static_cast<double>(k + 1);
+  std::vector<double> c(n + 1);
+  for (std::size_t k = 0; k <= n; ++k) c[k] = detail::binomial(static_cast<int>(n), static_cast<int>(k));
   return c;
 }
 

@@ -224,6 +224,25 @@ TEST(RegionCcd, DegenerateContactsAreFoundAtTheirClosedFormTimes) {
   }
 }
 
+// The first t in [0, 1] with gap(t) <= 0: gap sampled at n + 1 instants, the first sign change
+// bisected 60 times; none if every sample is positive.
+constexpr int kOracleSamples = 4000;
+template <class Gap>
+std::optional<double> firstContact(const Gap& gap) {
+  if (gap(0.0) <= 0.0) return 0.0;
+  for (int i = 1; i <= kOracleSamples; ++i) {
+    double hi = static_cast<double>(i) / kOracleSamples;
+    if (gap(hi) > 0.0) continue;
+    double lo = static_cast<double>(i - 1) / kOracleSamples;
+    for (int k = 0; k < 60; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (gap(mid) <= 0.0 ? hi : lo) = mid;
+    }
+    return hi;
+  }
+  return std::nullopt;
+}
+
 Eigen::Matrix3d randomRotation(std::mt19937& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
   return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
@@ -250,19 +269,7 @@ TEST(RegionCcd, BallAndCylinderUnderRandomRationalMotionsMatchTheDistanceOracle)
       const Eigen::Vector3d local = Xc.topLeftCorner<3, 3>().transpose() * (centre - Xc.block<3, 1>(0, 3));
       return cylinderDistance(local, R, h) - r;
     };
-    std::optional<double> oracle;
-    const int n = 4000;
-    if (gap(0.0) <= 0.0) oracle = 0.0;
-    for (int i = 1; i <= n && !oracle; ++i) {
-      double hi = static_cast<double>(i) / n;
-      if (gap(hi) > 0.0) continue;
-      double lo = static_cast<double>(i - 1) / n;
-      for (int k = 0; k < 60; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (gap(mid) <= 0.0 ? hi : lo) = mid;
-      }
-      oracle = hi;
-    }
+    const std::optional<double> oracle = firstContact(gap);
     const RegionCcdResult res = continuousCollideRegions(trial % 2 ? cyl : b, trial % 2 ? b : cyl);
     if (oracle) {
       ASSERT_TRUE(res.collide) << "trial " << trial << ": missed the contact at " << *oracle;
@@ -273,8 +280,8 @@ TEST(RegionCcd, BallAndCylinderUnderRandomRationalMotionsMatchTheDistanceOracle)
       tangent += res.near_tangent;
       EXPECT_LE(gap(res.time), 1e-6) << "trial " << trial << " time " << res.time;
       // No sampled contact more than 1e-7 before the reported time.
-      for (int i = 0; i <= n; ++i) {
-        const double t = res.time - 1e-7 - (res.time - 1e-7) * i / n;
+      for (int i = 0; i <= kOracleSamples; ++i) {
+        const double t = res.time - 1e-7 - (res.time - 1e-7) * i / kOracleSamples;
         if (t < 0.0) break;
         ASSERT_GT(gap(t), 0.0) << "trial " << trial << ": contact at " << t << " before the reported " << res.time;
       }
@@ -313,19 +320,7 @@ TEST(RegionCcd, FarFromTheOriginTheEngineMatchesTheDistanceOracleWithoutReaching
       const Eigen::Vector3d local = Xc.topLeftCorner<3, 3>().transpose() * (Xb.block<3, 1>(0, 3) - Xc.block<3, 1>(0, 3));
       return cylinderDistance(local, R, h) - r;
     };
-    std::optional<double> oracle;
-    const int n = 4000;
-    if (gap(0.0) <= 0.0) oracle = 0.0;
-    for (int i = 1; i <= n && !oracle; ++i) {
-      double hi = static_cast<double>(i) / n;
-      if (gap(hi) > 0.0) continue;
-      double lo = static_cast<double>(i - 1) / n;
-      for (int k = 0; k < 60; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (gap(mid) <= 0.0 ? hi : lo) = mid;
-      }
-      oracle = hi;
-    }
+    const std::optional<double> oracle = firstContact(gap);
     const RegionCcdResult res = continuousCollideRegions(trial % 2 ? cyl : b, trial % 2 ? b : cyl);
     EXPECT_FALSE(res.capped) << "trial " << trial;
     if (oracle) {
