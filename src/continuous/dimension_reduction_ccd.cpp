@@ -20,6 +20,7 @@
 #include "fcl_quadric/algebra/symmetric_eigen.h"
 
 #include "../geometry/region_formula.h"
+#include "algebra/bernstein_matrix.h"
 #include "algebra/dense_decompositions.h"
 
 namespace fcl_quadric {
@@ -38,62 +39,15 @@ namespace {
 using PVec = std::vector<Eigen::Vector4d>;
 using PMat = std::vector<Eigen::Matrix4d>;
 
-// Binomial coefficients C(n, 0..n) (detail::binomial: its cached table, and its degree check).
-std::vector<double> binomials(std::size_t n) {
-  std::vector<double> c(n + 1);
-  for (std::size_t k = 0; k <= n; ++k) c[k] = detail::binomial(static_cast<int>(n), static_cast<int>(k));
-  return c;
-}
-
-// de Casteljau evaluation at u (stable: convex combinations only for u in [0, 1]).
-template <class T>
-T bernsteinAt(std::vector<T> b, double u) {
-  for (std::size_t n = b.size(); n-- > 1;)
-    for (std::size_t i = 0; i < n; ++i) b[i] = (1.0 - u) * b[i] + u * b[i + 1];
-  return b[0];
-}
+// The matrix helpers (the relative motion, posed quadrics) are shared with the space-time
+// engine: algebra/bernstein_matrix.h.
+using detail::bernsteinAt;
+using detail::bernsteinFromPower;
+using detail::bernsteinProduct;
+using detail::binomialRow;
+using ProductWeights = detail::BernsteinProductWeights;
 Eigen::Vector4d at(const PVec& v, double u) { return v.empty() ? Eigen::Vector4d::Zero() : bernsteinAt(v, u); }
 Eigen::Matrix4d at(const PMat& m, double u) { return m.empty() ? Eigen::Matrix4d::Zero() : bernsteinAt(m, u); }
-
-// Power-basis coefficients on [0, 1] (a motion's coefficient matrices) to the Bernstein basis of
-// the same degree: b_i = sum_{k <= i} C(i, k) / C(n, k) a_k.
-PMat bernsteinFromPower(const PMat& a) {
-  if (a.empty()) return a;
-  const std::size_t n = a.size() - 1;
-  const std::vector<double> cn = binomials(n);
-  PMat b(a.size(), Eigen::Matrix4d::Zero());
-  for (std::size_t i = 0; i <= n; ++i) {
-    const std::vector<double> ci = binomials(i);
-    for (std::size_t k = 0; k <= i; ++k) b[i] += (ci[k] / cn[k]) * a[k];
-  }
-  return b;
-}
-
-// The product weight of B_i^r B_j^s = w B_{i+j}^{r+s}: C(r, i) C(s, j) / C(r + s, i + j).
-struct ProductWeights {
-  std::vector<double> cr, cs, crs;
-  ProductWeights(std::size_t r, std::size_t s) : cr(binomials(r)), cs(binomials(s)), crs(binomials(r + s)) {}
-  double operator()(std::size_t i, std::size_t j) const { return cr[i] * cs[j] / crs[i + j]; }
-};
-
-// A(u) B(u) for Bernstein matrix polynomials.
-PMat product(const PMat& A, const PMat& B) {
-  if (A.empty() || B.empty()) return {};
-  const ProductWeights w(A.size() - 1, B.size() - 1);
-  PMat r(A.size() + B.size() - 1, Eigen::Matrix4d::Zero());
-  for (std::size_t i = 0; i < A.size(); ++i)
-    for (std::size_t j = 0; j < B.size(); ++j) r[i + j] += w(i, j) * (A[i] * B[j]);
-  return r;
-}
-
-// P(u)^T Q P(u), symmetrised: a quadric posed by P.
-PMat congruenceOf(const Eigen::Matrix4d& Q, const PMat& P) {
-  PMat Pt;
-  for (const Eigen::Matrix4d& M : P) Pt.push_back(M.transpose());
-  PMat S = product(Pt, product(PMat{Q}, P));
-  for (Eigen::Matrix4d& M : S) M = 0.5 * (M + M.transpose()).eval();
-  return S;
-}
 
 // A polynomial and its companion on absolute values (the same formula on |coefficients| with
 // the basis' positive weights): the magnitude against which "zero" is judged.
@@ -185,7 +139,7 @@ Poly form(const PVec& X, const PMat& S, const PVec& Y) {
   Poly p;
   if (X.empty() || S.empty() || Y.empty()) return p;
   const std::size_t r = X.size() - 1, s = S.size() - 1, t = Y.size() - 1;
-  const std::vector<double> cr = binomials(r), cs = binomials(s), ct = binomials(t), cn = binomials(r + s + t);
+  const std::vector<double> cr = binomialRow(r), cs = binomialRow(s), ct = binomialRow(t), cn = binomialRow(r + s + t);
   for (std::size_t i = 0; i <= r; ++i)
     for (std::size_t j = 0; j <= s; ++j) {
       const Eigen::Vector4d SX = S[j].transpose() * X[i], SXa = S[j].cwiseAbs().transpose() * X[i].cwiseAbs();
@@ -655,7 +609,7 @@ Posed pose(const Body& b, const std::vector<Eigen::Matrix4d>& P, const std::vect
     for (const Eigen::Matrix4d& M : P) v.push_back(M.transpose() * p);
     return v;
   };
-  auto quadric = [&](const Eigen::Matrix4d& Q) { return congruenceOf(Q, P); };
+  auto quadric = [&](const Eigen::Matrix4d& Q) { return detail::bernsteinCongruence(Q, P); };
   for (const Eigen::Matrix4d& Q : b.sgn) o.atoms.push_back(quadric(Q));
   for (const Eigen::Matrix4d& Q : b.raw) o.raw.push_back(quadric(Q));
   for (const BoundaryFace& f : b.el.faces) o.planes.push_back(f.planar() ? covector(planeOf(b.sgn[f.atom])) : PVec{});
@@ -780,7 +734,7 @@ bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long lo
   const int m = static_cast<int>(g.size()) - 1;
   std::size_t d = 1;
   for (const Poly& p : g) d = std::max(d, p.c.size());
-  const std::vector<double> cm = binomials(static_cast<std::size_t>(m));
+  const std::vector<double> cm = binomialRow(static_cast<std::size_t>(m));
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(m + 1, d);
   for (int k = 0; k <= m; ++k) {
     if (g[k].c.empty()) continue;
@@ -955,9 +909,10 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
     const long long piece_cap = res.pencil_boxes + kReductionMaxPencilBoxes;
     const MotionMatrix ma = a.motion.restricted(s0, s1), mb = b.motion.restricted(s0, s1);
     // The relative motion and its inverse in the Bernstein basis (file comment at PVec).
-    const PMat P = product(bernsteinFromPower(mb.inverseCoefficients()), bernsteinFromPower(ma.matrixCoefficients()));
+    const PMat P =
+        bernsteinProduct(bernsteinFromPower(mb.inverseCoefficients()), bernsteinFromPower(ma.matrixCoefficients()));
     const PMat Pinv =
-        product(bernsteinFromPower(ma.inverseCoefficients()), bernsteinFromPower(mb.matrixCoefficients()));
+        bernsteinProduct(bernsteinFromPower(ma.inverseCoefficients()), bernsteinFromPower(mb.matrixCoefficients()));
     if (2 * static_cast<int>(P.size() - 1) > tolerance_region::kRegionCcdMaxDegree)
       throw CcdDegreeError("continuousCollideRegionsByReduction: relative motion of degree " + std::to_string(P.size() - 1) +
                                " exceeds kRegionCcdMaxDegree / 2 = " + std::to_string(tolerance_region::kRegionCcdMaxDegree / 2),
