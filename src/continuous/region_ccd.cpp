@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "../geometry/region_formula.h"
+#include "algebra/bernstein_matrix.h"
 #include "algebra/dense_decompositions.h"
 
 namespace fcl_quadric {
@@ -43,14 +44,18 @@ constexpr int kRegionCcdExtraBoxesAfterUndecided = 256;
 /// Bisection steps that move a witness (c, t1) to the earliest certified-inside instant of c.
 constexpr int kWitnessBisections = 40;
 
-/// A moving atom X^T S(t) X in the search frame: power-basis coefficient matrices in the piece's
-/// local time u in [0, 1] (all atoms padded to the common degree), and `abs` >= sum_m |S_m|
-/// entrywise including the magnitudes of the products that formed S (rounding pads).
+/// A moving atom X^T S(u) X in the search frame: Bernstein coefficient matrices in the piece's
+/// local time u in [0, 1] (algebra/bernstein_matrix.h; every moving atom has the common degree,
+/// twice the relative motion's), and its rounding bounds: `abs` >= |S_i| entrywise for every i,
+/// the magnitudes of the products that formed S included (the sign pads are relative to it), and
+/// `err` >= the entrywise error of every S_i that the conversion of the motions from the power
+/// basis left (an absolute bound, added to the pads; paddingRelative).
 struct MovingAtom {
-  std::vector<Eigen::Matrix4d> S;
+  detail::BernsteinMatrix S;
   Eigen::Matrix4d abs = Eigen::Matrix4d::Zero();
-  double scale = 1.0;  // 1 / max |abs|: normalises atoms for pencils and split scores
-  bool constant = false;  // S_m = 0 for m >= 1 (the search frame's own atoms)
+  Eigen::Matrix4d err = Eigen::Matrix4d::Zero();
+  double scale = 1.0;  // normalises atoms for pencils and split scores (weightScale)
+  bool constant = false;  // a single coefficient (the search frame's own atoms)
 };
 
 // The ten polynomials of an atom's centred form on a box (v, g_0..2, A_00, A_11, A_22, A_01,
@@ -88,12 +93,12 @@ class SpaceTimeEngine {
   /// `work`: the query's counts, shared by its pieces; the engine counts its pencil bound
   /// evaluations (pencilLower) there, the search its boxes.
   SpaceTimeEngine(const Formula& f, std::vector<MovingAtom> atoms, int degree, double sign_relative, QueryWork* work)
-      : f_(f), atoms_(std::move(atoms)), n_(degree), sign_relative_(sign_relative), on_box_(atoms_.size()),
-        work_(work) {
-    // ratio[i][j] = C(i, j) / C(n, j): power -> Bernstein on [0, 1].
-    ratio_.assign((n_ + 1) * (n_ + 1), 0.0);
-    for (int i = 0; i <= n_; ++i)
-      for (int j = 0; j <= i; ++j) ratio_[i * (n_ + 1) + j] = binom(i, j) / binom(n_, j);
+      : f_(f), atoms_(std::move(atoms)), n_(degree), on_box_(atoms_.size()), slab_(atoms_.size()),
+        mid_(atoms_.size()), pad_(atoms_.size()), work_(work) {
+    // The sign pad of X^T S X, |X|^T pad |X| (paddingRelative): rounding relative to the
+    // magnitudes, plus the conversion's absolute error (its own rounding is far below 2^-30 of it).
+    for (std::size_t k = 0; k < atoms_.size(); ++k)
+      pad_[k] = sign_relative * atoms_[k].abs + (1.0 + std::ldexp(1.0, -30)) * atoms_[k].err;
   }
 
   int size() const { return static_cast<int>(atoms_.size()); }
@@ -105,29 +110,23 @@ class SpaceTimeEngine {
     if (t0 != t0_ || t1 != t1_) setSlab(t0, t1);
     const Eigen::Vector4d C(c[0], c[1], c[2], 1.0);
     const Eigen::Vector4d Xa((c.cwiseAbs() + r)[0], (c.cwiseAbs() + r)[1], (c.cwiseAbs() + r)[2], 1.0);
-    const double tm = 0.5 * (t0 + t1), tau = t1 - t0;
     std::vector<Tri> states(atoms_.size());
-    std::array<std::array<double, kMaxCoef>, 4> p;
     for (std::size_t k = 0; k < atoms_.size(); ++k) {
       const MovingAtom& m = atoms_[k];
       AtomOnBox& e = on_box_[k];
-      // v and g depend on the centre; the A entries were set for the slab (setSlab).
-      const int top = m.constant ? 0 : n_;
-      for (int d = 0; d <= top; ++d) {
-        const Eigen::Matrix4d& S = m.S[d];
-        const Eigen::Vector4d SC = S * C;
-        p[0][d] = C.dot(SC);
-        p[1][d] = 2.0 * SC[0];
-        p[2][d] = 2.0 * SC[1];
-        p[3][d] = 2.0 * SC[2];
+      // v and g depend on the centre: their Bernstein coefficients on [t0, t1] are the forms of
+      // the slab's coefficient matrices (setSlab); the A entries were set for the slab too.
+      const detail::BernsteinMatrix& Sk = m.constant ? m.S : slab_[k];
+      for (std::size_t d = 0; d < Sk.size(); ++d) {
+        const Eigen::Vector4d SC = Sk[d] * C;
+        e.b[0][d] = C.dot(SC);
+        e.b[1][d] = 2.0 * SC[0];
+        e.b[2][d] = 2.0 * SC[1];
+        e.b[3][d] = 2.0 * SC[2];
       }
-      if (m.constant) {
-        for (int q = 0; q < 4; ++q) std::fill(e.b[q].begin(), e.b[q].begin() + n_ + 1, p[q][0]);
-        for (int i = 0; i < 3; ++i) e.gmid[i] = p[1 + i][0];
-      } else {
-        for (int i = 0; i < 3; ++i) e.gmid[i] = horner(p[1 + i].data(), tm);
-        for (int q = 0; q < 4; ++q) bernstein(p[q].data(), t0, tau, e.b[q].data());
-      }
+      if (m.constant)
+        for (int q = 0; q < 4; ++q) std::fill(e.b[q].begin() + 1, e.b[q].begin() + n_ + 1, e.b[q][0]);
+      e.gmid = 2.0 * (mid_[k] * C).head<3>();
       e.vmin = minOf(e.b[0]);
       e.vmax = maxOf(e.b[0]);
       for (int i = 0; i < 3; ++i) e.gmax[i] = maxAbsOf(e.b[1 + i]);
@@ -138,7 +137,7 @@ class SpaceTimeEngine {
         qlo += std::min(0.0, e.amin[i]) * r[i] * r[i];
         qhi += std::max(0.0, e.amax[i]) * r[i] * r[i];
       }
-      const double pad = sign_relative_ * Xa.dot(m.abs * Xa);
+      const double pad = Xa.dot(pad_[k] * Xa);
       e.pad = pad;
       if (e.vmin - lin + qlo - pad > 0.0) {
         e.state = Tri::Out;
@@ -152,22 +151,29 @@ class SpaceTimeEngine {
     return FormulaBox(f_, std::move(states));
   }
 
-  /// The A entries (second-order part) of every atom over [t0, t1]: they do not depend on the
-  /// box centre, so a slab computes them once.
+  /// Every atom's coefficient matrices restricted to [t0, t1] (de Casteljau subdivision), its
+  /// matrix at the slab's midpoint, and the A entries (second-order part) over the slab: none of
+  /// them depends on the box centre, so a slab computes them once.
   void setSlab(double t0, double t1) {
     t0_ = t0;
     t1_ = t1;
-    std::array<double, kMaxCoef> p;
+    tm_ = 0.5 * (t0 + t1);
     static constexpr int kIndex[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
     for (std::size_t k = 0; k < atoms_.size(); ++k) {
       const MovingAtom& m = atoms_[k];
       AtomOnBox& e = on_box_[k];
+      if (m.constant) {
+        mid_[k] = m.S[0];
+      } else {
+        detail::bernsteinRestrict(m.S, t0, t1, &slab_[k]);
+        mid_[k] = detail::bernsteinAt(slab_[k], 0.5);
+      }
       for (int q = 0; q < 6; ++q) {
+        const int i = kIndex[q][0], j = kIndex[q][1];
         if (m.constant) {
-          std::fill(e.b[4 + q].begin(), e.b[4 + q].begin() + n_ + 1, m.S[0](kIndex[q][0], kIndex[q][1]));
+          std::fill(e.b[4 + q].begin(), e.b[4 + q].begin() + n_ + 1, m.S[0](i, j));
         } else {
-          for (int d = 0; d <= n_; ++d) p[d] = m.S[d](kIndex[q][0], kIndex[q][1]);
-          bernstein(p.data(), t0, t1 - t0, e.b[4 + q].data());
+          for (int d = 0; d <= n_; ++d) e.b[4 + q][d] = slab_[k][d](i, j);
         }
       }
       for (int i = 0; i < 3; ++i) {
@@ -276,22 +282,24 @@ class SpaceTimeEngine {
     return detail::chooseSplitAxis(score, r_, min_width, kRegionMaxAspect);
   }
 
-  /// S(t) of atom k (Horner on the coefficient matrices).
+  /// S(t) of atom k: at the current slab's ends and midpoint from the slab (setSlab), elsewhere
+  /// by de Casteljau on the piece's coefficients.
   Eigen::Matrix4d matrixAt(int k, double t) const {
     const MovingAtom& m = atoms_[k];
-    Eigen::Matrix4d S = m.S[n_];
-    for (int d = n_ - 1; d >= 0; --d) S = S * t + m.S[d];
-    return S;
+    if (m.constant) return m.S[0];
+    if (t == t1_) return slab_[k][n_];
+    if (t == t0_) return slab_[k][0];
+    if (t == tm_) return mid_[k];
+    return detail::bernsteinAt(m.S, t);
   }
 
   /// Certified sign of atom k at (x, t): -1 inside, +1 outside, 0 within the rounding band.
   int pointSign(int k, const Eigen::Vector3d& x, double t) const {
-    const MovingAtom& m = atoms_[k];
     const Eigen::Matrix4d S = matrixAt(k, t);
     const Eigen::Vector4d X(x[0], x[1], x[2], 1.0);
     const double v = X.dot(S * X);
     const Eigen::Vector4d Xa = X.cwiseAbs();
-    const double pad = sign_relative_ * Xa.dot(m.abs * Xa);
+    const double pad = Xa.dot(pad_[k] * Xa);
     if (v > pad) return 1;
     if (v < -pad) return -1;
     return 0;
@@ -323,38 +331,6 @@ class SpaceTimeEngine {
   }
 
  private:
-  static double binom(int n, int k) {
-    double r = 1.0;
-    for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
-    return r;
-  }
-  double horner(const double* p, double t) const {
-    double v = p[n_];
-    for (int d = n_ - 1; d >= 0; --d) v = v * t + p[d];
-    return v;
-  }
-  // Bernstein coefficients on [t0, t0 + tau] of the power-basis polynomial p (degree n_): Taylor
-  // shift by t0, scaling by tau, then the power -> Bernstein matrix. Rounding: the intermediate
-  // magnitudes stay below sum |p_d| (t0 + tau <= 1), so the error is a few hundred ulps of the
-  // atom's magnitude for n_ <= 60, far inside the 2^-40 pad.
-  void bernstein(const double* p, double t0, double tau, double* out) const {
-    double q[kMaxCoef];
-    for (int d = 0; d <= n_; ++d) q[d] = p[d];
-    if (t0 != 0.0)
-      for (int k = 0; k < n_; ++k)
-        for (int i = n_ - 1; i >= k; --i) q[i] += t0 * q[i + 1];
-    double s = 1.0;
-    for (int d = 0; d <= n_; ++d) {
-      q[d] *= s;
-      s *= tau;
-    }
-    for (int i = 0; i <= n_; ++i) {
-      double v = 0.0;
-      const double* row = &ratio_[i * (n_ + 1)];
-      for (int j = 0; j <= i; ++j) v += row[j] * q[j];
-      out[i] = v;
-    }
-  }
   double minOf(const std::array<double, kMaxCoef>& b) const { return *std::min_element(b.begin(), b.begin() + n_ + 1); }
   double maxOf(const std::array<double, kMaxCoef>& b) const { return *std::max_element(b.begin(), b.begin() + n_ + 1); }
   double maxAbsOf(const std::array<double, kMaxCoef>& b) const {
@@ -415,13 +391,14 @@ class SpaceTimeEngine {
   const Formula& f_;
   std::vector<MovingAtom> atoms_;
   int n_;
-  // Rounding pad of every enclosure and point sign, relative to |X|^T abs |X| (see
-  // paddingRelative).
-  double sign_relative_ = 0.0;
-  std::vector<double> ratio_;
   std::vector<AtomOnBox> on_box_;
+  // The current slab's coefficient matrices of each moving atom and its matrix at the midpoint.
+  std::vector<detail::BernsteinMatrix> slab_;
+  std::vector<Eigen::Matrix4d> mid_;
+  // The sign pad of every enclosure and point sign: |X|^T pad_[k] |X| (paddingRelative).
+  std::vector<Eigen::Matrix4d> pad_;
   Eigen::Vector3d c_ = Eigen::Vector3d::Zero(), r_ = Eigen::Vector3d::Zero();
-  double t0_ = -1.0, t1_ = -1.0;  // the slab of the A entries (none yet)
+  double t0_ = -1.0, t1_ = -1.0, tm_ = -1.0;  // the current slab (none yet)
   // The last certifying weights of each pair / triple of atoms (warm starts; any weights are a
   // valid certificate, so a stale entry costs one evaluation and never a wrong exclusion).
   mutable std::unordered_map<long long, double> pair_mu_;
@@ -437,22 +414,96 @@ struct PieceAnswer {
   bool near_tangent = false, capped = false;
 };
 
-// The rounding pad of the space-time engine, relative to |X|^T abs |X| with abs >= the sum of
-// the magnitudes of every product that formed the moving atom. An error bound gamma_k ~ k 2^-53
-// (k roundings on a path, each relative to the magnitudes) for: P = N_O M_F (sums of at most
-// 4 (dN + 1) products per entry), S = P^T Q P (at most 16 (dP + 1) products per entry), and on
-// each box the ten polynomials (16 products), the Taylor shift by t0, the scaling by tau and the
-// Bernstein conversion (at most 3 n + 20 roundings; every intermediate stays below the magnitude
-// because t0 + tau <= 1 and the conversion weights are <= 1). The pad is 4 times the sum.
-double paddingRelative(std::size_t dP, std::size_t dN, int n) {
-  const double k = 4.0 * (dN + 1) + 16.0 * (dP + 1) + 3.0 * n + 20.0;
+// The rounding pad of the space-time engine, relative to |X|^T abs |X| with abs >= the
+// magnitudes of every product that formed the moving atom (MovingAtom). An error bound
+// gamma_k ~ k 2^-53 (k roundings on a path, each relative to the magnitudes; every weight of the
+// Bernstein products and of de Casteljau is positive and below 1, so no intermediate exceeds the
+// magnitude) for: P = N_O M_F (4-term products, the weight, at most dN + dM + 1 sums: dN + dM + 9
+// roundings, counted twice because S holds P twice), S = P^T (Q P) (dN + dM + 17), the slab's
+// coefficients by two subdivisions and a point value by a third de Casteljau (4 roundings per
+// level: 12 n), and on each box the ten forms X^T S_i X (20). The pad is 4 times the sum. The
+// conversion of the motions' power coefficients to the Bernstein basis is not counted here: its
+// error is bounded separately (RelativeMotion::err, MovingAtom::err) and added to the pad.
+double paddingRelative(std::size_t dN, std::size_t dM, int n) {
+  const double d = static_cast<double>(dN + dM);
+  const double k = 2.0 * (d + 9.0) + (d + 17.0) + 12.0 * n + 20.0;
   return 4.0 * k * std::ldexp(1.0, -53);
 }
 
-std::vector<Eigen::Matrix4d> magnitudes(const std::vector<Eigen::Matrix4d>& M) {
-  std::vector<Eigen::Matrix4d> out;
-  for (const Eigen::Matrix4d& m : M) out.push_back(m.cwiseAbs());
-  return out;
+using detail::BernsteinMatrix;
+
+// The normalisation of an atom in the pencils' weights and the split scores (no rounding role;
+// any positive value keeps every exclusion certified): one over its largest second-order
+// magnitude (the curvature block of abs), or its largest first-order one for a plane. Neither
+// depends on where the atom is, unlike the largest entry, whose constant term grows with the
+// square of the distance from the frame's origin. Measured against the largest magnitude of the
+// Bernstein coefficients (docs/reliability.md finding 49): a ring's line contact that reached the
+// box cap at two of four ball radii is decided at all four, turning and thin pairs alike.
+double weightScale(const Eigen::Matrix4d& abs) {
+  const double second = abs.topLeftCorner<3, 3>().maxCoeff(), first = abs.block<3, 1>(0, 3).maxCoeff();
+  const double e = second > 0.0 ? second : first > 0.0 ? first : abs.maxCoeff();
+  return e > 0.0 ? 1.0 / e : 1.0;
+}
+
+BernsteinMatrix sum(BernsteinMatrix a, const BernsteinMatrix& b) {
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] += b[i];
+  return a;
+}
+BernsteinMatrix scaled(BernsteinMatrix a, double s) {
+  for (Eigen::Matrix4d& m : a) m *= s;
+  return a;
+}
+std::vector<Eigen::Matrix4d> magnitudes(const std::vector<Eigen::Matrix4d>& M) { return detail::cwiseAbs(M); }
+
+// The relative motion P = N_O M_F of one piece (F's local coordinates -> O's, up to a scalar
+// factor without roots on the piece) in the Bernstein basis of the piece's [0, 1], with the bounds
+// the sign pads need: mag >= |P_i| entrywise, the magnitudes of the products that formed it
+// included, and err >= the entrywise error of P_i that converting the motions' power coefficients
+// left (the conversion's weights are positive: its rounding is a few ulps of the conversion of the
+// coefficients' magnitudes). The power coefficients of a turning motion cancel, so converting the
+// factors first keeps every later rounding relative to the values (docs/reliability.md finding 49).
+struct RelativeMotion {
+  BernsteinMatrix P, mag, err;
+};
+
+RelativeMotion relativeMotion(const MotionMatrix& mO, const MotionMatrix& mF) {
+  const std::vector<Eigen::Matrix4d>& N = mO.inverseCoefficients();
+  const std::vector<Eigen::Matrix4d>& M = mF.matrixCoefficients();
+  const std::size_t dN = N.size() - 1, dM = M.size() - 1;
+  const double u = std::ldexp(1.0, -53);
+  // The degree of the power-basis product, exact zeros removed: two translations' top terms
+  // cancel exactly (a translation of degree 1 relative to another is of degree 1, not 2), and the
+  // moving atoms' degree sets the work on every box.
+  std::vector<Eigen::Matrix4d> Ppow = multiplyCoefficients(N, M);
+  std::size_t dP = Ppow.size() - 1;
+  while (dP > 0 && (Ppow[dP].array() == 0.0).all()) --dP;
+  RelativeMotion r;
+  if (dP == dN + dM) {
+    const BernsteinMatrix NB = detail::bernsteinFromPower(N), MB = detail::bernsteinFromPower(M);
+    const BernsteinMatrix NA = detail::cwiseAbs(NB), MA = detail::cwiseAbs(MB);
+    const BernsteinMatrix EN = scaled(detail::bernsteinFromPower(magnitudes(N)), 2.0 * (dN + 3) * u);
+    const BernsteinMatrix EM = scaled(detail::bernsteinFromPower(magnitudes(M)), 2.0 * (dM + 3) * u);
+    r.P = detail::bernsteinProduct(NB, MB);
+    r.mag = detail::bernsteinProduct(NA, MA);
+    // (NB + dN)(MB + dM) - NB MB = dN MB + (NB + dN) dM, |dN| <= EN, |dM| <= EM.
+    r.err = sum(detail::bernsteinProduct(EN, MA), detail::bernsteinProduct(sum(NA, EN), EM));
+    return r;
+  }
+  // The product's degree is lower than the factors' together: convert the product itself (the
+  // Bernstein product would carry the higher degree). Its rounding and the conversion's go into
+  // err, relative to the product of the magnitudes; the terms above dP (computed as exact zeros,
+  // each within its rounding of the magnitudes' product) are bounded on [0, 1] by the sum of
+  // those magnitudes, a constant added to every coefficient.
+  const std::vector<Eigen::Matrix4d> Pmag = multiplyCoefficients(magnitudes(N), magnitudes(M));
+  const double k = 2.0 * (4.0 * (dN + dM + 2) + dP + 3);
+  Eigen::Matrix4d tail = Eigen::Matrix4d::Zero();
+  for (std::size_t i = dP + 1; i < Pmag.size(); ++i) tail += Pmag[i];
+  Ppow.resize(dP + 1);
+  r.P = detail::bernsteinFromPower(Ppow);
+  r.mag = detail::cwiseAbs(r.P);
+  r.err = scaled(detail::bernsteinFromPower(std::vector<Eigen::Matrix4d>(Pmag.begin(), Pmag.begin() + dP + 1)), k * u);
+  for (Eigen::Matrix4d& e : r.err) e += k * u * tail;
+  return r;
 }
 
 enum class SlabOutcome { Empty, Found, Undecided, Inconclusive, Capped };
@@ -662,40 +713,41 @@ RegionCcdResult continuousCollideRegions(const MovingRegion& a, const MovingRegi
   for (std::size_t p = 0; p + 1 < breaks.size(); ++p) {
     const double s0 = breaks[p], s1 = breaks[p + 1];
     const MotionMatrix mF = F.motion.restricted(s0, s1), mO = O.motion.restricted(s0, s1);
-    // F's local coordinates -> O's local coordinates, X_O ~ N_O(t) M_F(t) X_F up to a scalar factor
-    // without roots on the piece; O's atom Q becomes P^T Q P in F's frame.
-    const std::vector<Eigen::Matrix4d> P = multiplyCoefficients(mO.inverseCoefficients(), mF.matrixCoefficients());
-    const std::vector<Eigen::Matrix4d> Pabs = multiplyCoefficients(magnitudes(mO.inverseCoefficients()), magnitudes(mF.matrixCoefficients()));
-    std::vector<MovingAtom> atoms(f.atoms.size());
-    int degree = 0;
-    for (std::size_t k = 0; k < f.atoms.size(); ++k) {
-      const Eigen::Matrix4d& Q = f.atoms[k];
-      MovingAtom& m = atoms[k];
-      if (k < nF) {
-        m.S = {Q};
-        m.abs = Q.cwiseAbs();
-      } else {
-        m.S = coefficientMatrices(congruence(Q, P));
-        for (const Eigen::Matrix4d& A : coefficientMatrices(congruence(Eigen::Matrix4d(Q.cwiseAbs()), Pabs))) m.abs += A;
-      }
-      degree = std::max(degree, static_cast<int>(m.S.size()) - 1);
-    }
+    // X_O ~ P(t) X_F; O's atom Q becomes P^T Q P in F's frame.
+    const RelativeMotion rel = relativeMotion(mO, mF);
+    const int degree = 2 * static_cast<int>(rel.P.size() - 1);
     if (degree > kRegionCcdMaxDegree) {
       std::ostringstream os;
       os << "continuousCollideRegions: the relative motion gives moving atoms of degree " << degree
          << " in t, above kRegionCcdMaxDegree = " << kRegionCcdMaxDegree;
       throw CcdDegreeError(os.str(), degree, kRegionCcdMaxDegree);
     }
-    for (MovingAtom& m : atoms) {
+    std::vector<MovingAtom> atoms(f.atoms.size());
+    for (std::size_t k = 0; k < f.atoms.size(); ++k) {
+      const Eigen::Matrix4d& Q = f.atoms[k];
+      const Eigen::Matrix4d Qabs = Q.cwiseAbs();
+      MovingAtom& m = atoms[k];
+      if (k < nF) {
+        m.S = {Q};
+        m.abs = Qabs;
+      } else {
+        // S and its bounds: |S_i| <= mag^T |Q| mag (Bernstein products of magnitudes), and the
+        // conversion's error (P + E)^T Q (P + E) - P^T Q P <= E^T |Q| (mag + E) + mag^T |Q| E.
+        m.S = detail::bernsteinCongruence(Q, rel.P);
+        m.abs = detail::entrywiseMax(detail::bernsteinCongruence(Qabs, rel.mag));
+        const BernsteinMatrix QE = detail::bernsteinProduct({Qabs}, rel.err);
+        const BernsteinMatrix QmagE = sum(detail::bernsteinProduct({Qabs}, rel.mag), QE);
+        m.err = detail::entrywiseMax(sum(detail::bernsteinProduct(detail::transposed(rel.err), QmagE),
+                                         detail::bernsteinProduct(detail::transposed(rel.mag), QE)));
+      }
       m.constant = m.S.size() == 1;
-      m.S.resize(degree + 1, Eigen::Matrix4d::Zero());
-      const double mx = m.abs.maxCoeff();
-      m.scale = mx > 0.0 ? 1.0 / mx : 1.0;
+      m.scale = weightScale(m.abs);
     }
     std::vector<int> active;
-    const PieceAnswer ans =
-        searchPiece(f, std::move(atoms), degree, paddingRelative(P.size() - 1, mO.inverseCoefficients().size() - 1, degree),
-                    box, kRegionCcdTimeTolerance / (s1 - s0), min_width, &active, &work);
+    const PieceAnswer ans = searchPiece(
+        f, std::move(atoms), degree,
+        paddingRelative(mO.inverseCoefficients().size() - 1, mF.matrixCoefficients().size() - 1, degree), box,
+        kRegionCcdTimeTolerance / (s1 - s0), min_width, &active, &work);
     res.boxes = static_cast<int>(std::min<long long>(work.boxes, std::numeric_limits<int>::max()));
     res.pencil_evaluations = work.evaluations;
     if (!ans.collide) continue;

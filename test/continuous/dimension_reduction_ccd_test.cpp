@@ -376,11 +376,15 @@ void compareWithEngine(unsigned seed, int trials, bool cones = false) {
     EXPECT_LE(e.time, r.time + 1e-9) << "trial " << trial;
     if (e.time < r.time - 1e-7) {
       // The engine reports a contact early when the pair comes within its touching band
-      // (near_tangent); then the static engine decides the instants in between.
+      // (near_tangent); then the static engine decides the instants in between: a certified
+      // overlap before the reduction's time would make it late. Touching is the static engine's
+      // band (boundaries within ~1e-9 of the size): a graze stays in it for a while before its
+      // exact contact (seed 77's trial 94, a cone's rim edge onto a face, is Touching from
+      // 8e-8 before the reduction's time to 1.2e-7 after it, and Overlapping nowhere in between).
       EXPECT_TRUE(e.near_tangent) << "trial " << trial;
       for (int k = 1; k < 8; ++k) {
         const double t = e.time + (r.time - e.time) * k / 8.0;
-        EXPECT_EQ(staticRelation(a, b, t), RegionRelation::Separated)
+        EXPECT_NE(staticRelation(a, b, t), RegionRelation::Overlapping)
             << "trial " << trial << " t " << t << ": the reduction's contact at " << r.time << " ("
             << toString(r.subproblem.type) << " " << r.label_a << "/" << r.label_b << ") is late";
       }

@@ -339,6 +339,52 @@ TEST(RegionCcd, FarFromTheOriginTheEngineMatchesTheDistanceOracleWithoutReaching
   EXPECT_LE(collisions, 12);
 }
 
+// Two balls that both turn (random rotations at both ends: the relative motion has degree 5, the
+// moving atoms degree 10) against the closed-form first contact of their centres, which move on
+// segments. In the power basis the moving atoms' coefficient magnitudes were 10^3-10^4 times their
+// values, and so were the sign pads: on 100 such pairs half the contacts came back near-tangent,
+// two capped and up to 4e-8 early (docs/reliability.md finding 49). In the Bernstein basis: never
+// capped, and every clear contact (the balls overlap by 1% of their size at the closest approach)
+// within kRegionCcdTimeTolerance before the closed form and never after it.
+TEST(RegionCcd, TwoTurningBallsMeetAtTheClosedFormTimeWithinTheTimeTolerance) {
+  std::mt19937 rng(49);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int contacts = 0, misses = 0, tangent = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const double ra = 0.6 + 0.4 * U(rng), rb = 0.6 + 0.4 * U(rng);
+    const Eigen::Vector3d pa0(U(rng), U(rng), U(rng)), pa1(U(rng), U(rng), U(rng));
+    const Eigen::Vector3d pb0 = pa0 + 3.0 * Eigen::Vector3d(U(rng), U(rng), U(rng)).normalized();
+    const Eigen::Vector3d pb1 = pa1 + 1.2 * (ra + rb) * Eigen::Vector3d(U(rng), U(rng), U(rng));
+    const MovingRegion a{ball(ra), centredBox(Eigen::Vector3d::Constant(ra)),
+                         PiecewiseMotion(MotionMatrix::fromPoses(randomRotation(rng), pa0, randomRotation(rng), pa1))};
+    const MovingRegion b{ball(rb), centredBox(Eigen::Vector3d::Constant(rb)),
+                         PiecewiseMotion(MotionMatrix::fromPoses(randomRotation(rng), pb0, randomRotation(rng), pb1))};
+    // |D(t)|^2 = (ra + rb)^2 with D(t) = D0 + t (D1 - D0): its first root in [0, 1], and the
+    // closest approach of the centres on [0, 1].
+    const Eigen::Vector3d D0 = pb0 - pa0, dD = (pb1 - pa1) - D0;
+    const double sum = ra + rb, qa = dD.squaredNorm(), qb = D0.dot(dD), qc = D0.squaredNorm() - sum * sum;
+    ASSERT_GT(qc, 0.0) << "trial " << trial << ": the balls start apart";
+    const double t_closest = std::clamp(-qb / qa, 0.0, 1.0);
+    const double closest = (D0 + t_closest * dD).norm() - sum;
+    const RegionCcdResult res = continuousCollideRegions(trial % 2 ? a : b, trial % 2 ? b : a);
+    EXPECT_FALSE(res.capped) << "trial " << trial;
+    if (closest < -0.01 * sum) {
+      ++contacts;
+      const double toi = (-qb - std::sqrt(qb * qb - qa * qc)) / qa;
+      ASSERT_TRUE(res.collide) << "trial " << trial << ": missed the contact at " << toi;
+      EXPECT_LE(res.time, toi + 1e-12) << "trial " << trial;
+      EXPECT_GE(res.time, toi - tolerance_region::kRegionCcdTimeTolerance - 1e-12) << "trial " << trial;
+      tangent += res.near_tangent;
+    } else if (closest > 0.01 * sum) {
+      ++misses;
+      EXPECT_FALSE(res.collide) << "trial " << trial << " time " << res.time;
+    }
+  }
+  EXPECT_GE(contacts, 10);
+  EXPECT_GE(misses, 5);
+  RecordProperty("near_tangent", tangent);
+}
+
 }  // namespace
 }  // namespace region_ccd_test
 }  // namespace fcl_quadric
