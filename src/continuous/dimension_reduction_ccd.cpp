@@ -293,44 +293,66 @@ double discriminant(const std::vector<double>& g) {
   return 0.0;
 }
 
+// The exponent e of the power of two σ = 2^e that balances the ends of f[lo, hi): with λ = σ μ,
+// the coefficients c_k σ^(k - lo) of the first and last have equal size (the roots only scale by
+// σ). Pencils of matrices of very different size are far from balanced: a ball 50 times smaller
+// than the other puts 50^8 ~ 4·10^13 between the ends of f (docs/reliability.md finding 50).
+int balancingExponent(const LPoly& f, std::size_t lo, std::size_t hi) {
+  if (hi <= lo + 1) return 0;
+  const double a = maxAbs(f[lo]), b = maxAbs(f[hi - 1]);
+  if (!(a > 0.0 && b > 0.0) || !std::isfinite(a) || !std::isfinite(b)) return 0;
+  return static_cast<int>(std::lround((std::log2(a) - std::log2(b)) / static_cast<double>(hi - 1 - lo)));
+}
+
 // Structural zeros at both ends of f (identically vanishing coefficients): [lo, hi). A
 // coefficient vanishes when it is zero within kReductionZeroRelative of its own magnitude, or
-// of the largest of f's coefficients (the pencils here pair matrices of comparable size, so a
-// coefficient 1e-11 below the others would put a root at |λ| ~ 1e-11 or 1e11: not a contact
-// of the bodies' scale).
+// of the largest of f's coefficients once λ is balanced (balancingExponent): a coefficient
+// 1e-11 below the others there would put a root at |μ| ~ 1e-11 or 1e11, not a contact. Unbalanced,
+// the comparison stripped the small end of a pencil of a large and a small ball, and the contact
+// was lost (finding 50).
 std::pair<std::size_t, std::size_t> structuralRange(const LPoly& f) {
-  double scale = 0.0;
-  for (const Poly& c : f) scale = std::max(scale, maxAbs(c));
-  auto zero = [&](const Poly& c) { return vanishes(c) || maxAbs(c) <= kReductionZeroRelative * scale; };
   std::size_t lo = 0, hi = f.size();
-  while (hi > lo && zero(f[hi - 1])) --hi;
-  while (lo < hi && zero(f[lo])) ++lo;
+  while (hi > lo && vanishes(f[hi - 1])) --hi;
+  while (lo < hi && vanishes(f[lo])) ++lo;
+  const int e = balancingExponent(f, lo, hi);
+  std::vector<double> size(f.size(), 0.0);
+  double scale = 0.0;
+  for (std::size_t k = lo; k < hi; ++k) {
+    size[k] = std::ldexp(maxAbs(f[k]), e * static_cast<int>(k - lo));
+    scale = std::max(scale, size[k]);
+  }
+  while (hi > lo && size[hi - 1] <= kReductionZeroRelative * scale) --hi;
+  while (lo < hi && size[lo] <= kReductionZeroRelative * scale) ++lo;
   return {lo, hi};
 }
 
 
 // Coefficients (low -> high, `size` of them) of det(λ M1 - M2), bordered by the columns of
-// `borders`, from its values at size equally spaced λ (exact interpolation at small integers).
+// `borders`, from its values at size equally spaced λ = sigma μ, μ small integers (exact
+// interpolation in μ; sigma a power of two balancing the pencil, balancingExponent: at λ of
+// order 1 an unbalanced pencil's values hide its small coefficients, finding 50).
 std::vector<double> numericCharacteristic(const Eigen::MatrixXd& M1, const Eigen::MatrixXd& M2, const Eigen::MatrixXd& borders,
-                                          std::size_t size) {
+                                          std::size_t size, double sigma) {
   const int n = static_cast<int>(M1.rows()), k = static_cast<int>(borders.cols()), m = n + k;
   const int q = static_cast<int>(size);
   Eigen::MatrixXd V(q, q);
   Eigen::VectorXd vals(q);
   for (int j = 0; j < q; ++j) {
-    const double lambda = j - 0.5 * (q - 1);
+    const double mu = j - 0.5 * (q - 1);
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(m, m);
-    M.topLeftCorner(n, n) = lambda * M1 - M2;
+    M.topLeftCorner(n, n) = (sigma * mu) * M1 - M2;
     if (k > 0) {
       M.topRightCorner(n, k) = borders;
       M.bottomLeftCorner(k, n) = borders.transpose();
     }
     vals[j] = M.fullPivLu().determinant();
     double p = 1.0;
-    for (int i = 0; i < q; ++i, p *= lambda) V(j, i) = p;
+    for (int i = 0; i < q; ++i, p *= mu) V(j, i) = p;
   }
   const Eigen::VectorXd c = V.fullPivLu().solve(vals);
-  return std::vector<double>(c.data(), c.data() + q);
+  std::vector<double> out(c.data(), c.data() + q);
+  for (int i = 0; i < q; ++i) out[i] /= std::pow(sigma, i);  // μ^i = λ^i / sigma^i (exact)
+  return out;
 }
 
 
@@ -812,27 +834,40 @@ bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long lo
 // plane, the section's two lines merge: the plane becomes tangent along a line, crossing the
 // conic at the ends of the contact segment). Those moments are tasks of their own (`extra`):
 // the roots of c_lo (λ0 = 0) and of c_{hi-1} (λ0 = ∞; at_root then gets +infinity).
-void pencilTask(Task& task, const LPoly& f, std::function<std::vector<double>(double)> numeric,
+void pencilTask(Task& task, const LPoly& f, std::function<std::vector<double>(double, double)> numeric,
                 std::function<std::vector<PointAt>(double, double)> at_root, std::vector<Task>* extra) {
   const std::pair<std::size_t, std::size_t> range = structuralRange(f);
+  // The pencil in μ = λ / σ, σ = 2^e balancing its ends (exact scaling; balancingExponent): the
+  // seed search's pads and the critical points are relative to the largest coefficient, and the
+  // numeric coefficients come from values at λ = σ μ.
+  const int e = balancingExponent(f, range.first, range.second);
+  const double sigma = std::ldexp(1.0, e);
   task.points = [](double) { return std::vector<PointAt>{}; };
   auto boundaryEvent = [&](std::size_t index, double lambda) {
-    Task e;
-    e.sp = task.sp;
-    e.g = f[index];
-    e.value = [numeric, index](double u) { return numeric(u)[index]; };
-    e.points = [at_root, lambda](double u) { return at_root(u, lambda); };
-    extra->push_back(std::move(e));
+    Task event;
+    event.sp = task.sp;
+    event.g = f[index];
+    event.value = [numeric, index, sigma](double u) { return numeric(u, sigma)[index]; };
+    event.points = [at_root, lambda](double u) { return at_root(u, lambda); };
+    extra->push_back(std::move(event));
   };
   if (range.second > range.first) {
     if (range.first > 0) boundaryEvent(range.first, 0.0);
     if (range.second < f.size()) boundaryEvent(range.second - 1, std::numeric_limits<double>::infinity());
   }
   if (range.second < range.first + 3) return;  // degree <= 1 in λ: no multiple root
-  task.pencil = LPoly(f.begin() + range.first, f.begin() + range.second);
-  auto stripped = [numeric, range](double u) {
-    const std::vector<double> c = numeric(u);
-    return std::vector<double>(c.begin() + range.first, c.begin() + range.second);
+  for (std::size_t k = range.first; k < range.second; ++k) {
+    Poly p = f[k];
+    const int shift = e * static_cast<int>(k - range.first);
+    for (double& v : p.c) v = std::ldexp(v, shift);
+    for (double& v : p.mag) v = std::ldexp(v, shift);
+    task.pencil.push_back(std::move(p));
+  }
+  auto stripped = [numeric, range, e, sigma](double u) {
+    const std::vector<double> c = numeric(u, sigma);
+    std::vector<double> r(c.begin() + range.first, c.begin() + range.second);
+    for (std::size_t j = 0; j < r.size(); ++j) r[j] = std::ldexp(r[j], e * static_cast<int>(j));
+    return r;
   };
   task.value = [stripped](double u) { return discriminant(stripped(u)); };
   task.critical_value = [stripped](double u) {
@@ -843,10 +878,10 @@ void pencilTask(Task& task, const LPoly& f, std::function<std::vector<double>(do
     for (std::size_t k = c.size(); k-- > 0;) v = v * *lambda + c[k];
     return v;
   };
-  task.points = [stripped, at_root](double u) {
-    const std::optional<double> lambda = multipleRoot(stripped(u));
-    if (!lambda) return std::vector<PointAt>{};
-    return at_root(u, *lambda);
+  task.points = [stripped, at_root, sigma](double u) {
+    const std::optional<double> mu = multipleRoot(stripped(u));
+    if (!mu) return std::vector<PointAt>{};
+    return at_root(u, sigma * *mu);
   };
 }
 
@@ -1132,7 +1167,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
             return std::nullopt;
           };
           pencilTask(task, characteristic(M1, M2),
-                          [Aq, S](double u) { return numericCharacteristic(Aq, at(S, u), Eigen::MatrixXd(4, 0), 5); },
+                          [Aq, S](double u, double sigma) { return numericCharacteristic(Aq, at(S, u), Eigen::MatrixXd(4, 0), 5, sigma); },
                           [Aq, S](double u, double lambda) {
                 const Eigen::Matrix4d Su = at(S, u);
                 const bool inf = std::isinf(lambda);
@@ -1169,7 +1204,9 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
             return Eigen::Matrix3d(Eu.transpose() * at(S, u) * Eu);
           };
           pencilTask(task, characteristic(M1, M2),
-                          [Cc, restricted](double u) { return numericCharacteristic(Cc, restricted(u), Eigen::MatrixXd(3, 0), 4); },
+                          [Cc, restricted](double u, double sigma) {
+                            return numericCharacteristic(Cc, restricted(u), Eigen::MatrixXd(3, 0), 4, sigma);
+                          },
                           [Cc, S, E](double u, double lambda) {
                 Eigen::Matrix<double, 4, 3> Eu;
                 for (int k = 0; k < 3; ++k) Eu.col(k) = at(E[k], u);
@@ -1205,10 +1242,10 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
             }
           }
           pencilTask(task, characteristic(M1, M2, {ell}),
-                          [Ca, Ea, Sb, pib](double u) {
+                          [Ca, Ea, Sb, pib](double u, double sigma) {
                             const Eigen::Matrix3d Cb = Ea.transpose() * at(Sb, u) * Ea;
                             const Eigen::MatrixXd l = Ea.transpose() * at(pib, u);
-                            return numericCharacteristic(Ca, Cb, l, 3);
+                            return numericCharacteristic(Ca, Cb, l, 3, sigma);
                           },
                           [Ca, Ea, pib](double u, double) {
                 // The points of a's conic on ℓ (the candidate point is one of them).
