@@ -453,7 +453,6 @@ BernsteinMatrix scaled(BernsteinMatrix a, double s) {
   for (Eigen::Matrix4d& m : a) m *= s;
   return a;
 }
-std::vector<Eigen::Matrix4d> magnitudes(const std::vector<Eigen::Matrix4d>& M) { return detail::cwiseAbs(M); }
 
 // The relative motion P = N_O M_F of one piece (F's local coordinates -> O's, up to a scalar
 // factor without roots on the piece) in the Bernstein basis of the piece's [0, 1], with the bounds
@@ -481,8 +480,8 @@ RelativeMotion relativeMotion(const MotionMatrix& mO, const MotionMatrix& mF) {
   if (dP == dN + dM) {
     const BernsteinMatrix NB = detail::bernsteinFromPower(N), MB = detail::bernsteinFromPower(M);
     const BernsteinMatrix NA = detail::cwiseAbs(NB), MA = detail::cwiseAbs(MB);
-    const BernsteinMatrix EN = scaled(detail::bernsteinFromPower(magnitudes(N)), 2.0 * (dN + 3) * u);
-    const BernsteinMatrix EM = scaled(detail::bernsteinFromPower(magnitudes(M)), 2.0 * (dM + 3) * u);
+    const BernsteinMatrix EN = scaled(detail::bernsteinFromPower(detail::cwiseAbs(N)), 2.0 * (dN + 3) * u);
+    const BernsteinMatrix EM = scaled(detail::bernsteinFromPower(detail::cwiseAbs(M)), 2.0 * (dM + 3) * u);
     r.P = detail::bernsteinProduct(NB, MB);
     r.mag = detail::bernsteinProduct(NA, MA);
     // (NB + dN)(MB + dM) - NB MB = dN MB + (NB + dN) dM, |dN| <= EN, |dM| <= EM.
@@ -494,7 +493,7 @@ RelativeMotion relativeMotion(const MotionMatrix& mO, const MotionMatrix& mF) {
   // err, relative to the product of the magnitudes; the terms above dP (computed as exact zeros,
   // each within its rounding of the magnitudes' product) are bounded on [0, 1] by the sum of
   // those magnitudes, a constant added to every coefficient.
-  const std::vector<Eigen::Matrix4d> Pmag = multiplyCoefficients(magnitudes(N), magnitudes(M));
+  const std::vector<Eigen::Matrix4d> Pmag = multiplyCoefficients(detail::cwiseAbs(N), detail::cwiseAbs(M));
   const double k = 2.0 * (4.0 * (dN + dM + 2) + dP + 3);
   Eigen::Matrix4d tail = Eigen::Matrix4d::Zero();
   for (std::size_t i = dP + 1; i < Pmag.size(); ++i) tail += Pmag[i];
