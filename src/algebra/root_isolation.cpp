@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "algebra/sign.h"
+
 namespace fcl_quadric {
 namespace {
 
@@ -19,7 +21,7 @@ using tolerance::kUnitRoundoff;
 constexpr double kBoundInflation = 1.0 + 16.0 * kUnitRoundoff;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-int sign(double v) { return (v > 0.0) - (v < 0.0); }
+using detail::sign;
 
 /// Knuth's TwoSum: x + y = s + err exactly, for s = fl(x + y).
 double twoSumError(double x, double y, double s) {
@@ -84,24 +86,24 @@ Descartes classify(const std::vector<double>& c, const std::vector<double>& r) {
 // --------------------------------------------------------------------------------------------
 // Sub-interval coefficients in double-double arithmetic.
 //
-// Node coefficients are unevaluated sums hi_i + lo_i (normalised by TwoSum) plus an absolute
+// IsolationNode coefficients are unevaluated sums hi_i + lo_i (normalised by TwoSum) plus an absolute
 // error bound err_i: the exact Bernstein coefficient of the input polynomial on the node's
 // interval lies within err_i of hi_i + lo_i. Working in double-double keeps err_i at the level
 // of u^2 times the coefficient magnitudes, so sign decisions near a root are limited by the
 // root's conditioning relative to u^2 rather than u.
 
-struct Coeffs {
+struct SplitCoeffs {
   std::vector<double> hi;
   std::vector<double> lo;
   std::vector<double> err;
 };
 
-Coeffs exactCoeffs(const std::vector<double>& c) {
-  return Coeffs{c, std::vector<double>(c.size(), 0.0), std::vector<double>(c.size(), 0.0)};
+SplitCoeffs exactCoeffs(const std::vector<double>& c) {
+  return SplitCoeffs{c, std::vector<double>(c.size(), 0.0), std::vector<double>(c.size(), 0.0)};
 }
 
 /// Radii for sign decisions on the hi parts: |lo_i| + err_i (inflated).
-std::vector<double> radii(const Coeffs& k) {
+std::vector<double> radii(const SplitCoeffs& k) {
   std::vector<double> r(k.hi.size());
   for (std::size_t i = 0; i < r.size(); ++i) r[i] = (std::abs(k.lo[i]) + k.err[i]) * kBoundInflation;
   return r;
@@ -110,12 +112,12 @@ std::vector<double> radii(const Coeffs& k) {
 /// Split at the unit parameter 1/2: each new coefficient is (a + b) / 2 in double-double.
 /// Halving is exact unless it underflows (detected; DBL_TRUE_MIN is added to the bound); the
 /// only rounding is that of the low-order sum, bounded by 2u times its magnitude.
-void splitHalf(const Coeffs& in, Coeffs* left, Coeffs* right) {
+void splitHalf(const SplitCoeffs& in, SplitCoeffs* left, SplitCoeffs* right) {
   const std::size_t n1 = in.hi.size();
-  Coeffs w = in;
-  Coeffs l{std::vector<double>(n1), std::vector<double>(n1), std::vector<double>(n1)};
-  Coeffs r = l;
-  auto store = [](Coeffs* dst, std::size_t j, const Coeffs& src, std::size_t i) {
+  SplitCoeffs w = in;
+  SplitCoeffs l{std::vector<double>(n1), std::vector<double>(n1), std::vector<double>(n1)};
+  SplitCoeffs r = l;
+  auto store = [](SplitCoeffs* dst, std::size_t j, const SplitCoeffs& src, std::size_t i) {
     dst->hi[j] = src.hi[i];
     dst->lo[j] = src.lo[i];
     dst->err[j] = src.err[i];
@@ -168,13 +170,13 @@ void combine(double ah, double al, double bh, double bl, double th, double tl, d
 }
 
 /// Split at a general unit parameter s in [0, 1] in double-double; either output may be null.
-void splitGeneral(const Coeffs& in, double s, Coeffs* left, Coeffs* right) {
+void splitGeneral(const SplitCoeffs& in, double s, SplitCoeffs* left, SplitCoeffs* right) {
   const std::size_t n1 = in.hi.size();
   const double th = 1.0 - s;
   const double tl = twoSumError(1.0, -s, th);
-  Coeffs w = in;
-  Coeffs l{std::vector<double>(n1), std::vector<double>(n1), std::vector<double>(n1)};
-  Coeffs r = l;
+  SplitCoeffs w = in;
+  SplitCoeffs l{std::vector<double>(n1), std::vector<double>(n1), std::vector<double>(n1)};
+  SplitCoeffs r = l;
   l.hi[0] = w.hi[0];
   l.lo[0] = w.lo[0];
   l.err[0] = w.err[0];
@@ -219,9 +221,9 @@ void addToAll(std::vector<double>* e, double v) {
 /// Coefficients on the unit sub-interval [s0, s1] of the node (0 <= s0 < s1 <= 1). The new end
 /// points are labelled by doubles within 6u of the node width of the points actually used;
 /// that mislabelling times the derivative bound is added to every error bound.
-Coeffs restrictCoeffs(const Coeffs& in, double s0, double s1) {
+SplitCoeffs restrictCoeffs(const SplitCoeffs& in, double s0, double s1) {
   const double label = 6.0 * kUnitRoundoff * derivativeTimesWidthBound(in.hi, radii(in));
-  Coeffs out = in;
+  SplitCoeffs out = in;
   if (s1 != 1.0) splitGeneral(out, s1, &out, nullptr);
   if (s0 != 0.0) splitGeneral(out, s0 / s1, nullptr, &out);
   addToAll(&out.err, label);
@@ -310,8 +312,8 @@ Certified evaluateCompensated(const std::vector<double>& c, const std::vector<do
 
 // --------------------------------------------------------------------------------------------
 
-struct Node {
-  Coeffs k;
+struct IsolationNode {
+  SplitCoeffs k;
   double lo;
   double hi;
   int depth;
@@ -322,7 +324,7 @@ struct Node {
   bool one_root;
 };
 
-Node pointNode(double x, RootKind kind) { return Node{Coeffs{}, x, x, 0, true, kind, false}; }
+IsolationNode pointNode(double x, RootKind kind) { return IsolationNode{SplitCoeffs{}, x, x, 0, true, kind, false}; }
 
 struct Found {
   RootInterval interval;
@@ -336,7 +338,7 @@ RootKind endpointKind(double adjacent) { return adjacent != 0.0 ? RootKind::Sing
 
 /// Kind of an exact zero at an interior split point: both one-sided derivative estimates must
 /// have certain, equal signs.
-RootKind splitPointKind(const Coeffs& l, const Coeffs& r) {
+RootKind splitPointKind(const SplitCoeffs& l, const SplitCoeffs& r) {
   const std::vector<double> lr = radii(l);
   const std::vector<double> rr = radii(r);
   const std::size_t n = l.hi.size() - 1;
@@ -345,7 +347,7 @@ RootKind splitPointKind(const Coeffs& l, const Coeffs& r) {
   return (isSign(from_right) && from_right == from_left) ? RootKind::Single : RootKind::Unresolved;
 }
 
-bool exactZero(const Coeffs& k, std::size_t i) { return k.hi[i] == 0.0 && k.lo[i] == 0.0 && k.err[i] == 0.0; }
+bool exactZero(const SplitCoeffs& k, std::size_t i) { return k.hi[i] == 0.0 && k.lo[i] == 0.0 && k.err[i] == 0.0; }
 
 void checkWidth(const char* where, const char* what, double w, bool allow_zero) {
   if (!std::isfinite(w) || w < 0.0 || (!allow_zero && w == 0.0)) {
@@ -357,7 +359,7 @@ void checkWidth(const char* where, const char* what, double w, bool allow_zero) 
 
 /// Splits a node at its midpoint. The children's bounds include the mislabelling of the
 /// midpoint when 0.5 lo + 0.5 hi is not exact (never on dyadic grids such as [0,1]).
-void splitNodeHalf(const Node& node, Node* left, Node* right) {
+void splitNodeHalf(const IsolationNode& node, IsolationNode* left, IsolationNode* right) {
   const double x = 0.5 * node.lo;
   const double y = 0.5 * node.hi;
   const double m = x + y;
@@ -388,15 +390,15 @@ std::vector<Found> isolateUnit(const BernsteinPolynomial& p, double min_width, b
   std::vector<Found> out;
   const std::vector<double>& c0 = p.coefficients();
   const std::size_t n = c0.size() - 1;
-  std::vector<Node> stack;
+  std::vector<IsolationNode> stack;
   // LIFO: push the right end first so that the output comes out sorted.
   if (c0[n] == 0.0) stack.push_back(pointNode(1.0, endpointKind(c0[n - 1])));
-  stack.push_back(Node{exactCoeffs(c0), 0.0, 1.0, 0, false, RootKind::Single, false});
+  stack.push_back(IsolationNode{exactCoeffs(c0), 0.0, 1.0, 0, false, RootKind::Single, false});
   if (c0[0] == 0.0) stack.push_back(pointNode(0.0, endpointKind(c0[1])));
 
   int nodes = 0;
   while (!stack.empty()) {
-    Node node = std::move(stack.back());
+    IsolationNode node = std::move(stack.back());
     stack.pop_back();
     if (node.is_point) {
       out.push_back({{node.lo, node.hi, node.kind}, {}, {}});
@@ -421,8 +423,8 @@ std::vector<Found> isolateUnit(const BernsteinPolynomial& p, double min_width, b
       if (first_only) return out;
       continue;
     }
-    Node left;
-    Node right;
+    IsolationNode left;
+    IsolationNode right;
     splitNodeHalf(node, &left, &right);
     const bool zero_at_m = exactZero(left.k, n);
     const RootKind mid_kind = zero_at_m ? splitPointKind(left.k, right.k) : RootKind::Single;
@@ -642,11 +644,11 @@ std::vector<RootInterval> bezierClip(const BernsteinPolynomial& p, double tol) {
   auto signAt = [&](double x) { return signClass(evaluateCompensated(c0, zero_r, 0.0, 1.0, x)); };
   const double tol_unit = unitWidth(tol, p.lower(), p.upper());
 
-  std::vector<Node> stack;
-  stack.push_back(Node{exactCoeffs(c0), 0.0, 1.0, 0, false, RootKind::Single, false});
+  std::vector<IsolationNode> stack;
+  stack.push_back(IsolationNode{exactCoeffs(c0), 0.0, 1.0, 0, false, RootKind::Single, false});
   int iterations = 0;
   while (!stack.empty()) {
-    Node node = std::move(stack.back());
+    IsolationNode node = std::move(stack.back());
     stack.pop_back();
     const std::vector<double> r = radii(node.k);
     const Descartes d = classify(node.k.hi, r);
@@ -688,8 +690,8 @@ std::vector<RootInterval> bezierClip(const BernsteinPolynomial& p, double tol) {
         out.push_back({node.lo, node.hi, RootKind::Unresolved});
         continue;
       }
-      Node left;
-      Node right;
+      IsolationNode left;
+      IsolationNode right;
       splitNodeHalf(node, &left, &right);
       if (exactZero(left.k, n)) {
         out.push_back({m, m, splitPointKind(left.k, right.k)});
@@ -714,7 +716,7 @@ std::vector<RootInterval> bezierClip(const BernsteinPolynomial& p, double tol) {
       stack.push_back(std::move(left));
       continue;
     }
-    Node clipped{restrictCoeffs(node.k, (new_lo - node.lo) / w, (new_hi - node.lo) / w), new_lo, new_hi,
+    IsolationNode clipped{restrictCoeffs(node.k, (new_lo - node.lo) / w, (new_hi - node.lo) / w), new_lo, new_hi,
                  node.depth + 1, false, RootKind::Single, node.one_root};
     stack.push_back(std::move(clipped));
   }

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "algebra/sign.h"
+
 namespace fcl_quadric {
 namespace {
 
@@ -18,7 +20,7 @@ Polynomial normalised(const Polynomial& p) {
   return Polynomial(std::move(c));
 }
 
-int sign(double v) { return (v > 0.0) - (v < 0.0); }
+using detail::sign;
 
 /// sum_i |c_i| |x|^i.
 double absoluteSum(const Polynomial& q, double x) {

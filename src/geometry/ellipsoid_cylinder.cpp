@@ -15,6 +15,7 @@
 #include "fcl_quadric/geometry/sphere_solid.h"
 #include "fcl_quadric/tolerances.h"
 #include "algebra/dense_decompositions.h"
+#include "geometry/sphere_directions.h"
 
 namespace fcl_quadric {
 
@@ -104,13 +105,9 @@ struct DiskObjective {
   }
 };
 
-void tangentBasis(const Eigen::Vector3d& n, Eigen::Vector3d* e1, Eigen::Vector3d* e2) {
-  const Eigen::Vector3d helper = std::fabs(n.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  *e1 = (helper - helper.dot(n) * n).normalized();
-  *e2 = n.cross(*e1);
-}
+using detail::tangentBasis;
 
-struct LocalMax {
+struct DiskLocalMax {
   Eigen::Vector3d n;
   int iterations = 0;
   bool converged = false;
@@ -119,7 +116,7 @@ struct LocalMax {
 /// Riemannian Newton ascent of phi_i on the unit sphere (the iteration of signed_distance.cpp:
 /// modified Hessian where phi_i is not locally concave, steps capped at a quarter turn, Armijo
 /// backtracking). At most round_solid::kMaxNewtonIterations steps; the best iterate is returned.
-LocalMax ascend(const DiskObjective& obj, Eigen::Vector3d n, double scale) {
+DiskLocalMax ascend(const DiskObjective& obj, Eigen::Vector3d n, double scale) {
   n.normalize();
   double f;
   Eigen::Vector3d grad;
@@ -180,16 +177,9 @@ LocalMax ascend(const DiskObjective& obj, Eigen::Vector3d n, double scale) {
   return {n, round_solid::kMaxNewtonIterations, false};
 }
 
-const std::array<Eigen::Vector3d, 40>& sphereGrid() {
-  static const std::array<Eigen::Vector3d, 40> grid = [] {
-    std::array<Eigen::Vector3d, 40> g;
-    const double golden = kPi * (3.0 - std::sqrt(5.0));
-    for (int i = 0; i < 40; ++i) {
-      const double z = 1.0 - 2.0 * (i + 0.5) / 40.0, r = std::sqrt(1.0 - z * z);
-      g[i] = Eigen::Vector3d(r * std::cos(golden * i), r * std::sin(golden * i), z);
-    }
-    return g;
-  }();
+/// Seed directions of the penetration-depth ascent: 40 of a Fibonacci lattice.
+const std::array<Eigen::Vector3d, 40>& diskSeedDirections() {
+  static const std::array<Eigen::Vector3d, 40> grid = detail::fibonacciLattice<40>();
   return grid;
 }
 
@@ -297,7 +287,7 @@ void newtonCandidates(const Problem& P, int starts, Best* best) {
     add(-P.e->rotation().col(j));
   }
   if (starts > 2)
-    for (const Eigen::Vector3d& g : sphereGrid()) add(g);  // penetration depth: more basins
+    for (const Eigen::Vector3d& g : diskSeedDirections()) add(g);  // penetration depth: more basins
   const bool same_disk = k.L == 0.0 && k.r[0] == k.r[1];
   const int base_seeds = ns;
   for (int i = 0; i < 2; ++i) {
@@ -334,7 +324,7 @@ void newtonCandidates(const Problem& P, int starts, Best* best) {
       }
       if (pick < 0) break;
       picked[npicked++] = pick;
-      const LocalMax m = ascend(obj, seeds[pick], P.scale);
+      const DiskLocalMax m = ascend(obj, seeds[pick], P.scale);
       best->iterations += m.iterations;
       consider(P, m.n, m.converged, best);
     }

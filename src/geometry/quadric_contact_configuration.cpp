@@ -55,13 +55,13 @@ Eigen::Matrix4d symmetrised(const Eigen::Matrix4d& Q) { return 0.5 * (Q + Q.tran
 
 // --- the characteristic polynomial ------------------------------------------------------------
 
-using Coeffs = std::array<double, 5>;
+using QuarticCoeffs = std::array<double, 5>;
 
 /// det(x X - Y) = sum_k c[k] x^k and the same Leibniz sum over |products| (abs), the scale that
 /// bounds the rounding of c and its sensitivity to relative perturbations of the entries.
 struct Expansion {
-  Coeffs c{};
-  Coeffs abs{};
+  QuarticCoeffs c{};
+  QuarticCoeffs abs{};
 };
 
 Expansion expand(const Eigen::Matrix4d& X, const Eigen::Matrix4d& Y) {
@@ -73,8 +73,8 @@ Expansion expand(const Eigen::Matrix4d& X, const Eigen::Matrix4d& Y) {
       for (int j = i + 1; j < 4; ++j) inversions += perm[i] > perm[j] ? 1 : 0;
     }
     // prod_i (a_i x - b_i) and prod_i (|a_i| x + |b_i|), built up one linear factor at a time.
-    Coeffs p{1.0, 0.0, 0.0, 0.0, 0.0};
-    Coeffs q{1.0, 0.0, 0.0, 0.0, 0.0};
+    QuarticCoeffs p{1.0, 0.0, 0.0, 0.0, 0.0};
+    QuarticCoeffs q{1.0, 0.0, 0.0, 0.0, 0.0};
     for (int i = 0; i < 4; ++i) {
       const double a = X(i, perm[i]);
       const double b = Y(i, perm[i]);
@@ -98,7 +98,7 @@ constexpr double kBinomial[5][5] = {
     {1, 0, 0, 0, 0}, {1, 1, 0, 0, 0}, {1, 2, 1, 0, 0}, {1, 3, 3, 1, 0}, {1, 4, 6, 4, 1}};
 
 /// f^(k)(x) / k! for f = sum_j c[j] x^j.
-double derivative(const Coeffs& c, int k, double x) {
+double derivative(const QuarticCoeffs& c, int k, double x) {
   double v = 0.0;
   for (int j = 4; j >= k; --j) v = v * x + kBinomial[j][k] * c[j];
   return v;
@@ -177,8 +177,8 @@ std::vector<double> realRootsIn(std::vector<double> q, double lo, double hi) {
 struct Chart {
   Eigen::Matrix4d X;
   Eigen::Matrix4d Y;
-  Coeffs c{};
-  Coeffs abs{};
+  QuarticCoeffs c{};
+  QuarticCoeffs abs{};
   bool reciprocal = false;
 };
 

@@ -312,10 +312,10 @@ class Side {
   std::vector<bool> concave_slack_;  // relaxed with the centred-form quadratic slack
 };
 
-struct Node {
+struct BoxPairNode {
   Box3 xa, xb;
   double lower = 0.0;
-  bool operator>(const Node& o) const { return lower > o.lower; }
+  bool operator>(const BoxPairNode& o) const { return lower > o.lower; }
 };
 
 }  // namespace
@@ -362,7 +362,7 @@ RegionDistanceResult regionDistance(const DistanceOperand& a, const DistanceOper
   };
 
   // Lower bound of a node, offering the witnesses of its closest pair of pieces.
-  auto evaluate = [&](Node* n) -> bool {
+  auto evaluate = [&](BoxPairNode* n) -> bool {
     const std::vector<Side::Piece> pa = sa.pieces(n->xa);
     if (pa.empty()) return false;
     const std::vector<Side::Piece> pb = sb.pieces(n->xb);
@@ -396,8 +396,8 @@ RegionDistanceResult regionDistance(const DistanceOperand& a, const DistanceOper
     return true;
   };
 
-  std::priority_queue<Node, std::vector<Node>, std::greater<Node>> queue;
-  Node root{a.box, b.box, 0.0};
+  std::priority_queue<BoxPairNode, std::vector<BoxPairNode>, std::greater<BoxPairNode>> queue;
+  BoxPairNode root{a.box, b.box, 0.0};
   if (evaluate(&root)) queue.push(root);
   // Lower bounds of the nodes set aside: too small to split, or pruned (within the tolerance of the
   // best distance at the time). The certificate is the smallest lower bound of any node left.
@@ -410,7 +410,7 @@ RegionDistanceResult regionDistance(const DistanceOperand& a, const DistanceOper
       break;
     }
     if (out.nodes >= kRegionDistanceMaxNodes) break;
-    const Node n = queue.top();
+    const BoxPairNode n = queue.top();
     queue.pop();
     ++out.nodes;
     if (n.lower >= upper - tol) {
@@ -432,7 +432,7 @@ RegionDistanceResult regionDistance(const DistanceOperand& a, const DistanceOper
     lo.hi[axis] = mid;
     hi.lo[axis] = mid;
     for (const Box3& child : {lo, hi}) {
-      Node c = n;
+      BoxPairNode c = n;
       (on_a ? c.xa : c.xb) = child;
       if (!evaluate(&c)) continue;
       if (c.lower < upper - tol) queue.push(c);

@@ -10,6 +10,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "fcl_quadric/tolerances.h"
+#include "geometry/sphere_directions.h"
 
 namespace fcl_quadric {
 
@@ -41,24 +42,18 @@ struct Objective {
 constexpr int kGridDirections = 96;
 const std::array<Eigen::Vector3d, 2 * kGridDirections>& sphereGrid() {
   static const std::array<Eigen::Vector3d, 2 * kGridDirections> grid = [] {
+    const std::array<Eigen::Vector3d, kGridDirections> lattice = detail::fibonacciLattice<kGridDirections>();
     std::array<Eigen::Vector3d, 2 * kGridDirections> g;
-    const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
     for (int i = 0; i < kGridDirections; ++i) {
-      const double z = 1.0 - 2.0 * (i + 0.5) / kGridDirections, r = std::sqrt(1.0 - z * z);
-      g[2 * i] = Eigen::Vector3d(r * std::cos(golden * i), r * std::sin(golden * i), z);
-      g[2 * i + 1] = -g[2 * i];
+      g[2 * i] = lattice[i];
+      g[2 * i + 1] = -lattice[i];
     }
     return g;
   }();
   return grid;
 }
 
-/// An orthonormal basis of the plane orthogonal to the unit vector n.
-void tangentBasis(const Eigen::Vector3d& n, Eigen::Vector3d* e1, Eigen::Vector3d* e2) {
-  const Eigen::Vector3d helper = std::fabs(n.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  *e1 = (helper - helper.dot(n) * n).normalized();
-  *e2 = n.cross(*e1);
-}
+using detail::tangentBasis;
 
 struct LocalMax {
   Eigen::Vector3d n;
