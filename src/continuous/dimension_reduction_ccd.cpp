@@ -310,10 +310,22 @@ int balancingExponent(const LPoly& f, std::size_t lo, std::size_t hi) {
 // 1e-11 below the others there would put a root at |μ| ~ 1e-11 or 1e11, not a contact. Unbalanced,
 // the comparison stripped the small end of a pencil of a large and a small ball, and the contact
 // was lost (finding 50).
-std::pair<std::size_t, std::size_t> structuralRange(const LPoly& f) {
+//
+// An end whose matrix is known to be regular (`regular`: M2 for the low end, det(-M2), and M1 for
+// the high end, det(M1)) is never stripped: the relative test is a heuristic, and a thin
+// ellipsoid's det(-S(u)) ~ 3e5 against a Leibniz magnitude ~ 3e17 passed it as zero, so its
+// contact with a ball was lost (finding 50(b)). A regular end also makes the pencil regular, so
+// the other end's test cannot strip everything.
+struct RegularEnds {
+  bool low = false;   // det(-M2) is not identically zero
+  bool high = false;  // det(M1) is not identically zero
+};
+std::pair<std::size_t, std::size_t> structuralRange(const LPoly& f, RegularEnds regular) {
   std::size_t lo = 0, hi = f.size();
-  while (hi > lo && vanishes(f[hi - 1])) --hi;
-  while (lo < hi && vanishes(f[lo])) ++lo;
+  if (!regular.high)
+    while (hi > lo && vanishes(f[hi - 1])) --hi;
+  if (!regular.low)
+    while (lo < hi && vanishes(f[lo])) ++lo;
   const int e = balancingExponent(f, lo, hi);
   std::vector<double> size(f.size(), 0.0);
   double scale = 0.0;
@@ -321,8 +333,10 @@ std::pair<std::size_t, std::size_t> structuralRange(const LPoly& f) {
     size[k] = std::ldexp(maxAbs(f[k]), e * static_cast<int>(k - lo));
     scale = std::max(scale, size[k]);
   }
-  while (hi > lo && size[hi - 1] <= kReductionZeroRelative * scale) --hi;
-  while (lo < hi && size[lo] <= kReductionZeroRelative * scale) ++lo;
+  if (!regular.high)
+    while (hi > lo && size[hi - 1] <= kReductionZeroRelative * scale) --hi;
+  if (!regular.low)
+    while (lo < hi && size[lo] <= kReductionZeroRelative * scale) ++lo;
   return {lo, hi};
 }
 
@@ -835,8 +849,9 @@ bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long lo
 // conic at the ends of the contact segment). Those moments are tasks of their own (`extra`):
 // the roots of c_lo (λ0 = 0) and of c_{hi-1} (λ0 = ∞; at_root then gets +infinity).
 void pencilTask(Task& task, const LPoly& f, std::function<std::vector<double>(double, double)> numeric,
-                std::function<std::vector<PointAt>(double, double)> at_root, std::vector<Task>* extra) {
-  const std::pair<std::size_t, std::size_t> range = structuralRange(f);
+                std::function<std::vector<PointAt>(double, double)> at_root, std::vector<Task>* extra,
+                RegularEnds regular) {
+  const std::pair<std::size_t, std::size_t> range = structuralRange(f, regular);
   // The pencil in μ = λ / σ, σ = 2^e balancing its ends (exact scaling; balancingExponent): the
   // seed search's pads and the critical points are relative to the largest coefficient, and the
   // numeric coefficients come from values at λ = σ μ.
@@ -1166,6 +1181,8 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
               if (lambda < 0.0) return contactConfiguration(Aq, Bu, lambda);
             return std::nullopt;
           };
+          // det(-S) and det(A) vanish identically only for a singular face (makeBody's rank test).
+          const RegularEnds regular{!B.singular[B.el.faces[sp.index_b].atom], !A.singular[A.el.faces[sp.index_a].atom]};
           pencilTask(task, characteristic(M1, M2),
                           [Aq, S](double u, double sigma) { return numericCharacteristic(Aq, at(S, u), Eigen::MatrixXd(4, 0), 5, sigma); },
                           [Aq, S](double u, double lambda) {
@@ -1176,7 +1193,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
                   out.push_back(affine(X, 1.0));
                 return out;
               },
-              &tasks);
+              &tasks, regular);
           tasks.push_back(std::move(task));
           break;
         }
@@ -1217,7 +1234,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
                   out.push_back(affine(Eu * y, 1.0));
                 return out;
               },
-              &tasks);
+              &tasks, RegularEnds{});
           tasks.push_back(std::move(task));
           break;
         }
@@ -1261,7 +1278,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
                 for (double sgn : {-1.0, 1.0}) out.push_back(affine(Ea * (y0 + ((-qb + sgn * r) / qa) * d), 1.0));
                 return out;
               },
-              &tasks);
+              &tasks, RegularEnds{});
           tasks.push_back(std::move(task));
           break;
         }

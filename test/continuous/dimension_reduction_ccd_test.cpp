@@ -452,6 +452,42 @@ TEST(DimensionReductionCcd, ABallFiftyTimesSmallerThanTheOtherIsMetAtTheClosedFo
   EXPECT_GE(contacts, 8);
 }
 
+// A ball dropped on a thin disk (an oblate spheroid a x a x c, c = a / 170) along the disk's axis
+// while the disk tumbles: the ball's motion is the disk's composed with a fall along the disk's
+// axis, so first contact is at the pole when the centres are c + r apart (the disk's curvature
+// radius at the pole, a^2 / c, is far above r). det(-S(u)) of the tumbling disk is about 10^-12
+// of its Leibniz magnitude; judged a structural zero, it dropped the face-face pencil's low end
+// and the contact (docs/reliability.md finding 50(b)).
+TEST(DimensionReductionCcd, ABallDroppedOnAThinTumblingDiskMeetsItsPoleAtTheClosedFormTime) {
+  std::mt19937_64 rng(51);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  auto turn = [&]() {
+    return Eigen::Quaterniond(Eigen::Vector4d(U(rng), U(rng), U(rng), U(rng)).normalized()).toRotationMatrix();
+  };
+  for (int trial = 0; trial < 8; ++trial) {
+    const double a = 1.0 + 0.5 * U(rng), c = a / 170.0, rb = 0.3 + 0.2 * U(rng);
+    const double side = trial % 2 ? 1.0 : -1.0;  // from above or below
+    const double h0 = side * (2.0 + U(rng)), h1 = side * (-0.5 + 0.2 * U(rng));  // in the disk's frame
+    const MotionMatrix tumble = MotionMatrix::fromPoses(turn(), Eigen::Vector3d(U(rng), U(rng), U(rng)), turn(),
+                                                        Eigen::Vector3d(U(rng), U(rng), U(rng)));
+    const MotionMatrix fall =
+        MotionMatrix::fromPoses(turn(), Eigen::Vector3d(0, 0, h0), turn(), Eigen::Vector3d(0, 0, h1));
+    const Eigen::Vector3d half(a, a, c);
+    const MovingRegion disk(QuadricRegion::atom(quadric::ellipsoid(half)), Box3{-half, half}, PiecewiseMotion(tumble));
+    const MovingRegion ball(QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(rb))),
+                            Box3{Eigen::Vector3d::Constant(-rb), Eigen::Vector3d::Constant(rb)},
+                            PiecewiseMotion(MotionMatrix::compose(tumble, fall)));
+    for (const bool disk_first : {true, false}) {
+      const ReductionCcdResult r = disk_first ? continuousCollideRegionsByReduction(disk, ball)
+                                              : continuousCollideRegionsByReduction(ball, disk);
+      ASSERT_EQ(r.status, ReductionStatus::Decided) << "trial " << trial << " " << disk_first << ": " << r.reason;
+      ASSERT_TRUE(r.collide) << "trial " << trial << " " << disk_first;
+      const double pole = (std::fabs(h0) - c - rb) / std::fabs(h0 - h1);  // the centres c + rb apart
+      EXPECT_NEAR(r.time, pole, 1e-9) << "trial " << trial << " " << disk_first;
+    }
+  }
+}
+
 TEST(DimensionReductionCcd, TwoTurningBallsMeetAtTheClosedFormTime) {
   std::mt19937 rng(45);
   std::uniform_real_distribution<double> U(-1.0, 1.0), R(0.2, 1.0);
