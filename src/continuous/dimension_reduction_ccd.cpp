@@ -722,11 +722,15 @@ struct Task {
 
 // A root of `value` near u0 (a root of the expanded polynomial): the nearest sign change within
 // widening windows (1e-9 ... 1e-2), bisected to kReductionRootWidth; u0 if none (a graze).
-double refineNumerically(const std::function<double(double)>& value, double u0) {
+// Windows start 1e3 kReductionRootWidth after `after` (a root already tried, when u0 > after):
+// the search then finds the next root rather than the nearest.
+double refineNumerically(const std::function<double(double)>& value, double u0,
+                         double after = -std::numeric_limits<double>::infinity()) {
   const double f0 = value(u0);
   if (f0 == 0.0) return u0;
   for (double w = 1e-9; w <= 1e-2; w *= 10.0) {
-    const double lo = std::max(0.0, u0 - w), hi = std::min(1.0, u0 + w);
+    const double lo = std::max({0.0, u0 - w, std::min(u0, after + 1e3 * kReductionRootWidth)});
+    const double hi = std::min(1.0, u0 + w);
     double a = 0.0, b = 0.0;
     if ((value(lo) < 0.0) != (f0 < 0.0)) {
       a = lo;
@@ -758,13 +762,23 @@ double refineNumerically(const std::function<double(double)>& value, double u0) 
 // discriminant of f in λ, expanded in u (degree up to 120), loses ~1e-3 of u to cancellation
 // (measured); F and F_x do not cancel. None when kPencilMaxBoxes is reached (a curve of
 // multiple roots: spheres, coaxial cylinders).
-// Boxes are searched depth first, earlier t first; `accept(u)` is called on each new seed (in
-// the search's order, not sorted) and returns the time limit below which the search goes on (a
-// verified contact at u returns u: later boxes are pruned). Returns false at the box cap of the
-// search (kPencilMaxBoxes) or when *total_boxes, the count of all pencil searches of the query,
-// exceeds total_cap (the piece's share: kReductionMaxPencilBoxes more than at its start).
+// Boxes are searched depth first, earlier t first; `accept(u, newton, after)` is called on each
+// new seed (in the search's order, not sorted) and returns the time limit below which the search
+// goes on (a verified contact at u returns u: later boxes are pruned) and the moment up to which
+// its candidates were tried. Adjacent boxes form a chain along a stretch where the pencil is
+// within its pads of a tangency; the chain's first box is a seed (after = -infinity), and a later
+// box of the chain is one only past the moment tried (after = that moment): a cylinder's rim
+// nearly tangent to a cone over 2.5e-5 of u had a tangency outside the cone near the chain's
+// start and the contact 2e-5 later, which seeding the chain once missed (docs/reliability.md
+// finding 51). Returns false at the box cap of the search (kPencilMaxBoxes) or when
+// *total_boxes, the count of all pencil searches of the query, exceeds total_cap (the piece's
+// share: kReductionMaxPencilBoxes more than at its start).
+struct SeedOutcome {
+  double limit;  // the search goes on below this time
+  double tried;  // candidates up to this moment were tried
+};
 bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long long total_cap,
-                   const std::function<double(double, std::optional<double>)>& accept) {
+                   const std::function<SeedOutcome(double, std::optional<double>, double)>& accept) {
   // F(x, u) = sum_k g_k(u) (x - 1)^k x^(m - k) = sum_k (-1)^k g_k(u) B_{m-k}^m(x) / C(m, k): its
   // Bernstein coefficients in x come straight from the g_k (already Bernstein in u).
   const int m = static_cast<int>(g.size()) - 1;
@@ -784,7 +798,7 @@ bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long lo
   const BivariateBernstein Fu = F.derivativeT(), Fxx = Fx.derivativeU(), Fxu = Fx.derivativeT();
   const double pad = 1e-12 * F.coefficients().cwiseAbs().maxCoeff(), padx = 1e-12 * Fx.coefficients().cwiseAbs().maxCoeff();
   std::vector<std::array<double, 4>> stack{{0.0, 1.0, 0.0, 1.0}};
-  double last_seed = -1.0;
+  double last_seed = -1.0, tried = -1.0;
   int boxes = 0;
   while (!stack.empty()) {
     const std::array<double, 4> b = stack.back();
@@ -821,7 +835,12 @@ bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long lo
       }
       std::optional<double> newton;
       if (converged && std::fabs(u - centre) <= 10 * kPencilSeedWidth && u >= 0.0 && u <= 1.0) newton = u;
-      if (std::fabs(centre - last_seed) > 10 * kPencilSeedWidth) limit = std::min(limit, accept(centre, newton));
+      const bool chain_start = std::fabs(centre - last_seed) > 10 * kPencilSeedWidth;
+      if (chain_start || centre > tried) {
+        const SeedOutcome o = accept(centre, newton, chain_start ? -std::numeric_limits<double>::infinity() : tried);
+        limit = std::min(limit, o.limit);
+        tried = std::max(o.tried, centre + 10 * kPencilSeedWidth);
+      }
       last_seed = centre;
       continue;
     }
@@ -1412,13 +1431,14 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
       // Each seed is tried at its Newton solution of (F, F_x) = 0, then refined on the pencil's
       // discriminant evaluated at u (which fails for a permanent multiple root: spheres), then on
       // f at its negative critical point (which does not).
-      auto seed = [&](double centre, std::optional<double> newton) {
-        if (newton && *newton < best && verify(task, *newton)) return best;
-        const double u = refineNumerically(task.value, centre);
-        if (u < best && verify(task, u)) return best;
-        const double uc = refineNumerically(task.critical_value, centre);
-        if (uc != u && uc < best && verify(task, uc)) return best;
-        return 2.0;
+      // A seed within a chain (after > -infinity) looks for the next root past the one tried.
+      auto seed = [&](double centre, std::optional<double> newton, double after) {
+        if (newton && *newton > after && *newton < best && verify(task, *newton)) return SeedOutcome{best, best};
+        const double u = refineNumerically(task.value, centre, after);
+        if (u < best && verify(task, u)) return SeedOutcome{best, best};
+        const double uc = refineNumerically(task.critical_value, centre, after);
+        if (uc != u && uc < best && verify(task, uc)) return SeedOutcome{best, best};
+        return SeedOutcome{2.0, std::max({u, uc, newton.value_or(centre)})};
       };
       const bool complete = tangencySeeds(task.pencil, std::min(best, 1.0), &res.pencil_boxes, piece_cap, seed);
       if (!complete) {

@@ -403,6 +403,43 @@ void compareWithEngine(unsigned seed, int trials, bool cones = false) {
               decided, total, capped, collisions, apex_contacts, misses, worst, t_red, t_eng);
 }
 
+// A capped cylinder's rim runs along a capped cone's side, within the pencil's pads of tangency
+// over 2.5e-5 of the motion: the rim becomes tangent to the cone's quadric outside the cone
+// first, and meets the cone 2e-5 later. The pencil search seeded that stretch once, refined to the
+// first tangency, and the answer came from a later cap contact, 0.022 late (docs/reliability.md
+// finding 51). A recorded configuration (session 56's audit, seed 3, trial 74, size 1000); the
+// oracles are the certified static engine (Separated just before the answer, Overlapping just
+// after) and the space-time engine's first contact.
+TEST(DimensionReductionCcd, ARimAlongAConeIsMetAfterATangencyOutsideTheCone) {
+  // Rotations from unit quaternions given as (x, y, z, w), as the audit drew them.
+  auto q = [](double x, double y, double z, double w) {
+    return Eigen::Quaterniond(Eigen::Vector4d(x, y, z, w)).toRotationMatrix();
+  };
+  const Eigen::Vector3d cylinder_half(300.46501818814926, 513.36154702784313, 457.47412150310305);
+  const MovingRegion cylinder{
+      cappedCylinder(cylinder_half.x(), cylinder_half.y(), 2 * cylinder_half.z()), centred(cylinder_half),
+      moving(q(-0.054618349409149086, 0.28046687587510116, -0.69475409863385817, 0.66005447493077107),
+             {-573.01160897115437, -391.41924223287208, -879.55609508118096},
+             q(-0.64697065509974006, -0.43196944491597755, -0.49637910748093883, 0.38527801878023321),
+             {286.50580448557719, 195.70962111643604, 439.77804754059048})};
+  const Eigen::Vector3d cone_half(0.4 * 701.96013947951883, 0.4 * 724.81113559176515, 337.92847108375139);
+  const MovingRegion cone{
+      cappedCone(cone_half.x(), cone_half.y(), cone_half.z()), centred(cone_half),
+      moving(q(0.57733760619744701, -0.34211483863542697, 0.45105162367950163, 0.58838011389895095),
+             {1016.8578130045263, 2162.9658216101179, -733.19781960813248},
+             q(-0.27131506168990638, -0.5038630274714806, -0.16734678248931215, -0.80281083776812034),
+             {-1255.6126500758405, -2326.0571725404811, 366.71611332430706})};
+  const ReductionCcdResult r = continuousCollideRegionsByReduction(cylinder, cone);
+  ASSERT_EQ(r.status, ReductionStatus::Decided) << r.reason;
+  ASSERT_TRUE(r.collide);
+  EXPECT_EQ(staticRelation(cylinder, cone, r.time - 1e-7), RegionRelation::Separated) << r.time;
+  EXPECT_EQ(staticRelation(cylinder, cone, r.time + 1e-7), RegionRelation::Overlapping) << r.time;
+  const RegionCcdResult e = continuousCollideRegions(cylinder, cone);
+  ASSERT_TRUE(e.collide);
+  ASSERT_FALSE(e.near_tangent || e.capped);
+  EXPECT_NEAR(r.time, e.time, 1e-7);
+}
+
 TEST(DimensionReductionCcd, AgreesWithTheSpaceTimeEngineOnRandomRigidMotions) { compareWithEngine(20261123, 45); }
 TEST(DimensionReductionCcd, LongAgreesWithTheSpaceTimeEngineOnManyRandomRigidMotions) { compareWithEngine(4242, 300); }
 TEST(DimensionReductionCcd, ConesAgreeWithTheSpaceTimeEngineOnRandomRigidMotions) { compareWithEngine(1123, 24, true); }
