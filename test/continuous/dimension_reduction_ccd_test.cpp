@@ -306,9 +306,18 @@ RegionRelation staticRelation(const MovingRegion& a, const MovingRegion& b, doub
   return collideRegions(a.region, *a.box, b.region, *b.box, X.topLeftCorner<3, 3>(), X.block<3, 1>(0, 3)).relation;
 }
 
-// `cones`: body a is a capped cone (its apex a point contact of its own), b cycles through the
-// four kinds.
-void compareWithEngine(unsigned seed, int trials, bool cones = false) {
+// The shapes of a comparison. `cones`: body a is a capped cone (its apex a point contact of its
+// own), b cycles through the four kinds. `thin`: one random axis of every shape is squeezed 1:50,
+// and both bodies cycle through the four kinds. `scale` multiplies the sizes and the paths. The
+// thin and scaled regimes are those of session 55-56's audit (docs/reliability.md findings 50 and 51).
+struct Regime {
+  bool cones = false;
+  bool thin = false;
+  double scale = 1.0;
+};
+void compareWithEngine(unsigned seed, int trials, Regime regime = {}) {
+  const bool cones = regime.cones;
+  const double scale = regime.scale;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(-1.0, 1.0), S(0.3, 0.8);
   struct Shape {
@@ -316,24 +325,35 @@ void compareWithEngine(unsigned seed, int trials, bool cones = false) {
     Box3 box;
   };
   auto makeShape = [&](int kind) -> Shape {
-    const double a = S(rng), b = S(rng), c = S(rng);
+    double a = S(rng), b = S(rng), c = S(rng);
+    if (regime.thin) {
+      const int k = static_cast<int>(rng() % 3);
+      (k == 0 ? a : k == 1 ? b : c) *= 0.02;
+    }
+    a *= scale;
+    b *= scale;
+    c *= scale;
     if (kind == 0) return {cuboid({a, b, c}), centred({a, b, c})};
     if (kind == 1) return {cappedCylinder(a, b, 2 * c), centred({a, b, c})};
     if (kind == 3) return {cappedCone(0.4 * a, 0.4 * b, c), centred({0.4 * a, 0.4 * b, c})};  // slender
     return {clippedEllipsoid({a, b, c}, 0.3 * c), Box3{Eigen::Vector3d(-a, -b, -c), Eigen::Vector3d(a, b, 0.3 * c)}};
   };
-  int decided = 0, collisions = 0, misses = 0, total = 0, apex_contacts = 0, capped = 0;
+  int decided = 0, collisions = 0, misses = 0, total = 0, apex_contacts = 0, capped = 0, undecided = 0, graze = 0;
   double worst = 0.0, t_red = 0.0, t_eng = 0.0;
   for (int trial = 0; trial < trials; ++trial) {
-    const Shape s1 = cones ? makeShape(3) : makeShape(trial % 3);
-    const Shape s2 = cones ? makeShape((trial / 2) % 4) : makeShape((trial / 3) % 3);
-    const Eigen::Vector3d p0(U(rng), U(rng), U(rng)), dir = Eigen::Vector3d(U(rng), U(rng), U(rng)).normalized();
+    const Shape s1 = cones ? makeShape(3) : regime.thin ? makeShape(trial % 4) : makeShape(trial % 3);
+    const Shape s2 = cones         ? makeShape((trial / 2) % 4)
+                     : regime.thin ? makeShape((trial / 4) % 4)
+                                   : makeShape((trial / 3) % 3);
+    Eigen::Vector3d p0(U(rng), U(rng), U(rng));
+    p0 *= scale;
+    const Eigen::Vector3d dir = Eigen::Vector3d(U(rng), U(rng), U(rng)).normalized();
     // Every other trial passes b by at a random lateral offset (near misses and grazes).
-    const Eigen::Vector3d side = (trial % 2) * (0.9 + 0.8 * (0.5 + 0.5 * U(rng))) * dir.unitOrthogonal();
+    const Eigen::Vector3d side = (trial % 2) * (0.9 + 0.8 * (0.5 + 0.5 * U(rng))) * scale * dir.unitOrthogonal();
     // Boundary elements are a property of the shape (cached by the FCL shapes): outside the timing.
     const MovingRegion a{s1.region, s1.box, moving(randomRotation(rng), 1.2 * p0, randomRotation(rng), -0.6 * p0),
                          std::make_shared<const BoundaryElements>(boundaryElements(s1.region, s1.box))};
-    Eigen::Vector3d b0 = 2.5 * dir + side, b1 = -2.5 * dir + 0.5 * p0 + side;
+    Eigen::Vector3d b0 = 2.5 * scale * dir + side, b1 = -2.5 * scale * dir + 0.5 * p0 + side;
     if (cones && trial % 2 == 0) {
       // Towards the cone's tip: from 2.5 beyond the apex along the axis to the cone's centre,
       // with a small lateral jitter, so that the apex is often the first contact.
@@ -359,10 +379,26 @@ void compareWithEngine(unsigned seed, int trials, bool cones = false) {
         ++capped;
         continue;
       }
+      // Thin shapes: a few pencils of nearly flat pairs stop at a cap (about 1% in the audit).
+      if (regime.thin) {
+        ++undecided;
+        continue;
+      }
       ADD_FAILURE() << "trial " << trial << " undecided: " << r.reason;
       continue;
     }
     ++decided;
+    const bool engine_unsure = e.near_tangent || e.capped;
+    if (!r.collide && e.collide && engine_unsure) {
+      // The engine's contact is within its band (or conservative at a cap): a graze that the
+      // reduction may call free, unless the static engine certifies an overlap later on.
+      ++graze;
+      for (int k = 0; k <= 8; ++k) {
+        const double t = e.time + (1.0 - e.time) * k / 8.0;
+        EXPECT_NE(staticRelation(a, b, t), RegionRelation::Overlapping) << "trial " << trial << " t " << t << " missed";
+      }
+      continue;
+    }
     ASSERT_EQ(r.collide, e.collide) << "trial " << trial << " reduction t " << r.time << " engine t " << e.time;
     if (!r.collide) {
       ++misses;
@@ -382,7 +418,7 @@ void compareWithEngine(unsigned seed, int trials, bool cones = false) {
       // band (boundaries within ~1e-9 of the size): a graze stays in it for a while before its
       // exact contact (seed 77's trial 94, a cone's rim edge onto a face, is Touching from
       // 8e-8 before the reduction's time to 1.2e-7 after it, and Overlapping nowhere in between).
-      EXPECT_TRUE(e.near_tangent) << "trial " << trial;
+      EXPECT_TRUE(engine_unsure) << "trial " << trial;
       for (int k = 1; k < 8; ++k) {
         const double t = e.time + (r.time - e.time) * k / 8.0;
         EXPECT_NE(staticRelation(a, b, t), RegionRelation::Overlapping)
@@ -394,13 +430,15 @@ void compareWithEngine(unsigned seed, int trials, bool cones = false) {
   }
   EXPECT_GE(collisions, trials / 5);
   EXPECT_GE(misses, trials / 10);
+  EXPECT_LE(undecided, trials / 20);
   if (cones) {
     EXPECT_GE(apex_contacts, 1);  // some first contacts are at the apex
     EXPECT_LE(capped, trials / 20);
   }
-  std::printf("decided %d/%d (%d undecided at the pencil cap), %d collisions (%d at a cone apex), %d misses, largest "
-              "|t_reduction - t_engine| %.3g; time %.3f s vs engine %.3f s\n",
-              decided, total, capped, collisions, apex_contacts, misses, worst, t_red, t_eng);
+  std::printf("decided %d/%d (%d undecided at the pencil cap, %d thin undecided), %d collisions (%d at a cone apex), "
+              "%d misses (%d grazes in the engine's band), largest |t_reduction - t_engine| %.3g; time %.3f s vs "
+              "engine %.3f s\n",
+              decided, total, capped, undecided, collisions, apex_contacts, misses, graze, worst, t_red, t_eng);
 }
 
 // A capped cylinder's rim runs along a capped cone's side, within the pencil's pads of tangency
@@ -442,9 +480,19 @@ TEST(DimensionReductionCcd, ARimAlongAConeIsMetAfterATangencyOutsideTheCone) {
 
 TEST(DimensionReductionCcd, AgreesWithTheSpaceTimeEngineOnRandomRigidMotions) { compareWithEngine(20261123, 45); }
 TEST(DimensionReductionCcd, LongAgreesWithTheSpaceTimeEngineOnManyRandomRigidMotions) { compareWithEngine(4242, 300); }
-TEST(DimensionReductionCcd, ConesAgreeWithTheSpaceTimeEngineOnRandomRigidMotions) { compareWithEngine(1123, 24, true); }
+TEST(DimensionReductionCcd, ConesAgreeWithTheSpaceTimeEngineOnRandomRigidMotions) {
+  compareWithEngine(1123, 24, Regime{true});
+}
 TEST(DimensionReductionCcd, LongConesAgreeWithTheSpaceTimeEngineOnManyRandomRigidMotions) {
-  compareWithEngine(77, 160, true);
+  compareWithEngine(77, 160, Regime{true});
+}
+// Thin shapes (one axis 1:50) at sizes 1 and 1000: the regimes where the reduction's zero tests
+// and seed search gave wrong answers (findings 50 and 51).
+TEST(DimensionReductionCcd, LongThinShapesAgreeWithTheSpaceTimeEngineOnRandomRigidMotions) {
+  compareWithEngine(55, 120, Regime{false, true});
+}
+TEST(DimensionReductionCcd, LongThinShapesOfSize1000AgreeWithTheSpaceTimeEngineOnRandomRigidMotions) {
+  compareWithEngine(56, 80, Regime{false, true, 1000.0});
 }
 
 // Two balls, both turning about their centres while they move: the first contact is where the
