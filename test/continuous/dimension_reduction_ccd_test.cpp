@@ -391,10 +391,11 @@ void compareWithEngine(unsigned seed, int trials, Regime regime = {}) {
     const bool engine_unsure = e.near_tangent || e.capped;
     if (!r.collide && e.collide && engine_unsure) {
       // The engine's contact is within its band (or conservative at a cap): a graze that the
-      // reduction may call free, unless the static engine certifies an overlap later on.
+      // reduction may call free, unless the static engine certifies an overlap later on (33
+      // instants: a grazing overlap is brief).
       ++graze;
-      for (int k = 0; k <= 8; ++k) {
-        const double t = e.time + (1.0 - e.time) * k / 8.0;
+      for (int k = 0; k <= 32; ++k) {
+        const double t = e.time + (1.0 - e.time) * k / 32.0;
         EXPECT_NE(staticRelation(a, b, t), RegionRelation::Overlapping) << "trial " << trial << " t " << t << " missed";
       }
       continue;
