@@ -408,6 +408,13 @@ std::optional<double> multipleRoot(const std::vector<double>& c) {
 
 // Null vectors of the symmetric matrix M (rank n - 1: one; rank n - 2: the real points of the
 // null line on the quadric Q, two at most). In the matrix's own coordinates.
+//
+// Rank n - 2 is judged against the largest singular value, loosely (1e-6: the multiple root is
+// computed, so a line contact's matrix is only near rank n - 2). A matrix that is merely
+// unbalanced can pass that test: a ball against a thin cylinder at size 1000 (singular values
+// 306, 4e-5, 4e-5, 4e-19) had a null line that missed Q, and its contact got no point. When the
+// null line has no real point on Q, the least singular vector is the point (docs/reliability.md
+// finding 52); the candidate is still verified on both bodies.
 std::vector<Eigen::VectorXd> nullPoints(const Eigen::MatrixXd& M, const Eigen::MatrixXd& Q) {
   // Singular values of a symmetric matrix: |eigenvalues|; right singular vectors: eigenvectors.
   const SymmetricEigenDecomposition eig = symmetricEigen(M);
@@ -429,7 +436,7 @@ std::vector<Eigen::VectorXd> nullPoints(const Eigen::MatrixXd& M, const Eigen::M
     out.push_back(x1);
     return out;
   }
-  if (disc < -1e-12 * (qb * qb + std::fabs(qa * qc))) return out;
+  if (disc < -1e-12 * (qb * qb + std::fabs(qa * qc))) return {x0};
   const double r = disc > 0.0 ? std::sqrt(disc) : 0.0;
   out.push_back(x0 + ((-qb - r) / qa) * x1);
   out.push_back(x0 + ((-qb + r) / qa) * x1);

@@ -479,6 +479,40 @@ TEST(DimensionReductionCcd, ARimAlongAConeIsMetAfterATangencyOutsideTheCone) {
   EXPECT_NEAR(r.time, e.time, 1e-7);
 }
 
+// A ball against a thin elliptic cylinder (1:25), both of size ~500 and ~1,000 from the origin:
+// at the tangency λA - S(u) has singular values 306, 4e-5, 4e-5, 4e-19, which the loose rank test
+// called rank n - 2; its null line missed the quadric, the contact got no point, and the pair was
+// reported free (docs/reliability.md finding 52). A recorded configuration (session 56's audit,
+// seed 16, trial 98); the oracles as above.
+TEST(DimensionReductionCcd, ABallMeetsAThinCylinderFarFromTheOriginWhereTheRankTestWasLoose) {
+  auto q = [](double x, double y, double z, double w) {
+    return Eigen::Quaterniond(Eigen::Vector4d(x, y, z, w)).toRotationMatrix();
+  };
+  const Eigen::Vector3d ball_half = Eigen::Vector3d::Constant(499.32281623880596);
+  const MovingRegion ball{
+      QuadricRegion::atom(quadric::ellipsoid(ball_half)), centred(ball_half),
+      moving(q(0.87061293212337432, 0.35273359595344494, 0.24257634698348257, 0.24242287142396823),
+             {1139.7763053436254, -392.5531443986373, 991.14990339864289},
+             q(-0.45548820886984781, -0.405016708995935, 0.35109138818349556, 0.71079307407854364),
+             {-569.88815267181269, 196.27657219931865, -495.57495169932145})};
+  const Eigen::Vector3d cylinder_half(15.918817431093007, 395.06202525605966, 671.86504854944531);
+  const MovingRegion cylinder{
+      cappedCylinder(cylinder_half.x(), cylinder_half.y(), 2 * cylinder_half.z()), centred(cylinder_half),
+      moving(q(0.35276694688341498, 0.15985445739145995, -0.45660772005628625, 0.80094408270717388),
+             {-1377.5424988819912, 365.32599572009514, 2053.9994110576276},
+             q(0.41461632162541784, 0.28276509698751301, 0.34341055189710479, 0.79385540157712375),
+             {1852.4492927751685, -528.88980588619404, -1641.0202846415264})};
+  const ReductionCcdResult r = continuousCollideRegionsByReduction(ball, cylinder);
+  ASSERT_EQ(r.status, ReductionStatus::Decided) << r.reason;
+  ASSERT_TRUE(r.collide);
+  EXPECT_EQ(staticRelation(ball, cylinder, r.time - 1e-7), RegionRelation::Separated) << r.time;
+  EXPECT_EQ(staticRelation(ball, cylinder, r.time + 1e-7), RegionRelation::Overlapping) << r.time;
+  const RegionCcdResult e = continuousCollideRegions(ball, cylinder);
+  ASSERT_TRUE(e.collide);
+  ASSERT_FALSE(e.near_tangent || e.capped);
+  EXPECT_NEAR(r.time, e.time, 1e-7);
+}
+
 TEST(DimensionReductionCcd, AgreesWithTheSpaceTimeEngineOnRandomRigidMotions) { compareWithEngine(20261123, 45); }
 TEST(DimensionReductionCcd, LongAgreesWithTheSpaceTimeEngineOnManyRandomRigidMotions) { compareWithEngine(4242, 300); }
 TEST(DimensionReductionCcd, ConesAgreeWithTheSpaceTimeEngineOnRandomRigidMotions) {
