@@ -442,6 +442,20 @@ void compareWithEngine(unsigned seed, int trials, Regime regime = {}) {
               decided, total, capped, undecided, collisions, apex_contacts, misses, graze, worst, t_red, t_eng);
 }
 
+// The reduction's contact of a recorded configuration against two oracles: the certified static
+// engine (Separated just before, Overlapping just after) and the space-time engine's first contact.
+void expectTheCertifiedFirstContact(const MovingRegion& a, const MovingRegion& b) {
+  const ReductionCcdResult r = continuousCollideRegionsByReduction(a, b);
+  ASSERT_EQ(r.status, ReductionStatus::Decided) << r.reason;
+  ASSERT_TRUE(r.collide);
+  EXPECT_EQ(staticRelation(a, b, r.time - 1e-7), RegionRelation::Separated) << r.time;
+  EXPECT_EQ(staticRelation(a, b, r.time + 1e-7), RegionRelation::Overlapping) << r.time;
+  const RegionCcdResult e = continuousCollideRegions(a, b);
+  ASSERT_TRUE(e.collide);
+  ASSERT_FALSE(e.near_tangent || e.capped);
+  EXPECT_NEAR(r.time, e.time, 1e-7);
+}
+
 // A capped cylinder's rim runs along a capped cone's side, within the pencil's pads of tangency
 // over 2.5e-5 of the motion: the rim becomes tangent to the cone's quadric outside the cone
 // first, and meets the cone 2e-5 later. The pencil search seeded that stretch once, refined to the
@@ -468,15 +482,7 @@ TEST(DimensionReductionCcd, ARimAlongAConeIsMetAfterATangencyOutsideTheCone) {
              {1016.8578130045263, 2162.9658216101179, -733.19781960813248},
              q(-0.27131506168990638, -0.5038630274714806, -0.16734678248931215, -0.80281083776812034),
              {-1255.6126500758405, -2326.0571725404811, 366.71611332430706})};
-  const ReductionCcdResult r = continuousCollideRegionsByReduction(cylinder, cone);
-  ASSERT_EQ(r.status, ReductionStatus::Decided) << r.reason;
-  ASSERT_TRUE(r.collide);
-  EXPECT_EQ(staticRelation(cylinder, cone, r.time - 1e-7), RegionRelation::Separated) << r.time;
-  EXPECT_EQ(staticRelation(cylinder, cone, r.time + 1e-7), RegionRelation::Overlapping) << r.time;
-  const RegionCcdResult e = continuousCollideRegions(cylinder, cone);
-  ASSERT_TRUE(e.collide);
-  ASSERT_FALSE(e.near_tangent || e.capped);
-  EXPECT_NEAR(r.time, e.time, 1e-7);
+  expectTheCertifiedFirstContact(cylinder, cone);
 }
 
 // A ball against a thin elliptic cylinder (1:25), both of size ~500 and ~1,000 from the origin:
@@ -502,15 +508,7 @@ TEST(DimensionReductionCcd, ABallMeetsAThinCylinderFarFromTheOriginWhereTheRankT
              {-1377.5424988819912, 365.32599572009514, 2053.9994110576276},
              q(0.41461632162541784, 0.28276509698751301, 0.34341055189710479, 0.79385540157712375),
              {1852.4492927751685, -528.88980588619404, -1641.0202846415264})};
-  const ReductionCcdResult r = continuousCollideRegionsByReduction(ball, cylinder);
-  ASSERT_EQ(r.status, ReductionStatus::Decided) << r.reason;
-  ASSERT_TRUE(r.collide);
-  EXPECT_EQ(staticRelation(ball, cylinder, r.time - 1e-7), RegionRelation::Separated) << r.time;
-  EXPECT_EQ(staticRelation(ball, cylinder, r.time + 1e-7), RegionRelation::Overlapping) << r.time;
-  const RegionCcdResult e = continuousCollideRegions(ball, cylinder);
-  ASSERT_TRUE(e.collide);
-  ASSERT_FALSE(e.near_tangent || e.capped);
-  EXPECT_NEAR(r.time, e.time, 1e-7);
+  expectTheCertifiedFirstContact(ball, cylinder);
 }
 
 TEST(DimensionReductionCcd, AgreesWithTheSpaceTimeEngineOnRandomRigidMotions) { compareWithEngine(20261123, 45); }
