@@ -322,10 +322,14 @@ struct RegularEnds {
 };
 std::pair<std::size_t, std::size_t> structuralRange(const LPoly& f, RegularEnds regular) {
   std::size_t lo = 0, hi = f.size();
-  if (!regular.high)
-    while (hi > lo && vanishes(f[hi - 1])) --hi;
-  if (!regular.low)
-    while (lo < hi && vanishes(f[lo])) ++lo;
+  // Strips the ends that may vanish while `zero(k)` holds for their coefficient k.
+  auto strip = [&](auto zero) {
+    if (!regular.high)
+      while (hi > lo && zero(hi - 1)) --hi;
+    if (!regular.low)
+      while (lo < hi && zero(lo)) ++lo;
+  };
+  strip([&](std::size_t k) { return vanishes(f[k]); });
   const int e = balancingExponent(f, lo, hi);
   std::vector<double> size(f.size(), 0.0);
   double scale = 0.0;
@@ -333,10 +337,7 @@ std::pair<std::size_t, std::size_t> structuralRange(const LPoly& f, RegularEnds 
     size[k] = std::ldexp(maxAbs(f[k]), e * static_cast<int>(k - lo));
     scale = std::max(scale, size[k]);
   }
-  if (!regular.high)
-    while (hi > lo && size[hi - 1] <= kReductionZeroRelative * scale) --hi;
-  if (!regular.low)
-    while (lo < hi && size[lo] <= kReductionZeroRelative * scale) ++lo;
+  strip([&](std::size_t k) { return size[k] <= kReductionZeroRelative * scale; });
   return {lo, hi};
 }
 

@@ -442,6 +442,12 @@ void compareWithEngine(unsigned seed, int trials, Regime regime = {}) {
               decided, total, capped, undecided, collisions, apex_contacts, misses, graze, worst, t_red, t_eng);
 }
 
+// A rotation from a unit quaternion given as (x, y, z, w), as the audit drew the recorded
+// configurations below (bit for bit: Eigen's 4-vector constructor takes that order).
+Eigen::Matrix3d rotationXyzw(double x, double y, double z, double w) {
+  return Eigen::Quaterniond(Eigen::Vector4d(x, y, z, w)).toRotationMatrix();
+}
+
 // The reduction's contact of a recorded configuration against two oracles: the certified static
 // engine (Separated just before, Overlapping just after) and the space-time engine's first contact.
 void expectTheCertifiedFirstContact(const MovingRegion& a, const MovingRegion& b) {
@@ -464,23 +470,19 @@ void expectTheCertifiedFirstContact(const MovingRegion& a, const MovingRegion& b
 // oracles are the certified static engine (Separated just before the answer, Overlapping just
 // after) and the space-time engine's first contact.
 TEST(DimensionReductionCcd, ARimAlongAConeIsMetAfterATangencyOutsideTheCone) {
-  // Rotations from unit quaternions given as (x, y, z, w), as the audit drew them.
-  auto q = [](double x, double y, double z, double w) {
-    return Eigen::Quaterniond(Eigen::Vector4d(x, y, z, w)).toRotationMatrix();
-  };
   const Eigen::Vector3d cylinder_half(300.46501818814926, 513.36154702784313, 457.47412150310305);
   const MovingRegion cylinder{
       cappedCylinder(cylinder_half.x(), cylinder_half.y(), 2 * cylinder_half.z()), centred(cylinder_half),
-      moving(q(-0.054618349409149086, 0.28046687587510116, -0.69475409863385817, 0.66005447493077107),
+      moving(rotationXyzw(-0.054618349409149086, 0.28046687587510116, -0.69475409863385817, 0.66005447493077107),
              {-573.01160897115437, -391.41924223287208, -879.55609508118096},
-             q(-0.64697065509974006, -0.43196944491597755, -0.49637910748093883, 0.38527801878023321),
+             rotationXyzw(-0.64697065509974006, -0.43196944491597755, -0.49637910748093883, 0.38527801878023321),
              {286.50580448557719, 195.70962111643604, 439.77804754059048})};
   const Eigen::Vector3d cone_half(0.4 * 701.96013947951883, 0.4 * 724.81113559176515, 337.92847108375139);
   const MovingRegion cone{
       cappedCone(cone_half.x(), cone_half.y(), cone_half.z()), centred(cone_half),
-      moving(q(0.57733760619744701, -0.34211483863542697, 0.45105162367950163, 0.58838011389895095),
+      moving(rotationXyzw(0.57733760619744701, -0.34211483863542697, 0.45105162367950163, 0.58838011389895095),
              {1016.8578130045263, 2162.9658216101179, -733.19781960813248},
-             q(-0.27131506168990638, -0.5038630274714806, -0.16734678248931215, -0.80281083776812034),
+             rotationXyzw(-0.27131506168990638, -0.5038630274714806, -0.16734678248931215, -0.80281083776812034),
              {-1255.6126500758405, -2326.0571725404811, 366.71611332430706})};
   expectTheCertifiedFirstContact(cylinder, cone);
 }
@@ -491,22 +493,19 @@ TEST(DimensionReductionCcd, ARimAlongAConeIsMetAfterATangencyOutsideTheCone) {
 // reported free (docs/reliability.md finding 52). A recorded configuration (session 56's audit,
 // seed 16, trial 98); the oracles as above.
 TEST(DimensionReductionCcd, ABallMeetsAThinCylinderFarFromTheOriginWhereTheRankTestWasLoose) {
-  auto q = [](double x, double y, double z, double w) {
-    return Eigen::Quaterniond(Eigen::Vector4d(x, y, z, w)).toRotationMatrix();
-  };
   const Eigen::Vector3d ball_half = Eigen::Vector3d::Constant(499.32281623880596);
   const MovingRegion ball{
       QuadricRegion::atom(quadric::ellipsoid(ball_half)), centred(ball_half),
-      moving(q(0.87061293212337432, 0.35273359595344494, 0.24257634698348257, 0.24242287142396823),
+      moving(rotationXyzw(0.87061293212337432, 0.35273359595344494, 0.24257634698348257, 0.24242287142396823),
              {1139.7763053436254, -392.5531443986373, 991.14990339864289},
-             q(-0.45548820886984781, -0.405016708995935, 0.35109138818349556, 0.71079307407854364),
+             rotationXyzw(-0.45548820886984781, -0.405016708995935, 0.35109138818349556, 0.71079307407854364),
              {-569.88815267181269, 196.27657219931865, -495.57495169932145})};
   const Eigen::Vector3d cylinder_half(15.918817431093007, 395.06202525605966, 671.86504854944531);
   const MovingRegion cylinder{
       cappedCylinder(cylinder_half.x(), cylinder_half.y(), 2 * cylinder_half.z()), centred(cylinder_half),
-      moving(q(0.35276694688341498, 0.15985445739145995, -0.45660772005628625, 0.80094408270717388),
+      moving(rotationXyzw(0.35276694688341498, 0.15985445739145995, -0.45660772005628625, 0.80094408270717388),
              {-1377.5424988819912, 365.32599572009514, 2053.9994110576276},
-             q(0.41461632162541784, 0.28276509698751301, 0.34341055189710479, 0.79385540157712375),
+             rotationXyzw(0.41461632162541784, 0.28276509698751301, 0.34341055189710479, 0.79385540157712375),
              {1852.4492927751685, -528.88980588619404, -1641.0202846415264})};
   expectTheCertifiedFirstContact(ball, cylinder);
 }
