@@ -126,6 +126,7 @@ heavy_tests=(
   # Continuous collision along random or many motions (5-19 s; the grazing balls 3.7 s in Release,
   # session 54: TwoTurningBallsMeetAtTheClosedFormTime runs the same pencil here).
   DimensionReductionCcd.TwoTurningBallsGrazingBy1e8OfTheirSizeAreDecidedExactly
+  DimensionReductionCcd.TwoHourglassesWithCrossedAxesMeetAtTheirWaistsAtTheClosedFormTime
   QuadricShapeMeshCcd.RandomMotionsOverATerrainMatchTheSampledFrontDoors
   QuadricShapeMeshCcd.CylinderLandingOnAMeshFloorTouchesAtTheClosedFormTime
   QuadricShapeCcd.BallDownTheBoreOfARingPassesOrTouchesTheRimAtTheAnalyticTime

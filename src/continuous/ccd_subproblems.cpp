@@ -50,9 +50,10 @@ SubproblemType edgeEdge(const BoundaryEdge& e, const BoundaryEdge& g) {
   return SubproblemType::ConicLine;
 }
 
-// §6.2.1 exclusion rules.
+// §6.2.1 exclusion rules, saddles apart (ccd_subproblems.h).
 bool excludedFaceFace(const BoundaryFace& f, const BoundaryFace& g) {
-  return (f.concave() || f.planar()) && (g.concave() || g.planar());
+  const bool f_flat_or_in = f.concave() || f.planar(), g_flat_or_in = g.concave() || g.planar();
+  return (f_flat_or_in || f.saddle()) && (g_flat_or_in || g.saddle()) && !(f.saddle() && g.saddle());
 }
 bool excludedFaceEdge(const BoundaryFace& f, const BoundaryEdge& e) { return f.concave() && e.concave; }
 

@@ -41,6 +41,7 @@ const char* toString(FaceShape s) {
     case FaceShape::Planar: return "planar";
     case FaceShape::Convex: return "convex";
     case FaceShape::Concave: return "concave";
+    case FaceShape::Saddle: return "saddle";
   }
   return "?";
 }
@@ -73,7 +74,7 @@ FaceShape classifyFace(const Eigen::Matrix4d& Q) {
   }
   const double det = Q.determinant();
   const double det_scale = std::pow(scale, 4);
-  if (det > 1e-12 * det_scale) return FaceShape::Concave;  // saddle: hyperboloid of one sheet, ...
+  if (det > 1e-12 * det_scale) return FaceShape::Saddle;  // hyperboloid of one sheet, ...
   if (nn == 0) return FaceShape::Convex;
   if (np == 0) return FaceShape::Concave;
   if (np == 1 && nn == 1 && std::fabs(det) <= 1e-12 * det_scale) return FaceShape::Planar;  // plane pair

@@ -130,6 +130,33 @@ TEST(CcdSubproblems, ExclusionRulesDropConcaveAndPlanarPairs) {
   EXPECT_EQ(fe, 2 * (16 - 2));
 }
 
+// A saddle face (an hourglass's hyperboloid of one sheet) is concave by Definition 6.1, but only
+// its pairs with concave and planar faces are excluded: against another saddle or a convex face
+// an isolated external contact exists (finding 53), against a concave edge the saddle's normal
+// curvature along the edge may be positive.
+TEST(CcdSubproblems, SaddleFacesKeepTheirPairsWithSaddlesAndConvexFaces) {
+  const QuadricRegion hourglass = QuadricRegion::combine(
+      Op::Intersection, {QuadricRegion::atom(quadric::hyperboloidOneSheet(0.5, 0.5, 1.0)),
+                         QuadricRegion::halfspace({0, 0, 1}, 0.8), QuadricRegion::halfspace({0, 0, -1}, 0.8)});
+  const BoundaryElements h = boundaryElements(hourglass, centred({0.65, 0.65, 0.8}));
+  const QuadricRegion bore = QuadricRegion::atom(quadric::ellipticCylinder(0.3, 0.3));
+  const QuadricRegion washer = QuadricRegion::combine(Op::Difference, {cappedCylinder(1, 1, 0.5), bore});
+  const BoundaryElements w = boundaryElements(washer, centred({1, 1, 0.25}));
+  ASSERT_EQ(h.faces.size(), 3u);
+  ASSERT_EQ(h.faces[0].shape, FaceShape::Saddle);
+  const auto has = [](const std::vector<CcdSubproblem>& s, ElementKind ka, int ia, ElementKind kb, int ib) {
+    return std::any_of(s.begin(), s.end(), [&](const CcdSubproblem& p) {
+      return p.kind_a == ka && p.index_a == ia && p.kind_b == kb && p.index_b == ib;
+    });
+  };
+  using K = ElementKind;
+  EXPECT_TRUE(has(identifySubproblems(h, h), K::Face, 0, K::Face, 0));  // saddle-saddle
+  const std::vector<CcdSubproblem> s = identifySubproblems(h, w);
+  for (int j = 0; j < static_cast<int>(w.faces.size()); ++j)
+    EXPECT_EQ(has(s, K::Face, 0, K::Face, j), w.faces[j].shape == FaceShape::Convex) << toString(w.faces[j].shape);
+  for (int j = 0; j < static_cast<int>(w.edges.size()); ++j) EXPECT_TRUE(has(s, K::Face, 0, K::Edge, j)) << j;
+}
+
 // Degenerate configurations: a line contact of parallel cylinders (a singular pencil: found on
 // the rims at the closed-form time), a cylinder lying down across a cap, a cap landing flat on a cap (coincident planes: Undecided,
 // the engine answers), a quartic edge, an unbounded body.
@@ -601,6 +628,58 @@ TEST(DimensionReductionCcd, ABallDroppedOnAThinTumblingDiskMeetsItsPoleAtTheClos
       ASSERT_TRUE(r.collide) << "trial " << trial << " " << disk_first;
       const double pole = (std::fabs(h0) - c - rb) / std::fabs(h0 - h1);  // the centres c + rb apart
       EXPECT_NEAR(r.time, pole, 1e-9) << "trial " << trial << " " << disk_first;
+    }
+  }
+}
+
+// Two hourglasses (capped hyperboloids of one sheet, waist radius w, axial curvature w / g^2 at
+// the waist) with crossed axes close in along the line through their waists; both turn with a
+// common tumble. Each face is a saddle; with crossed concave directions the two curvature forms
+// sum to diag(1/w_a - w_b/g_b^2, 1/w_b - w_a/g_a^2), positive definite here, so the waists touch
+// first at an isolated point, when the centres are w_a + w_b apart (the space-time engine
+// confirms the time). §6.2.1 excluded every pair of faces concave by Definition 6.1, saddles
+// included, and the contact was found late, on a rim (docs/reliability.md finding 53).
+TEST(DimensionReductionCcd, TwoHourglassesWithCrossedAxesMeetAtTheirWaistsAtTheClosedFormTime) {
+  std::mt19937_64 rng(53);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  auto turn = [&]() {
+    return Eigen::Quaterniond(Eigen::Vector4d(U(rng), U(rng), U(rng), U(rng)).normalized()).toRotationMatrix();
+  };
+  auto hourglass = [](double w, double g, double h) {
+    return QuadricRegion::combine(Op::Intersection, {QuadricRegion::atom(quadric::hyperboloidOneSheet(w, w, g)),
+                                                     QuadricRegion::halfspace({0, 0, 1}, h),
+                                                     QuadricRegion::halfspace({0, 0, -1}, h)});
+  };
+  for (int trial = 0; trial < 2; ++trial) {
+    const double wa = 0.5 + 0.1 * U(rng), wb = 0.5 + 0.1 * U(rng), ga = 1.05 + 0.15 * U(rng),
+                 gb = 1.05 + 0.15 * U(rng), h = 0.8;
+    ASSERT_GT(1.0 / wa - wb / (gb * gb), 0.0);
+    ASSERT_GT(1.0 / wb - wa / (ga * ga), 0.0);
+    const double x0 = wa + wb + 1.0 + 0.5 * U(rng), x1 = wa + wb - 0.5 + 0.2 * U(rng);
+    const MotionMatrix tumble = MotionMatrix::fromPoses(turn(), Eigen::Vector3d(U(rng), U(rng), U(rng)), turn(),
+                                                        Eigen::Vector3d(U(rng), U(rng), U(rng)));
+    const Eigen::Matrix3d crossed = rot(M_PI / 2, Eigen::Vector3d::UnitX());  // b's axis along a's y
+    const MotionMatrix close_in =
+        MotionMatrix::fromPoses(crossed, Eigen::Vector3d(x0, 0, 0), crossed, Eigen::Vector3d(x1, 0, 0));
+    auto box = [&](double w, double g) {
+      const double rim = w * std::hypot(1.0, h / g);
+      return centred(Eigen::Vector3d(rim, rim, h));
+    };
+    const MovingRegion a(hourglass(wa, ga, h), box(wa, ga), PiecewiseMotion(tumble));
+    const MovingRegion b(hourglass(wb, gb, h), box(wb, gb), PiecewiseMotion(MotionMatrix::compose(tumble, close_in)));
+    const double waists = (x0 - wa - wb) / (x0 - x1);
+    if (trial == 0) {  // the waists are the first contact (the engine takes a few seconds)
+      const RegionCcdResult e = continuousCollideRegions(a, b);
+      ASSERT_TRUE(e.collide);
+      ASSERT_NEAR(e.time, waists, 1e-6);
+    }
+    for (const bool a_first : {true, false}) {
+      const ReductionCcdResult r =
+          a_first ? continuousCollideRegionsByReduction(a, b) : continuousCollideRegionsByReduction(b, a);
+      ASSERT_EQ(r.status, ReductionStatus::Decided) << "trial " << trial << " " << a_first << ": " << r.reason;
+      ASSERT_TRUE(r.collide) << "trial " << trial << " " << a_first;
+      EXPECT_NEAR(r.time, waists, 1e-9) << "trial " << trial << " " << a_first << " (" << toString(r.subproblem.type)
+                                       << " " << r.label_a << "/" << r.label_b << ")";
     }
   }
 }

@@ -270,8 +270,9 @@ TEST(QuadricFaceShape, Definition61ClassifiesEveryQuadricKind) {
   EXPECT_EQ(classifyFace(quadric::ellipticCylinder(1, 2)), FaceShape::Convex);
   EXPECT_EQ(classifyFace(-quadric::ellipticCylinder(1, 2)), FaceShape::Concave);  // bore of a ring
   EXPECT_EQ(classifyFace(quadric::ellipticParaboloid(1, 2)), FaceShape::Convex);
-  EXPECT_EQ(classifyFace(quadric::hyperbolicParaboloid(1, 2)), FaceShape::Concave);  // saddle
-  EXPECT_EQ(classifyFace(quadric::hyperboloidOneSheet(1, 2, 3)), FaceShape::Concave);  // saddle
+  EXPECT_EQ(classifyFace(quadric::hyperbolicParaboloid(1, 2)), FaceShape::Saddle);
+  EXPECT_EQ(classifyFace(quadric::hyperboloidOneSheet(1, 2, 3)), FaceShape::Saddle);
+  EXPECT_EQ(classifyFace(-quadric::hyperboloidOneSheet(1, 2, 3)), FaceShape::Saddle);  // outside an hourglass
   EXPECT_EQ(classifyFace(quadric::hyperboloidTwoSheets(1, 2, 3)), FaceShape::Convex);
   EXPECT_EQ(classifyFace(-quadric::hyperboloidTwoSheets(1, 2, 3)), FaceShape::Concave);
   EXPECT_EQ(classifyFace(quadric::ellipticCone(1, 2, 3)), FaceShape::Convex);

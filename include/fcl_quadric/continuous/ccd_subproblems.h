@@ -6,11 +6,19 @@
 /// useless, each tagged with the contact computation of §6.2.2 that solves it
 /// (dimension_reduction_ccd.h).
 ///
-/// Exclusion rules (§6.2.1):
-///  - F-F: a concave or planar face against a concave or planar face. Concave against
-///    concave/planar cannot touch externally; a planar face is bounded by edges, so a plane-plane
-///    contact is found by the plane against the other face's boundary curves.
-///  - F-E: a concave face against a concave edge.
+/// Exclusion rules (§6.2.1), with the thesis's concave faces (Definition 6.1: a negative principal
+/// curvature everywhere) split into concave (both curvatures <= 0) and saddle (FaceShape):
+///  - F-F: a concave or planar face against a concave or planar face, and a saddle against a
+///    concave or planar face. An isolated external contact needs the sum of the two faces'
+///    curvature forms (outward normals, one frame) positive semidefinite; a concave or planar
+///    face adds a form <= 0, which keeps the other's negative direction (concave: all of them;
+///    saddle: one) negative. A planar face is bounded by edges, so a plane-plane contact is found
+///    by the plane against the other face's boundary curves. Saddle against saddle is NOT
+///    excluded, though both are concave by Definition 6.1 and §6.2.1 excludes the pair: with
+///    crossed concave directions their forms can sum to a positive definite one, and two
+///    hourglasses touch first at such a point (docs/reliability.md finding 53).
+///  - F-E: a concave face against a concave edge. A saddle face is not excluded against a
+///    concave edge: along the edge its normal curvature may be positive.
 /// Pure algebra over the boundary elements of geometry/quadric_region.h: std + Eigen only.
 
 #include <string>

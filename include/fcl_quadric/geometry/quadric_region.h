@@ -70,7 +70,12 @@ constexpr int kRegionMaxVolumeCells = 400000;
 enum class FaceShape {
   Planar,   ///< 3x3 part zero, or a pair of planes (rank-2 indefinite)
   Convex,   ///< both principal curvatures >= 0 w.r.t. the outward normal (ellipsoid, cylinder, ...)
-  Concave,  ///< a negative principal curvature everywhere (Definition 6.1): saddles, complements
+  Concave,  ///< both principal curvatures <= 0, one negative (complements: a cavity, a bore)
+  /// Principal curvatures of opposite signs everywhere (det Q > 0: a hyperboloid of one sheet, a
+  /// hyperbolic paraboloid, or their complements). Concave by Definition 6.1 (a negative
+  /// principal curvature everywhere), but two saddles can touch externally at an isolated point
+  /// (docs/reliability.md finding 53), so it is a class of its own.
+  Saddle,
 };
 const char* toString(FaceShape s);
 
@@ -206,6 +211,7 @@ struct BoundaryFace {
   int atom = 0;  ///< index into signedAtoms()
   FaceShape shape = FaceShape::Convex;
   bool concave() const { return shape == FaceShape::Concave; }
+  bool saddle() const { return shape == FaceShape::Saddle; }
   bool planar() const { return shape == FaceShape::Planar; }
 };
 enum class EdgeKind { Line, Conic, Curve };
