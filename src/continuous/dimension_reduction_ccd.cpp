@@ -10,6 +10,8 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -461,6 +463,7 @@ void collectRaw(const QuadricRegion& r, std::vector<Eigen::Matrix4d>* out) {
 
 struct EdgeGeometry {
   bool line = false;
+  bool empty = false;  // no points (parallel planes, a section without a real line): no subproblems
   Eigen::Vector4d U = Eigen::Vector4d::Zero(), D = Eigen::Vector4d::Zero();  // line: point, direction
   Eigen::Vector4d plane = Eigen::Vector4d::Zero();                           // conic: its plane
   int quadric = -1;                                                          // conic: signed atom
@@ -474,6 +477,9 @@ struct Body {
   std::vector<Eigen::Matrix4d> raw, sgn;
   BoundaryElements el;
   std::vector<EdgeGeometry> edges;
+  /// Per edge of el: its index in the body's own boundary elements (a section's second line is
+  /// appended to el as an edge of its own; reports name the edge it belongs to).
+  std::vector<int> edge_origin;
   std::vector<std::vector<Eigen::Vector4d>> vertices;  // homogeneous points (w = 1) per vertex
   std::vector<bool> singular;  // per signed atom: a curved atom with det Q = 0 (a cylinder, a cone)
   /// Cone apexes: (face index, homogeneous point with w = 1), the finite null vector of the face's
@@ -493,6 +499,64 @@ bool lineOfPlanes(const Eigen::Vector4d& p1, const Eigen::Vector4d& p2, Eigen::V
   const Eigen::Vector2d rhs(-p1[3], -p2[3]);
   *x = N.transpose() * detail::ldltSolve(Eigen::Matrix2d(N * N.transpose()), rhs);
   return true;
+}
+
+// The lines of a plane face meeting a quadric face in a line edge (boundaryElements' EdgeKind::Line
+// for a plane and a quadric: the quadric restricted to the plane has rank <= 1 in the plane's
+// directions and no linear term along its null direction). In plane coordinates y (x = o + y0 u
+// + y1 v) the restriction is y^T A y + 2 c.y + g: with A ~ 0 it is linear (one line, 2 c.y + g
+// = 0); otherwise along A's dominant eigenvector p it is alpha s^2 + 2 beta s + g, the lines run
+// along the null direction through its roots: two parallel lines (a plane through a cylinder's
+// axis, a wedge's cut), or one double line (a plane tangent to a cylinder: the discriminant
+// within rounding of zero, 1e-9 of its terms, is taken as zero: err toward an edge). No real line:
+// an empty list (the edge has no points). Points with w = 1, unit directions with w = 0.
+std::vector<std::pair<Eigen::Vector4d, Eigen::Vector4d>> sectionLines(const Eigen::Vector4d& plane,
+                                                                      const Eigen::Matrix4d& Q) {
+  const Eigen::Vector3d n = plane.head<3>();
+  const Eigen::Vector3d nu = n.normalized();
+  const Eigen::Vector3d o = -plane[3] / n.squaredNorm() * n;
+  const Eigen::Vector3d u = nu.unitOrthogonal(), v = nu.cross(u);
+  Eigen::Matrix<double, 4, 3> M = Eigen::Matrix<double, 4, 3>::Zero();
+  M.block<3, 1>(0, 0) = u;
+  M.block<3, 1>(0, 1) = v;
+  M.block<3, 1>(0, 2) = o;
+  M(3, 2) = 1.0;
+  const Eigen::Matrix3d C = M.transpose() * Q * M;
+  const double a11 = C(0, 0), a12 = C(0, 1), a22 = C(1, 1), g = C(2, 2);
+  const Eigen::Vector2d c(C(0, 2), C(1, 2));
+  const double hyp = std::hypot(0.5 * (a11 - a22), a12);
+  const double lo = 0.5 * (a11 + a22) - hyp, hi = 0.5 * (a11 + a22) + hyp;
+  const double alpha = std::fabs(hi) >= std::fabs(lo) ? hi : lo;
+  const double eps = 1e-12 * Q.cwiseAbs().maxCoeff();  // boundaryElements' rank threshold
+  const auto inPlane = [&](const Eigen::Vector2d& y, double w) {
+    Eigen::Vector4d X;
+    X << y[0] * u + y[1] * v + w * o, w;
+    return X;
+  };
+  std::vector<std::pair<Eigen::Vector4d, Eigen::Vector4d>> out;
+  if (std::fabs(alpha) <= eps) {
+    if (c.norm() == 0.0) return out;
+    const Eigen::Vector2d y0 = -0.5 * g / c.squaredNorm() * c;
+    out.emplace_back(inPlane(y0, 1.0), inPlane(Eigen::Vector2d(-c[1], c[0]).normalized(), 0.0));
+    return out;
+  }
+  // A's eigenvector of alpha: the larger of the two rows of A - alpha I, turned.
+  const Eigen::Vector2d r0(alpha - a22, a12), r1(a12, alpha - a11);
+  const Eigen::Vector2d pdir = (r0.norm() >= r1.norm() ? r0 : r1).normalized();
+  const Eigen::Vector2d ndir(-pdir[1], pdir[0]);
+  const double beta = pdir.dot(c);
+  double disc = beta * beta - alpha * g;
+  if (disc < 0.0) {
+    if (disc < -1e-9 * (beta * beta + std::fabs(alpha * g))) return out;
+    disc = 0.0;
+  }
+  const double r = std::sqrt(disc);
+  const Eigen::Vector4d D = inPlane(ndir, 0.0);
+  for (double s : {(-beta - r) / alpha, (-beta + r) / alpha}) {
+    out.emplace_back(inPlane(s * pdir, 1.0), D);
+    if (r == 0.0) break;
+  }
+  return out;
 }
 
 Body makeBody(const MovingRegion& m) {
@@ -530,17 +594,33 @@ Body makeBody(const MovingRegion& m) {
       }
     }
   }
-  for (const BoundaryEdge& e : b.el.edges) {
+  // Line edges: the meet of two planes, or the lines of a plane's section of a quadric (a second
+  // parallel line is appended to el as an edge of its own). An edge of two parallel planes
+  // (coincident faces of a union's children) or a section with no real line has no points: it is
+  // marked empty and gets no subproblems (contacts on a coincident plane are that face's own).
+  const std::size_t own_edges = b.el.edges.size();
+  for (std::size_t ei = 0; ei < own_edges; ++ei) {
+    const BoundaryEdge e = b.el.edges[ei];
     EdgeGeometry g;
     const BoundaryFace &f0 = b.el.faces[e.face0], &f1 = b.el.faces[e.face1];
+    std::optional<std::pair<Eigen::Vector4d, Eigen::Vector4d>> second_line;
     if (e.kind == EdgeKind::Line) {
-      Eigen::Vector3d x, d;
-      if (!f0.planar() || !f1.planar() || !lineOfPlanes(planeOf(b.sgn[f0.atom]), planeOf(b.sgn[f1.atom]), &x, &d)) {
-        b.unsupported = "a line edge that is not the meet of two planes";
+      g.line = true;
+      if (f0.planar() && f1.planar()) {
+        Eigen::Vector3d x, d;
+        g.empty = !lineOfPlanes(planeOf(b.sgn[f0.atom]), planeOf(b.sgn[f1.atom]), &x, &d);
+        if (!g.empty) {
+          g.U << x, 1.0;
+          g.D << d.normalized(), 0.0;
+        }
+      } else if (f0.planar() || f1.planar()) {
+        const BoundaryFace &plane = f0.planar() ? f0 : f1, &curved = f0.planar() ? f1 : f0;
+        const auto lines = sectionLines(planeOf(b.sgn[plane.atom]), b.sgn[curved.atom]);
+        g.empty = lines.empty();
+        if (!g.empty) std::tie(g.U, g.D) = lines[0];
+        if (lines.size() > 1) second_line = lines[1];
       } else {
-        g.line = true;
-        g.U << x, 1.0;
-        g.D << d.normalized(), 0.0;
+        b.unsupported = "a line edge of two curved faces";
       }
     } else if (e.kind == EdgeKind::Conic) {
       const bool p0 = f0.planar();
@@ -555,6 +635,13 @@ Body makeBody(const MovingRegion& m) {
       g.conic = g.basis.transpose() * b.sgn[g.quadric] * g.basis;
     }
     b.edges.push_back(g);
+    b.edge_origin.push_back(static_cast<int>(ei));
+    if (second_line) {
+      std::tie(g.U, g.D) = *second_line;
+      b.el.edges.push_back(e);
+      b.edges.push_back(g);
+      b.edge_origin.push_back(static_cast<int>(ei));
+    }
   }
   for (const BoundaryVertex& v : b.el.vertices) {
     std::vector<int> planes, quadrics;
@@ -946,10 +1033,24 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
     res.reason = !A.unsupported.empty() ? "a: " + A.unsupported : "b: " + B.unsupported;
     return res;
   }
-  const std::vector<CcdSubproblem> sps = identifySubproblems(A.el, B.el);
+  std::vector<CcdSubproblem> sps = identifySubproblems(A.el, B.el);
+  const auto emptyEdge = [](const Body& body, ElementKind kind, int index) {
+    return kind == ElementKind::Edge && body.edges[index].empty;
+  };
+  sps.erase(std::remove_if(sps.begin(), sps.end(),
+                           [&](const CcdSubproblem& sp) {
+                             return emptyEdge(A, sp.kind_a, sp.index_a) || emptyEdge(B, sp.kind_b, sp.index_b);
+                           }),
+            sps.end());
+  // A subproblem as reported: edges by their index in the bodies' own boundary elements.
+  const auto reported = [&](CcdSubproblem sp) {
+    if (sp.kind_a == ElementKind::Edge) sp.index_a = A.edge_origin[sp.index_a];
+    if (sp.kind_b == ElementKind::Edge) sp.index_b = B.edge_origin[sp.index_b];
+    return sp;
+  };
   for (const CcdSubproblem& sp : sps)
     if (sp.type == SubproblemType::Curve) {
-      res.reason = describe(sp, "involves a quartic edge (thesis §6.5: not handled here)");
+      res.reason = describe(reported(sp), "involves a quartic edge (thesis §6.5: not handled here)");
       return res;
     }
   const double size = std::max((a.box->hi - a.box->lo).maxCoeff(), (b.box->hi - b.box->lo).maxCoeff());
@@ -1366,7 +1467,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
         // or on an edge that bounds the face (conic-line, line-line). It is found there, as a
         // plane-line contact is; no candidate of its own.
         if (tasks[k].sp.type == SubproblemType::QuadricLine) continue;
-        res.reason = describe(tasks[k].sp, "is degenerate (identically zero)");
+        res.reason = describe(reported(tasks[k].sp), "is degenerate (identically zero)");
         return res;
       }
       std::vector<double> c = g.c;
@@ -1397,7 +1498,7 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
       for (const PMat& S : pb.raw) posedB.push_back(at(S, u));
       for (const PointAt& p : task.points(u)) {
         if (p.kind == PointAt::Degenerate) {
-          degenerate_reason = describe(task.sp, "has a degenerate contact point");
+          degenerate_reason = describe(reported(task.sp), "has a degenerate contact point");
           return false;
         }
         if (p.kind != PointAt::Point) continue;
@@ -1409,9 +1510,9 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
           res.time = s0 + (s1 - s0) * u;
           const Eigen::Matrix4d Xa = a.motion.evaluate(res.time);
           res.point = Xa.topLeftCorner<3, 3>() * p.x + Xa.block<3, 1>(0, 3);
-          res.subproblem = task.sp;
-          res.label_a = elementLabel(task.sp.kind_a, task.sp.index_a);
-          res.label_b = elementLabel(task.sp.kind_b, task.sp.index_b);
+          res.subproblem = reported(task.sp);
+          res.label_a = elementLabel(res.subproblem.kind_a, res.subproblem.index_a);
+          res.label_b = elementLabel(res.subproblem.kind_b, res.subproblem.index_b);
           res.configuration = task.configuration ? task.configuration(u) : std::nullopt;
         }
         return true;
@@ -1451,8 +1552,8 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
       const bool complete = tangencySeeds(task.pencil, std::min(best, 1.0), &res.pencil_boxes, piece_cap, seed);
       if (!complete) {
         res.reason = res.pencil_boxes > piece_cap
-                         ? describe(task.sp, "reached the piece's pencil work cap (kReductionMaxPencilBoxes)")
-                         : describe(task.sp, "has a curve of multiple roots (subdivision cap reached)");
+                         ? describe(reported(task.sp), "reached the piece's pencil work cap (kReductionMaxPencilBoxes)")
+                         : describe(reported(task.sp), "has a curve of multiple roots (subdivision cap reached)");
         return res;
       }
     }

@@ -820,6 +820,64 @@ TEST(DimensionReductionCcd, ConeApexLandsOnAFloorAtTheClosedFormTime) {
   }
 }
 
+// A D-shaped solid (a capped cylinder of radius 1 cut by the plane y = 0 through its axis, y >= 0
+// kept): the cut meets the side in two parallel lines, x = +-1, y = 0, one edge of the boundary
+// elements (each is a line edge of a plane and a quadric, answered Undecided before). A ball of
+// radius r moving along the diagonal (+-1, -1) / sqrt(2) towards an edge line, strictly between
+// the two faces' normals there, touches the line first, when its centre is r from it. Both lines
+// are met at the closed-form time, and the reported edge is the body's own (the same index for
+// the line appended as an edge of its own). A plus-shaped union of two crossed boxes has coincident
+// top and bottom planes (no line between them, formerly Undecided): a ball dropped on its centre
+// lands at the closed-form time.
+TEST(DimensionReductionCcd, SectionLinesAndCoincidentPlanesOfCsgSolidsAreMetAtTheClosedFormTime) {
+  const QuadricRegion d_shape =
+      QuadricRegion::combine(Op::Intersection, {cappedCylinder(1, 1, 2), QuadricRegion::halfspace({0, -1, 0}, 0)});
+  const Box3 d_box{Eigen::Vector3d(-1, 0, -1), Eigen::Vector3d(1, 1, 1)};
+  const BoundaryElements el = boundaryElements(d_shape, d_box);
+  const double r = 0.3, d0 = 2.0, d1 = -0.2;
+  for (const double side : {1.0, -1.0}) {
+    const Eigen::Vector3d edge(side, 0, 0.1), dir = Eigen::Vector3d(side, -1, 0).normalized();
+    const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+    const MovingRegion ball{QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(r))),
+                            centred(Eigen::Vector3d::Constant(r)),
+                            moving(I, edge + d0 * dir, I, edge + d1 * dir)};
+    const MovingRegion d{d_shape, d_box, still()};
+    for (const bool d_first : {true, false}) {
+      const ReductionCcdResult res =
+          d_first ? continuousCollideRegionsByReduction(d, ball) : continuousCollideRegionsByReduction(ball, d);
+      ASSERT_EQ(res.status, ReductionStatus::Decided) << side << " " << d_first << ": " << res.reason;
+      ASSERT_TRUE(res.collide) << side << " " << d_first;
+      EXPECT_NEAR(res.time, (d0 - r) / (d0 - d1), 1e-9) << side << " " << d_first;
+      EXPECT_LT((res.point - edge).norm(), 1e-6) << side << " " << d_first;
+      const CcdSubproblem& sp = res.subproblem;
+      const ElementKind kind = d_first ? sp.kind_a : sp.kind_b;
+      const int index = d_first ? sp.index_a : sp.index_b;
+      ASSERT_EQ(kind, ElementKind::Edge) << side << " " << d_first;
+      ASSERT_LT(index, static_cast<int>(el.edges.size()));
+      const BoundaryEdge& e = el.edges[index];
+      EXPECT_EQ(e.kind, EdgeKind::Line);
+      EXPECT_NE(el.faces[e.face0].planar(), el.faces[e.face1].planar());  // the cut and the side
+    }
+  }
+  const QuadricRegion plus =
+      QuadricRegion::combine(Op::Union, {cuboid({1.0, 0.3, 0.2}), cuboid({0.3, 1.0, 0.2})});
+  const MovingRegion p{plus, centred({1.0, 1.0, 0.2}), still()};
+  const Eigen::Matrix3d tilt = rot(0.2, Eigen::Vector3d(1, 1, 0));  // an ellipsoid, turned
+  const MovingRegion drop{QuadricRegion::atom(quadric::ellipsoid({0.2, 0.2, 0.25})), centred({0.25, 0.25, 0.25}),
+                          moving(tilt, {0.05, -0.02, 2.0}, tilt, {0.05, -0.02, 0.0})};
+  // Lowest point of the turned ellipsoid: its support along -z, sqrt(z^T R D^2 R^T z).
+  const Eigen::Vector3d zr = tilt.transpose() * Eigen::Vector3d::UnitZ();
+  const double below = std::sqrt(std::pow(0.2 * zr.x(), 2) + std::pow(0.2 * zr.y(), 2) + std::pow(0.25 * zr.z(), 2));
+  for (const bool p_first : {true, false}) {
+    const ReductionCcdResult res =
+        p_first ? continuousCollideRegionsByReduction(p, drop) : continuousCollideRegionsByReduction(drop, p);
+    ASSERT_EQ(res.status, ReductionStatus::Decided) << p_first << ": " << res.reason;
+    ASSERT_TRUE(res.collide);
+    EXPECT_NEAR(res.time, (2.0 - 0.2 - below) / 2.0, 1e-9) << p_first;
+    EXPECT_NEAR(res.point.z(), 0.2, 1e-7);
+  }
+}
+
 // The pencil searches' work cap (kReductionMaxPencilBoxes) holds for each piece of the motion, so
 // that a keyframed motion is answered as its pieces would be one by one: a capped cylinder swept
 // back and forth, turning, just clear of another's top rim. Every piece retraces the first two,

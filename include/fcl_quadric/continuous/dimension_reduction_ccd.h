@@ -54,7 +54,11 @@
 ///
 /// Scope. Answered here: CQMs whose edges are lines and conics (thesis ch.6's class): boxes,
 /// capped elliptic cylinders, clipped quadrics, wedges, and CSG solids of quadrics and planes
-/// whose curved faces meet only planes. Plane-line and plane-plane contacts are found on the
+/// whose curved faces meet only planes. A line edge is the meet of two planes or a plane's
+/// section of a quadric (a cut through a cylinder's axis: two parallel lines, the second one an
+/// edge of its own reported under the same index; a tangent plane: one line); an edge of two
+/// parallel planes (coincident faces of a union's children) has no points of its own and no
+/// subproblems. Plane-line and plane-plane contacts are found on the
 /// elements that bound them (an edge lying on a face touches it first at a vertex or where it
 /// crosses the face's edges). Undecided, with the reason (the caller then uses the certified
 /// space-time engine of region_ccd.h):
