@@ -156,6 +156,13 @@ std::vector<CylinderMotion>& cylinderMotions() {
   static std::vector<CylinderMotion> motions;
   return motions;
 }
+// The same translations with the moving cylinder 20 times smaller (a pin passing a post): the
+// pair is close over a short part of the motion only.
+std::vector<CylinderMotion>& smallCylinderMotions() {
+  static std::vector<CylinderMotion> motions;
+  return motions;
+}
+const std::vector<CylinderMotion>& motionSet(bool small) { return small ? smallCylinderMotions() : cylinderMotions(); }
 
 // The pair of MovingRegions of a cylinder motion; with `elements`, each carries its boundary
 // elements (computed once, as fcl_quadric's shapes cache them).
@@ -195,11 +202,11 @@ ReductionAnswer reductionCcd(const std::pair<fcl_quadric::MovingRegion, fcl_quad
   return {e.collide, e.time, false};
 }
 
-std::vector<std::pair<fcl_quadric::MovingRegion, fcl_quadric::MovingRegion>>& cylinderRegionPairs() {
-  static std::vector<std::pair<fcl_quadric::MovingRegion, fcl_quadric::MovingRegion>> pairs;
-  if (pairs.empty())
-    for (const CylinderMotion& m : cylinderMotions()) pairs.push_back(cylinderRegions(m, true));
-  return pairs;
+std::vector<std::pair<fcl_quadric::MovingRegion, fcl_quadric::MovingRegion>>& cylinderRegionPairs(bool small) {
+  static std::vector<std::pair<fcl_quadric::MovingRegion, fcl_quadric::MovingRegion>> pairs[2];
+  if (pairs[small].empty())
+    for (const CylinderMotion& m : motionSet(small)) pairs[small].push_back(cylinderRegions(m, true));
+  return pairs[small];
 }
 
 /// FCL's continuousCollide on the same translation: {collide, time of contact}.
@@ -222,16 +229,16 @@ std::pair<bool, double> fclCcd(const CylinderMotion& m, fcl::CCDSolverType solve
   return {res.is_collide, res.time_of_contact};
 }
 
-void BM_CylindersCcdRegion(benchmark::State& state) {
-  const auto& motions = cylinderMotions();
+void BM_CylindersCcdRegion(benchmark::State& state, bool small) {
+  const auto& motions = motionSet(small);
   std::size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(regionCcd(motions[i]));
     i = (i + 1) % motions.size();
   }
 }
-void BM_CylindersCcdReduction(benchmark::State& state) {
-  const auto& pairs = cylinderRegionPairs();  // boundary elements computed once, outside the timing
+void BM_CylindersCcdReduction(benchmark::State& state, bool small) {
+  const auto& pairs = cylinderRegionPairs(small);  // boundary elements computed once, outside the timing
   std::size_t i = 0, decided = 0, runs = 0;
   for (auto _ : state) {
     const ReductionAnswer r = reductionCcd(pairs[i]);
@@ -242,8 +249,8 @@ void BM_CylindersCcdReduction(benchmark::State& state) {
   }
   state.counters["decided"] = static_cast<double>(decided) / runs;
 }
-void BM_CylindersCcdFcl(benchmark::State& state, fcl::CCDSolverType solver) {
-  const auto& motions = cylinderMotions();
+void BM_CylindersCcdFcl(benchmark::State& state, fcl::CCDSolverType solver, bool small) {
+  const auto& motions = motionSet(small);
   std::size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(fclCcd(motions[i], solver));
@@ -287,13 +294,29 @@ void BM_CsgRingWedgeCcd(benchmark::State& state) {
   state.counters["boxes"] = static_cast<double>(boxes) / runs;
 }
 
-BENCHMARK(BM_CylindersCcdRegion)->Name("QuadricShapes/CylindersCcd/RegionCcd")->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_CylindersCcdReduction)->Name("QuadricShapes/CylindersCcd/DimensionReduction")->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_CylindersCcdFcl, naive, fcl::CCDC_NAIVE)
+BENCHMARK_CAPTURE(BM_CylindersCcdRegion, same, false)
+    ->Name("QuadricShapes/CylindersCcd/RegionCcd")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CylindersCcdReduction, same, false)
+    ->Name("QuadricShapes/CylindersCcd/DimensionReduction")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CylindersCcdFcl, naive, fcl::CCDC_NAIVE, false)
     ->Name("QuadricShapes/CylindersCcd/FclNaive")
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_CylindersCcdFcl, ca, fcl::CCDC_CONSERVATIVE_ADVANCEMENT)
+BENCHMARK_CAPTURE(BM_CylindersCcdFcl, ca, fcl::CCDC_CONSERVATIVE_ADVANCEMENT, false)
     ->Name("QuadricShapes/CylindersCcd/FclConservativeAdvancement")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CylindersCcdRegion, small, true)
+    ->Name("QuadricShapes/SmallCylinderCcd/RegionCcd")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CylindersCcdReduction, small, true)
+    ->Name("QuadricShapes/SmallCylinderCcd/DimensionReduction")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CylindersCcdFcl, small_naive, fcl::CCDC_NAIVE, true)
+    ->Name("QuadricShapes/SmallCylinderCcd/FclNaive")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CylindersCcdFcl, small_ca, fcl::CCDC_CONSERVATIVE_ADVANCEMENT, true)
+    ->Name("QuadricShapes/SmallCylinderCcd/FclConservativeAdvancement")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CsgRingWedgeCcd)
     ->Name("QuadricShapes/CsgCcd/RingWedge")
@@ -1045,6 +1068,10 @@ int main(int argc, char** argv) {
     for (std::size_t k = 0; k < nm && k < cylinderPairs().size(); ++k) {
       const double x = g(rng), y = g(rng), z = g(rng);
       cylinderMotions().push_back({cylinderPairs()[k], 2.5 * Eigen::Vector3d(x, y, z).normalized()});
+      CylinderMotion small = cylinderMotions().back();
+      small.pair.r2 *= 0.05;
+      small.pair.L2 *= 0.05;
+      smallCylinderMotions().push_back(small);
     }
   }
   smallEllipsoidPairs() = makeSmallEllipsoidPairs(n);
@@ -1253,34 +1280,37 @@ int main(int argc, char** argv) {
   // Continuous: FCL's answers against the certified first contacts. A miss: the pair collides
   // (certified) and FCL reports no collision; late: FCL's time exceeds the certified one by more
   // than 1e-3; false: FCL reports a collision where the region CCD certified none.
-  int ccd_hits = 0, near = 0, red_decided = 0, red_disagree = 0;
-  double red_worst = 0.0;
-  int misses[2] = {0, 0}, late[2] = {0, 0}, falses[2] = {0, 0};
-  double worst[2] = {0.0, 0.0};  // largest |FCL time - certified time| over pairs both call colliding
-  const fcl::CCDSolverType solvers[2] = {fcl::CCDC_NAIVE, fcl::CCDC_CONSERVATIVE_ADVANCEMENT};
-  for (const CylinderMotion& m : cylinderMotions()) {
-    const fcl_quadric::RegionCcdResult r = regionCcd(m);
-    ccd_hits += r.collide;
-    near += r.near_tangent;
-    const ReductionAnswer d = reductionCcd(cylinderRegions(m, true));
-    red_decided += d.decided;
-    if (d.decided && d.collide != r.collide) ++red_disagree;
-    if (d.decided && d.collide && r.collide) red_worst = std::max(red_worst, std::fabs(d.time - r.time));
-    for (int s = 0; s < 2; ++s) {
-      const auto [collide, toc] = fclCcd(m, solvers[s]);
-      if (r.collide && !collide) ++misses[s];
-      if (r.collide && collide && toc > r.time + 1e-3) ++late[s];
-      if (r.collide && collide) worst[s] = std::max(worst[s], std::fabs(toc - r.time));
-      if (!r.collide && collide) ++falses[s];
+  for (const bool small : {false, true}) {
+    const char* what = small ? "pin-and-post (the moving cylinder 1/20)" : "cylinder";
+    int ccd_hits = 0, near = 0, red_decided = 0, red_disagree = 0;
+    double red_worst = 0.0;
+    int misses[2] = {0, 0}, late[2] = {0, 0}, falses[2] = {0, 0};
+    double worst[2] = {0.0, 0.0};  // largest |FCL time - certified time| over pairs both call colliding
+    const fcl::CCDSolverType solvers[2] = {fcl::CCDC_NAIVE, fcl::CCDC_CONSERVATIVE_ADVANCEMENT};
+    for (const CylinderMotion& m : motionSet(small)) {
+      const fcl_quadric::RegionCcdResult r = regionCcd(m);
+      ccd_hits += r.collide;
+      near += r.near_tangent;
+      const ReductionAnswer d = reductionCcd(cylinderRegions(m, true));
+      red_decided += d.decided;
+      if (d.decided && d.collide != r.collide) ++red_disagree;
+      if (d.decided && d.collide && r.collide) red_worst = std::max(red_worst, std::fabs(d.time - r.time));
+      for (int s = 0; s < 2; ++s) {
+        const auto [collide, toc] = fclCcd(m, solvers[s]);
+        if (r.collide && !collide) ++misses[s];
+        if (r.collide && collide && toc > r.time + 1e-3) ++late[s];
+        if (r.collide && collide) worst[s] = std::max(worst[s], std::fabs(toc - r.time));
+        if (!r.collide && collide) ++falses[s];
+      }
     }
+    std::printf("Continuous, %zu %s translations: %d colliding (certified; %d near-tangent); FCL CCDC_NAIVE: "
+                "%d missed, %d late by > 1e-3, %d false, largest time error %.3g; FCL conservative advancement: %d "
+                "missed, %d late, %d false, largest time error %.3g\n",
+                motionSet(small).size(), what, ccd_hits, near, misses[0], late[0], falses[0], worst[0], misses[1],
+                late[1], falses[1], worst[1]);
+    std::printf("Dimension reduction on the same %zu translations: %d decided (the rest fall back to the engine), "
+                "%d disagree with the engine on collide, largest |time - engine time| %.3g\n",
+                motionSet(small).size(), red_decided, red_disagree, red_worst);
   }
-  std::printf("Continuous, %zu cylinder translations: %d colliding (certified; %d near-tangent); FCL CCDC_NAIVE: "
-              "%d missed, %d late by > 1e-3, %d false, largest time error %.3g; FCL conservative advancement: %d "
-              "missed, %d late, %d false, largest time error %.3g\n",
-              cylinderMotions().size(), ccd_hits, near, misses[0], late[0], falses[0], worst[0], misses[1], late[1],
-              falses[1], worst[1]);
-  std::printf("Dimension reduction on the same %zu translations: %d decided (the rest fall back to the engine), "
-              "%d disagree with the engine on collide, largest |time - engine time| %.3g\n",
-              cylinderMotions().size(), red_decided, red_disagree, red_worst);
   return 0;
 }

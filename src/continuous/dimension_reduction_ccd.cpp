@@ -1014,6 +1014,49 @@ void pencilTask(Task& task, const LPoly& f, std::function<std::vector<double>(do
   };
 }
 
+// The windows of u in [0, 1] where the bounding spheres (centre c, radius r in each body's frame)
+// of a and of b, posed by Pinv, may overlap (dimension_reduction_ccd.h, "Proximity windows"):
+// D(u) = |x(u) - w(u) c_a|^2 - R^2 w(u)^2 with (x, w) = Pinv(u) (c_b, 1) and R the padded sum of
+// radii; subintervals with every Bernstein coefficient of D above its rounding (1e-12 of the
+// coefficients' magnitude) are dropped. Merged, in increasing order.
+std::vector<std::pair<double, double>> proximityWindows(const PMat& Pinv, const Eigen::Vector3d& ca,
+                                                        const Eigen::Vector3d& cb, double R) {
+  PVec X, Y;
+  for (const Eigen::Matrix4d& M : Pinv) {
+    X.push_back(M * Eigen::Vector4d(cb[0], cb[1], cb[2], 1.0));
+    Eigen::Vector4d y = X.back();
+    y.head<3>() -= y[3] * ca;
+    y[3] = 0.0;
+    Y.push_back(y);
+  }
+  const Poly w = component(X, 3);
+  Poly w2 = w * w;
+  for (std::size_t k = 0; k < w2.c.size(); ++k) {
+    w2.c[k] *= R * R;
+    w2.mag[k] *= R * R;
+  }
+  const Poly D = dot(Y, Y) - w2;
+  double mag = 0.0;
+  for (double m : D.mag) mag = std::max(mag, m);
+  const double floor = 1e-12 * mag;
+  std::vector<std::pair<double, double>> out;
+  std::vector<BernsteinPolynomial> stack{BernsteinPolynomial(D.c)};
+  while (!stack.empty()) {
+    const BernsteinPolynomial q = std::move(stack.back());
+    stack.pop_back();
+    if (q.minCoefficient() > floor) continue;  // apart on [lower, upper]
+    if (q.width() <= kReductionWindowResolution) {
+      if (!out.empty() && out.back().second >= q.lower()) out.back().second = q.upper();
+      else out.emplace_back(q.lower(), q.upper());
+      continue;
+    }
+    auto [lo, hi] = q.subdivide(0.5 * (q.lower() + q.upper()));
+    stack.push_back(std::move(hi));  // lo first: windows come out in increasing order
+    stack.push_back(std::move(lo));
+  }
+  return out;
+}
+
 // "<type> subproblem <element of a>/<element of b> <why>": the reason of an Undecided answer.
 std::string describe(const CcdSubproblem& sp, const std::string& why) {
   return std::string(toString(sp.type)) + " subproblem " + elementLabel(sp.kind_a, sp.index_a) + "/" +
@@ -1080,8 +1123,24 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
 
-  for (std::size_t piece = 0; piece + 1 < breaks.size(); ++piece) {
-    const double s0 = breaks[piece], s1 = breaks[piece + 1];
+  // The spans solved: each piece's proximity windows, in global time.
+  std::vector<std::pair<double, double>> spans;
+  {
+    const Eigen::Vector3d ca = 0.5 * (a.box->lo + a.box->hi), cb = 0.5 * (b.box->lo + b.box->hi);
+    const double R = (0.5 * (a.box->hi - a.box->lo).norm() + 0.5 * (b.box->hi - b.box->lo).norm()) *
+                     (1.0 + kReductionWindowPadRelative);
+    for (std::size_t piece = 0; piece + 1 < breaks.size(); ++piece) {
+      const double s0 = breaks[piece], s1 = breaks[piece + 1];
+      const MotionMatrix ma = a.motion.restricted(s0, s1), mb = b.motion.restricted(s0, s1);
+      const PMat Pinv =
+          bernsteinProduct(bernsteinFromPower(ma.inverseCoefficients()), bernsteinFromPower(mb.matrixCoefficients()));
+      for (const auto& [u0, u1] : proximityWindows(Pinv, ca, cb, R))
+        spans.emplace_back(u0 == 0.0 ? s0 : s0 + (s1 - s0) * u0, u1 == 1.0 ? s1 : s0 + (s1 - s0) * u1);
+    }
+  }
+
+  for (const std::pair<double, double>& span : spans) {
+    const double s0 = span.first, s1 = span.second;
     // The pencil searches of this piece together (every pair of elements) may visit
     // kReductionMaxPencilBoxes boxes (docs/reliability.md finding 41).
     const long long piece_cap = res.pencil_boxes + kReductionMaxPencilBoxes;

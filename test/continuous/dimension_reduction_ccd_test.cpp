@@ -878,6 +878,37 @@ TEST(DimensionReductionCcd, SectionLinesAndCoincidentPlanesOfCsgSolidsAreMetAtTh
   }
 }
 
+// Proximity windows: a piece where the bodies' bounding spheres stay apart has no subproblem to
+// solve, and a contact inside a window after a gap is still the first one. Two tumbling boxes
+// passing 4 apart (bounding spheres of radius < 1.2 each): free with no subproblem examined. A
+// ball of radius 0.25 flying past a capped cylinder (radius 0.4, height 1) and back, keyframed:
+// the first piece passes 1.5 from the axis, the second heads for the side, met when the centre is
+// 0.65 from the axis.
+TEST(DimensionReductionCcd, PiecesWhereTheBoundingSpheresStayApartAreSkipped) {
+  const Eigen::Vector3d hb(0.5, 0.4, 0.3);
+  const MovingRegion a{cuboid(hb), centred(hb),
+                       moving(rot(0.1, {1, 2, 3}), {-3, 2, 0}, rot(2.0, {3, 1, 2}), {3, 2, 0})};
+  const MovingRegion b{cuboid(hb), centred(hb),
+                       moving(rot(0.5, {0, 1, 1}), {-3, -2, 0}, rot(-1.0, {1, 0, 1}), {3, -2, 0})};
+  const ReductionCcdResult apart = continuousCollideRegionsByReduction(a, b);
+  ASSERT_EQ(apart.status, ReductionStatus::Decided) << apart.reason;
+  EXPECT_FALSE(apart.collide);
+  EXPECT_EQ(apart.subproblems, 0);
+  EXPECT_EQ(apart.pencil_boxes, 0);
+
+  const MovingRegion post{cappedCylinder(0.4, 0.4, 1.0), centred({0.4, 0.4, 0.5}), still()};
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const PiecewiseMotion there_and_in({0.0, 0.5, 1.0}, {MotionMatrix::fromPoses(I, {-3, 1.5, 0.1}, I, {3, 1.5, 0.1}),
+                                                        MotionMatrix::fromPoses(I, {3, 1.5, 0.1}, I, {0, 0, 0.1})});
+  const MovingRegion ball{QuadricRegion::atom(quadric::ellipsoid(Eigen::Vector3d::Constant(0.25))),
+                          centred(Eigen::Vector3d::Constant(0.25)), there_and_in};
+  const ReductionCcdResult r = continuousCollideRegionsByReduction(post, ball);
+  ASSERT_EQ(r.status, ReductionStatus::Decided) << r.reason;
+  ASSERT_TRUE(r.collide);
+  // Second piece: centre (3, 1.5) (1 - s) at s in [0, 1], |centre| = 0.65 at s = 1 - 0.65 / |(3, 1.5)|.
+  EXPECT_NEAR(r.time, 0.5 + 0.5 * (1.0 - 0.65 / std::hypot(3.0, 1.5)), 1e-9);
+}
+
 // The pencil searches' work cap (kReductionMaxPencilBoxes) holds for each piece of the motion, so
 // that a keyframed motion is answered as its pieces would be one by one: a capped cylinder swept
 // back and forth, turning, just clear of another's top rim. Every piece retraces the first two,

@@ -51,6 +51,12 @@
 /// CSG trees, with a band of kReductionVerifyRelative times the pair's size (within it, a point
 /// counts as on the boundary: err toward contact). The earliest verified candidate is the first
 /// contact; the pencil searches run last, pruned to times before the best contact so far.
+/// Proximity windows: before the subproblems of a piece, the squared distance of the bodies'
+/// bounding-sphere centres less the squared (padded) sum of their radii, a polynomial in u in the
+/// Bernstein basis (b's centre posed as a vertex), is subdivided to kReductionWindowResolution;
+/// intervals where all its coefficients are positive (beyond rounding) are certified apart and
+/// skipped, and the subproblems are solved on each remaining window as a piece of its own (a
+/// pair that passes close only briefly, a small body past a large one, costs a short window).
 ///
 /// Scope. Answered here: CQMs whose edges are lines and conics (thesis ch.6's class): boxes,
 /// capped elliptic cylinders, clipped quadrics, wedges, and CSG solids of quadrics and planes
@@ -110,6 +116,12 @@ constexpr double kReductionEvalRelative = 1e-14;
 /// in the piece's time; that contact is then the answer (its time may be late by up to this
 /// much). About 10 sqrt(eps): a graze's double root is located to about sqrt(eps) only.
 constexpr double kReductionDegenerateWindow = 1e-7;
+/// Proximity windows: the bounding spheres' radii (each local AABB's half diagonal) are summed
+/// and padded by this fraction before the windows where the spheres may overlap are found.
+constexpr double kReductionWindowPadRelative = 1e-6;
+/// Proximity windows: subdivision of the piece stops at intervals of this width (in the piece's
+/// time), which are kept whole.
+constexpr double kReductionWindowResolution = 1.0 / 1024;
 /// Pencil subproblems: boxes of (x, u) narrower than this in both are candidates.
 constexpr double kPencilSeedWidth = 1e-7;
 /// Pencil subproblems: work cap of one search (boxes); reaching it makes the answer Undecided.
