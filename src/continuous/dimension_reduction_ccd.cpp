@@ -865,15 +865,24 @@ double refineNumerically(const std::function<double(double)>& value, double u0,
 // box of the chain is one only past the moment tried (after = that moment): a cylinder's rim
 // nearly tangent to a cone over 2.5e-5 of u had a tangency outside the cone near the chain's
 // start and the contact 2e-5 later, which seeding the chain once missed (docs/reliability.md
-// finding 51). Returns false at the box cap of the search (kPencilMaxBoxes) or when
-// *total_boxes, the count of all pencil searches of the query, exceeds total_cap (the piece's
-// share: kReductionMaxPencilBoxes more than at its start).
+// finding 51). Failed at the box cap of the search (kPencilMaxBoxes) or when *total_boxes, the
+// count of all pencil searches of the query, exceeds total_cap (the piece's share:
+// kReductionMaxPencilBoxes more than at its start). Paused when *total_boxes reaches pause_at:
+// the search's state (its stack of boxes, its chain, its own limit) stays in *search, and a later
+// call goes on from there with a limit no later than before (the pencil passes of the piece).
 struct SeedOutcome {
   double limit;  // the search goes on below this time
   double tried;  // candidates up to this moment were tried
 };
-bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long long total_cap,
-                   const std::function<SeedOutcome(double, std::optional<double>, double)>& accept) {
+struct TangencySearch {
+  std::vector<std::array<double, 4>> stack{{0.0, 1.0, 0.0, 1.0}};
+  double limit = 2.0, last_seed = -1.0, tried = -1.0;
+  int boxes = 0;
+};
+enum class SearchEnd { Complete, Paused, Failed };
+SearchEnd tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long long pause_at, long long total_cap,
+                        TangencySearch* search,
+                        const std::function<SeedOutcome(double, std::optional<double>, double)>& accept) {
   // F(x, u) = sum_k g_k(u) (x - 1)^k x^(m - k) = sum_k (-1)^k g_k(u) B_{m-k}^m(x) / C(m, k): its
   // Bernstein coefficients in x come straight from the g_k (already Bernstein in u).
   const int m = static_cast<int>(g.size()) - 1;
@@ -887,19 +896,20 @@ bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long lo
     for (std::size_t j = 0; j < d; ++j) P(m - k, j) = ((k % 2) ? -1.0 : 1.0) * e.c[j] / cm[k];
   }
   const double scale = P.cwiseAbs().maxCoeff();
-  if (scale == 0.0 || !std::isfinite(scale)) return false;
+  if (scale == 0.0 || !std::isfinite(scale)) return SearchEnd::Failed;
   P /= scale;
   const BivariateBernstein F(P), Fx = F.derivativeU();
   const BivariateBernstein Fu = F.derivativeT(), Fxx = Fx.derivativeU(), Fxu = Fx.derivativeT();
   const double pad = 1e-12 * F.coefficients().cwiseAbs().maxCoeff(), padx = 1e-12 * Fx.coefficients().cwiseAbs().maxCoeff();
-  std::vector<std::array<double, 4>> stack{{0.0, 1.0, 0.0, 1.0}};
-  double last_seed = -1.0, tried = -1.0;
-  int boxes = 0;
+  std::vector<std::array<double, 4>>& stack = search->stack;
+  double &last_seed = search->last_seed, &tried = search->tried;
+  search->limit = std::min(search->limit, limit);
   while (!stack.empty()) {
+    if (*total_boxes >= pause_at) return SearchEnd::Paused;
     const std::array<double, 4> b = stack.back();
     stack.pop_back();
-    if (b[2] > limit) continue;
-    if (++boxes > kPencilMaxBoxes || ++*total_boxes > total_cap) return false;
+    if (b[2] > search->limit) continue;
+    if (++search->boxes > kPencilMaxBoxes || ++*total_boxes > total_cap) return SearchEnd::Failed;
     const BivariateBernstein Fb = F.restrict(b[0], b[1], b[2], b[3]);
     if (Fb.minCoefficient() > pad || Fb.maxCoefficient() < -pad) continue;
     const BivariateBernstein Fxb = Fx.restrict(b[0], b[1], b[2], b[3]);
@@ -933,7 +943,7 @@ bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long lo
       const bool chain_start = std::fabs(centre - last_seed) > 10 * kPencilSeedWidth;
       if (chain_start || centre > tried) {
         const SeedOutcome o = accept(centre, newton, chain_start ? -std::numeric_limits<double>::infinity() : tried);
-        limit = std::min(limit, o.limit);
+        search->limit = std::min(search->limit, o.limit);
         tried = std::max(o.tried, centre + 10 * kPencilSeedWidth);
       }
       last_seed = centre;
@@ -949,7 +959,7 @@ bool tangencySeeds(const LPoly& g, double limit, long long* total_boxes, long lo
       stack.push_back({b[0], b[1], b[2], mid});
     }
   }
-  return true;
+  return SearchEnd::Complete;
 }
 
 // `numeric(u)` gives the pencil's numeric characteristic coefficients at u (all f.size() of
@@ -1592,10 +1602,17 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
       }
       if (!had_degenerate && !degenerate_reason.empty()) degenerate_at = cd.u;
     }
-    // Pencil tasks: their seeds, only before the best contact so far.
-    for (std::size_t k = 0; k < tasks.size() && degenerate_reason.empty(); ++k) {
+    // Pencil tasks: their seeds, only before the best contact so far. Two passes: each search
+    // first runs for kPencilFirstPassBoxes boxes; those that need more are paused and go on
+    // after every other search has had its turn, pruned by the contacts found meanwhile
+    // (dimension_reduction_ccd.h).
+    std::vector<std::size_t> order, paused;
+    for (std::size_t k = 0; k < tasks.size(); ++k)
+      if (!tasks[k].pencil.empty()) order.push_back(k);
+    std::vector<TangencySearch> searches(tasks.size());
+    for (int pass = 0; pass < 2 && degenerate_reason.empty(); ++pass) {
+    for (const std::size_t k : pass == 0 ? order : paused) {
       const Task& task = tasks[k];
-      if (task.pencil.empty()) continue;
       // Each seed is tried at its Newton solution of (F, F_x) = 0, then refined on the pencil's
       // discriminant evaluated at u (which fails for a permanent multiple root: spheres), then on
       // f at its negative critical point (which does not).
@@ -1608,13 +1625,21 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
         if (uc != u && uc < best && verify(task, uc)) return SeedOutcome{best, best};
         return SeedOutcome{2.0, std::max({u, uc, newton.value_or(centre)})};
       };
-      const bool complete = tangencySeeds(task.pencil, std::min(best, 1.0), &res.pencil_boxes, piece_cap, seed);
-      if (!complete) {
+      const long long pause_at =
+          pass == 0 ? res.pencil_boxes + kPencilFirstPassBoxes : std::numeric_limits<long long>::max();
+      const SearchEnd end =
+          tangencySeeds(task.pencil, std::min(best, 1.0), &res.pencil_boxes, pause_at, piece_cap, &searches[k], seed);
+      if (end == SearchEnd::Paused) {
+        paused.push_back(k);
+        continue;
+      }
+      if (end == SearchEnd::Failed) {
         res.reason = res.pencil_boxes > piece_cap
                          ? describe(reported(task.sp), "reached the piece's pencil work cap (kReductionMaxPencilBoxes)")
                          : describe(reported(task.sp), "has a curve of multiple roots (subdivision cap reached)");
         return res;
       }
+    }
     }
     if (!degenerate_reason.empty()) {
       res.reason = degenerate_reason;

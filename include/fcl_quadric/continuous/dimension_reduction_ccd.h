@@ -124,6 +124,11 @@ constexpr double kReductionWindowPadRelative = 1e-6;
 constexpr double kReductionWindowResolution = 1.0 / 1024;
 /// Pencil subproblems: boxes of (x, u) narrower than this in both are candidates.
 constexpr double kPencilSeedWidth = 1e-7;
+/// Pencil subproblems: the first pass's budget of each search (boxes). A search that needs more
+/// is paused and goes on after every other search of the piece has had its first pass, pruned by
+/// the contacts those found (a long search no longer delays a short one that finds an earlier
+/// contact).
+constexpr int kPencilFirstPassBoxes = 4096;
 /// Pencil subproblems: work cap of one search (boxes); reaching it makes the answer Undecided.
 constexpr int kPencilMaxBoxes = 40000;
 /// Pencil subproblems (thesis §6.2.2): work cap of one piece of the motion (boxes of all its
