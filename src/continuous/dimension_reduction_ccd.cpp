@@ -21,6 +21,7 @@
 #include "fcl_quadric/algebra/root_isolation.h"
 #include "fcl_quadric/algebra/symmetric_eigen.h"
 
+#include "../geometry/plane_frame.h"
 #include "../geometry/region_formula.h"
 #include "algebra/bernstein_matrix.h"
 #include "algebra/dense_decompositions.h"
@@ -512,15 +513,7 @@ bool lineOfPlanes(const Eigen::Vector4d& p1, const Eigen::Vector4d& p2, Eigen::V
 // an empty list (the edge has no points). Points with w = 1, unit directions with w = 0.
 std::vector<std::pair<Eigen::Vector4d, Eigen::Vector4d>> sectionLines(const Eigen::Vector4d& plane,
                                                                       const Eigen::Matrix4d& Q) {
-  const Eigen::Vector3d n = plane.head<3>();
-  const Eigen::Vector3d nu = n.normalized();
-  const Eigen::Vector3d o = -plane[3] / n.squaredNorm() * n;
-  const Eigen::Vector3d u = nu.unitOrthogonal(), v = nu.cross(u);
-  Eigen::Matrix<double, 4, 3> M = Eigen::Matrix<double, 4, 3>::Zero();
-  M.block<3, 1>(0, 0) = u;
-  M.block<3, 1>(0, 1) = v;
-  M.block<3, 1>(0, 2) = o;
-  M(3, 2) = 1.0;
+  const Eigen::Matrix<double, 4, 3> M = detail::planeFrame(plane);
   const Eigen::Matrix3d C = M.transpose() * Q * M;
   const double a11 = C(0, 0), a12 = C(0, 1), a22 = C(1, 1), g = C(2, 2);
   const Eigen::Vector2d c(C(0, 2), C(1, 2));
@@ -528,10 +521,8 @@ std::vector<std::pair<Eigen::Vector4d, Eigen::Vector4d>> sectionLines(const Eige
   const double lo = 0.5 * (a11 + a22) - hyp, hi = 0.5 * (a11 + a22) + hyp;
   const double alpha = std::fabs(hi) >= std::fabs(lo) ? hi : lo;
   const double eps = 1e-12 * Q.cwiseAbs().maxCoeff();  // boundaryElements' rank threshold
-  const auto inPlane = [&](const Eigen::Vector2d& y, double w) {
-    Eigen::Vector4d X;
-    X << y[0] * u + y[1] * v + w * o, w;
-    return X;
+  const auto inPlane = [&](const Eigen::Vector2d& y, double w) {  // M (y, w), homogeneous
+    return Eigen::Vector4d(M * Eigen::Vector3d(y[0], y[1], w));
   };
   std::vector<std::pair<Eigen::Vector4d, Eigen::Vector4d>> out;
   if (std::fabs(alpha) <= eps) {

@@ -21,6 +21,7 @@
 #include "fcl_quadric/geometry/ellipsoid.h"
 #include "algebra/dense_decompositions.h"
 #include "algebra/input_checks.h"
+#include "geometry/plane_frame.h"
 #include "geometry/region_dual_bound.h"
 #include "geometry/region_formula.h"
 
@@ -981,15 +982,10 @@ BoundaryElements boundaryElements(const QuadricRegion& region, const Box3& box, 
         // The quadric restricted to the plane: point o + s u + t v, value [s t 1] C [s t 1]^T.
         const Eigen::Matrix4d& P = atoms[fi.planar() ? fi.atom : fj.atom];
         const Eigen::Matrix4d& Q = atoms[fi.planar() ? fj.atom : fi.atom];
-        const Eigen::Vector3d n2 = 2.0 * P.topRightCorner<3, 1>();  // plane: n2.x + P33 = 0
-        const Eigen::Vector3d n = n2.normalized();
-        const Eigen::Vector3d o = -P(3, 3) / n2.squaredNorm() * n2;
-        const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
-        Eigen::Matrix<double, 4, 3> M = Eigen::Matrix<double, 4, 3>::Zero();
-        M.block<3, 1>(0, 0) = u;
-        M.block<3, 1>(0, 1) = v;
-        M.block<3, 1>(0, 2) = o;
-        M(3, 2) = 1.0;
+        Eigen::Vector4d plane;  // n2.x + P33 = 0
+        plane << 2.0 * P.topRightCorner<3, 1>(), P(3, 3);
+        const Eigen::Matrix<double, 4, 3> M = detail::planeFrame(plane);
+        const Eigen::Vector3d o = M.block<3, 1>(0, 2);
         const Eigen::Matrix3d C = M.transpose() * Q * M;
         const double a11 = C(0, 0), a12 = C(0, 1), a22 = C(1, 1);
         const double hyp = std::hypot(0.5 * (a11 - a22), a12);
