@@ -1602,35 +1602,36 @@ ReductionCcdResult continuousCollideRegionsByReduction(const MovingRegion& a, co
       if (!tasks[k].pencil.empty()) order.push_back(k);
     std::vector<TangencySearch> searches(tasks.size());
     for (int pass = 0; pass < 2 && degenerate_reason.empty(); ++pass) {
-    for (const std::size_t k : pass == 0 ? order : paused) {
-      const Task& task = tasks[k];
-      // Each seed is tried at its Newton solution of (F, F_x) = 0, then refined on the pencil's
-      // discriminant evaluated at u (which fails for a permanent multiple root: spheres), then on
-      // f at its negative critical point (which does not).
-      // A seed within a chain (after > -infinity) looks for the next root past the one tried.
-      auto seed = [&](double centre, std::optional<double> newton, double after) {
-        if (newton && *newton > after && *newton < best && verify(task, *newton)) return SeedOutcome{best, best};
-        const double u = refineNumerically(task.value, centre, after);
-        if (u < best && verify(task, u)) return SeedOutcome{best, best};
-        const double uc = refineNumerically(task.critical_value, centre, after);
-        if (uc != u && uc < best && verify(task, uc)) return SeedOutcome{best, best};
-        return SeedOutcome{2.0, std::max({u, uc, newton.value_or(centre)})};
-      };
-      const long long pause_at =
-          pass == 0 ? res.pencil_boxes + kPencilFirstPassBoxes : std::numeric_limits<long long>::max();
-      const SearchEnd end =
-          tangencySeeds(task.pencil, std::min(best, 1.0), &res.pencil_boxes, pause_at, piece_cap, &searches[k], seed);
-      if (end == SearchEnd::Paused) {
-        paused.push_back(k);
-        continue;
+      for (const std::size_t k : pass == 0 ? order : paused) {
+        const Task& task = tasks[k];
+        // Each seed is tried at its Newton solution of (F, F_x) = 0, then refined on the pencil's
+        // discriminant evaluated at u (which fails for a permanent multiple root: spheres), then on
+        // f at its negative critical point (which does not).
+        // A seed within a chain (after > -infinity) looks for the next root past the one tried.
+        auto seed = [&](double centre, std::optional<double> newton, double after) {
+          if (newton && *newton > after && *newton < best && verify(task, *newton)) return SeedOutcome{best, best};
+          const double u = refineNumerically(task.value, centre, after);
+          if (u < best && verify(task, u)) return SeedOutcome{best, best};
+          const double uc = refineNumerically(task.critical_value, centre, after);
+          if (uc != u && uc < best && verify(task, uc)) return SeedOutcome{best, best};
+          return SeedOutcome{2.0, std::max({u, uc, newton.value_or(centre)})};
+        };
+        const long long pause_at =
+            pass == 0 ? res.pencil_boxes + kPencilFirstPassBoxes : std::numeric_limits<long long>::max();
+        const SearchEnd end =
+            tangencySeeds(task.pencil, std::min(best, 1.0), &res.pencil_boxes, pause_at, piece_cap, &searches[k], seed);
+        if (end == SearchEnd::Paused) {
+          paused.push_back(k);
+          continue;
+        }
+        if (end == SearchEnd::Failed) {
+          res.reason =
+              res.pencil_boxes > piece_cap
+                  ? describe(reported(task.sp), "reached the piece's pencil work cap (kReductionMaxPencilBoxes)")
+                  : describe(reported(task.sp), "has a curve of multiple roots (subdivision cap reached)");
+          return res;
+        }
       }
-      if (end == SearchEnd::Failed) {
-        res.reason = res.pencil_boxes > piece_cap
-                         ? describe(reported(task.sp), "reached the piece's pencil work cap (kReductionMaxPencilBoxes)")
-                         : describe(reported(task.sp), "has a curve of multiple roots (subdivision cap reached)");
-        return res;
-      }
-    }
     }
     if (!degenerate_reason.empty()) {
       res.reason = degenerate_reason;
