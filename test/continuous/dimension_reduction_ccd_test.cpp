@@ -638,7 +638,7 @@ TEST(DimensionReductionCcd, ABallDroppedOnAThinTumblingDiskMeetsItsPoleAtTheClos
 // sum to diag(1/w_a - w_b/g_b^2, 1/w_b - w_a/g_a^2), positive definite here, so the waists touch
 // first at an isolated point, when the centres are w_a + w_b apart (the space-time engine
 // confirms the time). §6.2.1 excluded every pair of faces concave by Definition 6.1, saddles
-// included, and the contact was found late, on a rim (docs/reliability.md finding 53).
+// included, and the contact was reported late (docs/reliability.md finding 53).
 TEST(DimensionReductionCcd, TwoHourglassesWithCrossedAxesMeetAtTheirWaistsAtTheClosedFormTime) {
   std::mt19937_64 rng(53);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
