@@ -668,7 +668,7 @@ TEST(DimensionReductionCcd, TwoHourglassesWithCrossedAxesMeetAtTheirWaistsAtTheC
     const MovingRegion a(hourglass(wa, ga, h), box(wa, ga), PiecewiseMotion(tumble));
     const MovingRegion b(hourglass(wb, gb, h), box(wb, gb), PiecewiseMotion(MotionMatrix::compose(tumble, close_in)));
     const double waists = (x0 - wa - wb) / (x0 - x1);
-    if (trial == 0) {  // the waists are the first contact (the engine takes a few seconds)
+    if (trial == 0) {  // the waists are the first contact (checked by the engine on the first trial)
       const RegionCcdResult e = continuousCollideRegions(a, b);
       ASSERT_TRUE(e.collide);
       ASSERT_NEAR(e.time, waists, 1e-6);
