@@ -87,6 +87,44 @@ void deCasteljauSplit(const std::vector<double>& c, double s, std::vector<double
   if (right != nullptr) *right = std::move(rgt);
 }
 
+namespace {
+// In place, the coefficients on [0, s] (the left part of deCasteljauSplit): after level j, c[i]
+// holds the triangle's entry (j, i - j) for i >= j, computed as r * (j-1, i-j) + s * (j-1, i-j+1),
+// the operands and order of deCasteljauSplit's w[i] = r * w[i] + s * w[i + 1].
+void leftInPlace(double* c, std::size_t n1, std::ptrdiff_t stride, double s) {
+  const double r = 1.0 - s;
+  for (std::size_t level = 1; level < n1; ++level) {
+    for (std::size_t i = n1 - 1; i >= level; --i) {
+      c[static_cast<std::ptrdiff_t>(i) * stride] =
+          r * c[static_cast<std::ptrdiff_t>(i - 1) * stride] + s * c[static_cast<std::ptrdiff_t>(i) * stride];
+    }
+  }
+}
+// In place, the coefficients on [s, 1]: after level j, c[i] holds the entry (j, i) for i <= n - j.
+void rightInPlace(double* c, std::size_t n1, std::ptrdiff_t stride, double s) {
+  const double r = 1.0 - s;
+  for (std::size_t level = n1 - 1; level > 0; --level) {
+    for (std::size_t i = 0; i < level; ++i) {
+      c[static_cast<std::ptrdiff_t>(i) * stride] =
+          r * c[static_cast<std::ptrdiff_t>(i) * stride] + s * c[static_cast<std::ptrdiff_t>(i + 1) * stride];
+    }
+  }
+}
+}  // namespace
+
+void restrictInPlace(double* c, std::size_t n1, std::ptrdiff_t stride, double a, double b, double lo, double hi) {
+  if (lo == a && hi == b) return;
+  if (hi != a) {
+    // Left part on [a, hi], then the right part of that at lo.
+    if (hi != b) leftInPlace(c, n1, stride, (hi - a) / (b - a));
+    if (lo != a) rightInPlace(c, n1, stride, (lo - a) / (hi - a));
+  } else {
+    // hi == a, so lo < a: right part on [lo, b] first, then its left part at hi.
+    rightInPlace(c, n1, stride, (lo - a) / (b - a));
+    leftInPlace(c, n1, stride, (hi - lo) / (b - lo));
+  }
+}
+
 std::vector<double> powerToBernsteinUnit(const std::vector<double>& q, int n) {
   std::vector<double> c(static_cast<std::size_t>(n) + 1, 0.0);
   const int m = static_cast<int>(q.size()) - 1;
@@ -216,15 +254,7 @@ std::pair<BernsteinPolynomial, BernsteinPolynomial> BernsteinPolynomial::subdivi
 BernsteinPolynomial BernsteinPolynomial::restrict(double c, double d) const {
   detail::checkInterval("BernsteinPolynomial::restrict", c, d);
   std::vector<double> out(coefficients_);
-  if (d != a_) {
-    // Left part on [a, d], then the right part of that at c.
-    if (d != b_) detail::deCasteljauSplit(out, (d - a_) / (b_ - a_), &out, nullptr);
-    if (c != a_) detail::deCasteljauSplit(out, (c - a_) / (d - a_), nullptr, &out);
-  } else {
-    // d == a, so c < a: right part on [c, b] first, then its left part at d.
-    detail::deCasteljauSplit(out, (c - a_) / (b_ - a_), nullptr, &out);
-    detail::deCasteljauSplit(out, (d - c) / (b_ - c), &out, nullptr);
-  }
+  detail::restrictInPlace(out.data(), out.size(), 1, a_, b_, c, d);
   return BernsteinPolynomial(std::move(out), c, d, Unchecked{});
 }
 

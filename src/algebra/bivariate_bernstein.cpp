@@ -59,14 +59,6 @@ void checkStrictlyInside(const char* where, double x, double lo, double hi) {
   }
 }
 
-/// Unit parameter of [c, d] relative to [lo, hi], with the identity fast path.
-std::vector<double> restrictAbs(const std::vector<double>& v, double lo, double hi, double c, double d) {
-  if (c == lo && d == hi) return v;
-  // BernsteinPolynomial::restrict handles every ordering case; reuse it (Unchecked path is
-  // private, but the values are already validated, so the checked constructor cannot throw).
-  return BernsteinPolynomial(v, lo, hi).restrict(c, d).coefficients();
-}
-
 }  // namespace
 
 BivariateBernstein::BivariateBernstein()
@@ -166,9 +158,11 @@ std::pair<BivariateBernstein, BivariateBernstein> BivariateBernstein::subdivideT
 BivariateBernstein BivariateBernstein::restrict(double ua, double ub, double ta, double tb) const {
   detail::checkInterval("BivariateBernstein::restrict (u side)", ua, ub);
   detail::checkInterval("BivariateBernstein::restrict (t side)", ta, tb);
+  // In place along the columns (contiguous: Eigen's storage is column-major), then the rows.
   Eigen::MatrixXd B = coefficients_;
-  for (Eigen::Index j = 0; j < B.cols(); ++j) setColumn(&B, j, restrictAbs(column(B, j), u0_, u1_, ua, ub));
-  for (Eigen::Index i = 0; i < B.rows(); ++i) setRow(&B, i, restrictAbs(row(B, i), t0_, t1_, ta, tb));
+  const auto rows = static_cast<std::size_t>(B.rows()), cols = static_cast<std::size_t>(B.cols());
+  for (Eigen::Index j = 0; j < B.cols(); ++j) detail::restrictInPlace(&B(0, j), rows, 1, u0_, u1_, ua, ub);
+  for (Eigen::Index i = 0; i < B.rows(); ++i) detail::restrictInPlace(&B(i, 0), cols, B.rows(), t0_, t1_, ta, tb);
   return BivariateBernstein(std::move(B), ua, ub, ta, tb, Unchecked{});
 }
 

@@ -219,6 +219,66 @@ TEST(BernsteinPolynomial, RestrictMatchesExactCoefficientsOnSubinterval) {
   }
 }
 
+// detail::restrictInPlace (the bivariate restriction's rows and columns) against the two de
+// Casteljau splits it stands for, computed here with deCasteljauSplit: the same doubles, for every
+// placement of [lo, hi] (inside, sharing an end, overhanging one end, left of [a, b] touching it),
+// along a stride, and the entries between the strided ones untouched. Beyond [a, b] the result is
+// also checked against the exact coefficients (moderate extrapolation, looser tolerance).
+TEST(BernsteinPolynomial, RestrictInPlaceAlongAStrideGivesTheSplitsDoublesAndTheExactCoefficients) {
+  RandomBernstein gen(35);
+  std::mt19937_64 rng(36);
+  std::uniform_real_distribution<double> unit(0.05, 0.95);
+  const auto reference = [](std::vector<double> c, double a, double b, double lo, double hi) {
+    if (lo == a && hi == b) return c;
+    if (hi != a) {
+      if (hi != b) detail::deCasteljauSplit(c, (hi - a) / (b - a), &c, nullptr);
+      if (lo != a) detail::deCasteljauSplit(c, (lo - a) / (hi - a), nullptr, &c);
+    } else {
+      detail::deCasteljauSplit(c, (lo - a) / (b - a), nullptr, &c);
+      detail::deCasteljauSplit(c, (hi - lo) / (b - lo), &c, nullptr);
+    }
+    return c;
+  };
+  int outside = 0;
+  for (int trial = 0; trial < 180; ++trial) {
+    const BernsteinPolynomial p = gen.next(trial % 12);
+    const double a = p.lower(), b = p.upper(), w = b - a;
+    double lo = a + unit(rng) * w, hi = a + unit(rng) * w;
+    if (lo > hi) std::swap(lo, hi);
+    switch (trial % 6) {
+      case 0: break;                                    // inside
+      case 1: lo = a; break;                            // sharing the lower end
+      case 2: hi = b; break;                            // sharing the upper end
+      case 3: hi = a; lo = a - unit(rng) * w; break;    // left of [a, b], touching it
+      case 4: hi = b + unit(rng) * w; break;            // overhanging the upper end
+      default: lo = a - unit(rng) * w; break;           // overhanging the lower end
+    }
+    if (!(lo < hi)) continue;
+    const std::vector<double>& c = p.coefficients();
+    const std::ptrdiff_t stride = 1 + trial % 4;
+    const double sentinel = -12345.5;
+    std::vector<double> buffer(c.size() * static_cast<std::size_t>(stride), sentinel);
+    for (std::size_t i = 0; i < c.size(); ++i) buffer[i * static_cast<std::size_t>(stride)] = c[i];
+    detail::restrictInPlace(buffer.data(), c.size(), stride, a, b, lo, hi);
+    const std::vector<double> expected = reference(c, a, b, lo, hi);
+    const QPoly exact_power = algebra_test::bernsteinToPower(c, a, b);
+    const std::vector<Q> exact = algebra_test::powerToBernstein(exact_power, p.degree(), Q(lo), Q(hi));
+    const bool beyond = lo < a || hi > b;
+    outside += beyond;
+    for (std::size_t i = 0; i < buffer.size(); ++i) {
+      if (i % static_cast<std::size_t>(stride) != 0) {
+        EXPECT_EQ(buffer[i], sentinel) << "trial " << trial << ": entry " << i << " between the strided ones";
+        continue;
+      }
+      const std::size_t k = i / static_cast<std::size_t>(stride);
+      EXPECT_EQ(buffer[i], expected[k]) << "trial " << trial << ", coefficient " << k;
+      EXPECT_NEAR(buffer[i], exact[k].get_d(), (beyond ? 1e-10 : 1e-13) * (p.degree() + 1))
+          << "trial " << trial << ", coefficient " << k;
+    }
+    EXPECT_EQ(p.restrict(lo, hi).coefficients(), expected) << "trial " << trial;
+  }
+  EXPECT_GE(outside, 80);
+}
 TEST(BernsteinPolynomial, DerivativeMatchesExactDerivative) {
   RandomBernstein gen(33);
   std::mt19937_64 rng(34);

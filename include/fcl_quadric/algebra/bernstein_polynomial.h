@@ -156,6 +156,13 @@ double deCasteljauEvaluate(const std::vector<double>& c, double s);
 void deCasteljauSplit(const std::vector<double>& c, double s, std::vector<double>* left,
                       std::vector<double>* right);
 
+/// In place and without allocation: the n1 coefficients at c[0], c[stride], ..., c[(n1 - 1) *
+/// stride], Bernstein on [a, b], become those of the same polynomial on [lo, hi] (any finite
+/// interval, lo < hi; stable inside [a, b]). The same arithmetic as BernsteinPolynomial::restrict
+/// (two de Casteljau splits, none where an end is kept), so the results are the same doubles.
+/// Used along the rows and columns of bivariate coefficient matrices. \pre n1 >= 1.
+void restrictInPlace(double* c, std::size_t n1, std::ptrdiff_t stride, double a, double b, double lo, double hi);
+
 /// Power coefficients q_k (in s) -> Bernstein coefficients on [0,1] of degree n >= deg q.
 std::vector<double> powerToBernsteinUnit(const std::vector<double>& q, int n);
 
