@@ -163,34 +163,39 @@ PVec scaled(const PVec& v, const Poly& s) {  // s(u) v(u)
 }
 
 // Determinant of a square matrix of Polys by cofactor expansion along the row with the most
-// exact zeros (the bordered forms are sparse).
-Poly det(const std::vector<std::vector<Poly>>& m) {
-  const std::size_t n = m.size();
-  if (n == 1) return m[0][0];
+// exact zeros (the bordered forms are sparse). The minors are index lists into m (rows and
+// columns kept, in order), not copies of its polynomials.
+Poly det(const std::vector<std::vector<Poly>>& m, const std::vector<std::size_t>& rows,
+         const std::vector<std::size_t>& cols) {
+  const std::size_t n = rows.size();
+  if (n == 1) return m[rows[0]][cols[0]];
   std::size_t row = 0, best = 0;
   for (std::size_t i = 0; i < n; ++i) {
     std::size_t z = 0;
-    for (std::size_t j = 0; j < n; ++j) z += isZeroPoly(m[i][j]);
+    for (std::size_t j = 0; j < n; ++j) z += isZeroPoly(m[rows[i]][cols[j]]);
     if (z > best || i == 0) {
       best = z;
       row = i;
     }
   }
+  std::vector<std::size_t> minor_rows(rows);
+  minor_rows.erase(minor_rows.begin() + static_cast<std::ptrdiff_t>(row));
+  std::vector<std::size_t> minor_cols(n - 1);
   Poly r;
   for (std::size_t j = 0; j < n; ++j) {
-    if (isZeroPoly(m[row][j])) continue;
-    std::vector<std::vector<Poly>> minor;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (i == row) continue;
-      std::vector<Poly> line;
-      for (std::size_t k = 0; k < n; ++k)
-        if (k != j) line.push_back(m[i][k]);
-      minor.push_back(std::move(line));
-    }
-    const Poly term = m[row][j] * det(minor);
+    const Poly& e = m[rows[row]][cols[j]];
+    if (isZeroPoly(e)) continue;
+    for (std::size_t k = 0, l = 0; k < n; ++k)
+      if (k != j) minor_cols[l++] = cols[k];
+    const Poly term = e * det(m, minor_rows, minor_cols);
     r = ((row + j) % 2 == 0) ? r + term : r - term;
   }
   return r;
+}
+Poly det(const std::vector<std::vector<Poly>>& m) {
+  std::vector<std::size_t> all(m.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  return det(m, all, all);
 }
 
 // det [[S, π1, ..., πk], [π^T, 0]]: the quadric S bordered by k planes.
@@ -229,21 +234,24 @@ LPoly ladd(LPoly a, const LPoly& b, bool subtract) {
   for (std::size_t i = 0; i < b.size(); ++i) a[i] = subtract ? a[i] - b[i] : a[i] + b[i];
   return a;
 }
-LPoly ldet(const std::vector<std::vector<LPoly>>& m) {
-  const std::size_t n = m.size();
-  if (n == 1) return m[0][0];
+// Cofactor expansion along the first remaining row (rows first_row.. of m, columns cols), with
+// the minors as index lists.
+LPoly ldet(const std::vector<std::vector<LPoly>>& m, std::size_t first_row, const std::vector<std::size_t>& cols) {
+  const std::size_t n = cols.size();
+  if (n == 1) return m[first_row][cols[0]];
   LPoly r(1);
+  std::vector<std::size_t> minor_cols(n - 1);
   for (std::size_t j = 0; j < n; ++j) {
-    std::vector<std::vector<LPoly>> minor;
-    for (std::size_t i = 1; i < n; ++i) {
-      std::vector<LPoly> line;
-      for (std::size_t k = 0; k < n; ++k)
-        if (k != j) line.push_back(m[i][k]);
-      minor.push_back(std::move(line));
-    }
-    r = ladd(r, lmul(m[0][j], ldet(minor)), j % 2 == 1);
+    for (std::size_t k = 0, l = 0; k < n; ++k)
+      if (k != j) minor_cols[l++] = cols[k];
+    r = ladd(r, lmul(m[first_row][cols[j]], ldet(m, first_row + 1, minor_cols)), j % 2 == 1);
   }
   return r;
+}
+LPoly ldet(const std::vector<std::vector<LPoly>>& m) {
+  std::vector<std::size_t> all(m.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  return ldet(m, 0, all);
 }
 
 // Largest |coefficient| of p, largest magnitude, and "p is zero up to its own rounding".
