@@ -26,12 +26,30 @@ using BernsteinMatrix = std::vector<Eigen::Matrix4d>;
 /// Binomial coefficients C(n, 0..n) (detail::binomial: its cached table and its degree check).
 std::vector<double> binomialRow(std::size_t n);
 
+/// C(n, 0..n) in place: row n of detail::binomial's cached table (the same doubles), or nullptr
+/// when n is beyond the table's rows.
+const double* binomialTableRow(std::size_t n);
+
 /// The product weight of B_i^r B_j^s = w B_{i+j}^{r+s}: C(r, i) C(s, j) / C(r + s, i + j).
-struct BernsteinProductWeights {
-  std::vector<double> cr, cs, crs;
-  BernsteinProductWeights(std::size_t r, std::size_t s)
-      : cr(binomialRow(r)), cs(binomialRow(s)), crs(binomialRow(r + s)) {}
-  double operator()(std::size_t i, std::size_t j) const { return cr[i] * cs[j] / crs[i + j]; }
+/// The rows point into the cached table (no allocation per product, the reduction's polynomial
+/// determinants form thousands); rows beyond it are computed and kept here.
+class BernsteinProductWeights {
+ public:
+  BernsteinProductWeights(std::size_t r, std::size_t s) : cr_(row(r, 0)), cs_(row(s, 1)), crs_(row(r + s, 2)) {}
+  BernsteinProductWeights(const BernsteinProductWeights&) = delete;
+  BernsteinProductWeights& operator=(const BernsteinProductWeights&) = delete;
+  double operator()(std::size_t i, std::size_t j) const { return cr_[i] * cs_[j] / crs_[i + j]; }
+
+ private:
+  const double* row(std::size_t n, int slot) {
+    if (const double* p = binomialTableRow(n)) return p;
+    own_[slot] = binomialRow(n);
+    return own_[slot].data();
+  }
+  std::vector<double> own_[3];  // declared first: constructed before the row pointers into it
+  const double* cr_;
+  const double* cs_;
+  const double* crs_;
 };
 
 /// Power-basis coefficients on [0, 1] (a motion's coefficient matrices: M(u) = sum_k a_k u^k) to

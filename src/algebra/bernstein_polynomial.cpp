@@ -1,5 +1,6 @@
 #include "fcl_quadric/algebra/bernstein_polynomial.h"
 
+#include "algebra/bernstein_matrix.h"
 #include "algebra/input_checks.h"
 
 #include <algorithm>
@@ -38,6 +39,11 @@ const std::vector<double>& binomialTable() {
 }
 
 }  // namespace
+
+const double* binomialTableRow(std::size_t n) {
+  if (n >= static_cast<std::size_t>(kTableRows)) return nullptr;
+  return binomialTable().data() + n * (n + 1) / 2;
+}
 
 double binomial(int n, int k) {
   if (k < 0 || k > n) return 0.0;
@@ -90,38 +96,42 @@ void deCasteljauSplit(const std::vector<double>& c, double s, std::vector<double
 namespace {
 // In place, the coefficients on [0, s] (the left part of deCasteljauSplit): after level j, c[i]
 // holds the triangle's entry (j, i - j) for i >= j, computed as r * (j-1, i-j) + s * (j-1, i-j+1),
-// the operands and order of deCasteljauSplit's w[i] = r * w[i] + s * w[i + 1].
-void leftInPlace(double* c, std::size_t n1, std::ptrdiff_t stride, double s) {
+// the operands and order of deCasteljauSplit's w[i] = r * w[i] + s * w[i + 1]. Lane l's
+// coefficient i is c[i * stride + l]; the innermost loop runs over the lanes (contiguous).
+void leftInPlace(double* c, std::size_t n1, std::ptrdiff_t stride, std::size_t lanes, double s) {
   const double r = 1.0 - s;
   for (std::size_t level = 1; level < n1; ++level) {
     for (std::size_t i = n1 - 1; i >= level; --i) {
-      c[static_cast<std::ptrdiff_t>(i) * stride] =
-          r * c[static_cast<std::ptrdiff_t>(i - 1) * stride] + s * c[static_cast<std::ptrdiff_t>(i) * stride];
+      double* dst = c + static_cast<std::ptrdiff_t>(i) * stride;
+      const double* src = dst - stride;
+      for (std::size_t l = 0; l < lanes; ++l) dst[l] = r * src[l] + s * dst[l];
     }
   }
 }
 // In place, the coefficients on [s, 1]: after level j, c[i] holds the entry (j, i) for i <= n - j.
-void rightInPlace(double* c, std::size_t n1, std::ptrdiff_t stride, double s) {
+void rightInPlace(double* c, std::size_t n1, std::ptrdiff_t stride, std::size_t lanes, double s) {
   const double r = 1.0 - s;
   for (std::size_t level = n1 - 1; level > 0; --level) {
     for (std::size_t i = 0; i < level; ++i) {
-      c[static_cast<std::ptrdiff_t>(i) * stride] =
-          r * c[static_cast<std::ptrdiff_t>(i) * stride] + s * c[static_cast<std::ptrdiff_t>(i + 1) * stride];
+      double* dst = c + static_cast<std::ptrdiff_t>(i) * stride;
+      const double* src = dst + stride;
+      for (std::size_t l = 0; l < lanes; ++l) dst[l] = r * dst[l] + s * src[l];
     }
   }
 }
 }  // namespace
 
-void restrictInPlace(double* c, std::size_t n1, std::ptrdiff_t stride, double a, double b, double lo, double hi) {
+void restrictInPlace(double* c, std::size_t n1, std::ptrdiff_t stride, std::size_t lanes, double a, double b,
+                     double lo, double hi) {
   if (lo == a && hi == b) return;
   if (hi != a) {
     // Left part on [a, hi], then the right part of that at lo.
-    if (hi != b) leftInPlace(c, n1, stride, (hi - a) / (b - a));
-    if (lo != a) rightInPlace(c, n1, stride, (lo - a) / (hi - a));
+    if (hi != b) leftInPlace(c, n1, stride, lanes, (hi - a) / (b - a));
+    if (lo != a) rightInPlace(c, n1, stride, lanes, (lo - a) / (hi - a));
   } else {
     // hi == a, so lo < a: right part on [lo, b] first, then its left part at hi.
-    rightInPlace(c, n1, stride, (lo - a) / (b - a));
-    leftInPlace(c, n1, stride, (hi - lo) / (b - lo));
+    rightInPlace(c, n1, stride, lanes, (lo - a) / (b - a));
+    leftInPlace(c, n1, stride, lanes, (hi - lo) / (b - lo));
   }
 }
 
@@ -254,7 +264,7 @@ std::pair<BernsteinPolynomial, BernsteinPolynomial> BernsteinPolynomial::subdivi
 BernsteinPolynomial BernsteinPolynomial::restrict(double c, double d) const {
   detail::checkInterval("BernsteinPolynomial::restrict", c, d);
   std::vector<double> out(coefficients_);
-  detail::restrictInPlace(out.data(), out.size(), 1, a_, b_, c, d);
+  detail::restrictInPlace(out.data(), out.size(), 1, 1, a_, b_, c, d);
   return BernsteinPolynomial(std::move(out), c, d, Unchecked{});
 }
 

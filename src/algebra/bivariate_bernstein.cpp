@@ -158,11 +158,12 @@ std::pair<BivariateBernstein, BivariateBernstein> BivariateBernstein::subdivideT
 BivariateBernstein BivariateBernstein::restrict(double ua, double ub, double ta, double tb) const {
   detail::checkInterval("BivariateBernstein::restrict (u side)", ua, ub);
   detail::checkInterval("BivariateBernstein::restrict (t side)", ta, tb);
-  // In place along the columns (contiguous: Eigen's storage is column-major), then the rows.
+  // In place along each column (contiguous: Eigen's storage is column-major), then along the
+  // rows, all rows at once (the lanes: a column's entries).
   Eigen::MatrixXd B = coefficients_;
   const auto rows = static_cast<std::size_t>(B.rows()), cols = static_cast<std::size_t>(B.cols());
-  for (Eigen::Index j = 0; j < B.cols(); ++j) detail::restrictInPlace(&B(0, j), rows, 1, u0_, u1_, ua, ub);
-  for (Eigen::Index i = 0; i < B.rows(); ++i) detail::restrictInPlace(&B(i, 0), cols, B.rows(), t0_, t1_, ta, tb);
+  for (Eigen::Index j = 0; j < B.cols(); ++j) detail::restrictInPlace(&B(0, j), rows, 1, 1, u0_, u1_, ua, ub);
+  detail::restrictInPlace(B.data(), cols, B.rows(), rows, t0_, t1_, ta, tb);
   return BivariateBernstein(std::move(B), ua, ub, ta, tb, Unchecked{});
 }
 

@@ -222,8 +222,9 @@ TEST(BernsteinPolynomial, RestrictMatchesExactCoefficientsOnSubinterval) {
 // detail::restrictInPlace (the bivariate restriction's rows and columns) against the two de
 // Casteljau splits it stands for, computed here with deCasteljauSplit: the same doubles, for every
 // placement of [lo, hi] (inside, sharing an end, overhanging one end, left of [a, b] touching it),
-// along a stride, and the entries between the strided ones untouched. Beyond [a, b] the result is
-// also checked against the exact coefficients (moderate extrapolation, looser tolerance).
+// for one to three interleaved polynomials (lanes) along a stride, and the entries off the lanes
+// untouched. The results are also checked against the exact coefficients (beyond [a, b], a
+// moderate extrapolation, with a looser tolerance).
 TEST(BernsteinPolynomial, RestrictInPlaceAlongAStrideGivesTheSplitsDoublesAndTheExactCoefficients) {
   RandomBernstein gen(35);
   std::mt19937_64 rng(36);
@@ -245,37 +246,53 @@ TEST(BernsteinPolynomial, RestrictInPlaceAlongAStrideGivesTheSplitsDoublesAndThe
     const double a = p.lower(), b = p.upper(), w = b - a;
     double lo = a + unit(rng) * w, hi = a + unit(rng) * w;
     if (lo > hi) std::swap(lo, hi);
+    // Overhangs of at most a quarter of [a, b]: each extrapolating split multiplies the rounding
+    // by up to 1.5^n (|1 - s| + |s|), so the exact comparison keeps a tolerance near the inside one.
+    const double overhang = 0.25 * unit(rng) * w;
     switch (trial % 6) {
       case 0: break;                                    // inside
       case 1: lo = a; break;                            // sharing the lower end
       case 2: hi = b; break;                            // sharing the upper end
-      case 3: hi = a; lo = a - unit(rng) * w; break;    // left of [a, b], touching it
-      case 4: hi = b + unit(rng) * w; break;            // overhanging the upper end
-      default: lo = a - unit(rng) * w; break;           // overhanging the lower end
+      case 3: hi = a; lo = a - overhang; break;         // left of [a, b], touching it
+      case 4: hi = b + overhang; break;                 // overhanging the upper end
+      default: lo = a - overhang; break;                // overhanging the lower end
     }
     if (!(lo < hi)) continue;
-    const std::vector<double>& c = p.coefficients();
-    const std::ptrdiff_t stride = 1 + trial % 4;
+    // Lane 0 is p; the other lanes other polynomials of its degree on [a, b].
+    const std::size_t lanes = 1 + static_cast<std::size_t>(trial / 6 % 3), n1 = p.coefficients().size();
+    std::vector<std::vector<double>> polys{p.coefficients()};
+    std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
+    while (polys.size() < lanes) {
+      polys.emplace_back(n1);
+      for (double& v : polys.back()) v = coefficient(rng);
+    }
+    const std::size_t stride = lanes + static_cast<std::size_t>(trial % 4);
     const double sentinel = -12345.5;
-    std::vector<double> buffer(c.size() * static_cast<std::size_t>(stride), sentinel);
-    for (std::size_t i = 0; i < c.size(); ++i) buffer[i * static_cast<std::size_t>(stride)] = c[i];
-    detail::restrictInPlace(buffer.data(), c.size(), stride, a, b, lo, hi);
-    const std::vector<double> expected = reference(c, a, b, lo, hi);
-    const QPoly exact_power = algebra_test::bernsteinToPower(c, a, b);
-    const std::vector<Q> exact = algebra_test::powerToBernstein(exact_power, p.degree(), Q(lo), Q(hi));
+    std::vector<double> buffer(n1 * stride, sentinel);
+    for (std::size_t l = 0; l < lanes; ++l)
+      for (std::size_t i = 0; i < n1; ++i) buffer[i * stride + l] = polys[l][i];
+    detail::restrictInPlace(buffer.data(), n1, static_cast<std::ptrdiff_t>(stride), lanes, a, b, lo, hi);
     const bool beyond = lo < a || hi > b;
     outside += beyond;
-    for (std::size_t i = 0; i < buffer.size(); ++i) {
-      if (i % static_cast<std::size_t>(stride) != 0) {
-        EXPECT_EQ(buffer[i], sentinel) << "trial " << trial << ": entry " << i << " between the strided ones";
-        continue;
+    for (std::size_t l = 0; l < lanes; ++l) {
+      const std::vector<double> expected = reference(polys[l], a, b, lo, hi);
+      const QPoly exact_power = algebra_test::bernsteinToPower(polys[l], a, b);
+      const std::vector<Q> exact = algebra_test::powerToBernstein(exact_power, p.degree(), Q(lo), Q(hi));
+      for (std::size_t k = 0; k < n1; ++k) {
+        const double v = buffer[k * stride + l];
+        EXPECT_EQ(v, expected[k]) << "trial " << trial << ", lane " << l << ", coefficient " << k;
+        EXPECT_NEAR(v, exact[k].get_d(), (beyond ? 1e-11 : 1e-13) * (p.degree() + 1))
+            << "trial " << trial << ", lane " << l << ", coefficient " << k;
       }
-      const std::size_t k = i / static_cast<std::size_t>(stride);
-      EXPECT_EQ(buffer[i], expected[k]) << "trial " << trial << ", coefficient " << k;
-      EXPECT_NEAR(buffer[i], exact[k].get_d(), (beyond ? 1e-10 : 1e-13) * (p.degree() + 1))
-          << "trial " << trial << ", coefficient " << k;
+      if (l == 0) {
+        EXPECT_EQ(p.restrict(lo, hi).coefficients(), expected) << "trial " << trial;
+      }
     }
-    EXPECT_EQ(p.restrict(lo, hi).coefficients(), expected) << "trial " << trial;
+    for (std::size_t i = 0; i < buffer.size(); ++i) {
+      if (i % stride >= lanes) {
+        EXPECT_EQ(buffer[i], sentinel) << "trial " << trial << ": entry " << i << " off the lanes";
+      }
+    }
   }
   EXPECT_GE(outside, 80);
 }

@@ -156,12 +156,15 @@ double deCasteljauEvaluate(const std::vector<double>& c, double s);
 void deCasteljauSplit(const std::vector<double>& c, double s, std::vector<double>* left,
                       std::vector<double>* right);
 
-/// In place and without allocation: the n1 coefficients at c[0], c[stride], ..., c[(n1 - 1) *
-/// stride], Bernstein on [a, b], become those of the same polynomial on [lo, hi] (any finite
-/// interval, lo < hi; stable inside [a, b]). The same arithmetic as BernsteinPolynomial::restrict
-/// (two de Casteljau splits, none where an end is kept), so the results are the same doubles.
-/// Used along the rows and columns of bivariate coefficient matrices. \pre n1 >= 1.
-void restrictInPlace(double* c, std::size_t n1, std::ptrdiff_t stride, double a, double b, double lo, double hi);
+/// In place and without allocation: `lanes` polynomials of n1 coefficients each, lane l's
+/// coefficient i at c[i * stride + l] (stride >= lanes), Bernstein on [a, b], become those of the
+/// same polynomials on [lo, hi] (any finite interval, lo < hi; stable inside [a, b]). The same
+/// arithmetic as BernsteinPolynomial::restrict (two de Casteljau splits, none where an end is
+/// kept), so the results are the same doubles. Used on the columns of bivariate coefficient
+/// matrices (lanes = 1) and across their rows (the lanes contiguous, so the loop vectorises).
+/// \pre n1 >= 1.
+void restrictInPlace(double* c, std::size_t n1, std::ptrdiff_t stride, std::size_t lanes, double a, double b,
+                     double lo, double hi);
 
 /// Power coefficients q_k (in s) -> Bernstein coefficients on [0,1] of degree n >= deg q.
 std::vector<double> powerToBernsteinUnit(const std::vector<double>& q, int n);
