@@ -111,6 +111,24 @@ Poly operator-(const Poly& a) {
   return r;
 }
 Poly operator-(const Poly& a, const Poly& b) { return a + (-b); }
+// *r = *r + b (or *r - b), the same doubles as operator+ (a + (-b): negation is exact, so
+// elevating -b and adding gives exactly the difference), in place: neither is copied when its
+// degree is already the sum's.
+void accumulate(Poly* r, const Poly& b, bool subtract) {
+  if (r->c.empty()) {
+    *r = subtract ? -b : b;
+    return;
+  }
+  if (b.c.empty()) return;
+  const std::size_t n = std::max(r->c.size(), b.c.size()) - 1;
+  if (r->c.size() != n + 1) *r = elevated(*r, n);
+  Poly lifted;
+  const Poly& e = (b.c.size() == n + 1) ? b : (lifted = elevated(b, n));
+  for (std::size_t k = 0; k <= n; ++k) {
+    r->c[k] = subtract ? r->c[k] - e.c[k] : r->c[k] + e.c[k];
+    r->mag[k] += e.mag[k];
+  }
+}
 bool isZeroPoly(const Poly& p) {
   for (double v : p.c)
     if (v != 0.0) return false;
@@ -187,8 +205,7 @@ Poly det(const std::vector<std::vector<Poly>>& m, const std::vector<std::size_t>
     if (isZeroPoly(e)) continue;
     for (std::size_t k = 0, l = 0; k < n; ++k)
       if (k != j) minor_cols[l++] = cols[k];
-    const Poly term = e * det(m, minor_rows, minor_cols);
-    r = ((row + j) % 2 == 0) ? r + term : r - term;
+    accumulate(&r, e * det(m, minor_rows, minor_cols), (row + j) % 2 != 0);
   }
   return r;
 }
@@ -226,12 +243,12 @@ using PolyMatrix = std::vector<std::vector<Poly>>;
 LPoly lmul(const LPoly& a, const LPoly& b) {
   LPoly r(a.size() + b.size() - 1);
   for (std::size_t i = 0; i < a.size(); ++i)
-    for (std::size_t j = 0; j < b.size(); ++j) r[i + j] = r[i + j] + a[i] * b[j];
+    for (std::size_t j = 0; j < b.size(); ++j) accumulate(&r[i + j], a[i] * b[j], false);
   return r;
 }
 LPoly ladd(LPoly a, const LPoly& b, bool subtract) {
   if (a.size() < b.size()) a.resize(b.size());
-  for (std::size_t i = 0; i < b.size(); ++i) a[i] = subtract ? a[i] - b[i] : a[i] + b[i];
+  for (std::size_t i = 0; i < b.size(); ++i) accumulate(&a[i], b[i], subtract);
   return a;
 }
 // Cofactor expansion along the first remaining row (rows first_row.. of m, columns cols), with
@@ -361,11 +378,16 @@ std::vector<double> numericCharacteristic(const Eigen::MatrixXd& M1, const Eigen
                                           std::size_t size, double sigma) {
   const int n = static_cast<int>(M1.rows()), k = static_cast<int>(borders.cols()), m = n + k;
   const int q = static_cast<int>(size);
-  Eigen::MatrixXd V(q, q);
-  Eigen::VectorXd vals(q);
+  // Up to 8 x 8 on the stack (the pencils here are at most 5 x 5 with 6 values; the refinement
+  // calls this dozens of times per seed); the same LU, without a heap allocation per value.
+  using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 8, 8>;
+  using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 8, 1>;
+  if (m > 8 || q > 8) throw std::logic_error("numericCharacteristic: pencil larger than 8 x 8");
+  Small V(q, q);
+  SmallVector vals(q);
   for (int j = 0; j < q; ++j) {
     const double mu = j - 0.5 * (q - 1);
-    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(m, m);
+    Small M = Small::Zero(m, m);
     M.topLeftCorner(n, n) = (sigma * mu) * M1 - M2;
     if (k > 0) {
       M.topRightCorner(n, k) = borders;
@@ -375,7 +397,7 @@ std::vector<double> numericCharacteristic(const Eigen::MatrixXd& M1, const Eigen
     double p = 1.0;
     for (int i = 0; i < q; ++i, p *= mu) V(j, i) = p;
   }
-  const Eigen::VectorXd c = V.fullPivLu().solve(vals);
+  const SmallVector c = V.fullPivLu().solve(vals);
   std::vector<double> out(c.data(), c.data() + q);
   for (int i = 0; i < q; ++i) out[i] /= std::pow(sigma, i);  // μ^i = λ^i / sigma^i (exact)
   return out;
