@@ -5,11 +5,16 @@
 // dense sampling with exact membership for CSG pairs), plus degenerate contacts.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <gmpxx.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <set>
 #include <string>
 
 #include "fcl_quadric/algebra/quadric_matrix.h"
@@ -329,6 +334,83 @@ TEST(QuadricBoundaryElements, WedgeHasConcaveBoreAndConcaveEdges) {
   EXPECT_EQ(concave_edges, 2);     // the bore's arcs on the two caps
   EXPECT_EQ(conic, 4);             // outer side x caps, bore x caps (ellipse / circle arcs)
   EXPECT_EQ(line, 4);              // cut x caps; cut x outer side and cut x bore (line pairs)
+}
+
+// Boxes with small corner cuts, posed anywhere at any size: the elements in closed form. Each cut
+// (a plane through the three edges at a corner, each leg under 0.45 of its edge, so cuts never
+// meet) replaces the corner's vertex by a triangle: the cut plane is a face, it meets the three
+// faces at the corner along lines, and the three triples (cut, two of those faces) are vertices.
+// The box's own pairs of opposite faces, the cut corners' triples and any pair of cut planes do
+// not meet the solid. The planes' lines and points are where boundaryElements looks for a witness
+// before its certified search; a witness that kept an absent element would show up here.
+TEST(QuadricBoundaryElements, CornerCutBoxesKeepExactlyTheirFacesEdgesAndVertices) {
+  std::mt19937_64 rng(61);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 24; ++trial) {
+    const double scale = std::pow(10.0, -3.0 + 6.0 * u(rng));
+    const Eigen::Vector3d h = scale * Eigen::Vector3d(0.3 + u(rng), 0.3 + u(rng), 0.3 + u(rng));
+    std::vector<QuadricRegion> parts;
+    std::vector<std::array<int, 3>> faces_at_corner(8);  // atom index of the face x_i = +-h_i at a corner
+    for (int i = 0; i < 3; ++i)
+      for (const double s : {1.0, -1.0}) parts.push_back(QuadricRegion::halfspace(s * Eigen::Vector3d::Unit(i), h[i]));
+    std::set<std::set<int>> edges, vertices;
+    for (int corner = 0; corner < 8; ++corner) {
+      for (int i = 0; i < 3; ++i) faces_at_corner[corner][i] = 2 * i + ((corner >> i) & 1);  // bit set: the -h_i face
+      std::set<int> f(faces_at_corner[corner].begin(), faces_at_corner[corner].end());
+      vertices.insert(f);
+      for (int i = 0; i < 3; ++i)
+        for (int j = i + 1; j < 3; ++j) edges.insert({faces_at_corner[corner][i], faces_at_corner[corner][j]});
+    }
+    std::vector<int> corners{0, 1, 2, 3, 4, 5, 6, 7};
+    std::shuffle(corners.begin(), corners.end(), rng);
+    const int cuts = 1 + trial % 4;
+    for (int k = 0; k < cuts; ++k) {
+      const int corner = corners[static_cast<std::size_t>(k)];
+      Eigen::Vector3d sign, legs;
+      for (int i = 0; i < 3; ++i) {
+        sign[i] = ((corner >> i) & 1) ? -1.0 : 1.0;
+        legs[i] = (0.1 + 0.35 * u(rng)) * 2.0 * h[i];  // along edge i from the corner, under 0.45 of it
+      }
+      // The plane through corner - sign_i legs_i e_i (i = 0, 1, 2): n_i = sign_i / legs_i.
+      const Eigen::Vector3d v = sign.cwiseProduct(h), n = sign.cwiseQuotient(legs);
+      const int cut = static_cast<int>(parts.size());
+      parts.push_back(QuadricRegion::halfspace(n, n.dot(v) - 1.0));
+      const std::array<int, 3>& f = faces_at_corner[corner];
+      vertices.erase({f[0], f[1], f[2]});
+      for (int i = 0; i < 3; ++i) {
+        edges.insert({cut, f[i]});
+        for (int j = i + 1; j < 3; ++j) vertices.insert({cut, f[i], f[j]});
+      }
+    }
+    std::normal_distribution<double> g(0.0, 1.0);
+    const Eigen::Matrix3d R = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+    const Eigen::Vector3d p = 100.0 * scale * Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+    const QuadricRegion solid = QuadricRegion::combine(Op::Intersection, parts).transformed(R, p);
+    // The posed box's own bounds (regionAabb's bisections take up to 0.6 s on a turned
+    // polytope with four cuts).
+    const Eigen::Vector3d reach = R.cwiseAbs() * h;
+    const BoundaryElements be = boundaryElements(solid, Box3{p - reach, p + reach});
+    SCOPED_TRACE("trial " + std::to_string(trial) + ", " + std::to_string(cuts) + " cuts, scale " +
+                 std::to_string(scale));
+    std::vector<int> atom_of;
+    for (const BoundaryFace& f : be.faces) {
+      EXPECT_TRUE(f.planar());
+      atom_of.push_back(f.atom);
+    }
+    EXPECT_EQ(be.faces.size(), 6u + static_cast<std::size_t>(cuts));
+    std::set<std::set<int>> got_edges, got_vertices;
+    for (const BoundaryEdge& e : be.edges) {
+      EXPECT_EQ(e.kind, EdgeKind::Line);
+      got_edges.insert({atom_of[static_cast<std::size_t>(e.face0)], atom_of[static_cast<std::size_t>(e.face1)]});
+    }
+    for (const BoundaryVertex& v : be.vertices)
+      got_vertices.insert({atom_of[static_cast<std::size_t>(v.face0)], atom_of[static_cast<std::size_t>(v.face1)],
+                           atom_of[static_cast<std::size_t>(v.face2)]});
+    EXPECT_EQ(got_edges, edges);
+    EXPECT_EQ(got_vertices, vertices);
+    EXPECT_EQ(be.edges.size(), 12u + 3u * static_cast<std::size_t>(cuts));
+    EXPECT_EQ(be.vertices.size(), 8u + 2u * static_cast<std::size_t>(cuts));
+  }
 }
 
 // --- Bad input ----------------------------------------------------------------------------------

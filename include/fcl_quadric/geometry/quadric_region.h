@@ -206,7 +206,11 @@ MassProperties regionMassProperties(const QuadricRegion& region, const Box3& box
 /// line = plane x plane, curve = quadric x quadric) and vertices (three planes, or a quadric and
 /// two planes, meeting on it). Elements certified absent (findPoint Empty at the resolution
 /// kBoundaryElementBoxRelative) are dropped; the lists are a superset only by elements within
-/// that band of the boundary.
+/// that band of the boundary. An edge or vertex on the line of two of its planes is kept at once
+/// when a point of the line is certified in the region with the element's surfaces through it
+/// (a witness: the search could not drop it), which spares the search's descent to its
+/// resolution: 5 ms instead of 70 for a box, 20 instead of 400 for a plus-shaped union of two
+/// boxes (2 cores at 2.6 GHz).
 struct BoundaryFace {
   int atom = 0;  ///< index into signedAtoms()
   FaceShape shape = FaceShape::Convex;
