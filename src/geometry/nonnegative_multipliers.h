@@ -14,23 +14,29 @@ namespace detail {
 /// For every subset of one to three of the n vectors column(i) that are independent, the
 /// least-squares multipliers mu of e = G mu (G their columns); calls use(idx, k, G, mu) for each
 /// where none is negative. Three vectors span the space (Caratheodory), so larger subsets add
-/// nothing; a dependent subset is covered by a smaller one. n at most 30 (a bit mask).
+/// nothing; a dependent subset is covered by a smaller one. The subsets are enumerated directly
+/// (n + n(n-1)/2 + n(n-1)(n-2)/6 of them), not through the 2^n masks of all subsets.
 template <class Column, class Use>
 void forEachNonNegativeCombination(int n, const Column& column, const Eigen::Vector3d& e, const Use& use) {
-  for (int mask = 1; mask < (1 << n); ++mask) {
-    int idx[3], k = 0;
-    for (int i = 0; i < n && k <= 3; ++i)
-      if (mask & (1 << i)) {
-        if (k < 3) idx[k] = i;
-        ++k;
-      }
-    if (k > 3) continue;
+  auto tryIdx = [&](const int idx[3], int k) {
     Eigen::Matrix<double, 3, Eigen::Dynamic> G(3, k);
     for (int j = 0; j < k; ++j) G.col(j) = column(idx[j]);
     Eigen::VectorXd mu;
-    if (!colPivQrSolve(G, e, &mu)) continue;  // dependent columns
-    if (!allFinite(mu) || (mu.array() < 0.0).any()) continue;
+    if (!colPivQrSolve(G, e, &mu)) return;  // dependent columns
+    if (!allFinite(mu) || (mu.array() < 0.0).any()) return;
     use(idx, k, G, mu);
+  };
+  for (int i = 0; i < n; ++i) {
+    const int one[3] = {i, 0, 0};
+    tryIdx(one, 1);
+    for (int j = i + 1; j < n; ++j) {
+      const int two[3] = {i, j, 0};
+      tryIdx(two, 2);
+      for (int l = j + 1; l < n; ++l) {
+        const int three[3] = {i, j, l};
+        tryIdx(three, 3);
+      }
+    }
   }
 }
 

@@ -37,9 +37,13 @@ constexpr int kMixGoldenSteps = 40;
 /// An and-node whose pairs with a quadratic part (two planes have none) outnumber this tries its
 /// inequalities one by one only: pairs grow as the square, 75 us each (28: eight curved atoms).
 constexpr int kMaxCurvedPairs = 28;
-/// The planes' linear program and the convex parts take an and-node of at most this many planes
-/// (92 subsets of one to three; ConvexSupport's enumeration grows with the cube of the planes).
+/// The convex parts take an and-node of at most this many planes (ConvexSupport's enumeration
+/// grows with the cube of the planes).
 constexpr int kMaxPlanes = 8;
+/// The planes' linear program takes an and-node of at most this many planes (696 subsets of one
+/// to three, a few microseconds each): a box with four cut corners has ten, and without the
+/// program regionAabb's bisection spent 0.4-0.6 s excluding the levels above a turned vertex.
+constexpr int kMaxProgramPlanes = 16;
 
 /// An inequality f(y) = Y^T Q Y <= slack that every point y of the and-node's region inside
 /// `outer` satisfies: one of its atoms (slack 0), or the product of two opposite planes.
@@ -204,13 +208,13 @@ double atomBound(const Eigen::Matrix4d& Q, const Eigen::Vector3d& e, const Box3&
 /// the least-squares multipliers of e = sum mu_k h_k, kept when none is negative, certified at the
 /// box's centre (the residual e - sum mu_k h_k is rounding; |g| R charges it). A vertex, an edge
 /// or a face of a polytope that bounds e.y is found so, as the curved pairs cannot (their planes
-/// have no quadratic part). At most kMaxPlanes planes (92 subsets).
+/// have no quadratic part). At most kMaxProgramPlanes planes.
 double planeBound(const std::vector<DualAtom>& all, const Eigen::Vector3d& e, const Box3& outer) {
   std::vector<const DualAtom*> planes;
   for (const DualAtom& a : all)
     if (a.slack == 0.0 && a.Q.topLeftCorner<3, 3>().isZero(0.0)) planes.push_back(&a);
   const int p = static_cast<int>(planes.size());
-  if (p == 0 || p > kMaxPlanes) return kNoBound;
+  if (p == 0 || p > kMaxProgramPlanes) return kNoBound;
   const Eigen::Vector3d x = outer.center();
   double best = kNoBound;
   forEachNonNegativeCombination(

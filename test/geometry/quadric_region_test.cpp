@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <set>
 #include <string>
@@ -342,8 +343,10 @@ TEST(QuadricBoundaryElements, WedgeHasConcaveBoreAndConcaveEdges) {
 // faces at the corner along lines, and the three triples (cut, two of those faces) are vertices.
 // The box's own pairs of opposite faces, the cut corners' triples and any pair of cut planes do
 // not meet the solid. The planes' lines and points are where boundaryElements looks for a witness
-// before its certified search; a witness that kept an absent element would show up here.
-TEST(QuadricBoundaryElements, CornerCutBoxesKeepExactlyTheirFacesEdgesAndVertices) {
+// before its certified search; a witness that kept an absent element would show up here. The
+// solid's regionAabb is checked against the box of its vertices in closed form (with three or
+// four cuts the node has more than eight planes, where the planes' linear program used to stop).
+TEST(QuadricBoundaryElements, CornerCutBoxesHaveExactlyTheirElementsAndTheirVerticesBox) {
   std::mt19937_64 rng(61);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int trial = 0; trial < 24; ++trial) {
@@ -361,6 +364,7 @@ TEST(QuadricBoundaryElements, CornerCutBoxesKeepExactlyTheirFacesEdgesAndVertice
       for (int i = 0; i < 3; ++i)
         for (int j = i + 1; j < 3; ++j) edges.insert({faces_at_corner[corner][i], faces_at_corner[corner][j]});
     }
+    std::vector<Eigen::Vector3d> points;  // the solid's vertices, in the box's frame
     std::vector<int> corners{0, 1, 2, 3, 4, 5, 6, 7};
     std::shuffle(corners.begin(), corners.end(), rng);
     const int cuts = 1 + trial % 4;
@@ -377,12 +381,18 @@ TEST(QuadricBoundaryElements, CornerCutBoxesKeepExactlyTheirFacesEdgesAndVertice
       parts.push_back(QuadricRegion::halfspace(n, n.dot(v) - 1.0));
       const std::array<int, 3>& f = faces_at_corner[corner];
       vertices.erase({f[0], f[1], f[2]});
+      for (int i = 0; i < 3; ++i) points.push_back(v - sign[i] * legs[i] * Eigen::Vector3d::Unit(i));
       for (int i = 0; i < 3; ++i) {
         edges.insert({cut, f[i]});
         for (int j = i + 1; j < 3; ++j) vertices.insert({cut, f[i], f[j]});
       }
     }
     std::normal_distribution<double> g(0.0, 1.0);
+    for (int k = cuts; k < 8; ++k) {
+      const int corner = corners[static_cast<std::size_t>(k)];
+      points.push_back(Eigen::Vector3d(((corner & 1) ? -1.0 : 1.0) * h[0], ((corner & 2) ? -1.0 : 1.0) * h[1],
+                                       ((corner & 4) ? -1.0 : 1.0) * h[2]));
+    }
     const Eigen::Matrix3d R = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
     const Eigen::Vector3d p = 100.0 * scale * Eigen::Vector3d(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
     const QuadricRegion solid = QuadricRegion::combine(Op::Intersection, parts).transformed(R, p);
@@ -410,6 +420,22 @@ TEST(QuadricBoundaryElements, CornerCutBoxesKeepExactlyTheirFacesEdgesAndVertice
     EXPECT_EQ(got_vertices, vertices);
     EXPECT_EQ(be.edges.size(), 12u + 3u * static_cast<std::size_t>(cuts));
     EXPECT_EQ(be.vertices.size(), 8u + 2u * static_cast<std::size_t>(cuts));
+    ASSERT_EQ(points.size(), 8u + 2u * static_cast<std::size_t>(cuts));
+    Box3 exact{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+               Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+    for (const Eigen::Vector3d& x : points) {
+      exact.lo = exact.lo.cwiseMin(R * x + p);
+      exact.hi = exact.hi.cwiseMax(R * x + p);
+    }
+    const Box3 aabb = regionAabb(solid);
+    const double size = exact.maxEdge(), rounding = 1e-12 * (size + p.norm());
+    const double tight = 4.0 * tolerance_region::kRegionAabbRelative * size + rounding;
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_LE(aabb.lo[i], exact.lo[i] + rounding) << "axis " << i;  // outward (certified)
+      EXPECT_GE(aabb.hi[i], exact.hi[i] - rounding) << "axis " << i;
+      EXPECT_NEAR(aabb.lo[i], exact.lo[i], tight) << "axis " << i;
+      EXPECT_NEAR(aabb.hi[i], exact.hi[i], tight) << "axis " << i;
+    }
   }
 }
 
