@@ -48,6 +48,8 @@ using detail::bernsteinAt;
 using detail::bernsteinFromPower;
 using detail::bernsteinProduct;
 using detail::binomialRow;
+using detail::lineOfPlanes;
+using detail::planeOf;
 using ProductWeights = detail::BernsteinProductWeights;
 Eigen::Vector4d at(const PVec& v, double u) { return v.empty() ? Eigen::Vector4d::Zero() : bernsteinAt(v, u); }
 Eigen::Matrix4d at(const PMat& m, double u) { return m.empty() ? Eigen::Matrix4d::Zero() : bernsteinAt(m, u); }
@@ -479,11 +481,6 @@ std::vector<Eigen::VectorXd> nullPoints(const Eigen::MatrixXd& M, const Eigen::M
 
 // --- Elements of one body in its local frame ------------------------------------------------
 
-// The covector π with X^T Q X = (π.X) w for a plane atom (interior π.X <= 0 for w = 1).
-Eigen::Vector4d planeOf(const Eigen::Matrix4d& Q) {
-  return Eigen::Vector4d(2 * Q(0, 3), 2 * Q(1, 3), 2 * Q(2, 3), Q(3, 3));
-}
-
 void collectRaw(const QuadricRegion& r, std::vector<Eigen::Matrix4d>* out) {
   if (r.op() == QuadricRegion::Op::Atom) {
     out->push_back(r.matrix());
@@ -519,18 +516,6 @@ struct Body {
   std::string unsupported;
 };
 
-// A point of the line n1.x + w1 = 0, n2.x + w2 = 0 (least norm) and its direction.
-bool lineOfPlanes(const Eigen::Vector4d& p1, const Eigen::Vector4d& p2, Eigen::Vector3d* x, Eigen::Vector3d* d) {
-  const Eigen::Vector3d n1 = p1.head<3>(), n2 = p2.head<3>();
-  *d = n1.cross(n2);
-  if (d->norm() <= 1e-12 * n1.norm() * n2.norm()) return false;
-  Eigen::Matrix<double, 2, 3> N;
-  N.row(0) = n1.transpose();
-  N.row(1) = n2.transpose();
-  const Eigen::Vector2d rhs(-p1[3], -p2[3]);
-  *x = N.transpose() * detail::ldltSolve(Eigen::Matrix2d(N * N.transpose()), rhs);
-  return true;
-}
 
 // The lines of a plane face meeting a quadric face in a line edge (boundaryElements' EdgeKind::Line
 // for a plane and a quadric: the quadric restricted to the plane has rank <= 1 in the plane's

@@ -957,13 +957,8 @@ namespace {
 // No witness found (an atom undecided at every candidate, planes at grazing angles, a quadric
 // element) leaves the decision to the search.
 
-// The plane X^T P X = n.x + h = 0 of an exactly linear atom (zero quadratic block).
-bool planeOf(const Eigen::Matrix4d& P, Eigen::Vector3d* n, double* h) {
-  if (!P.topLeftCorner<3, 3>().isZero(0.0)) return false;
-  *n = 2.0 * P.topRightCorner<3, 1>();
-  *h = P(3, 3);
-  return n->squaredNorm() > 0.0;
-}
+// An exactly linear atom (zero quadratic block): a plane.
+bool isPlane(const Eigen::Matrix4d& P) { return P.topLeftCorner<3, 3>().isZero(0.0); }
 
 // The witness test at x: the formula with the atoms in `on` satisfied and the others' signs
 // certified at x (atomPointSign).
@@ -999,15 +994,12 @@ bool inBox(const Box3& box, const Eigen::Vector3d& x, double pad) {
   return (x.array() >= box.lo.array() - pad).all() && (x.array() <= box.hi.array() + pad).all();
 }
 
-// Planes (n1, h1), (n2, h2) meeting at an angle (|n1 x n2| >= 1e-6 |n1| |n2|): their line p + s d
-// and the range of s inside the box. False for grazing planes or a line missing the box.
-bool planesLine(const Eigen::Vector3d& n1, double h1, const Eigen::Vector3d& n2, double h2, const Box3& box,
-                Eigen::Vector3d* p, Eigen::Vector3d* d, double* s_lo, double* s_hi) {
-  *d = n1.cross(n2);
-  const double dd = d->squaredNorm();
-  if (!(dd >= 1e-12 * n1.squaredNorm() * n2.squaredNorm())) return false;
-  // n1.p = -h1, n2.p = -h2, d.p = 0.
-  *p = (-h1 * n2.cross(*d) - h2 * d->cross(n1)) / dd;
+// The line p + s d of the planes (covectors) p1, p2 meeting at an angle (|n1 x n2| >= 1e-6 |n1|
+// |n2|), and the range of s inside the box. False for grazing planes or a line missing the box.
+bool planesLine(const Eigen::Vector4d& p1, const Eigen::Vector4d& p2, const Box3& box, Eigen::Vector3d* p,
+                Eigen::Vector3d* d, double* s_lo, double* s_hi) {
+  if (!detail::lineOfPlanes(p1, p2, p, d)) return false;
+  if (!(d->norm() >= 1e-6 * p1.head<3>().norm() * p2.head<3>().norm())) return false;
   *s_lo = -std::numeric_limits<double>::infinity();
   *s_hi = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 3; ++k) {
@@ -1071,10 +1063,11 @@ bool lineWitness(const Formula& f, const std::vector<int>& ids, const std::vecto
 bool planarWitness(const Formula& f, const std::vector<int>& ids, const Box3& box) {
   for (std::size_t i = 0; i < ids.size(); ++i)
     for (std::size_t j = i + 1; j < ids.size(); ++j) {
-      Eigen::Vector3d ni, nj, p, d;
-      double hi = 0.0, hj = 0.0, s_lo = 0.0, s_hi = 0.0;
-      if (!planeOf(f.atoms[ids[i]], &ni, &hi) || !planeOf(f.atoms[ids[j]], &nj, &hj)) continue;
-      if (!planesLine(ni, hi, nj, hj, box, &p, &d, &s_lo, &s_hi)) continue;
+      Eigen::Vector3d p, d;
+      double s_lo = 0.0, s_hi = 0.0;
+      if (!isPlane(f.atoms[ids[i]]) || !isPlane(f.atoms[ids[j]])) continue;
+      if (!planesLine(detail::planeOf(f.atoms[ids[i]]), detail::planeOf(f.atoms[ids[j]]), box, &p, &d, &s_lo, &s_hi))
+        continue;
       std::vector<int> rest;
       for (std::size_t k = 0; k < ids.size(); ++k)
         if (k != i && k != j) rest.push_back(ids[k]);
