@@ -51,7 +51,9 @@
 // ConvexSupport::treeBox (the support mapping's box, each face certified by duality or by the
 // engine, a union's from its operands': what a QuadricShape's constructor uses since session 42)
 // against regionAabb (the engine's bisections: what it used before, and still uses for the other
-// regions); and the whole construction (box, support mapping).
+// regions); and the whole construction (box, support mapping). Boundary elements (session 58):
+// what the dimension reduction computes once per shape, for a box, a turned box with four corners
+// cut, a plus-shaped union and the CSG wedge, and the turned block's regionAabb.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -1020,6 +1022,52 @@ void registerConstructionBenchmarks() {
   }
 }
 
+// Boundary elements (thesis §6.1-6.2), which the dimension reduction needs once per shape (the
+// front door caches them): a box, a box with four corners cut and turned, a plus-shaped union of
+// two boxes, and the CSG wedge; and the turned corner-cut box's regionAabb (ten planes in one
+// and-node). No FCL counterpart: FCL has no CSG solids.
+QuadricRegion cuboidRegion(const Eigen::Vector3d& h) {
+  std::vector<QuadricRegion> faces;
+  for (int i = 0; i < 3; ++i)
+    for (const double s : {1.0, -1.0}) faces.push_back(QuadricRegion::halfspace(s * Eigen::Vector3d::Unit(i), h[i]));
+  return QuadricRegion::combine(QuadricRegion::Op::Intersection, faces);
+}
+std::vector<std::pair<std::string, QuadricRegion>> makeElementCases() {
+  using Op = QuadricRegion::Op;
+  const Eigen::Vector3d h(0.7, 0.9, 1.1);
+  std::vector<QuadricRegion> cut{cuboidRegion(h)};
+  for (int corner = 0; corner < 4; ++corner) {  // planes through the corner's edges at 0.6 h
+    const Eigen::Vector3d sign((corner & 1) ? -1.0 : 1.0, (corner & 2) ? -1.0 : 1.0, 1.0);
+    const Eigen::Vector3d n = sign.cwiseQuotient(0.6 * h);
+    cut.push_back(QuadricRegion::halfspace(n, n.dot(sign.cwiseProduct(h)) - 1.0));
+  }
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  return {{"Box", cuboidRegion(h)},
+          {"CornerCutBlockTurned",
+           QuadricRegion::combine(Op::Intersection, cut).transformed(R, Eigen::Vector3d(1.5, -2.0, 3.0))},
+          {"Plus", QuadricRegion::combine(Op::Union, {cuboidRegion(Eigen::Vector3d(0.7, 0.15, 0.6)),
+                                                      cuboidRegion(Eigen::Vector3d(0.21, 0.5, 0.6))})},
+          {"Wedge", fcl_quadric::bench::wedgeRegion()}};
+}
+void registerElementBenchmarks() {
+  static const std::vector<std::pair<std::string, QuadricRegion>> cases = makeElementCases();
+  for (const auto& [name, region] : cases) {
+    const QuadricRegion* r = &region;
+    const Box3 box = fcl_quadric::regionAabb(region);
+    benchmark::RegisterBenchmark(("QuadricShapes/BoundaryElements/" + name).c_str(),
+                                 [r, box](benchmark::State& state) {
+                                   for (auto _ : state) benchmark::DoNotOptimize(fcl_quadric::boundaryElements(*r, box));
+                                 })
+        ->Unit(benchmark::kMillisecond);
+  }
+  const QuadricRegion* turned = &cases[1].second;
+  benchmark::RegisterBenchmark("QuadricShapes/ConstructionBox/CornerCutBlockTurned/RegionEngineBisection",
+                               [turned](benchmark::State& state) {
+                                 for (auto _ : state) benchmark::DoNotOptimize(fcl_quadric::regionAabb(*turned));
+                               })
+      ->Unit(benchmark::kMillisecond);
+}
+
 void registerShapePairBenchmarks() {
   for (std::size_t k = 0; k < shapePairScenes().size(); ++k) {
     const ShapePairScene& s = shapePairScenes()[k];
@@ -1082,6 +1130,7 @@ int main(int argc, char** argv) {
   registerShapePairBenchmarks();
   constructionCases() = makeConstructionCases();
   registerConstructionBenchmarks();
+  registerElementBenchmarks();
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   {
