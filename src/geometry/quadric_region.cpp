@@ -955,7 +955,8 @@ namespace {
 // (up to the rounding of the point, well inside the signs' pads where the planes meet at an
 // angle): the search could never certify that element empty, so the elements kept are the same.
 // No witness found (an atom undecided at every candidate, planes at grazing angles, a quadric
-// element) leaves the decision to the search.
+// element) leaves the decision to the search. A planar face is tried the same way on two lines
+// of its plane through the box centre's projection (a box's six faces: 7 ms -> well under 1 ms).
 
 // An exactly linear atom (zero quadratic block): a plane.
 bool isPlane(const Eigen::Matrix4d& P) { return P.topLeftCorner<3, 3>().isZero(0.0); }
@@ -994,28 +995,33 @@ bool inBox(const Box3& box, const Eigen::Vector3d& x, double pad) {
   return (x.array() >= box.lo.array() - pad).all() && (x.array() <= box.hi.array() + pad).all();
 }
 
-// The line p + s d of the planes (covectors) p1, p2 meeting at an angle (|n1 x n2| >= 1e-6 |n1|
-// |n2|), and the range of s inside the box. False for grazing planes or a line missing the box.
-bool planesLine(const Eigen::Vector4d& p1, const Eigen::Vector4d& p2, const Box3& box, Eigen::Vector3d* p,
-                Eigen::Vector3d* d, double* s_lo, double* s_hi) {
-  if (!detail::lineOfPlanes(p1, p2, p, d)) return false;
-  if (!(d->norm() >= 1e-6 * p1.head<3>().norm() * p2.head<3>().norm())) return false;
+// The range [s_lo, s_hi] of the line p + s d inside the box; false when it misses the box.
+bool clipLineToBox(const Eigen::Vector3d& p, const Eigen::Vector3d& d, const Box3& box, double* s_lo, double* s_hi) {
   *s_lo = -std::numeric_limits<double>::infinity();
   *s_hi = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 3; ++k) {
-    if ((*d)[k] == 0.0) {
-      if ((*p)[k] < box.lo[k] || (*p)[k] > box.hi[k]) return false;
+    if (d[k] == 0.0) {
+      if (p[k] < box.lo[k] || p[k] > box.hi[k]) return false;
       continue;
     }
-    const double a = (box.lo[k] - (*p)[k]) / (*d)[k], b = (box.hi[k] - (*p)[k]) / (*d)[k];
+    const double a = (box.lo[k] - p[k]) / d[k], b = (box.hi[k] - p[k]) / d[k];
     *s_lo = std::max(*s_lo, std::min(a, b));
     *s_hi = std::min(*s_hi, std::max(a, b));
   }
   return *s_lo <= *s_hi;
 }
 
-// A witness on the line p + s d (s in [s_lo, s_hi], inside the box) of two of the element's
-// planes; `rest` holds its other atom, if any. The atoms vanishing along the line (to 1e-10 of
+// The line p + s d of the planes (covectors) p1, p2 meeting at an angle (|n1 x n2| >= 1e-6 |n1|
+// |n2|), and the range of s inside the box. False for grazing planes or a line missing the box.
+bool planesLine(const Eigen::Vector4d& p1, const Eigen::Vector4d& p2, const Box3& box, Eigen::Vector3d* p,
+                Eigen::Vector3d* d, double* s_lo, double* s_hi) {
+  if (!detail::lineOfPlanes(p1, p2, p, d)) return false;
+  if (!(d->norm() >= 1e-6 * p1.head<3>().norm() * p2.head<3>().norm())) return false;
+  return clipLineToBox(*p, *d, box, s_lo, s_hi);
+}
+
+// A witness on the line p + s d (s in [s_lo, s_hi], inside the box) lying on the element's planes
+// (two of them, or a face's one); `rest` holds its other atom, if any. The atoms vanishing along the line (to 1e-10 of
 // their magnitude there) hold on all of it: the element's own and their duplicates (a union's
 // shared cap). An own atom that crosses the line gives the candidates, its crossings (a vertex);
 // otherwise they are the midpoints between every other atom's crossings (an edge).
@@ -1058,6 +1064,21 @@ bool lineWitness(const Formula& f, const std::vector<int>& ids, const std::vecto
   return false;
 }
 
+// A witness of a planar face: on the two lines of the plane through the box centre's projection,
+// along the plane's frame directions (detail::planeFrame); false when none is found.
+bool planeFaceWitness(const Formula& f, int id, const Box3& box) {
+  const Eigen::Vector4d plane = detail::planeOf(f.atoms[id]);
+  const Eigen::Vector3d n = plane.head<3>(), c = box.center();
+  const Eigen::Vector3d p = c - (n.dot(c) + plane[3]) / n.squaredNorm() * n;
+  const Eigen::Matrix<double, 4, 3> frame = detail::planeFrame(plane);
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Vector3d d = frame.block<3, 1>(0, k);
+    double s_lo = 0.0, s_hi = 0.0;
+    if (clipLineToBox(p, d, box, &s_lo, &s_hi) && lineWitness(f, {id}, {}, p, d, s_lo, s_hi, box)) return true;
+  }
+  return false;
+}
+
 // A witness of the element on the atoms `ids` (2 or 3 of them), tried on the line of each pair of
 // its planes that meet at an angle; false when none is found (the search decides).
 bool planarWitness(const Formula& f, const std::vector<int>& ids, const Box3& box) {
@@ -1088,7 +1109,8 @@ BoundaryElements boundaryElements(const QuadricRegion& region, const Box3& box, 
   // A face / edge / vertex exists unless the region intersected with the equalities of its
   // surfaces is certified empty (findPoint). Equality f = 0 is f <= 0 and -f <= 0.
   auto mayMeet = [&](const std::vector<int>& ids) {
-    if (ids.size() >= 2 && same_atoms && planarWitness(formula, ids, box)) return true;
+    if (same_atoms && ids.size() == 1 && isPlane(atoms[ids[0]]) && planeFaceWitness(formula, ids[0], box)) return true;
+    if (same_atoms && ids.size() >= 2 && planarWitness(formula, ids, box)) return true;
     std::vector<QuadricRegion> parts{region};
     for (int i : ids) {
       parts.push_back(QuadricRegion::atom(atoms[i]));

@@ -342,7 +342,8 @@ TEST(QuadricBoundaryElements, WedgeHasConcaveBoreAndConcaveEdges) {
 // meet) replaces the corner's vertex by a triangle: the cut plane is a face, it meets the three
 // faces at the corner along lines, and the three triples (cut, two of those faces) are vertices.
 // The box's own pairs of opposite faces, the cut corners' triples and any pair of cut planes do
-// not meet the solid. The planes' lines and points are where boundaryElements looks for a witness
+// not meet the solid, nor does a redundant half-space's plane beyond it. The planes' lines and
+// points (and two lines on each plane, for its face) are where boundaryElements looks for a witness
 // before its certified search; a witness that kept an absent element would show up here. The
 // solid's regionAabb is checked against the box of its vertices in closed form (with three or
 // four cuts the node has more than eight planes, where the planes' linear program used to stop).
@@ -388,6 +389,10 @@ TEST(QuadricBoundaryElements, CornerCutBoxesHaveExactlyTheirElementsAndTheirVert
       }
     }
     std::normal_distribution<double> g(0.0, 1.0);
+    // A redundant half-space whose plane misses the solid: no face, edge or vertex of its own.
+    Eigen::Vector3d far_n(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+    far_n.normalize();
+    parts.push_back(QuadricRegion::halfspace(far_n, (1.5 + u(rng)) * h.norm()));
     for (int k = cuts; k < 8; ++k) {
       const int corner = corners[static_cast<std::size_t>(k)];
       points.push_back(Eigen::Vector3d(((corner & 1) ? -1.0 : 1.0) * h[0], ((corner & 2) ? -1.0 : 1.0) * h[1],
