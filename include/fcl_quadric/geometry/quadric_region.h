@@ -206,11 +206,11 @@ MassProperties regionMassProperties(const QuadricRegion& region, const Box3& box
 /// line = plane x plane, curve = quadric x quadric) and vertices (three planes, or a quadric and
 /// two planes, meeting on it). Elements certified absent (findPoint Empty at the resolution
 /// kBoundaryElementBoxRelative) are dropped; the lists are a superset only by elements within
-/// that band of the boundary. An edge or vertex on the line of two of its planes is kept at once
-/// when a point of the line is certified in the region with the element's surfaces through it
-/// (a witness: the search could not drop it), which spares the search's descent to its
-/// resolution: 5 ms instead of 70 for a box, 20 instead of 400 for a plus-shaped union of two
-/// boxes (2 cores at 2.6 GHz).
+/// that band of the boundary. A planar face, and an edge or vertex on the line of two of its
+/// planes, is kept at once when a point on a line of its planes is certified in the region with
+/// the element's surfaces through it (a witness: the search could not drop it), which spares the
+/// search's descent to its resolution: 1.5 ms instead of 74 for a box, 13 instead of 377 for a
+/// plus-shaped union of two boxes (docs/benchmarks.md, session 58).
 struct BoundaryFace {
   int atom = 0;  ///< index into signedAtoms()
   FaceShape shape = FaceShape::Convex;
