@@ -969,26 +969,10 @@ bool witnesses(const Formula& f, const std::vector<int>& on, const Eigen::Vector
          }) == Tri::In;
 }
 
-// X^T Q X along x(s) = p + s d: {a, b, c} of a s^2 + b s + c.
+// X^T Q X along x(s) = p + s d: {a, b, c} of a s^2 + 2 b s + c (quadraticRoots' form).
 std::array<double, 3> alongLine(const Eigen::Matrix4d& Q, const Eigen::Vector3d& p, const Eigen::Vector3d& d) {
   const Eigen::Vector4d P(p[0], p[1], p[2], 1.0), D(d[0], d[1], d[2], 0.0);
-  return {D.dot(Q * D), 2.0 * D.dot(Q * P), P.dot(Q * P)};
-}
-
-// Real roots of a s^2 + b s + c (none when it is constant).
-std::vector<double> quadraticRoots(const std::array<double, 3>& q) {
-  const double a = q[0], b = q[1], c = q[2];
-  const double scale = std::max({std::fabs(a), std::fabs(b), std::fabs(c)});
-  if (scale == 0.0) return {};
-  if (std::fabs(a) <= 1e-14 * scale) {
-    if (b == 0.0) return {};
-    return {-c / b};
-  }
-  const double disc = b * b - 4.0 * a * c;
-  if (disc < 0.0) return {};
-  const double t = -0.5 * (b + std::copysign(std::sqrt(disc), b));
-  if (t == 0.0) return {0.0};
-  return {t / a, c / t};
+  return {D.dot(Q * D), D.dot(Q * P), P.dot(Q * P)};
 }
 
 bool inBox(const Box3& box, const Eigen::Vector3d& x, double pad) {
@@ -1036,7 +1020,7 @@ bool lineWitness(const Formula& f, const std::vector<int>& ids, const std::vecto
     vanishes[a] = std::fabs(q[0]) <= 1e-10 * m[0] && std::fabs(q[1]) <= 1e-10 * m[1] && std::fabs(q[2]) <= 1e-10 * m[2];
     const bool own = std::find(ids.begin(), ids.end(), static_cast<int>(a)) != ids.end();
     if (vanishes[a] && !own) on.push_back(static_cast<int>(a));
-    if (!vanishes[a]) roots[a] = quadraticRoots(q);
+    if (!vanishes[a]) quadraticRoots(q[0], q[1], q[2], &roots[a]);
   }
   int crossing = -1;
   for (int r : rest)
