@@ -251,7 +251,11 @@ namespace {
 class BoxEval {
  public:
   BoxEval(const Formula& f, const Eigen::Vector3d& c, const Eigen::Vector3d& r)
-      : f_(f), c_(c), r_(r), box_(f, atomStates(f, c, r)) {}
+      : f_(f), c_(c), r_(r), box_(f, atomStates(f, nullptr, c, r)) {}
+  /// With `abs` (one matrix per atom, >= |atom| entrywise) sizing the rounding pads instead of
+  /// |atom|: atoms carried into another frame by a rounded product (patchExcluded).
+  BoxEval(const Formula& f, const std::vector<Eigen::Matrix4d>* abs, const Eigen::Vector3d& c, const Eigen::Vector3d& r)
+      : f_(f), abs_(abs), c_(c), r_(r), box_(f, atomStates(f, abs, c, r)) {}
   Tri root() const { return box_.root(); }
 
   /// Heuristic depth of a point: the largest normalised value f / |grad f| of the undecided atoms
@@ -297,11 +301,20 @@ class BoxEval {
   }
 
  private:
-  static std::vector<Tri> atomStates(const Formula& f, const Eigen::Vector3d& c, const Eigen::Vector3d& r) {
+  static std::vector<Tri> atomStates(const Formula& f, const std::vector<Eigen::Matrix4d>* abs,
+                                     const Eigen::Vector3d& c, const Eigen::Vector3d& r) {
     std::vector<Tri> out(f.atoms.size());
-    for (std::size_t i = 0; i < f.atoms.size(); ++i) out[i] = atomBox(f.atoms[i], c, r);
+    for (std::size_t i = 0; i < f.atoms.size(); ++i) {
+      if (abs == nullptr) {
+        out[i] = atomBox(f.atoms[i], c, r);
+        continue;
+      }
+      const Enclosure e = enclose(f.atoms[i], (*abs)[i], c, r);
+      out[i] = e.lo > 0.0 ? Tri::Out : (e.hi < 0.0 ? Tri::In : Tri::Unknown);
+    }
     return out;
   }
+  Eigen::Matrix4d absOf(int k) const { return abs_ == nullptr ? Eigen::Matrix4d(f_.atoms[k].cwiseAbs()) : (*abs_)[k]; }
 
   // Lower bound of the centred form of mu f + (1 - mu) g is concave in mu (a linear term minus
   // absolute values of affine functions of mu), so golden section finds its maximum.
@@ -312,7 +325,7 @@ class BoxEval {
         const Eigen::Matrix4d& G = f_.atoms[atoms[j]];
         // Scale-balance the two atoms so mu is well spread.
         const double sf = 1.0 / F.cwiseAbs().maxCoeff(), sg = 1.0 / G.cwiseAbs().maxCoeff();
-        const Eigen::Matrix4d Fa = sf * F.cwiseAbs(), Ga = sg * G.cwiseAbs();
+        const Eigen::Matrix4d Fa = sf * absOf(atoms[i]), Ga = sg * absOf(atoms[j]);
         auto lower = [&](double mu) {
           return enclose(mu * sf * F + (1.0 - mu) * sg * G, mu * Fa + (1.0 - mu) * Ga, c_, r_).lo;
         };
@@ -326,11 +339,12 @@ class BoxEval {
       for (std::size_t j = i + 1; j < atoms.size(); ++j)
         for (std::size_t k = j + 1; k < atoms.size(); ++k) {
           const int ids[3] = {atoms[i], atoms[j], atoms[k]};
-          Eigen::Matrix4d Qs[3];
+          Eigen::Matrix4d Qs[3], Qa[3];
           Eigen::Matrix3d G;
           for (int m = 0; m < 3; ++m) {
             const Eigen::Matrix4d& Q = f_.atoms[ids[m]];
             Qs[m] = Q / Q.cwiseAbs().maxCoeff();
+            Qa[m] = absOf(ids[m]) / Q.cwiseAbs().maxCoeff();
             G.col(m) = 2.0 * (Qs[m].topLeftCorner<3, 3>() * c_ + Qs[m].topRightCorner<3, 1>());
           }
           Eigen::Matrix4d K = Eigen::Matrix4d::Zero();
@@ -343,13 +357,14 @@ class BoxEval {
           const Eigen::Vector3d mu = sol.head<3>();
           if ((mu.array() < 0.0).any()) continue;
           const Eigen::Matrix4d Q = mu[0] * Qs[0] + mu[1] * Qs[1] + mu[2] * Qs[2];
-          const Eigen::Matrix4d Qa = mu[0] * Qs[0].cwiseAbs() + mu[1] * Qs[1].cwiseAbs() + mu[2] * Qs[2].cwiseAbs();
-          if (enclose(Q, Qa, c_, r_).lo > 0.0) return true;
+          const Eigen::Matrix4d Qabs = mu[0] * Qa[0] + mu[1] * Qa[1] + mu[2] * Qa[2];
+          if (enclose(Q, Qabs, c_, r_).lo > 0.0) return true;
         }
     return false;
   }
 
   const Formula& f_;
+  const std::vector<Eigen::Matrix4d>* abs_ = nullptr;
   Eigen::Vector3d c_, r_;
   FormulaBox box_;
 };
@@ -946,26 +961,28 @@ MassProperties regionMassProperties(const QuadricRegion& region, const Box3& box
 
 namespace {
 
-// Witnesses of the elements cut out by planes: a point of the region lying on every surface of
-// the element. The certified search (mayMeet below) descends ~20 levels to its resolution before
-// it gives up on an element that exists (~60 boxes of pencil tests: 70 ms for a box's 12 edges
-// and 8 vertices, 0.4 s for a plus-shaped union's); a witness keeps it at once. Where the
-// region's formula, with the element's own atoms satisfied (zero on their surfaces) and every
-// other atom's sign certified at the point, is certified In, a point of region ∩ {f = 0} is there
-// (up to the rounding of the point, well inside the signs' pads where the planes meet at an
-// angle): the search could never certify that element empty, so the elements kept are the same.
-// No witness found (an atom undecided at every candidate, planes at grazing angles, a quadric
-// element) leaves the decision to the search. A planar face is tried the same way on two lines
-// of its plane through the box centre's projection (a box's six faces: 7 ms -> well under 1 ms).
+// Witnesses of boundary elements: a point of the region lying on every surface of the element.
+// The certified search (mayMeet below) descends ~20 levels to its resolution before it gives up
+// on an element that exists (~60 boxes of pencil tests: 70 ms for a box's 12 edges and 8
+// vertices, 0.4 s for a plus-shaped union's, 1.6-2.7 ms for each circle of a capped cylinder);
+// a witness keeps it at once. Where the region's formula, with the element's own atoms satisfied
+// (zero on their surfaces) and every other atom's sign certified at the point, is certified In,
+// a point of region ∩ {f = 0} is there (up to the rounding of the point, well inside the signs'
+// pads where the planes meet at an angle and a quadric is crossed, not grazed): the search could
+// never certify that element empty, so the elements kept are the same. The candidates lie on
+// lines: the line of two of the element's planes (an edge or a vertex), lines of its one plane
+// (a planar face; a conic edge, at the quadric's crossings), lines through the box centre (a
+// curved face, at its crossings). No witness found (an atom undecided at every candidate, planes
+// at grazing angles, a curve of two quadrics) leaves the decision to the search.
 
 // An exactly linear atom (zero quadratic block): a plane.
 bool isPlane(const Eigen::Matrix4d& P) { return P.topLeftCorner<3, 3>().isZero(0.0); }
 
 // The witness test at x: the formula with the atoms in `on` satisfied and the others' signs
-// certified at x (atomPointSign).
+// certified at x in double-double (atomPointSignAccurate: far shapes keep their signs).
 bool witnesses(const Formula& f, const std::vector<int>& on, const Eigen::Vector3d& x) {
   return detail::pointEval(f, f.root, [&](int a) {
-           return std::find(on.begin(), on.end(), a) != on.end() ? -1 : atomPointSign(f.atoms[a], x);
+           return std::find(on.begin(), on.end(), a) != on.end() ? -1 : atomPointSignAccurate(f.atoms[a], x);
          }) == Tri::In;
 }
 
@@ -1004,11 +1021,12 @@ bool planesLine(const Eigen::Vector4d& p1, const Eigen::Vector4d& p2, const Box3
   return clipLineToBox(*p, *d, box, s_lo, s_hi);
 }
 
-// A witness on the line p + s d (s in [s_lo, s_hi], inside the box) lying on the element's planes
-// (two of them, or a face's one); `rest` holds its other atom, if any. The atoms vanishing along the line (to 1e-10 of
-// their magnitude there) hold on all of it: the element's own and their duplicates (a union's
-// shared cap). An own atom that crosses the line gives the candidates, its crossings (a vertex);
-// otherwise they are the midpoints between every other atom's crossings (an edge).
+// A witness on the line p + s d (s in [s_lo, s_hi], inside the box) of the element on the atoms
+// `ids`: the line lies on its planes (two, one, or none for a curved face), and `rest` holds its
+// other atom, if any. The atoms vanishing along the line (to 1e-10 of their magnitude there) hold
+// on all of it: the element's own and their duplicates (a union's shared cap). An own atom that
+// crosses the line gives the candidates, its crossings (a vertex, a conic edge, a curved face);
+// otherwise they are the midpoints between every other atom's crossings (an edge, a planar face).
 bool lineWitness(const Formula& f, const std::vector<int>& ids, const std::vector<int>& rest, const Eigen::Vector3d& p,
                  const Eigen::Vector3d& d, double s_lo, double s_hi, const Box3& box) {
   std::vector<int> on = ids;
@@ -1025,7 +1043,13 @@ bool lineWitness(const Formula& f, const std::vector<int>& ids, const std::vecto
   int crossing = -1;
   for (int r : rest)
     if (!vanishes[static_cast<std::size_t>(r)]) crossing = r;
-  const double pad = 1e-12 * box.maxEdge();
+  // The line must lie on the element's other atoms (a plane's line misplaced by rounding, or a
+  // second plane that is parallel but not the same).
+  for (int a : ids)
+    if (!vanishes[static_cast<std::size_t>(a)] && std::find(rest.begin(), rest.end(), a) == rest.end()) return false;
+  // A witness may lie outside the box by 1e-9 of its size (a vertex or edge on the region's
+  // bounding box, its coordinates rounded either way), well within the search's resolution.
+  const double pad = 1e-9 * box.maxEdge(), pad_s = pad / d.norm();
   std::vector<double> candidates;
   if (crossing < 0) {
     std::vector<double> breaks{s_lo, s_hi};
@@ -1038,8 +1062,17 @@ bool lineWitness(const Formula& f, const std::vector<int>& ids, const std::vecto
     for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
       if (breaks[k + 1] > breaks[k]) candidates.push_back(0.5 * (breaks[k] + breaks[k + 1]));
   } else {
-    for (double s : roots[static_cast<std::size_t>(crossing)])
-      if (s >= s_lo - pad && s <= s_hi + pad) candidates.push_back(s);
+    // Crossings, not grazes: the atom's signs at s -+ h (double-double, atomPointSignAccurate)
+    // are opposite, so the segment between those two points meets the surface, within h (1e-7 of
+    // the segment, inside the search's resolution) of the candidate. A line grazing a quadric, or
+    // a far shape whose atom the rounding blurs at that distance, is left to the search.
+    const Eigen::Matrix4d& Q = f.atoms[static_cast<std::size_t>(crossing)];
+    const double h = 1e-7 * (s_hi - s_lo);
+    for (double s : roots[static_cast<std::size_t>(crossing)]) {
+      if (!(s >= s_lo - pad_s && s <= s_hi + pad_s)) continue;
+      if (atomPointSignAccurate(Q, p + (s - h) * d) * atomPointSignAccurate(Q, p + (s + h) * d) < 0)
+        candidates.push_back(s);
+    }
   }
   for (double s : candidates) {
     const Eigen::Vector3d x = p + s * d;
@@ -1048,17 +1081,36 @@ bool lineWitness(const Formula& f, const std::vector<int>& ids, const std::vecto
   return false;
 }
 
-// A witness of a planar face: on the two lines of the plane through the box centre's projection,
-// along the plane's frame directions (detail::planeFrame); false when none is found.
-bool planeFaceWitness(const Formula& f, int id, const Box3& box) {
-  const Eigen::Vector4d plane = detail::planeOf(f.atoms[id]);
+// A witness on lines of the plane of atom `plane` through the box centre's projection, in eight
+// directions (the frame's u and v of detail::planeFrame, turned by multiples of pi / 8). For a
+// planar face (ids = {plane}, no rest; or the same plane twice, a union's shared cap), and for a
+// conic edge (ids = {plane, quadric}, rest = {quadric}: the quadric's crossings of the lines are
+// the candidates). False when none is found.
+bool planeLinesWitness(const Formula& f, int plane_id, const std::vector<int>& ids, const std::vector<int>& rest,
+                       const Box3& box) {
+  const Eigen::Vector4d plane = detail::planeOf(f.atoms[plane_id]);
   const Eigen::Vector3d n = plane.head<3>(), c = box.center();
   const Eigen::Vector3d p = c - (n.dot(c) + plane[3]) / n.squaredNorm() * n;
   const Eigen::Matrix<double, 4, 3> frame = detail::planeFrame(plane);
-  for (int k = 0; k < 2; ++k) {
-    const Eigen::Vector3d d = frame.block<3, 1>(0, k);
+  const Eigen::Vector3d u = frame.block<3, 1>(0, 0), v = frame.block<3, 1>(0, 1);
+  for (int k = 0; k < 8; ++k) {
+    const double angle = k * (0.125 * M_PI);
+    const Eigen::Vector3d d = std::cos(angle) * u + std::sin(angle) * v;
     double s_lo = 0.0, s_hi = 0.0;
-    if (clipLineToBox(p, d, box, &s_lo, &s_hi) && lineWitness(f, {id}, {}, p, d, s_lo, s_hi, box)) return true;
+    if (clipLineToBox(p, d, box, &s_lo, &s_hi) && lineWitness(f, ids, rest, p, d, s_lo, s_hi, box)) return true;
+  }
+  return false;
+}
+
+// A witness of a curved face: the quadric's crossings of the lines through the box centre along
+// the axes and the four diagonals. False when none is found.
+bool quadricFaceWitness(const Formula& f, int id, const Box3& box) {
+  const Eigen::Vector3d c = box.center();
+  for (int k = 0; k < 7; ++k) {
+    const Eigen::Vector3d d = k < 3 ? Eigen::Vector3d(Eigen::Vector3d::Unit(k))
+                                    : Eigen::Vector3d(1.0, (k & 1) ? 1.0 : -1.0, (k & 2) ? 1.0 : -1.0);
+    double s_lo = 0.0, s_hi = 0.0;
+    if (clipLineToBox(c, d, box, &s_lo, &s_hi) && lineWitness(f, {id}, {id}, c, d, s_lo, s_hi, box)) return true;
   }
   return false;
 }
@@ -1081,6 +1133,142 @@ bool planarWitness(const Formula& f, const std::vector<int>& ids, const Box3& bo
   return false;
 }
 
+// A witness of the element on the atoms `ids` (1 to 3 of them) where the kinds above apply: a
+// planar or curved face, an edge or vertex on two planes, a conic edge. False otherwise (a
+// quadric-quadric curve, or no witness found): the search decides.
+bool elementWitness(const Formula& f, const std::vector<int>& ids, const Box3& box) {
+  if (ids.size() == 1)
+    return isPlane(f.atoms[ids[0]]) ? planeLinesWitness(f, ids[0], ids, {}, box) : quadricFaceWitness(f, ids[0], box);
+  if (planarWitness(f, ids, box)) return true;
+  if (ids.size() == 2 && isPlane(f.atoms[ids[0]]) && isPlane(f.atoms[ids[1]]))
+    return planeLinesWitness(f, ids[0], ids, {}, box);  // the same plane twice (lineWitness checks)
+  if (ids.size() == 2 && isPlane(f.atoms[ids[0]]) != isPlane(f.atoms[ids[1]])) {
+    const int plane = isPlane(f.atoms[ids[0]]) ? ids[0] : ids[1], quadric = ids[0] + ids[1] - plane;
+    return planeLinesWitness(f, plane, ids, {quadric}, box);
+  }
+  return false;
+}
+
+// Certified absence of an element near a line or a plane. g is the element's formula (the region
+// and its surfaces' equalities, as mayMeet builds it); every point of the element lies within
+// `delta` of the patch o + s e_0 (+ t e_1), (s, t) in [lo, hi], where (e_0, e_1, e_2) are
+// orthonormal (to rounding). The atoms are carried into that frame, X = T Y with
+// T = [E o; 0 1], as T^T Q T, their pads sized by |T|^T |Q| |T| (>= the rounded product's
+// terms, far above its error at 2^-40). The frame's boxes [s] x [t] x [-delta, delta] (a line:
+// [s] x [-delta, delta]^2) are cut along s and t and decided by the static engine's box test
+// (BoxEval: atom enclosures and pencils, as findPointFormula). A box around a turned line or
+// plane is then as thin as the element, where the search's axis-aligned boxes straddling it are
+// as thick as they are long (an absent edge of a plane and a thin bore: seconds of search).
+// True when every piece is excluded; false when a piece is In, reaches min_len undecided, or
+// after kMaxPieces (the caller's search then decides).
+bool patchExcluded(const Formula& g, const Eigen::Vector3d& o, const Eigen::Matrix3d& E, int dims,
+                   const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double delta, double min_len) {
+  constexpr int kMaxPieces = 4096;
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() = E;
+  T.topRightCorner<3, 1>() = o;
+  const Eigen::Matrix4d Tabs = T.cwiseAbs();
+  Formula framed = g;
+  std::vector<Eigen::Matrix4d> abs(g.atoms.size());
+  for (std::size_t k = 0; k < g.atoms.size(); ++k) {
+    framed.atoms[k] = T.transpose() * g.atoms[k] * T;
+    abs[k] = Tabs.transpose() * g.atoms[k].cwiseAbs() * Tabs;
+  }
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> stack{{lo, hi}};
+  for (int pieces = 0; !stack.empty(); ++pieces) {
+    if (pieces >= kMaxPieces) return false;
+    const auto [a, b] = stack.back();
+    stack.pop_back();
+    const Eigen::Vector2d mid = 0.5 * (a + b), half = 0.5 * (b - a);
+    const Eigen::Vector3d c(mid[0], dims > 1 ? mid[1] : 0.0, 0.0);
+    const Eigen::Vector3d r(half[0], dims > 1 ? half[1] : delta, delta);
+    const int widest = dims > 1 && half[1] > half[0] ? 1 : 0;
+    BoxEval ev(framed, &abs, c, r);
+    if (ev.root() == Tri::Out) continue;
+    if (ev.root() == Tri::In || 2.0 * half[widest] <= min_len) return false;
+    if (ev.excluded()) continue;
+    Eigen::Vector2d b_lo = b, a_hi = a;
+    b_lo[widest] = mid[widest];
+    a_hi[widest] = mid[widest];
+    // The half whose centre looks deeper inside goes first (as findPointFormula's order): an
+    // element that exists, e.g. only at a cone's apex on its cap plane, is reached in about one
+    // descent instead of after its excluded surroundings.
+    Eigen::Vector3d c_lo = c, c_hi = c;
+    c_lo[widest] -= 0.5 * half[widest];
+    c_hi[widest] += 0.5 * half[widest];
+    const bool lo_first = ev.depth(c_lo) <= ev.depth(c_hi);
+    stack.push_back(lo_first ? std::make_pair(a_hi, b) : std::make_pair(a, b_lo));
+    stack.push_back(lo_first ? std::make_pair(a, b_lo) : std::make_pair(a_hi, b));
+  }
+  return true;
+}
+
+// Largest |x_k| of the box's points: the scale of the coordinates' rounding.
+double coordinateScale(const Box3& box) { return std::max(box.lo.cwiseAbs().maxCoeff(), box.hi.cwiseAbs().maxCoeff()); }
+
+// Certified absence of the element on the atoms `ids` of g's region (g as patchExcluded) near the
+// line of two of its planes meeting at an angle, or near its one plane. False when it has no such
+// plane(s) or absence is not certified (the caller's search decides).
+//  - Line: computed as p + s d (lineOfPlanes). A computed point x lies within
+//    (rho_1 + rho_2) / sin(theta) of the true line, rho_i its distance to plane i (the residual
+//    |n_i.x + d_i| / |n_i| plus 2^-40 of its terms for the rounding of the residual), theta the
+//    planes' angle. The distance is convex along the line, so its values at a segment's ends
+//    bound it on the segment; doubled, it is delta, and the segment inside the box grown by delta
+//    passes within delta of every point of the true line in the box.
+//  - Plane: the frame (planeFrame's u, v and the unit normal) at the box centre's projection; the
+//    true plane's points lie within a few ulps of the coordinates' scale of t = 0 (padded to
+//    2^-40 of that scale), their parameters within the box's extent along u and v.
+bool elementExcluded(const Formula& g, const std::vector<Eigen::Matrix4d>& atoms, const std::vector<int>& ids,
+                     const Box3& box, double min_len) {
+  std::vector<int> planes;
+  for (int i : ids)
+    if (isPlane(atoms[i])) planes.push_back(i);
+  const double scale = coordinateScale(box) + box.maxEdge();
+  for (std::size_t i = 0; i < planes.size(); ++i)
+    for (std::size_t j = i + 1; j < planes.size(); ++j) {
+      const Eigen::Vector4d p1 = detail::planeOf(atoms[planes[i]]), p2 = detail::planeOf(atoms[planes[j]]);
+      Eigen::Vector3d p, d;
+      if (!detail::lineOfPlanes(p1, p2, &p, &d)) continue;
+      const double n1 = p1.head<3>().norm(), n2 = p2.head<3>().norm();
+      const double sin_theta = d.norm() / (n1 * n2);
+      if (!(sin_theta >= 1e-6)) continue;
+      d.normalize();
+      auto offLine = [&](double s) {
+        const Eigen::Vector3d x = p + s * d;
+        const Eigen::Vector4d X(x[0], x[1], x[2], 1.0), Xa = X.cwiseAbs();
+        const double rho1 = (std::fabs(p1.dot(X)) + kRegionSignRelative * p1.cwiseAbs().dot(Xa)) / n1;
+        const double rho2 = (std::fabs(p2.dot(X)) + kRegionSignRelative * p2.cwiseAbs().dot(Xa)) / n2;
+        return 2.0 * (rho1 + rho2) / sin_theta + kRegionSignRelative * scale;
+      };
+      // The bound at the ends of the line clipped to the box grown by its largest edge, then the
+      // segment inside the box grown by that bound doubled (a sub-segment: the bound holds on it).
+      // A line missing either box is left to the search.
+      const double margin = box.maxEdge();
+      double s_lo = 0.0, s_hi = 0.0;
+      if (!clipLineToBox(p, d, Box3{box.lo.array() - margin, box.hi.array() + margin}, &s_lo, &s_hi)) return false;
+      const double delta = 2.0 * std::max(offLine(s_lo), offLine(s_hi));
+      if (!(delta < margin) || !clipLineToBox(p, d, Box3{box.lo.array() - delta, box.hi.array() + delta}, &s_lo, &s_hi))
+        return false;
+      const Eigen::Vector3d e1 = d.unitOrthogonal();
+      Eigen::Matrix3d E;
+      E << d, e1, d.cross(e1);
+      return patchExcluded(g, p, E, 1, Eigen::Vector2d(s_lo, 0.0), Eigen::Vector2d(s_hi, 0.0), delta, min_len);
+    }
+  if (planes.size() != 1) return false;
+  const Eigen::Vector4d plane = detail::planeOf(atoms[planes[0]]);
+  const Eigen::Vector3d n = plane.head<3>(), c = box.center(), r = box.halfWidth();
+  const Eigen::Vector3d p = c - (n.dot(c) + plane[3]) / n.squaredNorm() * n;
+  const Eigen::Matrix<double, 4, 3> frame = detail::planeFrame(plane);
+  Eigen::Matrix3d E;
+  E << frame.block<3, 1>(0, 0), frame.block<3, 1>(0, 1), n.normalized();
+  const double delta = kRegionSignRelative * scale;
+  // Parameters of the box's points: u.(x - p) within u.(c - p) +- |u|.r (v alike), grown by delta.
+  const double su = E.col(0).cwiseAbs().dot(r) + delta, sv = E.col(1).cwiseAbs().dot(r) + delta;
+  const double cu = E.col(0).dot(c - p), cv = E.col(1).dot(c - p);
+  return patchExcluded(g, p, E, 2, Eigen::Vector2d(cu - su, cv - sv), Eigen::Vector2d(cu + su, cv + sv), delta,
+                       min_len);
+}
+
 }  // namespace
 
 BoundaryElements boundaryElements(const QuadricRegion& region, const Box3& box, int max_order) {
@@ -1091,10 +1279,11 @@ BoundaryElements boundaryElements(const QuadricRegion& region, const Box3& box, 
   bool same_atoms = formula.atoms.size() == atoms.size();
   for (std::size_t i = 0; same_atoms && i < atoms.size(); ++i) same_atoms = formula.atoms[i] == atoms[i];
   // A face / edge / vertex exists unless the region intersected with the equalities of its
-  // surfaces is certified empty (findPoint). Equality f = 0 is f <= 0 and -f <= 0.
+  // surfaces is certified empty (findPoint). Equality f = 0 is f <= 0 and -f <= 0. A witness keeps
+  // it at once; near a line or a plane of its own, patches in its frame may certify it empty
+  // first (elementExcluded); the search decides the rest.
   auto mayMeet = [&](const std::vector<int>& ids) {
-    if (same_atoms && ids.size() == 1 && isPlane(atoms[ids[0]]) && planeFaceWitness(formula, ids[0], box)) return true;
-    if (same_atoms && ids.size() >= 2 && planarWitness(formula, ids, box)) return true;
+    if (same_atoms && elementWitness(formula, ids, box)) return true;
     std::vector<QuadricRegion> parts{region};
     for (int i : ids) {
       parts.push_back(QuadricRegion::atom(atoms[i]));
@@ -1105,9 +1294,9 @@ BoundaryElements boundaryElements(const QuadricRegion& region, const Box3& box, 
     // The resolution is kBoundaryElementBoxRelative, coarser than the static engine's: an element
     // within it of the boundary is kept (a superset is harmless: a consumer verifies contacts),
     // and a vertex or an edge that does exist costs a descent of ~20 levels instead of ~30.
-    return findPointFormula(Formula(QuadricRegion::combine(QuadricRegion::Op::Intersection, parts)), box, 0,
-                            kRegionMaxAspect, kBoundaryElementBoxRelative)
-               .status != PointSearch::Empty;
+    const Formula g(QuadricRegion::combine(QuadricRegion::Op::Intersection, parts));
+    if (elementExcluded(g, atoms, ids, box, kBoundaryElementBoxRelative * box.maxEdge())) return false;
+    return findPointFormula(g, box, 0, kRegionMaxAspect, kBoundaryElementBoxRelative).status != PointSearch::Empty;
   };
   for (std::size_t i = 0; i < atoms.size(); ++i) {
     if (!mayMeet({static_cast<int>(i)})) continue;
