@@ -1024,8 +1024,9 @@ void registerConstructionBenchmarks() {
 
 // Boundary elements (thesis §6.1-6.2), which the dimension reduction needs once per shape (the
 // front door caches them): a box, a box with four corners cut and turned, a plus-shaped union of
-// two boxes, and the CSG wedge; and the turned corner-cut box's regionAabb (ten planes in one
-// and-node). No FCL counterpart: FCL has no CSG solids.
+// two boxes, the CSG wedge, a turned capped cylinder and a turned block with a bore; and the
+// turned corner-cut box's regionAabb (ten planes in one and-node). No FCL counterpart: FCL has
+// no CSG solids.
 QuadricRegion cuboidRegion(const Eigen::Vector3d& h) {
   std::vector<QuadricRegion> faces;
   for (int i = 0; i < 3; ++i)
@@ -1042,12 +1043,16 @@ std::vector<std::pair<std::string, QuadricRegion>> makeElementCases() {
     cut.push_back(QuadricRegion::halfspace(n, n.dot(sign.cwiseProduct(h)) - 1.0));
   }
   const Eigen::Matrix3d R = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  const Eigen::Vector3d p(1.5, -2.0, 3.0);
+  const QuadricRegion bore = QuadricRegion::atom(fcl_quadric::quadric::ellipticCylinder(0.35, 0.45));
   return {{"Box", cuboidRegion(h)},
           {"CornerCutBlockTurned",
-           QuadricRegion::combine(Op::Intersection, cut).transformed(R, Eigen::Vector3d(1.5, -2.0, 3.0))},
+           QuadricRegion::combine(Op::Intersection, cut).transformed(R, p)},
           {"Plus", QuadricRegion::combine(Op::Union, {cuboidRegion(Eigen::Vector3d(0.7, 0.15, 0.6)),
                                                       cuboidRegion(Eigen::Vector3d(0.21, 0.5, 0.6))})},
-          {"Wedge", fcl_quadric::bench::wedgeRegion()}};
+          {"Wedge", fcl_quadric::bench::wedgeRegion()},
+          {"CappedCylinderTurned", fcl_quadric::bench::cappedCylinderRegion(0.7, 0.5, 2.2).transformed(R, p)},
+          {"DrilledBlockTurned", QuadricRegion::combine(Op::Difference, {cuboidRegion(h), bore}).transformed(R, p)}};
 }
 void registerElementBenchmarks() {
   static const std::vector<std::pair<std::string, QuadricRegion>> cases = makeElementCases();
