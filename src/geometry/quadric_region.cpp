@@ -1212,9 +1212,10 @@ double coordinateScale(const Box3& box) { return std::max(box.lo.cwiseAbs().maxC
 //  - Line: computed as p + s d (lineOfPlanes). A computed point x lies within
 //    (rho_1 + rho_2) / sin(theta) of the true line, rho_i its distance to plane i (the residual
 //    |n_i.x + d_i| / |n_i| plus 2^-40 of its terms for the rounding of the residual), theta the
-//    planes' angle. The distance is convex along the line, so its values at a segment's ends
-//    bound it on the segment; doubled, it is delta, and the segment inside the box grown by delta
-//    passes within delta of every point of the true line in the box.
+//    planes' angle. offLine doubles that bound (a margin for the rounding of p and d) and adds
+//    2^-40 of the coordinates' scale. The distance is convex along the line, so its values at a
+//    segment's ends bound it on the segment; offLine's larger end value, doubled, is delta, and the
+//    segment inside the box grown by delta passes within delta of every point of the true line.
 //  - Plane: the frame (planeFrame's u, v and the unit normal) at the box centre's projection; the
 //    true plane's points lie within a few ulps of the coordinates' scale of t = 0 (padded to
 //    2^-40 of that scale), their parameters within the box's extent along u and v.
